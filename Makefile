@@ -1,0 +1,91 @@
+# softrast — `make run` opens the viewer, `make test` builds and runs every test.
+# Optimised objects go to build/, sanitised ones (ASan + UBSan) to build/san/.
+
+CC      ?= cc
+PKGS    := cglm sdl2 SDL2_image
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-missing-field-initializers
+CFLAGS  ?= -O2 -g
+SAN     := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude $(PKG_CFLAGS) -MMD -MP
+LIBS    = $(PKG_LIBS) -lm -lpthread
+PREFIX  ?= /usr/local
+
+LIB_SRC  := $(wildcard src/core/*.c src/pipeline/*.c src/target/*.c src/io/*.c src/scene/*.c)
+APP_SRC  := $(wildcard src/app/*.c)
+TEST_SRC := $(wildcard tests/*.c)
+
+LIB_OBJ      := $(LIB_SRC:%.c=build/%.o)
+APP_OBJ      := $(APP_SRC:%.c=build/%.o)
+TEST_OBJ     := $(TEST_SRC:%.c=build/%.o)
+SAN_LIB_OBJ  := $(LIB_SRC:%.c=build/san/%.o)
+SAN_APP_OBJ  := $(APP_SRC:%.c=build/san/%.o)
+SAN_TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
+
+.PHONY: all deps run test test-fast test-san assets example clean install
+.DEFAULT_GOAL := all
+
+all: deps build/softrast
+
+deps:
+	@sh tools/deps.sh
+
+build/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(CFLAGS) -c $< -o $@
+
+build/san/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(SAN) -c $< -o $@
+
+build/libsoftrast.a: $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+build/san/libsoftrast.a: $(SAN_LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+build/softrast: $(APP_OBJ) build/libsoftrast.a
+	$(CC) $(CFLAGS) $^ $(LIBS) -o $@
+
+build/san/softrast: $(SAN_APP_OBJ) build/san/libsoftrast.a
+	$(CC) $(SAN) $^ $(LIBS) -o $@
+
+build/softrast-tests: $(TEST_OBJ) build/libsoftrast.a
+	$(CC) $(CFLAGS) $^ $(LIBS) -lcriterion -o $@
+
+build/san/softrast-tests: $(SAN_TEST_OBJ) build/san/libsoftrast.a
+	$(CC) $(SAN) $^ $(LIBS) -lcriterion -o $@
+
+build/example: examples/draw_into_buffer.c build/libsoftrast.a
+	$(CC) $(ALL_CFLAGS) $(CFLAGS) $^ $(LIBS) -o $@
+
+# The default scene, rendered to PNG (the viewer replaces this once it exists).
+run: all
+	./build/softrast render assets/room.obj --out build/room.png --depth-png build/room-depth.png
+	@echo "wrote build/room.png and build/room-depth.png"
+
+test: deps test-fast test-san
+
+# Tests read data relative to the project root; the binaries find it via SOFTRAST_ROOT.
+test-fast: build/softrast build/softrast-tests build/example
+	SOFTRAST_BIN=build/softrast ./build/softrast-tests --jobs 2
+	./build/example build/example.png
+	python3 ../shared/tools/check-cli-contract build/softrast 2>/dev/null || python3 tools/check-cli-contract build/softrast
+
+test-san: build/san/softrast build/san/softrast-tests
+	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 SOFTRAST_BIN=build/san/softrast \
+		./build/san/softrast-tests --jobs 2
+
+assets: build/gen-assets
+	./build/gen-assets assets
+
+build/gen-assets: tools/gen_assets.c
+	$(CC) $(ALL_CFLAGS) $(CFLAGS) $< $(LIBS) -o $@
+
+clean:
+	rm -rf build
+
+-include $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(SAN_LIB_OBJ:.o=.d) $(SAN_APP_OBJ:.o=.d) $(SAN_TEST_OBJ:.o=.d)

@@ -1,0 +1,24 @@
+/* softrast/assemble.h — stage 2: primitive assembly.
+ *
+ * Turns a mesh's index array into triangles. TriangleList: triangle k is
+ * (i[3k], i[3k+1], i[3k+2]). TriangleStrip: triangle k is (i[k], i[k+1],
+ * i[k+2]) with the last two swapped for odd k, so all keep one winding. A
+ * triangle with a repeated index is degenerate and is skipped (the strip's
+ * way of restarting).
+ */
+#ifndef SOFTRAST_ASSEMBLE_H
+#define SOFTRAST_ASSEMBLE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "mesh.h"
+
+/* Writes triangle k's three vertex indices; false if it is degenerate.
+ * k must be below sr_mesh_triangle_slots(mesh). */
+bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3]);
+
+/* True if every index is below vertex_count (checked once per draw). */
+bool sr_assemble_indices_valid(const sr_mesh *mesh);
+
+#endif

@@ -1,0 +1,38 @@
+/* softrast/camera.h — a look-at camera and its projection (cglm underneath).
+ *
+ * Left-handed (+x right, +y up, +z forward): view = glm_lookat_lh, projection
+ * = glm_perspective_lh_zo (vertical fov) or glm_ortho_lh_zo, mapping view
+ * depth near → z_ndc 0 and far → 1. sr_camera_check rejects what no matrix
+ * can be built from, with one line in err.
+ */
+#ifndef SOFTRAST_CAMERA_H
+#define SOFTRAST_CAMERA_H
+
+#include <stdbool.h>
+#include <cglm/cglm.h>
+
+#include "error.h"
+
+#define SR_CAMERA_FOV 60.0f
+#define SR_CAMERA_NEAR 0.1f
+#define SR_CAMERA_FAR 100.0f
+
+typedef struct sr_camera {
+    vec3 eye, target, up;
+    float fov_deg;      /* vertical */
+    float near, far;
+    float ortho_height; /* > 0: orthographic with this view height */
+} sr_camera;
+
+/* Defaults: at -z looking at the origin, up +y, 60°, near 0.1, far 100. */
+sr_camera sr_camera_default(void);
+
+/* Points the camera from -z at the centre of [lo, hi], far enough back that
+ * the bounding sphere fits the vertical and horizontal fov. */
+void sr_camera_frame_bounds(sr_camera *cam, const vec3 lo, const vec3 hi, float aspect);
+
+bool sr_camera_check(const sr_camera *cam, sr_error *err);
+void sr_camera_view(const sr_camera *cam, mat4 out);
+void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out);
+
+#endif

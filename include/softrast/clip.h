@@ -1,0 +1,54 @@
+/* softrast/clip.h — stages 3 to 5: classify, clip, fan.
+ *
+ * Classification gives each clip-space vertex a 6-bit outcode, one bit per
+ * plane it is outside of (distance < 0), plus SR_OUT_NONFINITE for NaN or inf.
+ * A triangle whose outcodes share a bit is rejected; one whose outcodes are
+ * all zero is accepted unclipped; the rest are clipped with Sutherland–Hodgman
+ * against exactly the planes in the OR of the outcodes, in the fixed order of
+ * sr_clip_plane. The result is a convex polygon of at most SR_MAX_CLIP_VERTS
+ * vertices, still in clip space; fan it as (v0, vi, vi+1) before the divide.
+ *
+ * The watertight rule (DESIGN.md): every cut vertex is interpolated from the
+ * inside end point toward the outside one, t = d_in / (d_in - d_out), in
+ * double precision, and its coordinate for the plane is then set exactly on
+ * the plane (x = -w for left, z = 0 for near, ...). Two triangles sharing an
+ * edge therefore get bit-identical cut vertices whichever way they walk it.
+ */
+#ifndef SOFTRAST_CLIP_H
+#define SOFTRAST_CLIP_H
+
+#include <stdint.h>
+
+#include "types.h"
+
+/* Planes in processing order; the outcode bit of plane p is 1 << p. */
+typedef enum sr_clip_plane {
+    SR_PLANE_NEAR = 0, /* z >= 0 */
+    SR_PLANE_FAR,      /* z <= w */
+    SR_PLANE_LEFT,     /* x >= -w */
+    SR_PLANE_RIGHT,    /* x <= w */
+    SR_PLANE_BOTTOM,   /* y >= -w */
+    SR_PLANE_TOP       /* y <= w */
+} sr_clip_plane;
+
+#define SR_OUT_PLANES ((1u << SR_CLIP_PLANES) - 1u)
+#define SR_OUT_NONFINITE (1u << SR_CLIP_PLANES)
+
+/* Signed distance of a clip-space point to a plane, in double: the sign is
+ * exact for float input, and a point is inside iff the distance is >= 0. */
+double sr_clip_distance(sr_clip_plane plane, const float *clip);
+
+unsigned sr_clip_outcode(const float *clip);
+
+/* The cut vertex of edge inside -> outside (d_in >= 0 > d_out) on a plane;
+ * floats = 4 + number of varyings to interpolate. */
+void sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                       int floats, sr_vertex_out *cut);
+
+/* Clips poly in place against the planes whose bits are set in `planes`.
+ * Returns the vertex count (0: nothing left, or a degenerate sliver whose
+ * rounding made it non-convex past the bound; never more than
+ * SR_MAX_CLIP_VERTS). */
+int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats);
+
+#endif

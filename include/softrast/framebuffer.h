@@ -1,0 +1,36 @@
+/* softrast/framebuffer.h — the color and depth buffers a draw writes.
+ *
+ * Color is 0x00RRGGBB per pixel, row 0 at the top; depth is float32 z_ndc in
+ * [0, 1], cleared to 1.0 (nothing drawn). The caller owns the memory: either
+ * sr_framebuffer_create/destroy, or fill the struct with buffers of its own.
+ */
+#ifndef SOFTRAST_FRAMEBUFFER_H
+#define SOFTRAST_FRAMEBUFFER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "error.h"
+
+#define SR_MAX_FRAMEBUFFER_SIDE 16384
+#define SR_DEPTH_CLEAR 1.0f
+
+typedef struct sr_framebuffer {
+    int width, height;
+    uint32_t *color; /* width * height */
+    float *depth;    /* width * height */
+} sr_framebuffer;
+
+/* False (with a message) for a side < 1 or > SR_MAX_FRAMEBUFFER_SIDE, or out of memory. */
+bool sr_framebuffer_create(sr_framebuffer *fb, int width, int height, sr_error *err);
+void sr_framebuffer_destroy(sr_framebuffer *fb);
+void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color);
+
+/* The range of depths actually written (< SR_DEPTH_CLEAR and finite); false if none. */
+bool sr_framebuffer_depth_range(const sr_framebuffer *fb, float *lo, float *hi);
+
+/* Depth as gray into out (width * height, 0x00RRGGBB): the written range
+ * [lo, hi] maps from white (near) to dark gray (far); background is black. */
+void sr_framebuffer_depth_to_gray(const sr_framebuffer *fb, uint32_t *out);
+
+#endif

@@ -1,0 +1,52 @@
+/* softrast/mesh.h — an indexed triangle mesh in plain arrays.
+ *
+ * A mesh is vertex attribute arrays (positions always; normals, uvs and colors
+ * optional, NULL when absent) plus an index array read as a TriangleList or a
+ * TriangleStrip. The mesh owns its arrays: build one with sr_mesh_alloc (or a
+ * loader such as sr_obj_load) and release it with sr_mesh_free. Positions are
+ * in the left-handed world convention of docs/conventions.md.
+ */
+#ifndef SOFTRAST_MESH_H
+#define SOFTRAST_MESH_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <cglm/cglm.h>
+
+#include "error.h"
+
+typedef enum sr_topology {
+    SR_TRIANGLE_LIST = 0,  /* triangle k = (i[3k], i[3k+1], i[3k+2]) */
+    SR_TRIANGLE_STRIP      /* triangle k = (i[k], i[k+1], i[k+2]); odd k swaps its last two */
+} sr_topology;
+
+typedef struct sr_mesh {
+    uint32_t vertex_count;
+    vec3 *positions;
+    vec3 *normals;    /* optional */
+    vec2 *uvs;        /* optional; v = 0 is the bottom row of the texture */
+    vec3 *colors;     /* optional; linear 0..1 RGB */
+    uint32_t index_count;
+    uint32_t *indices;
+    sr_topology topology;
+    char *texture_path; /* the material's map_Kd, resolved against the OBJ's folder, or NULL */
+} sr_mesh;
+
+/* Allocates zeroed arrays for the attributes asked for. False on overflow or
+ * out of memory (mesh left empty). */
+bool sr_mesh_alloc(sr_mesh *mesh, uint32_t vertex_count, uint32_t index_count,
+                   bool normals, bool uvs, bool colors, sr_error *err);
+void sr_mesh_free(sr_mesh *mesh);
+
+/* Axis-aligned bounds of the positions; false for a mesh with no vertices or
+ * with a non-finite position. */
+bool sr_mesh_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi);
+
+/* Fills in smooth vertex normals (area-weighted face normals, front faces
+ * clockwise as seen from outside) when the mesh has none. False if out of memory. */
+bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err);
+
+/* Number of triangle slots the topology defines (ids run over these). */
+uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh);
+
+#endif

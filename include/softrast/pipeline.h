@@ -1,0 +1,56 @@
+/* softrast/pipeline.h — the draw call: a mesh through all ten stages.
+ *
+ *     sr_framebuffer fb;
+ *     sr_framebuffer_create(&fb, 640, 480, &err);
+ *     sr_framebuffer_clear(&fb, 0x000000);
+ *     sr_stats stats = {0};
+ *     if (!sr_draw(&fb, &(sr_draw_desc){ .mesh = &mesh, .view = …, .projection = …,
+ *                                        .shade = SR_SHADE_LAMBERT }, &stats, &err))
+ *         fprintf(stderr, "%s\n", err.message);
+ *
+ * Every zero field is a default: an all-zero matrix is the identity, shade 0
+ * is lambert, cull 0 is back, front 0 is clockwise, filter 0 is bilinear, a
+ * zero light direction is SR_DEFAULT_LIGHT. The caller owns the framebuffer,
+ * the mesh and the texture; sr_draw only writes pixels and adds to stats.
+ * Triangle ids (for SR_SHADE_ID) are the mesh's triangle slots, from 0.
+ */
+#ifndef SOFTRAST_PIPELINE_H
+#define SOFTRAST_PIPELINE_H
+
+#include <stdbool.h>
+#include <cglm/cglm.h>
+
+#include "error.h"
+#include "framebuffer.h"
+#include "mesh.h"
+#include "texture.h"
+#include "types.h"
+
+/* Toward the light: from above, a little left and in front of a camera at -z. */
+#define SR_DEFAULT_LIGHT { -0.35f, 0.8f, -0.5f }
+
+/* Sees every fan triangle that survives culling, before it is rasterized
+ * (the viewer's wireframe overlay, tests of the clipper's output). */
+typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id);
+
+typedef struct sr_draw_desc {
+    const sr_mesh *mesh;
+    mat4 world, view, projection;
+    sr_shade shade;
+    sr_cull cull;
+    sr_front front;
+    sr_filter filter;
+    const sr_texture *texture; /* required by texture shading; lambert uses it when given */
+    vec3 light_dir;
+    sr_triangle_observer observer;
+    void *observer_user;
+} sr_draw_desc;
+
+/* Draws the mesh into fb (which the caller clears). False, with a message,
+ * for a desc that cannot be drawn: no mesh, an index out of range, a shading
+ * mode whose inputs the mesh lacks (normals, uvs, colors, texture). Bad
+ * geometry (NaN, inf, anything behind the eye) is not an error: it is dropped
+ * or clipped and counted in stats. */
+bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
+
+#endif

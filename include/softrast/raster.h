@@ -1,0 +1,31 @@
+/* softrast/raster.h — stages 8 and 9: triangle setup, coverage, depth test.
+ *
+ * Edge functions are evaluated exactly in 64-bit integers on vertices snapped
+ * to 1/256 pixel, at pixel centres (i + 0.5, j + 0.5). A centre on an edge is
+ * covered only if the edge is a top or left edge (the top-left rule of
+ * Direct3D and OpenGL), so pixels on an edge shared by two triangles are drawn
+ * exactly once. Depth is z_ndc interpolated linearly in screen space, tested
+ * LESS; varyings are interpolated perspective-correctly through 1/w, and the
+ * loop is specialised per shading mode.
+ */
+#ifndef SOFTRAST_RASTER_H
+#define SOFTRAST_RASTER_H
+
+#include <stdint.h>
+
+#include "framebuffer.h"
+#include "shade.h"
+#include "types.h"
+
+/* The pixels [x0, x1) × [y0, y1) a call may touch (the framebuffer, or a tile). */
+typedef struct sr_raster_rect {
+    int x0, y0, x1, y1;
+} sr_raster_rect;
+
+/* Draws one triangle of nonzero signed area2 (either winding) into fb within
+ * rect; returns the number of fragments that passed the depth test. */
+uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, sr_shade mode,
+                            const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
+                            uint32_t triangle_id);
+
+#endif

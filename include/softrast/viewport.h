@@ -1,0 +1,24 @@
+/* softrast/viewport.h — stage 6: perspective divide and viewport mapping.
+ *
+ * NDC (x, y in [-1, 1], z in [0, 1]) to pixels: px = (x + 1)·W/2,
+ * py = (1 - y)·H/2 (top-left origin, y down), snapped to 1/256 pixel. 1/w is
+ * kept, and the varyings are stored divided by w for perspective-correct
+ * interpolation.
+ */
+#ifndef SOFTRAST_VIEWPORT_H
+#define SOFTRAST_VIEWPORT_H
+
+#include <stdbool.h>
+
+#include "types.h"
+
+/* How far past [-1, 1] a clipped vertex may land from rounding before it is
+ * treated as broken input rather than a hair outside (DESIGN.md: the scan
+ * rectangle is clamped, vertices are never moved). */
+#define SR_NDC_SLACK 1e-3
+
+/* False when w <= 0, a value is not finite or x, y, z lie past the slack: the
+ * caller drops the triangle. Never true for a vertex the clipper left inside. */
+bool sr_viewport_map(const sr_vertex_out *v, int varyings, int width, int height, sr_screen_vertex *out);
+
+#endif

@@ -1,0 +1,10 @@
+/* app.h — the softrast program's subcommands. Each returns the exit status. */
+#ifndef SOFTRAST_APP_H
+#define SOFTRAST_APP_H
+
+int sr_app_render(int argc, char **argv);
+
+/* Prints "softrast: error: <message>" on stderr and returns the exit status 1. */
+int sr_app_fail(const char *message);
+
+#endif

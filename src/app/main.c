@@ -1,0 +1,33 @@
+/* softrast — subcommand dispatch. */
+#include <stdio.h>
+#include <string.h>
+
+#include "app.h"
+
+static const char USAGE[] =
+    "usage: softrast <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  render MESH.obj [options]   draw one image without a window (softrast render --help)\n"
+    "\n"
+    "softrast is a software rasterizer: every triangle is clipped in homogeneous clip space,\n"
+    "rasterized with exact fixed-point edge functions and depth-tested. See docs/cli.md.";
+
+int sr_app_fail(const char *message)
+{
+    fprintf(stderr, "softrast: error: %s\n", message);
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        puts(USAGE);
+        return argc < 2 ? 2 : 0;
+    }
+    if (strcmp(argv[1], "render") == 0)
+        return sr_app_render(argc, argv);
+    char message[256];
+    snprintf(message, sizeof message, "unknown command '%s' (see softrast --help)", argv[1]);
+    return sr_app_fail(message);
+}

@@ -1,0 +1,176 @@
+#include <string.h>
+
+#include "softrast/raster.h"
+
+#define PIXEL_CENTRE (SR_SUBPIXEL_ONE / 2)
+
+/* E(P) = a·Px + b·Py + c, the edge function of a → b in subpixel units: >= 0
+ * on the inside of a clockwise (area2 > 0) triangle. `bias` is 0 on a top or
+ * left edge and 1 otherwise, so E >= bias decides coverage with the
+ * top-left rule in exact integers. */
+typedef struct edge {
+    int64_t a, b, c, bias;
+} edge;
+
+static edge edge_make(const sr_screen_vertex *p, const sr_screen_vertex *q)
+{
+    int64_t dx = q->x - p->x, dy = q->y - p->y;
+    bool top = dy == 0 && dx > 0; /* horizontal, interior below (y down) */
+    bool left = dy < 0;           /* going up on screen: interior to its right */
+    return (edge){ .a = -dy, .b = dx, .c = dy * p->x - dx * p->y, .bias = (top || left) ? 0 : 1 };
+}
+
+static int64_t edge_at(const edge *e, int64_t px, int64_t py)
+{
+    return e->a * px + e->b * py + e->c;
+}
+
+/* Orders the vertices clockwise (area2 > 0) so one inside test fits both windings. */
+static void order_clockwise(const sr_screen_vertex in[3], int64_t area2, sr_screen_vertex out[3])
+{
+    out[0] = in[0];
+    out[1] = in[area2 > 0 ? 1 : 2];
+    out[2] = in[area2 > 0 ? 2 : 1];
+}
+
+/* Edge k is the one opposite vertex k, so E_k / area2 is barycentric λ_k. */
+static void edges_make(const sr_screen_vertex v[3], edge e[3])
+{
+    e[0] = edge_make(&v[1], &v[2]);
+    e[1] = edge_make(&v[2], &v[0]);
+    e[2] = edge_make(&v[0], &v[1]);
+}
+
+static int64_t subpixel_centre(int i)
+{
+    return (int64_t)i * SR_SUBPIXEL_ONE + PIXEL_CENTRE;
+}
+
+/* Everything the per-pixel loop reads, set up once per triangle. Attributes
+ * are a0 + λ1·d1 + λ2·d2, with λ from the exact edge values. */
+typedef struct setup {
+    edge e[3];
+    float inv_area2;
+    float z0, dz1, dz2;
+    float iw0, diw1, diw2;
+    int varyings;
+    float var0[SR_MAX_VARYINGS], dvar1[SR_MAX_VARYINGS], dvar2[SR_MAX_VARYINGS];
+    sr_raster_rect box;
+} setup;
+
+static int64_t floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+static int clamp_int(int64_t v, int lo, int hi)
+{
+    return (int)(v < lo ? lo : v > hi ? hi : v);
+}
+
+/* Pixels whose centres can lie in the triangle, clamped to rect (never the
+ * vertices: moving one would move a shared edge). */
+static sr_raster_rect scan_box(const sr_screen_vertex v[3], sr_raster_rect rect)
+{
+    int64_t lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
+    for (int k = 1; k < 3; k++) {
+        lo_x = v[k].x < lo_x ? v[k].x : lo_x;
+        hi_x = v[k].x > hi_x ? v[k].x : hi_x;
+        lo_y = v[k].y < lo_y ? v[k].y : lo_y;
+        hi_y = v[k].y > hi_y ? v[k].y : hi_y;
+    }
+    return (sr_raster_rect){
+        .x0 = clamp_int(floor_div(lo_x - PIXEL_CENTRE + SR_SUBPIXEL_ONE - 1, SR_SUBPIXEL_ONE), rect.x0, rect.x1),
+        .x1 = clamp_int(floor_div(hi_x - PIXEL_CENTRE, SR_SUBPIXEL_ONE) + 1, rect.x0, rect.x1),
+        .y0 = clamp_int(floor_div(lo_y - PIXEL_CENTRE + SR_SUBPIXEL_ONE - 1, SR_SUBPIXEL_ONE), rect.y0, rect.y1),
+        .y1 = clamp_int(floor_div(hi_y - PIXEL_CENTRE, SR_SUBPIXEL_ONE) + 1, rect.y0, rect.y1),
+    };
+}
+
+static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings, sr_raster_rect rect,
+                       setup *s)
+{
+    edges_make(v, s->e);
+    s->inv_area2 = (float)(1.0 / (double)area2);
+    s->z0 = v[0].z;
+    s->dz1 = v[1].z - v[0].z;
+    s->dz2 = v[2].z - v[0].z;
+    s->iw0 = v[0].inv_w;
+    s->diw1 = v[1].inv_w - v[0].inv_w;
+    s->diw2 = v[2].inv_w - v[0].inv_w;
+    s->varyings = varyings;
+    for (int k = 0; k < varyings; k++) {
+        s->var0[k] = v[0].var_w[k];
+        s->dvar1[k] = v[1].var_w[k] - v[0].var_w[k];
+        s->dvar2[k] = v[2].var_w[k] - v[0].var_w[k];
+    }
+    s->box = scan_box(v, rect);
+}
+
+static inline float depth_at(const setup *s, float l1, float l2)
+{
+    float z = s->z0 + l1 * s->dz1 + l2 * s->dz2;
+    return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f; /* rounding may step a hair outside [0, 1] */
+}
+
+static inline void varyings_at(const setup *s, float l1, float l2, float *var)
+{
+    float w = 1.0f / (s->iw0 + l1 * s->diw1 + l2 * s->diw2);
+    for (int k = 0; k < s->varyings; k++)
+        var[k] = (s->var0[k] + l1 * s->dvar1[k] + l2 * s->dvar2[k]) * w;
+}
+
+static inline bool mode_reads_varyings(sr_shade mode)
+{
+    return mode != SR_SHADE_ID && mode != SR_SHADE_DEPTH;
+}
+
+/* The per-pixel loop; always inlined with a constant mode so each mode gets
+ * its own loop with the shading branch folded away. */
+static inline __attribute__((always_inline)) uint64_t
+raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade, uint32_t id)
+{
+    uint64_t fragments = 0;
+    const int64_t step_x[3] = { s->e[0].a * SR_SUBPIXEL_ONE, s->e[1].a * SR_SUBPIXEL_ONE, s->e[2].a * SR_SUBPIXEL_ONE };
+    for (int j = s->box.y0; j < s->box.y1; j++) {
+        int64_t px = subpixel_centre(s->box.x0), py = subpixel_centre(j);
+        int64_t e0 = edge_at(&s->e[0], px, py), e1 = edge_at(&s->e[1], px, py), e2 = edge_at(&s->e[2], px, py);
+        size_t row = (size_t)j * (size_t)fb->width;
+        for (int i = s->box.x0; i < s->box.x1; i++, e0 += step_x[0], e1 += step_x[1], e2 += step_x[2]) {
+            if (e0 < s->e[0].bias || e1 < s->e[1].bias || e2 < s->e[2].bias)
+                continue;
+            float l1 = (float)e1 * s->inv_area2, l2 = (float)e2 * s->inv_area2;
+            float z = depth_at(s, l1, l2);
+            if (!(z < fb->depth[row + (size_t)i]))
+                continue;
+            fb->depth[row + (size_t)i] = z;
+            fragments++;
+            if (mode == SR_SHADE_DEPTH)
+                continue;
+            float var[SR_MAX_VARYINGS];
+            if (mode_reads_varyings(mode))
+                varyings_at(s, l1, l2, var);
+            fb->color[row + (size_t)i] = sr_shade_fragment(mode, shade, var, id);
+        }
+    }
+    return fragments;
+}
+
+uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, sr_shade mode,
+                            const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
+                            uint32_t triangle_id)
+{
+    sr_screen_vertex v[3];
+    setup s;
+    order_clockwise(tri, area2, v);
+    setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, rect, &s);
+    switch (mode) {
+    case SR_SHADE_ID:      return raster_loop(&s, fb, SR_SHADE_ID, shade, triangle_id);
+    case SR_SHADE_COLOR:   return raster_loop(&s, fb, SR_SHADE_COLOR, shade, triangle_id);
+    case SR_SHADE_NORMAL:  return raster_loop(&s, fb, SR_SHADE_NORMAL, shade, triangle_id);
+    case SR_SHADE_TEXTURE: return raster_loop(&s, fb, SR_SHADE_TEXTURE, shade, triangle_id);
+    case SR_SHADE_LAMBERT: return raster_loop(&s, fb, SR_SHADE_LAMBERT, shade, triangle_id);
+    default:               return raster_loop(&s, fb, SR_SHADE_DEPTH, shade, triangle_id);
+    }
+}

@@ -1,0 +1,73 @@
+#include <string.h>
+
+#include "softrast/vertex.h"
+
+static void add_varying(sr_varying_layout *l, int *slot, int size)
+{
+    *slot = l->count;
+    l->count += size;
+}
+
+sr_varying_layout sr_vertex_layout(sr_shade shade, const sr_mesh *mesh, bool textured)
+{
+    sr_varying_layout l = { .count = 0, .color = -1, .uv = -1, .normal = -1 };
+    bool uv_albedo = textured && mesh->uvs;
+    switch (shade) {
+    case SR_SHADE_COLOR:
+        add_varying(&l, &l.color, 3);
+        break;
+    case SR_SHADE_NORMAL:
+        add_varying(&l, &l.normal, 3);
+        break;
+    case SR_SHADE_TEXTURE:
+        add_varying(&l, &l.uv, 2);
+        break;
+    case SR_SHADE_LAMBERT:
+        add_varying(&l, &l.normal, 3);
+        if (uv_albedo)
+            add_varying(&l, &l.uv, 2);
+        else if (mesh->colors)
+            add_varying(&l, &l.color, 3);
+        break;
+    default:
+        break;
+    }
+    return l;
+}
+
+void sr_vertex_make_transform(const mat4 world, const mat4 view, const mat4 projection,
+                              sr_vertex_transform *xf)
+{
+    mat4 vw, inv;
+    glm_mat4_mul((vec4 *)view, (vec4 *)world, vw);
+    glm_mat4_mul((vec4 *)projection, vw, xf->clip_from_object);
+    glm_mat4_inv((vec4 *)world, inv);
+    glm_mat4_transpose(inv);
+    glm_mat4_pick3(inv, xf->normal_matrix);
+}
+
+static void copy_varying(float *dst, int slot, const float *src, int size)
+{
+    if (slot >= 0)
+        memcpy(dst + SR_VARYINGS_AT + slot, src, (size_t)size * sizeof(float));
+}
+
+void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
+                   uint32_t first, uint32_t count, sr_vertex_out *out)
+{
+    for (uint32_t k = 0; k < count; k++) {
+        uint32_t i = first + k;
+        float *v = out[k].v;
+        vec4 p = { mesh->positions[i][0], mesh->positions[i][1], mesh->positions[i][2], 1.0f };
+        glm_mat4_mulv((vec4 *)xf->clip_from_object, p, v);
+        if (layout->normal >= 0) {
+            vec3 n;
+            glm_mat3_mulv((vec3 *)xf->normal_matrix, mesh->normals[i], n);
+            copy_varying(v, layout->normal, n, 3);
+        }
+        if (layout->uv >= 0)
+            copy_varying(v, layout->uv, mesh->uvs[i], 2);
+        if (layout->color >= 0)
+            copy_varying(v, layout->color, mesh->colors[i], 3);
+    }
+}

@@ -1,0 +1,26 @@
+#include <math.h>
+
+#include "softrast/viewport.h"
+
+static bool within_slack(double ndc, double lo)
+{
+    return ndc >= lo - SR_NDC_SLACK && ndc <= 1.0 + SR_NDC_SLACK;
+}
+
+bool sr_viewport_map(const sr_vertex_out *v, int varyings, int width, int height, sr_screen_vertex *out)
+{
+    double w = v->v[SR_W];
+    if (!(w > 0.0) || !isfinite(w))
+        return false;
+    double inv_w = 1.0 / w;
+    double x = v->v[SR_X] * inv_w, y = v->v[SR_Y] * inv_w, z = v->v[SR_Z] * inv_w;
+    if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(z, 0.0))
+        return false;
+    out->x = llrint((x + 1.0) * 0.5 * width * SR_SUBPIXEL_ONE);
+    out->y = llrint((1.0 - y) * 0.5 * height * SR_SUBPIXEL_ONE);
+    out->z = (float)z;
+    out->inv_w = (float)inv_w;
+    for (int i = 0; i < varyings; i++)
+        out->var_w[i] = (float)(v->v[SR_VARYINGS_AT + i] * inv_w);
+    return true;
+}

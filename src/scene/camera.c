@@ -1,0 +1,76 @@
+#include <math.h>
+
+#include <cglm/clipspace/ortho_lh_zo.h>
+#include <cglm/clipspace/persp_lh_zo.h>
+#include <cglm/clipspace/view_lh.h>
+
+#include "softrast/camera.h"
+
+#define FRAME_MARGIN 1.05f /* a little room around the framed bounds */
+
+sr_camera sr_camera_default(void)
+{
+    return (sr_camera){ .eye = { 0.0f, 0.0f, -3.0f }, .target = { 0.0f, 0.0f, 0.0f }, .up = { 0.0f, 1.0f, 0.0f },
+                        .fov_deg = SR_CAMERA_FOV, .near = SR_CAMERA_NEAR, .far = SR_CAMERA_FAR };
+}
+
+void sr_camera_frame_bounds(sr_camera *cam, const vec3 lo, const vec3 hi, float aspect)
+{
+    vec3 centre, half;
+    glm_vec3_center((float *)lo, (float *)hi, centre);
+    glm_vec3_sub((float *)hi, centre, half);
+    float radius = glm_vec3_norm(half);
+    float half_fov = glm_rad(cam->fov_deg) * 0.5f;
+    float half_fov_x = atanf(tanf(half_fov) * aspect);
+    float narrow = half_fov < half_fov_x ? half_fov : half_fov_x;
+    float distance = radius > 0.0f ? FRAME_MARGIN * radius / sinf(narrow) : 1.0f;
+    glm_vec3_copy(centre, cam->target);
+    glm_vec3_copy(centre, cam->eye);
+    cam->eye[2] -= distance;
+    if (cam->ortho_height > 0.0f)
+        cam->ortho_height = 2.0f * FRAME_MARGIN * radius;
+}
+
+static bool all_finite(const float *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return false;
+    return true;
+}
+
+bool sr_camera_check(const sr_camera *cam, sr_error *err)
+{
+    if (!all_finite(cam->eye, 3) || !all_finite(cam->target, 3) || !all_finite(cam->up, 3))
+        return sr_error_set(err, "camera eye, target and up must be finite");
+    vec3 dir, side;
+    glm_vec3_sub((float *)cam->target, (float *)cam->eye, dir);
+    if (glm_vec3_norm(dir) == 0.0f)
+        return sr_error_set(err, "camera eye and target are the same point");
+    glm_vec3_cross(dir, (float *)cam->up, side);
+    if (glm_vec3_norm(side) == 0.0f)
+        return sr_error_set(err, "camera up is zero or parallel to the view direction");
+    if (!(cam->near > 0.0f) || !isfinite(cam->near))
+        return sr_error_set(err, "near plane must be a positive finite number (got %g)", cam->near);
+    if (!(cam->far > cam->near) || !isfinite(cam->far))
+        return sr_error_set(err, "far plane must be finite and beyond near (near %g, far %g)", cam->near, cam->far);
+    if (cam->ortho_height > 0.0f ? !isfinite(cam->ortho_height)
+                                 : !(cam->fov_deg > 0.0f && cam->fov_deg < 180.0f))
+        return sr_error_set(err, "fov must be between 0 and 180 degrees (got %g)", cam->fov_deg);
+    return true;
+}
+
+void sr_camera_view(const sr_camera *cam, mat4 out)
+{
+    glm_lookat_lh((float *)cam->eye, (float *)cam->target, (float *)cam->up, out);
+}
+
+void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out)
+{
+    if (cam->ortho_height > 0.0f) {
+        float h = cam->ortho_height * 0.5f, w = h * aspect;
+        glm_ortho_lh_zo(-w, w, -h, h, cam->near, cam->far, out);
+    } else {
+        glm_perspective_lh_zo(glm_rad(cam->fov_deg), aspect, cam->near, cam->far, out);
+    }
+}

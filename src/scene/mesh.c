@@ -1,0 +1,94 @@
+#include <math.h>
+#include <stdlib.h>
+
+#include "softrast/assemble.h"
+#include "softrast/mesh.h"
+
+static void *alloc_array(bool wanted, uint32_t count, size_t elem, bool *ok)
+{
+    if (!wanted || count == 0)
+        return NULL;
+    void *p = calloc(count, elem);
+    if (!p)
+        *ok = false;
+    return p;
+}
+
+bool sr_mesh_alloc(sr_mesh *mesh, uint32_t vertex_count, uint32_t index_count,
+                   bool normals, bool uvs, bool colors, sr_error *err)
+{
+    bool ok = true;
+    *mesh = (sr_mesh){ .vertex_count = vertex_count, .index_count = index_count };
+    mesh->positions = alloc_array(true, vertex_count, sizeof(vec3), &ok);
+    mesh->normals = alloc_array(normals, vertex_count, sizeof(vec3), &ok);
+    mesh->uvs = alloc_array(uvs, vertex_count, sizeof(vec2), &ok);
+    mesh->colors = alloc_array(colors, vertex_count, sizeof(vec3), &ok);
+    mesh->indices = alloc_array(true, index_count, sizeof(uint32_t), &ok);
+    if (!ok) {
+        sr_mesh_free(mesh);
+        return sr_error_set(err, "out of memory for a mesh of %u vertices and %u indices",
+                            vertex_count, index_count);
+    }
+    return true;
+}
+
+void sr_mesh_free(sr_mesh *mesh)
+{
+    free(mesh->positions);
+    free(mesh->normals);
+    free(mesh->uvs);
+    free(mesh->colors);
+    free(mesh->indices);
+    free(mesh->texture_path);
+    *mesh = (sr_mesh){ 0 };
+}
+
+bool sr_mesh_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi)
+{
+    if (mesh->vertex_count == 0)
+        return false;
+    glm_vec3_copy(mesh->positions[0], lo);
+    glm_vec3_copy(mesh->positions[0], hi);
+    for (uint32_t i = 0; i < mesh->vertex_count; i++) {
+        const float *p = mesh->positions[i];
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+            return false;
+        glm_vec3_minv(lo, (float *)p, lo);
+        glm_vec3_maxv(hi, (float *)p, hi);
+    }
+    return true;
+}
+
+uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh)
+{
+    if (mesh->topology == SR_TRIANGLE_STRIP)
+        return mesh->index_count >= 3 ? mesh->index_count - 2 : 0;
+    return mesh->index_count / 3;
+}
+
+bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err)
+{
+    if (mesh->normals || mesh->vertex_count == 0)
+        return true;
+    if (!sr_assemble_indices_valid(mesh))
+        return sr_error_set(err, "mesh has an index past its %u vertices", mesh->vertex_count);
+    mesh->normals = calloc(mesh->vertex_count, sizeof(vec3));
+    if (!mesh->normals)
+        return sr_error_set(err, "out of memory for %u normals", mesh->vertex_count);
+    uint32_t slots = sr_mesh_triangle_slots(mesh);
+    for (uint32_t k = 0; k < slots; k++) {
+        uint32_t t[3];
+        if (!sr_assemble_triangle(mesh, k, t))
+            continue;
+        vec3 e1, e2, n;
+        glm_vec3_sub(mesh->positions[t[1]], mesh->positions[t[0]], e1);
+        glm_vec3_sub(mesh->positions[t[2]], mesh->positions[t[0]], e2);
+        /* Left-handed, clockwise front faces: e1 x e2 points outward. */
+        glm_vec3_cross(e1, e2, n);
+        for (int i = 0; i < 3; i++)
+            glm_vec3_add(mesh->normals[t[i]], n, mesh->normals[t[i]]);
+    }
+    for (uint32_t i = 0; i < mesh->vertex_count; i++)
+        glm_vec3_normalize(mesh->normals[i]);
+    return true;
+}

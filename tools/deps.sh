@@ -1,0 +1,21 @@
+#!/bin/sh
+# Makes sure the Debian packages softrast builds and tests with are installed.
+# As root it installs what is missing; otherwise it prints the exact command.
+set -eu
+PACKAGES="build-essential pkg-config python3 libcglm-dev libsdl2-dev libsdl2-image-dev libcriterion-dev"
+[ "${1:-}" = "--viewer-test" ] && PACKAGES="$PACKAGES xvfb xauth"
+missing=""
+for p in $PACKAGES; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+if [ "$(id -u)" -eq 0 ]; then
+    echo "softrast: installing missing packages:$missing"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq $missing >/dev/null
+else
+    echo "softrast: missing packages; install them with:" >&2
+    echo "    sudo apt-get install -y$missing" >&2
+    exit 1
+fi
