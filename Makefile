@@ -33,57 +33,76 @@ deps:
 
 build/%.o: %.c
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(CFLAGS) -c $< -o $@
+	@echo "  CC      $<"
+	@$(CC) $(ALL_CFLAGS) $(CFLAGS) -c $< -o $@
 
 build/san/%.o: %.c
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(SAN) -c $< -o $@
+	@echo "  CC san  $<"
+	@$(CC) $(ALL_CFLAGS) $(SAN) -c $< -o $@
 
 build/libsoftrast.a: $(LIB_OBJ)
 	@rm -f $@
-	ar rcs $@ $^
+	@echo "  AR      $@"
+	@ar rcs $@ $^
 
 build/san/libsoftrast.a: $(SAN_LIB_OBJ)
 	@rm -f $@
-	ar rcs $@ $^
+	@echo "  AR      $@"
+	@ar rcs $@ $^
 
 build/softrast: $(APP_OBJ) build/libsoftrast.a
-	$(CC) $(CFLAGS) $^ $(LIBS) -o $@
+	@echo "  LINK    $@"
+	@$(CC) $(CFLAGS) $^ $(LIBS) -o $@
 
 build/san/softrast: $(SAN_APP_OBJ) build/san/libsoftrast.a
-	$(CC) $(SAN) $^ $(LIBS) -o $@
+	@echo "  LINK    $@"
+	@$(CC) $(SAN) $^ $(LIBS) -o $@
 
 build/softrast-tests: $(TEST_OBJ) build/libsoftrast.a
-	$(CC) $(CFLAGS) $^ $(LIBS) -lcriterion -o $@
+	@echo "  LINK    $@"
+	@$(CC) $(CFLAGS) $^ $(LIBS) -lcriterion -o $@
 
 build/san/softrast-tests: $(SAN_TEST_OBJ) build/san/libsoftrast.a
-	$(CC) $(SAN) $^ $(LIBS) -lcriterion -o $@
+	@echo "  LINK    $@"
+	@$(CC) $(SAN) $^ $(LIBS) -lcriterion -o $@
 
 build/example: examples/draw_into_buffer.c build/libsoftrast.a
 	$(CC) $(ALL_CFLAGS) $(CFLAGS) $^ $(LIBS) -o $@
 
-# The default scene, rendered to PNG (the viewer replaces this once it exists).
+# The default scene from inside the room, rendered to PNG (until the viewer exists).
+ROOM_CAMERA := --eye -8,3,-8 --target 4,1.5,6 --fov 75
 run: all
-	./build/softrast render assets/room.obj --out build/room.png --depth-png build/room-depth.png
+	./build/softrast render assets/room.obj $(ROOM_CAMERA) --out build/room.png --depth-png build/room-depth.png
 	@echo "wrote build/room.png and build/room-depth.png"
 
 test: deps test-fast test-san
 
 # Tests read data relative to the project root; the binaries find it via SOFTRAST_ROOT.
+CONTRACT := ../shared/tools/check-cli-contract
+
 test-fast: build/softrast build/softrast-tests build/example
 	SOFTRAST_BIN=build/softrast ./build/softrast-tests --jobs 2
 	./build/example build/example.png
-	python3 ../shared/tools/check-cli-contract build/softrast 2>/dev/null || python3 tools/check-cli-contract build/softrast
+	@if [ -f $(CONTRACT) ]; then python3 $(CONTRACT) build/softrast; \
+	 else echo "note: $(CONTRACT) not found beside the checkout; CLI contract not checked"; fi
 
+# Criterion runs each test in a child whose leak report does not fail the
+# test, so the sanitiser log itself is checked too.
 test-san: build/san/softrast build/san/softrast-tests
-	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 SOFTRAST_BIN=build/san/softrast \
-		./build/san/softrast-tests --jobs 2
+	@ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 SOFTRAST_BIN=build/san/softrast \
+		./build/san/softrast-tests --jobs 2 2> build/san/test.log; status=$$?; cat build/san/test.log; \
+	 if grep -q "ERROR: LeakSanitizer\|runtime error:\|ERROR: AddressSanitizer" build/san/test.log; then \
+	   echo "sanitiser errors above"; exit 1; fi; exit $$status
 
 assets: build/gen-assets
 	./build/gen-assets assets
 
-build/gen-assets: tools/gen_assets.c
-	$(CC) $(ALL_CFLAGS) $(CFLAGS) $< $(LIBS) -o $@
+GEN_SRC := $(wildcard tools/gen_*.c)
+
+build/gen-assets: $(GEN_SRC) tools/gen_assets.h
+	@mkdir -p build
+	$(CC) $(ALL_CFLAGS) $(CFLAGS) $(GEN_SRC) $(LIBS) -o $@
 
 clean:
 	rm -rf build

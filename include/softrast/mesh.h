@@ -29,7 +29,7 @@ typedef struct sr_mesh {
     uint32_t index_count;
     uint32_t *indices;
     sr_topology topology;
-    char *texture_path; /* the material's map_Kd, resolved against the OBJ's folder, or NULL */
+    char *texture_path; /* the used material's map_Kd (relative to the .mtl's folder, the .mtl to the OBJ's), or NULL */
 } sr_mesh;
 
 /* Allocates zeroed arrays for the attributes asked for. False on overflow or

@@ -1,0 +1,154 @@
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "mtl.h"
+
+static bool out_of_memory(const sr_line_reader *in, sr_error *err)
+{
+    return sr_line_fail(in, err, "out of memory");
+}
+
+static bool parse_newmtl(sr_growable *lib, sr_line_reader *in, char *cursor, sr_error *err)
+{
+    /* The whole rest is the name: exporters write names with spaces. */
+    const char *name = sr_obj_rest(cursor);
+    if (!*name)
+        return sr_line_fail(in, err, "'newmtl' needs a material name");
+    char *copy = strdup(name);
+    sr_material *m = copy ? sr_grow(lib, sizeof *m, 1) : NULL;
+    if (!m) {
+        free(copy);
+        return out_of_memory(in, err);
+    }
+    *m = (sr_material){ .name = copy };
+    return true;
+}
+
+/* Options (-s 1 1 1, -clamp on, -bm 0.5, …) precede the file name and take
+ * different numbers of arguments; when there are options the name is the last
+ * token, otherwise it is the whole rest, which may contain spaces. */
+static const char *map_file_name(char *rest)
+{
+    if (rest[0] != '-')
+        return rest;
+    const char *name = rest;
+    for (const char *s = rest; *s; s++)
+        if ((s[0] == ' ' || s[0] == '\t') && s[1] && s[1] != ' ' && s[1] != '\t')
+            name = s + 1;
+    return name;
+}
+
+static bool parse_map_kd(sr_growable *lib, sr_line_reader *in, char *cursor, sr_error *err)
+{
+    if (lib->len == 0)
+        return sr_line_fail(in, err, "'map_Kd' before any 'newmtl'");
+    const char *file = map_file_name(sr_obj_rest(cursor));
+    if (!*file || file[0] == '-')
+        return sr_line_fail(in, err, "'map_Kd' needs a file name");
+    sr_material *m = (sr_material *)lib->data + lib->len - 1;
+    char *path = sr_obj_path_beside(in->path, file);
+    if (!path)
+        return out_of_memory(in, err);
+    free(m->map_kd); /* a repeated map_Kd overrides, as in other readers */
+    m->map_kd = path;
+    return true;
+}
+
+static bool parse_mtl_statement(sr_growable *lib, sr_line_reader *in, char *line,
+                                sr_error *err)
+{
+    char *cursor = line;
+    const char *keyword = sr_obj_next_token(&cursor);
+    if (!keyword)
+        return true;
+    if (strcmp(keyword, "newmtl") == 0)
+        return parse_newmtl(lib, in, cursor, err);
+    /* Some exporters write "map_kd"; the keyword means the same. */
+    if (strcasecmp(keyword, "map_Kd") == 0)
+        return parse_map_kd(lib, in, cursor, err);
+    return true;
+}
+
+static bool read_library(sr_growable *lib, sr_line_reader *in, sr_error *err)
+{
+    for (;;) {
+        char *line;
+        if (!sr_line_reader_next(in, &line, err))
+            return false;
+        if (!line)
+            return true;
+        if (!parse_mtl_statement(lib, in, line, err))
+            return false;
+    }
+}
+
+/* 1 loaded, 0 cannot open (errno set), -1 error in the library (err set). */
+static int load_library(sr_growable *lib, const sr_line_reader *obj, const char *name,
+                        sr_error *err)
+{
+    char *path = sr_obj_path_beside(obj->path, name);
+    if (!path) {
+        out_of_memory(obj, err);
+        return -1;
+    }
+    sr_line_reader in;
+    int status = 0;
+    if (sr_line_reader_open(&in, path)) {
+        status = read_library(lib, &in, err) ? 1 : -1;
+        sr_line_reader_close(&in);
+    }
+    int saved = errno; /* free() may change it */
+    free(path);
+    errno = saved;
+    return status;
+}
+
+static bool cannot_open(const sr_line_reader *obj, const char *name, sr_error *err)
+{
+    return sr_line_fail(obj, err, "cannot open material library '%s': %s", name,
+                        strerror(errno));
+}
+
+/* Usually one name, which may contain spaces (Blender names the library after
+ * the OBJ); the format also allows several names separated by blanks, which
+ * is tried when the whole rest is not a file. A missing library is an error:
+ * softrast never drops a texture silently. */
+bool sr_mtl_load(sr_growable *lib, const sr_line_reader *obj, char *names, sr_error *err)
+{
+    if (!*names)
+        return sr_line_fail(obj, err, "'mtllib' needs a file name");
+    int status = load_library(lib, obj, names, err);
+    if (status != 0)
+        return status > 0;
+    if (!strpbrk(names, " \t"))
+        return cannot_open(obj, names, err);
+    for (char *name; (name = sr_obj_next_token(&names));) {
+        status = load_library(lib, obj, name, err);
+        if (status == 0)
+            return cannot_open(obj, name, err);
+        if (status < 0)
+            return false;
+    }
+    return true;
+}
+
+ptrdiff_t sr_mtl_find(const sr_growable *lib, const char *name)
+{
+    const sr_material *m = lib->data;
+    for (size_t i = 0; i < lib->len; i++)
+        if (strcmp(m[i].name, name) == 0)
+            return (ptrdiff_t)i;
+    return -1;
+}
+
+void sr_mtl_free(sr_growable *lib)
+{
+    sr_material *m = lib->data;
+    for (size_t i = 0; i < lib->len; i++) {
+        free(m[i].name);
+        free(m[i].map_kd);
+    }
+    sr_growable_free(lib);
+}

@@ -1,0 +1,401 @@
+/* Wavefront OBJ -> sr_mesh, in one pass over the file.
+ *
+ * Attribute lines (v, vt, vn) are kept as read. Each face corner is resolved
+ * against the attributes read so far (as the format requires, which also
+ * fixes what a negative index means) and interned: a hash map from the
+ * (v, vt, vn) triple to its mesh vertex keeps the whole load O(n). The
+ * right-to-left-handed flip happens where triangles and vertices are written:
+ * z is negated and each fan triangle (c0, ck, ck+1) is emitted as
+ * (c0, ck+1, ck).
+ */
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "softrast/obj.h"
+
+#include "mtl.h"
+#include "obj_parse.h"
+
+#define NONE UINT32_MAX            /* a corner without vt or vn */
+#define MAX_ITEMS (UINT32_MAX - 1) /* so every index fits in uint32_t and NONE stays free */
+#define MAP_MIN_CAP 1024u
+
+typedef struct corner {
+    uint32_t v, vt, vn; /* 0-based into the attributes as read, or NONE */
+} corner;
+
+typedef struct obj_reader {
+    sr_line_reader in;
+    sr_error *err;
+    sr_growable positions, colors, uvs, normals; /* vec3, vec3, vec2, vec3 as read */
+    sr_growable corners;                          /* corner per mesh vertex */
+    sr_growable indices;                          /* uint32_t, three per triangle */
+    uint32_t *map;                                /* open addressing: corner id + 1, 0 = free */
+    size_t map_cap;                               /* a power of two, kept at least half free */
+    bool any_uv, any_normal;
+    sr_growable materials; /* sr_material */
+    bool has_mtllib;
+    ptrdiff_t material;  /* selected by usemtl, or -1 */
+    const char *texture; /* first map_Kd used by a face; owned by materials */
+} obj_reader;
+
+static bool out_of_memory(const obj_reader *o)
+{
+    return sr_line_fail(&o->in, o->err, "out of memory");
+}
+
+/* ---- attribute lines ---- */
+
+static void *push_attribute(obj_reader *o, sr_growable *g, size_t size, const char *what)
+{
+    if (g->len >= MAX_ITEMS) {
+        sr_line_fail(&o->in, o->err, "more than %u %s", MAX_ITEMS, what);
+        return NULL;
+    }
+    void *at = sr_grow(g, size, 1);
+    if (!at)
+        out_of_memory(o);
+    return at;
+}
+
+/* Keeps colors in step with positions once any vertex has a color; the
+ * vertices before the first colored one, and any without a color, are white. */
+static bool push_color(obj_reader *o, const float *rgb)
+{
+    if (!rgb && o->colors.len == 0)
+        return true;
+    size_t missing = o->positions.len - o->colors.len;
+    vec3 *c = sr_grow(&o->colors, sizeof(vec3), missing);
+    if (!c)
+        return out_of_memory(o);
+    for (size_t i = 0; i < missing; i++)
+        glm_vec3_one(c[i]);
+    if (rgb)
+        glm_vec3_copy((float *)rgb, c[missing - 1]);
+    return true;
+}
+
+static bool parse_vertex(obj_reader *o, char *cursor)
+{
+    float f[6];
+    int n = sr_obj_parse_floats(&o->in, cursor, f, 6, o->err);
+    if (n < 0)
+        return false;
+    if (n != 3 && n != 4 && n != 6)
+        return sr_line_fail(&o->in, o->err,
+                            "'v' needs x y z, x y z w or x y z r g b, got %d numbers", n);
+    vec3 *p = push_attribute(o, &o->positions, sizeof *p, "vertices");
+    if (!p)
+        return false;
+    glm_vec3_copy(f, *p); /* a w (n == 4) only matters for rational curves */
+    return push_color(o, n == 6 ? f + 3 : NULL);
+}
+
+static bool parse_uv(obj_reader *o, char *cursor)
+{
+    float f[3];
+    int n = sr_obj_parse_floats(&o->in, cursor, f, 3, o->err);
+    if (n < 0)
+        return false;
+    if (n < 2)
+        return sr_line_fail(&o->in, o->err, "'vt' needs u v or u v w, got %d numbers", n);
+    vec2 *t = push_attribute(o, &o->uvs, sizeof *t, "texture coordinates");
+    if (!t)
+        return false;
+    glm_vec2_copy(f, *t);
+    return true;
+}
+
+static bool parse_normal(obj_reader *o, char *cursor)
+{
+    float f[3];
+    int n = sr_obj_parse_floats(&o->in, cursor, f, 3, o->err);
+    if (n < 0)
+        return false;
+    if (n != 3)
+        return sr_line_fail(&o->in, o->err, "'vn' needs x y z, got %d numbers", n);
+    vec3 *nv = push_attribute(o, &o->normals, sizeof *nv, "normals");
+    if (!nv)
+        return false;
+    glm_vec3_copy(f, *nv);
+    return true;
+}
+
+/* ---- corners: parse, resolve, intern ---- */
+
+/* "v", "v/vt", "v//vn" or "v/vt/vn"; has[1], has[2] say which were given. */
+static bool split_corner(const char *s, long idx[3], bool has[3])
+{
+    if (!sr_obj_parse_long(&s, &idx[0]))
+        return false;
+    if (*s == '\0')
+        return true;
+    if (*s++ != '/')
+        return false;
+    if (*s != '/') {
+        if (!sr_obj_parse_long(&s, &idx[1]))
+            return false;
+        has[1] = true;
+        if (*s == '\0')
+            return true;
+        if (*s != '/')
+            return false;
+    }
+    s++;
+    if (!sr_obj_parse_long(&s, &idx[2]))
+        return false;
+    has[2] = true;
+    return *s == '\0';
+}
+
+/* OBJ counts from 1; a negative index counts back from the last element read
+ * so far (-1 is the latest). Written so that no value of idx can overflow. */
+static bool resolve_index(obj_reader *o, long idx, size_t count, const char *what,
+                          uint32_t *out)
+{
+    if (idx == 0)
+        return sr_line_fail(&o->in, o->err, "%s index 0 is invalid (OBJ counts from 1)", what);
+    unsigned long magnitude = idx > 0 ? (unsigned long)idx : (unsigned long)-(idx + 1) + 1;
+    if (magnitude > count)
+        return sr_line_fail(&o->in, o->err, "%s index %ld is out of range (%zu defined so far)",
+                            what, idx, count);
+    *out = (uint32_t)(idx > 0 ? magnitude - 1 : count - magnitude);
+    return true;
+}
+
+static uint32_t hash_corner(corner c)
+{
+    uint32_t h = c.v * 0x9E3779B1u ^ c.vt * 0x85EBCA77u ^ c.vn * 0xC2B2AE3Du;
+    h ^= h >> 16; /* murmur3's finaliser: spreads the low bits the mask keeps */
+    h *= 0x85EBCA6Bu;
+    h ^= h >> 13;
+    return h;
+}
+
+static bool same_corner(corner a, corner b)
+{
+    return a.v == b.v && a.vt == b.vt && a.vn == b.vn;
+}
+
+/* The slot holding c, or the free slot where it belongs. */
+static size_t find_slot(const obj_reader *o, corner c)
+{
+    const corner *known = o->corners.data;
+    size_t mask = o->map_cap - 1;
+    size_t i = hash_corner(c) & mask;
+    while (o->map[i] != 0 && !same_corner(known[o->map[i] - 1], c))
+        i = (i + 1) & mask;
+    return i;
+}
+
+static bool grow_map(obj_reader *o)
+{
+    size_t cap = o->map_cap ? 2 * o->map_cap : MAP_MIN_CAP;
+    uint32_t *map = calloc(cap, sizeof *map);
+    if (!map)
+        return out_of_memory(o);
+    free(o->map);
+    o->map = map;
+    o->map_cap = cap;
+    const corner *known = o->corners.data;
+    for (size_t id = 0; id < o->corners.len; id++)
+        o->map[find_slot(o, known[id])] = (uint32_t)id + 1;
+    return true;
+}
+
+/* The mesh vertex for c, made on first sight. */
+static bool intern_corner(obj_reader *o, corner c, uint32_t *id)
+{
+    if (2 * (o->corners.len + 1) > o->map_cap && !grow_map(o))
+        return false;
+    size_t slot = find_slot(o, c);
+    if (o->map[slot] != 0) {
+        *id = o->map[slot] - 1;
+        return true;
+    }
+    corner *fresh = push_attribute(o, &o->corners, sizeof *fresh, "distinct face vertices");
+    if (!fresh)
+        return false;
+    *fresh = c;
+    *id = (uint32_t)(o->corners.len - 1);
+    o->map[slot] = *id + 1;
+    return true;
+}
+
+static bool parse_face_corner(obj_reader *o, const char *tok, uint32_t *id)
+{
+    long idx[3] = { 0, 0, 0 };
+    bool has[3] = { true, false, false };
+    if (!split_corner(tok, idx, has))
+        return sr_line_fail(&o->in, o->err,
+                            "malformed face vertex '%.40s' (expected v, v/vt, v//vn or v/vt/vn)",
+                            tok);
+    corner c = { NONE, NONE, NONE };
+    if (!resolve_index(o, idx[0], o->positions.len, "vertex", &c.v))
+        return false;
+    if (has[1] && !resolve_index(o, idx[1], o->uvs.len, "texture coordinate", &c.vt))
+        return false;
+    if (has[2] && !resolve_index(o, idx[2], o->normals.len, "normal", &c.vn))
+        return false;
+    o->any_uv |= has[1];
+    o->any_normal |= has[2];
+    return intern_corner(o, c, id);
+}
+
+/* ---- faces ---- */
+
+static bool emit_triangle(obj_reader *o, uint32_t a, uint32_t b, uint32_t c)
+{
+    if (o->indices.len > UINT32_MAX - 3)
+        return sr_line_fail(&o->in, o->err, "more than %u triangles", UINT32_MAX / 3);
+    uint32_t *t = sr_grow(&o->indices, sizeof *t, 3);
+    if (!t)
+        return out_of_memory(o);
+    t[0] = a;
+    t[1] = b;
+    t[2] = c;
+    return true;
+}
+
+/* Streams the fan: on reading corner k >= 2 the fan triangle (c0, c(k-1), ck)
+ * is complete, and it is written reversed as (c0, ck, c(k-1)). */
+static bool parse_face(obj_reader *o, char *cursor)
+{
+    uint32_t first = 0, prev = 0;
+    size_t n = 0;
+    for (char *tok; (tok = sr_obj_next_token(&cursor)); n++) {
+        uint32_t id = 0; /* set by parse_face_corner; -O2 cannot see it */
+        if (!parse_face_corner(o, tok, &id))
+            return false;
+        if (n == 0)
+            first = id;
+        else if (n >= 2 && !emit_triangle(o, first, id, prev))
+            return false;
+        prev = id;
+    }
+    if (n < 3)
+        return sr_line_fail(&o->in, o->err, "a face needs at least 3 vertices, got %zu", n);
+    if (!o->texture && o->material >= 0)
+        o->texture = ((const sr_material *)o->materials.data)[o->material].map_kd;
+    return true;
+}
+
+/* ---- materials ---- */
+
+static bool parse_mtllib(obj_reader *o, char *cursor)
+{
+    o->has_mtllib = true;
+    return sr_mtl_load(&o->materials, &o->in, sr_obj_rest(cursor), o->err);
+}
+
+/* Without any mtllib, usemtl only names a group; with one, a name missing
+ * from every library is an error rather than a silently untextured mesh. */
+static bool parse_usemtl(obj_reader *o, char *cursor)
+{
+    const char *name = sr_obj_rest(cursor);
+    if (!o->has_mtllib)
+        return true;
+    o->material = sr_mtl_find(&o->materials, name);
+    if (o->material < 0)
+        return sr_line_fail(&o->in, o->err, "material '%s' is not in any material library",
+                            name);
+    return true;
+}
+
+/* ---- the file ---- */
+
+static bool parse_statement(obj_reader *o, char *line)
+{
+    char *cursor = line;
+    const char *keyword = sr_obj_next_token(&cursor);
+    if (!keyword)
+        return true; /* blank line or comment */
+    if (strcmp(keyword, "v") == 0)
+        return parse_vertex(o, cursor);
+    if (strcmp(keyword, "vt") == 0)
+        return parse_uv(o, cursor);
+    if (strcmp(keyword, "vn") == 0)
+        return parse_normal(o, cursor);
+    if (strcmp(keyword, "f") == 0)
+        return parse_face(o, cursor);
+    if (strcmp(keyword, "mtllib") == 0)
+        return parse_mtllib(o, cursor);
+    if (strcmp(keyword, "usemtl") == 0)
+        return parse_usemtl(o, cursor);
+    return true; /* o, g, s, l, p, vp, curves, …: nothing softrast draws */
+}
+
+static bool read_statements(obj_reader *o)
+{
+    for (;;) {
+        char *line;
+        if (!sr_line_reader_next(&o->in, &line, o->err))
+            return false;
+        if (!line)
+            return true;
+        if (!parse_statement(o, line))
+            return false;
+    }
+}
+
+/* Writes vertex i from its corner, flipping z into the left-handed world.
+ * A corner without vt or vn gets (0, 0) or (0, 0, 0) when others have them. */
+static void write_vertex(const obj_reader *o, sr_mesh *mesh, uint32_t i)
+{
+    corner c = ((const corner *)o->corners.data)[i];
+    const vec3 *p = o->positions.data;
+    glm_vec3_copy((float *)p[c.v], mesh->positions[i]);
+    mesh->positions[i][2] = -mesh->positions[i][2];
+    if (mesh->colors)
+        glm_vec3_copy(((vec3 *)o->colors.data)[c.v], mesh->colors[i]);
+    if (mesh->uvs && c.vt != NONE)
+        glm_vec2_copy(((vec2 *)o->uvs.data)[c.vt], mesh->uvs[i]);
+    if (mesh->normals && c.vn != NONE) {
+        glm_vec3_copy(((vec3 *)o->normals.data)[c.vn], mesh->normals[i]);
+        mesh->normals[i][2] = -mesh->normals[i][2];
+    }
+}
+
+static bool build_mesh(obj_reader *o, sr_mesh *mesh)
+{
+    uint32_t count = (uint32_t)o->corners.len;
+    if (!sr_mesh_alloc(mesh, count, 0, o->any_normal, o->any_uv, o->colors.len > 0, o->err))
+        return false;
+    for (uint32_t i = 0; i < count; i++)
+        write_vertex(o, mesh, i); /* sr_mesh_alloc zeroed what a corner lacks */
+    if (o->texture && !(mesh->texture_path = strdup(o->texture))) {
+        sr_mesh_free(mesh);
+        return sr_error_set(o->err, "%s: out of memory", o->in.path);
+    }
+    /* Hand the index array over rather than copy it: sr_mesh_free frees it. */
+    mesh->indices = o->indices.data;
+    mesh->index_count = (uint32_t)o->indices.len;
+    mesh->topology = SR_TRIANGLE_LIST;
+    o->indices = (sr_growable){ 0 };
+    return true;
+}
+
+static void obj_reader_free(obj_reader *o)
+{
+    sr_line_reader_close(&o->in);
+    sr_growable_free(&o->positions);
+    sr_growable_free(&o->colors);
+    sr_growable_free(&o->uvs);
+    sr_growable_free(&o->normals);
+    sr_growable_free(&o->corners);
+    sr_growable_free(&o->indices);
+    free(o->map);
+    sr_mtl_free(&o->materials);
+}
+
+bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err)
+{
+    *mesh = (sr_mesh){ 0 };
+    obj_reader o = { .err = err, .material = -1 };
+    if (!sr_line_reader_open(&o.in, path))
+        return sr_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    bool ok = read_statements(&o) && build_mesh(&o, mesh);
+    obj_reader_free(&o);
+    return ok;
+}

@@ -1,0 +1,221 @@
+#include <errno.h>
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "obj_parse.h"
+
+/* Room for a few maximal lines per read, so compacting the unread tail to
+ * the front costs little next to reading. */
+#define READER_CAP (4 * SR_OBJ_MAX_LINE)
+
+static const char utf8_bom[] = "\xEF\xBB\xBF";
+
+bool sr_line_reader_open(sr_line_reader *r, const char *path)
+{
+    *r = (sr_line_reader){ .path = path };
+    r->file = fopen(path, "rb");
+    if (!r->file)
+        return false;
+    r->buf = malloc(READER_CAP + 1); /* +1: a final line without "\n" still gets its NUL */
+    if (!r->buf) {
+        fclose(r->file);
+        *r = (sr_line_reader){ 0 };
+        errno = ENOMEM;
+        return false;
+    }
+    return true;
+}
+
+void sr_line_reader_close(sr_line_reader *r)
+{
+    if (r->file)
+        fclose(r->file);
+    free(r->buf);
+    *r = (sr_line_reader){ 0 };
+}
+
+bool sr_line_fail(const sr_line_reader *r, sr_error *err, const char *fmt, ...)
+{
+    char what[SR_ERROR_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    return sr_error_set(err, "%s:%zu: %s", r->path, r->line, what);
+}
+
+static bool line_too_long(sr_line_reader *r, size_t line, sr_error *err)
+{
+    return sr_error_set(err, "%s:%zu: line longer than %d bytes", r->path, line,
+                        SR_OBJ_MAX_LINE);
+}
+
+/* Moves the unread tail to the front and appends what the file has next. */
+static bool refill(sr_line_reader *r, sr_error *err)
+{
+    memmove(r->buf, r->buf + r->start, r->end - r->start);
+    r->end -= r->start;
+    r->start = 0;
+    size_t n = fread(r->buf + r->end, 1, READER_CAP - r->end, r->file);
+    if (n == 0) {
+        if (ferror(r->file))
+            return sr_error_set(err, "%s: read error: %s", r->path, strerror(errno));
+        r->eof = true;
+    }
+    r->end += n;
+    return true;
+}
+
+bool sr_line_reader_next(sr_line_reader *r, char **line, sr_error *err)
+{
+    char *nl;
+    *line = NULL;
+    while (!(nl = memchr(r->buf + r->start, '\n', r->end - r->start)) && !r->eof) {
+        /* Give up before buffering more than a line may hold ("+1": a "\r"). */
+        if (r->end - r->start > SR_OBJ_MAX_LINE + 1)
+            return line_too_long(r, r->line + 1, err);
+        if (!refill(r, err))
+            return false;
+    }
+    if (!nl && r->start == r->end)
+        return true;
+    char *s = r->buf + r->start;
+    size_t len = nl ? (size_t)(nl - s) : r->end - r->start;
+    r->start += len + (nl != NULL);
+    r->line++;
+    if (len > 0 && s[len - 1] == '\r')
+        len--;
+    if (len > SR_OBJ_MAX_LINE)
+        return line_too_long(r, r->line, err);
+    /* A NUL would silently cut the line short for every string function. */
+    if (memchr(s, '\0', len))
+        return sr_line_fail(r, err, "NUL byte in line (not a text file?)");
+    s[len] = '\0';
+    if (r->line == 1 && strncmp(s, utf8_bom, 3) == 0)
+        s += 3;
+    *line = s;
+    return true;
+}
+
+static bool is_blank(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+char *sr_obj_next_token(char **cursor)
+{
+    char *s = *cursor;
+    while (is_blank(*s))
+        s++;
+    if (*s == '\0' || *s == '#') {
+        *cursor = s;
+        return NULL;
+    }
+    char *tok = s;
+    while (*s && !is_blank(*s))
+        s++;
+    if (*s)
+        *s++ = '\0';
+    *cursor = s;
+    return tok;
+}
+
+char *sr_obj_rest(char *cursor)
+{
+    while (is_blank(*cursor))
+        cursor++;
+    size_t len = strlen(cursor);
+    while (len > 0 && is_blank(cursor[len - 1]))
+        len--;
+    cursor[len] = '\0';
+    return cursor;
+}
+
+bool sr_obj_parse_float(const sr_line_reader *r, const char *tok, float *out,
+                        sr_error *err)
+{
+    char *end;
+    double d = strtod(tok, &end);
+    if (end == tok || *end != '\0')
+        return sr_line_fail(r, err, "'%.40s' is not a number", tok);
+    if (!isfinite(d))
+        return sr_line_fail(r, err, "number '%.40s' is not finite", tok);
+    /* Converting a double beyond FLT_MAX to float is undefined behaviour. */
+    if (fabs(d) > FLT_MAX)
+        return sr_line_fail(r, err, "number '%.40s' is out of float range", tok);
+    *out = (float)d;
+    return true;
+}
+
+int sr_obj_parse_floats(const sr_line_reader *r, char *cursor, float *out, int max,
+                        sr_error *err)
+{
+    int n = 0;
+    for (char *tok; (tok = sr_obj_next_token(&cursor)); n++) {
+        if (n == max) {
+            sr_line_fail(r, err, "too many numbers (at most %d)", max);
+            return -1;
+        }
+        if (!sr_obj_parse_float(r, tok, &out[n], err))
+            return -1;
+    }
+    return n;
+}
+
+bool sr_obj_parse_long(const char **s, long *out)
+{
+    const char *p = *s;
+    if (*p == '+' || *p == '-')
+        p++;
+    /* strtol alone would also take leading blanks and an empty string as 0. */
+    if (*p < '0' || *p > '9')
+        return false;
+    char *end;
+    *out = strtol(*s, &end, 10);
+    *s = end;
+    return true;
+}
+
+void *sr_grow(sr_growable *g, size_t elem_size, size_t n)
+{
+    if (n > SIZE_MAX - g->len)
+        return NULL;
+    size_t need = g->len + n;
+    if (need > g->cap) {
+        size_t cap = g->cap ? g->cap : 64;
+        while (cap < need)
+            cap = cap > SIZE_MAX / 2 ? need : 2 * cap;
+        if (cap > SIZE_MAX / elem_size)
+            return NULL;
+        void *data = realloc(g->data, cap * elem_size);
+        if (!data)
+            return NULL;
+        g->data = data;
+        g->cap = cap;
+    }
+    void *at = (char *)g->data + g->len * elem_size;
+    g->len = need;
+    return at;
+}
+
+void sr_growable_free(sr_growable *g)
+{
+    free(g->data);
+    *g = (sr_growable){ 0 };
+}
+
+char *sr_obj_path_beside(const char *base_file, const char *name)
+{
+    const char *slash = strrchr(base_file, '/');
+    size_t dir_len = (name[0] == '/' || !slash) ? 0 : (size_t)(slash - base_file) + 1;
+    size_t name_len = strlen(name);
+    char *path = malloc(dir_len + name_len + 1);
+    if (!path)
+        return NULL;
+    memcpy(path, base_file, dir_len);
+    memcpy(path + dir_len, name, name_len + 1);
+    return path;
+}

@@ -1,0 +1,116 @@
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "softrast/framebuffer.h"
+
+/* The depth view: the nearest written depth is white, the farthest a dark gray
+ * that still stands apart from the black background. */
+#define SR_GRAY_NEAR 255
+#define SR_GRAY_FAR 48
+#define SR_GRAY_BACKGROUND 0
+
+static size_t pixel_count(const sr_framebuffer *fb)
+{
+    return (size_t)fb->width * (size_t)fb->height;
+}
+
+static bool side_in_range(int side)
+{
+    return side >= 1 && side <= SR_MAX_FRAMEBUFFER_SIDE;
+}
+
+/* A pixel holds a drawn depth only if something passed the LESS test against
+ * the clear value; NaN and inf never count (they cannot come from a draw). */
+static bool depth_is_written(float d)
+{
+    return isfinite(d) && d < SR_DEPTH_CLEAR;
+}
+
+bool sr_framebuffer_create(sr_framebuffer *fb, int width, int height, sr_error *err)
+{
+    *fb = (sr_framebuffer){ 0 };
+    if (!side_in_range(width) || !side_in_range(height))
+        return sr_error_set(err, "framebuffer size %dx%d is out of range (each side 1..%d)",
+                            width, height, SR_MAX_FRAMEBUFFER_SIDE);
+    size_t n = (size_t)width * (size_t)height;
+    /* Only a 32-bit size_t can overflow here (16384^2 * 4 bytes = 1 GiB). */
+    if (n > SIZE_MAX / sizeof(uint32_t) || n > SIZE_MAX / sizeof(float))
+        return sr_error_set(err, "framebuffer size %dx%d is too large for this machine",
+                            width, height);
+    fb->color = calloc(n, sizeof *fb->color);
+    fb->depth = calloc(n, sizeof *fb->depth);
+    if (!fb->color || !fb->depth) {
+        sr_framebuffer_destroy(fb);
+        return sr_error_set(err, "out of memory for a %dx%d framebuffer", width, height);
+    }
+    fb->width = width;
+    fb->height = height;
+    return true;
+}
+
+void sr_framebuffer_destroy(sr_framebuffer *fb)
+{
+    free(fb->color);
+    free(fb->depth);
+    *fb = (sr_framebuffer){ 0 };
+}
+
+void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color)
+{
+    size_t n = pixel_count(fb);
+    for (size_t i = 0; i < n; i++)
+        fb->color[i] = color;
+    for (size_t i = 0; i < n; i++)
+        fb->depth[i] = SR_DEPTH_CLEAR;
+}
+
+bool sr_framebuffer_depth_range(const sr_framebuffer *fb, float *lo, float *hi)
+{
+    size_t n = pixel_count(fb);
+    bool any = false;
+    float min = SR_DEPTH_CLEAR, max = 0.0f;
+    for (size_t i = 0; i < n; i++) {
+        float d = fb->depth[i];
+        if (!depth_is_written(d))
+            continue;
+        if (!any || d < min)
+            min = d;
+        if (!any || d > max)
+            max = d;
+        any = true;
+    }
+    if (any) {
+        *lo = min;
+        *hi = max;
+    }
+    return any;
+}
+
+static uint32_t gray_pixel(long g)
+{
+    uint32_t v = (uint32_t)g;
+    return v << 16 | v << 8 | v;
+}
+
+/* Linear in depth from SR_GRAY_NEAR at lo to SR_GRAY_FAR at hi, rounded to
+ * nearest. Double precision keeps the end points exact. */
+static uint32_t depth_gray(float d, float lo, float hi)
+{
+    if (!depth_is_written(d))
+        return gray_pixel(SR_GRAY_BACKGROUND);
+    if (!(hi > lo))
+        return gray_pixel(SR_GRAY_NEAR);
+    double t = ((double)d - lo) / ((double)hi - lo);
+    double g = SR_GRAY_NEAR - t * (SR_GRAY_NEAR - SR_GRAY_FAR);
+    return gray_pixel(lround(g));
+}
+
+void sr_framebuffer_depth_to_gray(const sr_framebuffer *fb, uint32_t *out)
+{
+    size_t n = pixel_count(fb);
+    float lo = 0.0f, hi = 0.0f;
+    sr_framebuffer_depth_range(fb, &lo, &hi);
+    for (size_t i = 0; i < n; i++)
+        out[i] = depth_gray(fb->depth[i], lo, hi);
+}
