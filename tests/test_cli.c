@@ -1,0 +1,131 @@
+/* The program's command line: every bad input gets exactly one
+ * "softrast: error: ..." line and a non-zero exit that is not a crash. */
+#include <criterion/criterion.h>
+#include <stdlib.h>
+
+#include "run_helpers.h"
+
+static char dir[64];
+
+static void make_dir(void)
+{
+    strcpy(dir, "/tmp/softrast-cli-XXXXXX");
+    cr_assert_not_null(mkdtemp(dir));
+    write_text(dir, "tri.obj", "v -1 0.2 0\nv 1 0.2 0\nv 0 1 0\nf 1 2 3\n");
+}
+
+static void remove_dir(void)
+{
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    cr_assert_eq(system(cmd), 0);
+}
+
+TestSuite(cli, .init = make_dir, .fini = remove_dir);
+
+/* One error line that starts with the prefix and mentions `needle`. */
+static void assert_one_error(const char *args, const char *needle)
+{
+    char full[1024];
+    snprintf(full, sizeof full, args, dir, dir);
+    run_result r = run_softrast(dir, full);
+    cr_assert(r.status != 0 && r.status < 128, "`softrast %s` exited %d", full, r.status);
+    cr_assert_eq(strncmp(r.err, "softrast: error: ", 17), 0, "stderr was: %s", r.err);
+    cr_assert_eq(count_lines(r.err), 1, "want one line, stderr was: %s", r.err);
+    cr_assert_not_null(strstr(r.err, needle), "'%s' not in: %s", needle, r.err);
+}
+
+Test(cli, missing_mesh_file_names_the_path)
+{
+    assert_one_error("render %s/missing.obj", "missing.obj");
+}
+
+Test(cli, malformed_obj_gives_file_and_line)
+{
+    write_text(dir, "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
+    assert_one_error("render %s/bad.obj", "bad.obj:4:");
+}
+
+Test(cli, unknown_option_is_named)
+{
+    assert_one_error("render %s/tri.obj --no-such-option", "--no-such-option");
+}
+
+Test(cli, bad_size_is_refused)
+{
+    assert_one_error("render %s/tri.obj --size 0x-3", "--size");
+    assert_one_error("render %s/tri.obj --size 100000x10", "--size");
+    assert_one_error("render %s/tri.obj --size 10x10x10", "--size");
+}
+
+Test(cli, non_finite_numbers_are_refused)
+{
+    assert_one_error("render %s/tri.obj --near nan", "--near");
+    assert_one_error("render %s/tri.obj --fov inf", "--fov");
+    assert_one_error("render %s/tri.obj --eye 0,0,1e999", "--eye");
+}
+
+Test(cli, absurd_camera_is_refused)
+{
+    assert_one_error("render %s/tri.obj --near 10 --far 1", "far");
+    assert_one_error("render %s/tri.obj --eye 0,0,0 --target 0,0,0", "same point");
+    assert_one_error("render %s/tri.obj --fov 180", "--fov");
+    assert_one_error("render %s/tri.obj --eye 0,5,0 --target 0,0,0 --up 0,1,0", "parallel");
+}
+
+Test(cli, missing_value_is_named)
+{
+    assert_one_error("render %s/tri.obj --out", "--out");
+}
+
+Test(cli, unknown_choice_lists_the_choices)
+{
+    assert_one_error("render %s/tri.obj --shade shiny", "one of lambert|id|color|normal|texture|depth");
+}
+
+Test(cli, unwritable_output_is_an_error)
+{
+    assert_one_error("render %s/tri.obj --out %s/no/such/dir/a.png", "a.png");
+}
+
+Test(cli, missing_texture_is_an_error)
+{
+    assert_one_error("render %s/tri.obj --shade texture --texture %s/none.png", "none.png");
+}
+
+Test(cli, texture_shading_without_uvs_is_an_error)
+{
+    write_text(dir, "t.png", "not a png");
+    assert_one_error("render %s/tri.obj --shade texture --texture %s/t.png", "t.png");
+}
+
+Test(cli, unknown_command_is_an_error)
+{
+    assert_one_error("paint %s", "paint");
+}
+
+Test(cli, help_lists_every_render_option)
+{
+    static const char *const options[] = { "--size", "--eye", "--target", "--up", "--fov", "--near", "--far",
+                                           "--ortho", "--rotate-y", "--cull", "--front", "--shade", "--texture",
+                                           "--filter", "--out", "--depth", "--depth-png", "--frames",
+                                           "--threads", "--stats" };
+    run_result r = run_softrast(dir, "render --help");
+    cr_assert_eq(r.status, 0);
+    for (size_t i = 0; i < sizeof options / sizeof *options; i++)
+        cr_assert_not_null(strstr(r.out, options[i]), "render --help lacks %s", options[i]);
+}
+
+Test(cli, stats_is_one_json_line_with_the_named_keys)
+{
+    static const char *const keys[] = { "\"frames\"", "\"ms_median\"", "\"ms_min\"", "\"triangles\": 1,",
+                                        "\"rejected\"", "\"clipped\"", "\"culled\"", "\"fragments\"" };
+    char args[256];
+    snprintf(args, sizeof args, "render %s/tri.obj --size 32x32 --frames 3 --stats", dir);
+    run_result r = run_softrast(dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_assert_eq(count_lines(r.out), 1, "stdout: %s", r.out);
+    cr_assert_eq(r.out[0], '{');
+    for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
+        cr_assert_not_null(strstr(r.out, keys[i]), "stats lack %s: %s", keys[i], r.out);
+}
