@@ -23,7 +23,7 @@ SAN_LIB_OBJ  := $(LIB_SRC:%.c=build/san/%.o)
 SAN_APP_OBJ  := $(APP_SRC:%.c=build/san/%.o)
 SAN_TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
-.PHONY: all deps run test test-fast test-san assets example clean install
+.PHONY: all deps run test test-fast test-san test-assets assets docs-images clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast
@@ -76,7 +76,7 @@ run: all
 	./build/softrast render assets/room.obj $(ROOM_CAMERA) --out build/room.png --depth-png build/room-depth.png
 	@echo "wrote build/room.png and build/room-depth.png"
 
-test: deps test-fast test-san
+test: deps test-fast test-san test-assets
 
 # Tests read data relative to the project root; the binaries find it via SOFTRAST_ROOT.
 CONTRACT := ../shared/tools/check-cli-contract
@@ -97,6 +97,17 @@ test-san: build/san/softrast build/san/softrast-tests
 
 assets: build/gen-assets
 	./build/gen-assets assets
+
+# The committed assets must be exactly what the generator writes.
+test-assets: build/gen-assets
+	@rm -rf build/assets-check && mkdir -p build/assets-check
+	@./build/gen-assets build/assets-check >/dev/null
+	diff -r assets build/assets-check && echo "assets: identical to the generator's output"
+
+docs-images: build/softrast
+	./build/softrast render assets/room.obj $(ROOM_CAMERA) --size 640x360 --out docs/images/room.png --depth-png docs/images/room-depth.png
+	./build/softrast render assets/room.obj $(ROOM_CAMERA) --size 640x360 --shade id --out docs/images/room-id.png
+	./build/softrast render assets/torus.obj --eye 0,2.2,-2.6 --target 0,0,0 --size 320x240 --shade normal --out docs/images/torus-normal.png
 
 GEN_SRC := $(wildcard tools/gen_*.c)
 
