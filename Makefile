@@ -59,22 +59,23 @@ build/san/softrast: $(SAN_APP_OBJ) build/san/libsoftrast.a
 	@echo "  LINK    $@"
 	@$(CC) $(SAN) $^ $(LIBS) -o $@
 
-build/softrast-tests: $(TEST_OBJ) build/libsoftrast.a
+# Tests link the program's modules too (all but main), to drive the viewer's
+# event handling and option parsing directly.
+build/softrast-tests: $(TEST_OBJ) $(filter-out %/main.o,$(APP_OBJ)) build/libsoftrast.a
 	@echo "  LINK    $@"
 	@$(CC) $(CFLAGS) $^ $(LIBS) -lcriterion -o $@
 
-build/san/softrast-tests: $(SAN_TEST_OBJ) build/san/libsoftrast.a
+build/san/softrast-tests: $(SAN_TEST_OBJ) $(filter-out %/main.o,$(SAN_APP_OBJ)) build/san/libsoftrast.a
 	@echo "  LINK    $@"
 	@$(CC) $(SAN) $^ $(LIBS) -lcriterion -o $@
 
 build/example: examples/draw_into_buffer.c build/libsoftrast.a
 	$(CC) $(ALL_CFLAGS) $(CFLAGS) $^ $(LIBS) -o $@
 
-# The default scene from inside the room, rendered to PNG (until the viewer exists).
+# The viewer on the default scene (assets/room.obj, from inside the room).
 ROOM_CAMERA := --eye -8,3,-8 --target 4,1.5,6 --fov 75
 run: all
-	./build/softrast render assets/room.obj $(ROOM_CAMERA) --out build/room.png --depth-png build/room-depth.png
-	@echo "wrote build/room.png and build/room-depth.png"
+	./build/softrast view
 
 test: deps test-fast test-san test-assets
 

@@ -30,19 +30,25 @@ static inline void read_all(const char *path, char *buf, size_t cap)
         fclose(f);
 }
 
-/* Runs `softrast ARGS` (args is shell text, already quoted) in dir. */
-static inline run_result run_softrast(const char *dir, const char *args)
+/* Runs `ENV softrast ARGS` (shell text, already quoted; env may be "") and
+ * keeps its output in dir. */
+static inline run_result run_softrast_env(const char *dir, const char *env, const char *args)
 {
     run_result r;
     char cmd[4096], out_path[512], err_path[512];
     snprintf(out_path, sizeof out_path, "%s/stdout.txt", dir);
     snprintf(err_path, sizeof err_path, "%s/stderr.txt", dir);
-    snprintf(cmd, sizeof cmd, "%s %s >%s 2>%s", softrast_bin(), args, out_path, err_path);
+    snprintf(cmd, sizeof cmd, "%s %s %s >%s 2>%s", env, softrast_bin(), args, out_path, err_path);
     int raw = system(cmd);
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
     read_all(out_path, r.out, sizeof r.out);
     read_all(err_path, r.err, sizeof r.err);
     return r;
+}
+
+static inline run_result run_softrast(const char *dir, const char *args)
+{
+    return run_softrast_env(dir, "", args);
 }
 
 static inline void write_text(const char *dir, const char *name, const char *text)

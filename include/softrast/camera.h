@@ -35,4 +35,9 @@ bool sr_camera_check(const sr_camera *cam, sr_error *err);
 void sr_camera_view(const sr_camera *cam, mat4 out);
 void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out);
 
+/* The view-space distance along the view axis of a point stored with depth
+ * z_ndc (inverts the projection: n·f / (f − z·(f − n)) for perspective,
+ * n + z·(f − n) for orthographic). ctx is the sr_camera; fits sr_depth_map. */
+double sr_camera_view_distance(float z_ndc, const void *camera);
+
 #endif

@@ -33,4 +33,11 @@ bool sr_framebuffer_depth_range(const sr_framebuffer *fb, float *lo, float *hi);
  * [lo, hi] maps from white (near) to dark gray (far); background is black. */
 void sr_framebuffer_depth_to_gray(const sr_framebuffer *fb, uint32_t *out);
 
+/* The same view of a monotonic increasing function of depth, such as the
+ * linear view distance (sr_camera_view_distance): the written range of
+ * map(depth) goes from white to dark gray. */
+typedef double (*sr_depth_map)(float depth, const void *ctx);
+void sr_framebuffer_depth_to_gray_mapped(const sr_framebuffer *fb, sr_depth_map map, const void *ctx,
+                                         uint32_t *out);
+
 #endif

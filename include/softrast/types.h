@@ -69,6 +69,7 @@ typedef struct sr_stats {
     uint64_t nonfinite; /* of those, dropped for NaN or inf */
     uint64_t clipped;   /* crossed at least one plane */
     uint64_t culled;    /* fan triangles dropped as facing away or zero area */
+    uint64_t drawn;     /* fan triangles rasterized */
     uint64_t fragments; /* pixels that passed the depth test */
 } sr_stats;
 

@@ -3,6 +3,7 @@
 #define SOFTRAST_APP_H
 
 int sr_app_render(int argc, char **argv);
+int sr_app_view(int argc, char **argv);
 
 /* Prints "softrast: error: <message>" on stderr and returns the exit status 1. */
 int sr_app_fail(const char *message);

@@ -9,15 +9,10 @@ static const char USAGE[] =
     "\n"
     "commands:\n"
     "  render MESH.obj [options]   draw one image without a window (softrast render --help)\n"
+    "  view [MESH.obj] [options]   fly a camera through a mesh in a window (softrast view --help)\n"
     "\n"
     "softrast is a software rasterizer: every triangle is clipped in homogeneous clip space,\n"
     "rasterized with exact fixed-point edge functions and depth-tested. See docs/cli.md.";
-
-int sr_app_fail(const char *message)
-{
-    fprintf(stderr, "softrast: error: %s\n", message);
-    return 1;
-}
 
 int main(int argc, char **argv)
 {
@@ -27,6 +22,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(argv[1], "render") == 0)
         return sr_app_render(argc, argv);
+    if (strcmp(argv[1], "view") == 0)
+        return sr_app_view(argc, argv);
     char message[256];
     snprintf(message, sizeof message, "unknown command '%s' (see softrast --help)", argv[1]);
     return sr_app_fail(message);

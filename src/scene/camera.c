@@ -74,3 +74,12 @@ void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out)
         glm_perspective_lh_zo(glm_rad(cam->fov_deg), aspect, cam->near, cam->far, out);
     }
 }
+
+double sr_camera_view_distance(float z_ndc, const void *camera)
+{
+    const sr_camera *cam = camera;
+    double n = cam->near, f = cam->far, z = z_ndc;
+    if (cam->ortho_height > 0.0f)
+        return n + z * (f - n);
+    return n * f / (f - z * (f - n));
+}

@@ -93,24 +93,36 @@ static uint32_t gray_pixel(long g)
     return v << 16 | v << 8 | v;
 }
 
-/* Linear in depth from SR_GRAY_NEAR at lo to SR_GRAY_FAR at hi, rounded to
- * nearest. Double precision keeps the end points exact. */
-static uint32_t depth_gray(float d, float lo, float hi)
+/* Linear in the mapped value from SR_GRAY_NEAR at lo to SR_GRAY_FAR at hi,
+ * rounded to nearest. Double precision keeps the end points exact. */
+static uint32_t value_gray(double v, double lo, double hi)
 {
-    if (!depth_is_written(d))
-        return gray_pixel(SR_GRAY_BACKGROUND);
     if (!(hi > lo))
         return gray_pixel(SR_GRAY_NEAR);
-    double t = ((double)d - lo) / ((double)hi - lo);
-    double g = SR_GRAY_NEAR - t * (SR_GRAY_NEAR - SR_GRAY_FAR);
-    return gray_pixel(lround(g));
+    double t = (v - lo) / (hi - lo);
+    return gray_pixel(lround(SR_GRAY_NEAR - t * (SR_GRAY_NEAR - SR_GRAY_FAR)));
+}
+
+static double identity(float z, const void *ctx)
+{
+    (void)ctx;
+    return z;
+}
+
+void sr_framebuffer_depth_to_gray_mapped(const sr_framebuffer *fb, sr_depth_map map, const void *ctx, uint32_t *out)
+{
+    size_t n = pixel_count(fb);
+    float zlo = 0.0f, zhi = 0.0f;
+    sr_framebuffer_depth_range(fb, &zlo, &zhi);
+    /* The maps used are monotonic increasing, so the range maps end to end. */
+    double lo = map(zlo, ctx), hi = map(zhi, ctx);
+    for (size_t i = 0; i < n; i++) {
+        float d = fb->depth[i];
+        out[i] = depth_is_written(d) ? value_gray(map(d, ctx), lo, hi) : gray_pixel(SR_GRAY_BACKGROUND);
+    }
 }
 
 void sr_framebuffer_depth_to_gray(const sr_framebuffer *fb, uint32_t *out)
 {
-    size_t n = pixel_count(fb);
-    float lo = 0.0f, hi = 0.0f;
-    sr_framebuffer_depth_range(fb, &lo, &hi);
-    for (size_t i = 0; i < n; i++)
-        out[i] = depth_gray(fb->depth[i], lo, hi);
+    sr_framebuffer_depth_to_gray_mapped(fb, identity, NULL, out);
 }

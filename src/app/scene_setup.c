@@ -1,0 +1,98 @@
+#include "scene_setup.h"
+
+const char *const SR_SHADE_NAMES[] = { "lambert", "id", "color", "normal", "texture", "depth", NULL };
+const char *const SR_CULL_NAMES[] = { "back", "front", "none", NULL };
+static const char *const FRONT_NAMES[] = { "cw", "ccw", NULL };
+static const char *const FILTER_NAMES[] = { "bilinear", "nearest", NULL };
+
+void sr_scene_setup_defaults(sr_scene_setup *s)
+{
+    *s = (sr_scene_setup){ .size = { 1280, 720 }, .camera = sr_camera_default() };
+}
+
+void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
+{
+    const sr_option entries[SR_SCENE_OPTION_COUNT] = {
+        { "--size", SR_OPT_SIZE, s->size, "WxH", "framebuffer size (default 1280x720)", 1, SR_MAX_FRAMEBUFFER_SIDE },
+        { "--eye", SR_OPT_VEC3, s->camera.eye, "X,Y,Z", "camera position (default: framed on the mesh from -z)", .seen = &s->eye_set },
+        { "--target", SR_OPT_VEC3, s->camera.target, "X,Y,Z", "point looked at (default: the mesh's centre)", .seen = &s->target_set },
+        { "--up", SR_OPT_VEC3, s->camera.up, "X,Y,Z", "up direction (default 0,1,0)" },
+        { "--fov", SR_OPT_FLOAT, &s->camera.fov_deg, "DEG", "vertical field of view in degrees (default 60)", 1e-3, 179.999 },
+        { "--near", SR_OPT_FLOAT, &s->camera.near, "N", "near clip plane distance (default 0.1)", 1e-30, 3e38 },
+        { "--far", SR_OPT_FLOAT, &s->camera.far, "F", "far clip plane distance (default 100)", 1e-30, 3e38 },
+        { "--ortho", SR_OPT_FLOAT, &s->camera.ortho_height, "HEIGHT", "orthographic projection of this view height", 1e-30, 3e38 },
+        { "--rotate-y", SR_OPT_FLOAT, &s->rotate_y, "DEG", "turn the mesh about +y; positive turns +z toward +x", -1e6, 1e6 },
+        { "--cull", SR_OPT_CHOICE, &s->cull, "back|front|none", "faces to drop (default back)", .choices = SR_CULL_NAMES },
+        { "--front", SR_OPT_CHOICE, &s->front, "cw|ccw", "winding on screen of a front face (default cw)", .choices = FRONT_NAMES },
+        { "--shade", SR_OPT_CHOICE, &s->shade, "id|color|normal|texture|lambert|depth", "shading mode (default lambert)", .choices = SR_SHADE_NAMES },
+        { "--texture", SR_OPT_STRING, &s->texture_path, "FILE.png", "texture (default: the mesh's map_Kd, if any)" },
+        { "--filter", SR_OPT_CHOICE, &s->filter, "bilinear|nearest", "texture filter (default bilinear)", .choices = FILTER_NAMES },
+    };
+    for (int i = 0; i < SR_SCENE_OPTION_COUNT; i++)
+        table[i] = entries[i];
+}
+
+static bool shade_uses_texture(sr_shade shade)
+{
+    return shade == SR_SHADE_TEXTURE || shade == SR_SHADE_LAMBERT;
+}
+
+static bool shade_uses_normals(sr_shade shade)
+{
+    return shade == SR_SHADE_NORMAL || shade == SR_SHADE_LAMBERT;
+}
+
+bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err)
+{
+    *scene = (sr_scene){ 0 };
+    if (!sr_obj_load(&scene->mesh, s->mesh_path, err))
+        return false;
+    const char *tex = s->texture_path ? s->texture_path : scene->mesh.texture_path;
+    bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);
+    if (tex && wants_texture && !sr_texture_load(&scene->texture, tex, err))
+        return false;
+    bool wants_normals = everything || shade_uses_normals((sr_shade)s->shade);
+    if (wants_normals && !sr_mesh_compute_normals(&scene->mesh, err))
+        return false;
+    return sr_framebuffer_create(&scene->fb, s->size[0], s->size[1], err);
+}
+
+void sr_scene_free(sr_scene *scene)
+{
+    sr_mesh_free(&scene->mesh);
+    sr_texture_free(&scene->texture);
+    sr_framebuffer_destroy(&scene->fb);
+}
+
+void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene)
+{
+    vec3 lo, hi;
+    float aspect = (float)s->size[0] / (float)s->size[1];
+    if (!s->eye_set && !s->target_set && sr_mesh_bounds(&scene->mesh, lo, hi))
+        sr_camera_frame_bounds(&s->camera, lo, hi, aspect);
+}
+
+bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc *desc, sr_error *err)
+{
+    if (!sr_camera_check(&s->camera, err))
+        return false;
+    float aspect = (float)scene->fb.width / (float)scene->fb.height;
+    *desc = (sr_draw_desc){ .mesh = &scene->mesh, .shade = (sr_shade)s->shade, .cull = (sr_cull)s->cull,
+                            .front = (sr_front)s->front, .filter = (sr_filter)s->filter,
+                            .texture = scene->texture.texels ? &scene->texture : NULL };
+    glm_rotate_make(desc->world, glm_rad(s->rotate_y), (vec3){ 0.0f, 1.0f, 0.0f });
+    sr_camera_view(&s->camera, desc->view);
+    sr_camera_projection(&s->camera, aspect, desc->projection);
+    return true;
+}
+
+bool sr_scene_supports(const sr_scene *scene, sr_shade shade)
+{
+    switch (shade) {
+    case SR_SHADE_COLOR:   return scene->mesh.colors != NULL;
+    case SR_SHADE_NORMAL:  return scene->mesh.normals != NULL;
+    case SR_SHADE_TEXTURE: return scene->mesh.uvs && scene->texture.texels;
+    case SR_SHADE_LAMBERT: return scene->mesh.normals != NULL;
+    default:               return true;
+    }
+}

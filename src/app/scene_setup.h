@@ -1,0 +1,51 @@
+/* scene_setup.h — what `render` and `view` share: the mesh, camera and
+ * shading options, loading the files they name, and building a draw desc. */
+#ifndef SOFTRAST_APP_SCENE_SETUP_H
+#define SOFTRAST_APP_SCENE_SETUP_H
+
+#include "options.h"
+#include "softrast/softrast.h"
+
+#define SR_SCENE_OPTION_COUNT 14
+
+typedef struct sr_scene_setup {
+    const char *mesh_path;
+    int size[2];
+    sr_camera camera;
+    bool eye_set, target_set;
+    float rotate_y;
+    int shade, cull, front, filter; /* sr_shade, sr_cull, sr_front, sr_filter */
+    const char *texture_path;
+} sr_scene_setup;
+
+/* What the files gave, owned here and released by sr_scene_free. */
+typedef struct sr_scene {
+    sr_mesh mesh;
+    sr_texture texture;
+    sr_framebuffer fb;
+} sr_scene;
+
+extern const char *const SR_SHADE_NAMES[];
+extern const char *const SR_CULL_NAMES[];
+
+void sr_scene_setup_defaults(sr_scene_setup *s);
+
+/* Writes the SR_SCENE_OPTION_COUNT shared option entries into table. */
+void sr_scene_setup_options(sr_scene_setup *s, sr_option *table);
+
+/* Loads the mesh, then the texture and normals: all of them when `everything`
+ * (the viewer switches modes), else only what s->shade reads. Creates the
+ * framebuffer at s->size. */
+bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err);
+void sr_scene_free(sr_scene *scene);
+
+/* Frames the mesh when neither --eye nor --target was given. */
+void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene);
+
+/* The draw desc for s's camera and shading at the framebuffer's size. */
+bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc *desc, sr_error *err);
+
+/* True if the scene has what `shade` reads (normals, uvs + texture, colors). */
+bool sr_scene_supports(const sr_scene *scene, sr_shade shade);
+
+#endif

@@ -1,0 +1,278 @@
+/* softrast view — the fly-through window, and scripted flights. */
+#include <stdio.h>
+#include <string.h>
+
+#include "app.h"
+#include "view_script.h"
+#include "viewer.h"
+
+#define DEFAULT_SCENE "assets/room.obj"
+#define MAX_FRAMES 100000
+#define VIEW_OPTION_COUNT (SR_SCENE_OPTION_COUNT + 8) /* own options and the terminator */
+#define MAX_KEYS_TEXT 256
+#define TITLE_EVERY_MS 250.0
+
+/* Where the default scene is first seen from: inside the room, by a pillar. */
+static const sr_camera ROOM_SPAWN = { .eye = { -8.0f, 3.0f, -8.0f }, .target = { 4.0f, 1.5f, 6.0f },
+                                      .up = { 0.0f, 1.0f, 0.0f }, .fov_deg = 75.0f,
+                                      .near = SR_CAMERA_NEAR, .far = SR_CAMERA_FAR };
+
+typedef struct view_job {
+    sr_scene_setup scene;
+    const char *script_path, *shots_dir, *grab_dir, *keys;
+    int frames;
+    bool no_window, overlays;
+} view_job;
+
+/* The window and what presents the framebuffer in it (no GPU rendering of
+ * the scene: the CPU image is copied into a streaming texture). */
+typedef struct window {
+    SDL_Window *window;
+    SDL_Renderer *renderer;
+    SDL_Texture *texture;
+} window;
+
+static const char USAGE[] =
+    "usage: softrast view [MESH.obj] [options]\n"
+    "Flies a camera through MESH.obj (default: " DEFAULT_SCENE ", a room to fly through).\n"
+    "Press F1 in the window for the keys. With --script the camera follows a path instead;\n"
+    "--shots saves every frame, and works with no display (SDL_VIDEODRIVER=offscreen, or --no-window).";
+
+static bool parse_job(view_job *job, int argc, char **argv, bool *help, sr_error *err)
+{
+    sr_option table[VIEW_OPTION_COUNT];
+    sr_scene_setup_options(&job->scene, table);
+    const sr_option own[] = {
+        { "--script", SR_OPT_STRING, &job->script_path, "FILE", "fly the key frames in FILE (one line each: eye target up fov near far)" },
+        { "--frames", SR_OPT_INT, &job->frames, "N", "frames of the scripted flight (default: one per key frame)", 1, MAX_FRAMES },
+        { "--shots", SR_OPT_STRING, &job->shots_dir, "DIR", "save each scripted frame as DIR/frame-NNNN.png and .pfm" },
+        { "--grab", SR_OPT_STRING, &job->grab_dir, "DIR", "save what the window shows of each scripted frame as DIR/window-NNNN.png" },
+        { "--no-window", SR_OPT_FLAG, &job->no_window, NULL, "scripted flight without opening a window" },
+        { "--keys", SR_OPT_STRING, &job->keys, "K1,K2,...", "press these keys first (SDL names: F2,F4,L,...), as if typed" },
+        { "--overlays", SR_OPT_FLAG, &job->overlays, NULL, "draw the status line, help and wireframe on scripted frames too" },
+        { 0 },
+    };
+    memcpy(&table[SR_SCENE_OPTION_COUNT], own, sizeof own);
+    int positional = 0;
+    if (!sr_options_parse(table, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
+        return false;
+    if (*help)
+        sr_options_print_help(stdout, USAGE, table);
+    if (!job->script_path && (job->shots_dir || job->grab_dir || job->frames || job->no_window || job->overlays))
+        return sr_error_set(err, "--frames, --shots, --grab, --no-window and --overlays go with --script");
+    if (job->grab_dir && job->no_window)
+        return sr_error_set(err, "--grab reads the window back, so it cannot go with --no-window");
+    return true;
+}
+
+static void use_default_scene(view_job *job)
+{
+    if (job->scene.mesh_path)
+        return;
+    job->scene.mesh_path = DEFAULT_SCENE;
+    if (!job->scene.eye_set && !job->scene.target_set) {
+        glm_vec3_copy((float *)ROOM_SPAWN.eye, job->scene.camera.eye);
+        glm_vec3_copy((float *)ROOM_SPAWN.target, job->scene.camera.target);
+        job->scene.camera.fov_deg = ROOM_SPAWN.fov_deg;
+        job->scene.eye_set = job->scene.target_set = true;
+    }
+}
+
+static void window_close(window *w)
+{
+    if (w->texture)
+        SDL_DestroyTexture(w->texture);
+    if (w->renderer)
+        SDL_DestroyRenderer(w->renderer);
+    if (w->window)
+        SDL_DestroyWindow(w->window);
+    *w = (window){ 0 };
+}
+
+static bool window_texture(window *w, int width, int height, sr_error *err)
+{
+    if (w->texture)
+        SDL_DestroyTexture(w->texture);
+    /* RGB888 is 0x00RRGGBB in a 32-bit word: the framebuffer's own layout. */
+    w->texture = SDL_CreateTexture(w->renderer, SDL_PIXELFORMAT_RGB888, SDL_TEXTUREACCESS_STREAMING, width, height);
+    return w->texture ? true : sr_error_set(err, "cannot make a %dx%d texture: %s", width, height, SDL_GetError());
+}
+
+static bool window_open(window *w, int width, int height, sr_error *err)
+{
+    *w = (window){ 0 };
+    w->window = SDL_CreateWindow("softrast", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, width, height,
+                                 SDL_WINDOW_RESIZABLE);
+    if (w->window)
+        w->renderer = SDL_CreateRenderer(w->window, -1, 0);
+    if (!w->renderer) {
+        sr_error_set(err, "cannot open a window: %s (no display? a scripted flight runs without one: --no-window)",
+                     SDL_GetError());
+        window_close(w);
+        return false;
+    }
+    return window_texture(w, width, height, err);
+}
+
+static void window_present(window *w, const sr_viewer *v)
+{
+    SDL_UpdateTexture(w->texture, NULL, v->display, v->scene.fb.width * (int)sizeof *v->display);
+    SDL_RenderClear(w->renderer);
+    SDL_RenderCopy(w->renderer, w->texture, NULL, NULL);
+    SDL_RenderPresent(w->renderer);
+}
+
+/* Reads back what the window shows, as a person's screenshot would. */
+static bool window_grab(window *w, const sr_viewer *v, const char *path, sr_error *err)
+{
+    const sr_framebuffer *fb = &v->scene.fb;
+    uint32_t *pixels = SDL_malloc((size_t)fb->width * (size_t)fb->height * sizeof *pixels);
+    bool ok = pixels && SDL_RenderReadPixels(w->renderer, NULL, SDL_PIXELFORMAT_RGB888, pixels,
+                                             fb->width * (int)sizeof *pixels) == 0;
+    ok = ok ? sr_image_write_png(path, pixels, fb->width, fb->height, err)
+            : sr_error_set(err, "cannot read the window back: %s", SDL_GetError());
+    SDL_free(pixels);
+    return ok;
+}
+
+static bool save_frame(const char *dir, const char *name, int frame, const sr_viewer *v, sr_error *err)
+{
+    char prefix[1024];
+    snprintf(prefix, sizeof prefix, "%s/%s-%04d", dir, name, frame);
+    return sr_viewer_save(v, prefix, err);
+}
+
+static void print_frame_camera(int frame, const sr_camera *c)
+{
+    printf("frame %04d: --eye %.9g,%.9g,%.9g --target %.9g,%.9g,%.9g --up %.9g,%.9g,%.9g --fov %.9g --near %.9g "
+           "--far %.9g\n", frame, c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2],
+           c->up[0], c->up[1], c->up[2], c->fov_deg, c->near, c->far);
+}
+
+/* Feeds each named key to the viewer as a press and release, the same
+ * events a window delivers. */
+static bool press_keys(const char *names, sr_viewer *v, sr_error *err)
+{
+    char buf[MAX_KEYS_TEXT];
+    if (strlen(names) >= sizeof buf)
+        return sr_error_set(err, "--keys is longer than %d characters", MAX_KEYS_TEXT - 1);
+    strcpy(buf, names);
+    char *save = NULL;
+    for (char *name = strtok_r(buf, ",", &save); name; name = strtok_r(NULL, ",", &save)) {
+        SDL_Keycode key = SDL_GetKeyFromName(name);
+        if (key == SDLK_UNKNOWN)
+            return sr_error_set(err, "--keys: unknown key '%s' (SDL key names, such as F4, L, Tab)", name);
+        SDL_Event e = { .key = { .type = SDL_KEYDOWN, .keysym = { .sym = key } } };
+        sr_viewer_handle_event(v, &e);
+        e.key.type = SDL_KEYUP;
+        sr_viewer_handle_event(v, &e);
+    }
+    return true;
+}
+
+static bool fly_script(const view_job *job, sr_viewer *v, window *w, sr_error *err)
+{
+    sr_script script;
+    if (!sr_script_load(&script, job->script_path, err))
+        return false;
+    int frames = job->frames ? job->frames : script.count;
+    bool ok = true;
+    for (int f = 0; ok && f < frames && !v->quit; f++) {
+        char grab[1024];
+        SDL_Event e;
+        while (w->window && SDL_PollEvent(&e))
+            sr_viewer_handle_event(v, &e);
+        sr_script_camera(&script, f, frames, &v->setup.camera);
+        print_frame_camera(f, &v->setup.camera);
+        ok = sr_viewer_draw(v, job->overlays, err) && (!job->shots_dir || save_frame(job->shots_dir, "frame", f, v, err));
+        if (ok && w->window)
+            window_present(w, v);
+        snprintf(grab, sizeof grab, "%s/window-%04d.png", job->grab_dir ? job->grab_dir : ".", f);
+        ok = ok && (!job->grab_dir || window_grab(w, v, grab, err));
+    }
+    sr_script_free(&script);
+    return ok;
+}
+
+static bool take_screenshot(sr_viewer *v, sr_error *err)
+{
+    static int counter;
+    char prefix[64];
+    v->screenshot_wanted = false;
+    snprintf(prefix, sizeof prefix, "softrast-shot-%03d", ++counter);
+    if (!sr_viewer_draw(v, false, err) || !sr_viewer_save(v, prefix, err))
+        return false;
+    printf("saved ./%s.png and ./%s.pfm\n", prefix, prefix);
+    return true;
+}
+
+static bool handle_window_event(sr_viewer *v, window *w, const SDL_Event *e, sr_error *err)
+{
+    if (e->type == SDL_WINDOWEVENT && e->window.event == SDL_WINDOWEVENT_SIZE_CHANGED)
+        return sr_viewer_resize(v, e->window.data1, e->window.data2, err) &&
+               window_texture(w, e->window.data1, e->window.data2, err);
+    sr_viewer_handle_event(v, e);
+    return true;
+}
+
+static bool fly_interactive(sr_viewer *v, window *w, sr_error *err)
+{
+    Uint64 last = SDL_GetPerformanceCounter();
+    double title_ms = 0.0;
+    bool ok = true;
+    while (ok && !v->quit) {
+        SDL_Event e;
+        while (ok && SDL_PollEvent(&e))
+            ok = handle_window_event(v, w, &e, err);
+        Uint64 now = SDL_GetPerformanceCounter();
+        double dt = (double)(now - last) / (double)SDL_GetPerformanceFrequency();
+        last = now;
+        sr_viewer_advance(v, dt);
+        ok = ok && (!v->screenshot_wanted || take_screenshot(v, err)) && sr_viewer_draw(v, true, err);
+        if (ok)
+            window_present(w, v);
+        title_ms += dt * 1e3;
+        if (ok && title_ms >= TITLE_EVERY_MS) {
+            char status[512];
+            sr_viewer_status(v, status, sizeof status);
+            *strchr(status, '\n') = '\0';
+            SDL_SetWindowTitle(w->window, status);
+            title_ms = 0.0;
+        }
+    }
+    return ok;
+}
+
+static bool run(view_job *job, sr_error *err)
+{
+    sr_viewer v;
+    window w = { 0 };
+    bool windowed = !job->no_window;
+    if (windowed && SDL_Init(SDL_INIT_VIDEO) != 0)
+        return sr_error_set(err, "cannot start SDL video: %s (no display? a scripted flight runs without one: "
+                                 "--no-window)", SDL_GetError());
+    bool ok = sr_viewer_init(&v, &job->scene, err) &&
+              (!windowed || window_open(&w, v.scene.fb.width, v.scene.fb.height, err));
+    ok = ok && (!job->keys || press_keys(job->keys, &v, err));
+    if (ok)
+        ok = job->script_path ? fly_script(job, &v, &w, err) : fly_interactive(&v, &w, err);
+    window_close(&w);
+    sr_viewer_free(&v);
+    if (windowed)
+        SDL_Quit();
+    return ok;
+}
+
+int sr_app_view(int argc, char **argv)
+{
+    view_job job = { 0 };
+    sr_error err = { { 0 } };
+    bool help = false;
+    sr_scene_setup_defaults(&job.scene);
+    if (!parse_job(&job, argc, argv, &help, &err))
+        return sr_app_fail(err.message);
+    if (help)
+        return 0;
+    use_default_scene(&job);
+    return run(&job, &err) ? 0 : sr_app_fail(err.message);
+}

@@ -1,0 +1,158 @@
+/* Scripted flights of `softrast view`: through walls and pillars, with stiff
+ * planes, inside a closed mesh. Every frame must draw (clean under the
+ * sanitisers when the sanitised binary runs), write only finite depths in
+ * [0, 1], and equal pixel for pixel what `softrast render` draws from the
+ * same camera. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdint.h>
+
+#include "run_helpers.h"
+
+#define SIZE "96x54"
+#define MAX_FRAMES 16
+
+static char dir[64];
+
+static void make_dir(void)
+{
+    strcpy(dir, "/tmp/softrast-flight-XXXXXX");
+    cr_assert_not_null(mkdtemp(dir));
+}
+
+static void remove_dir(void)
+{
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    cr_assert_eq(system(cmd), 0);
+}
+
+TestSuite(flights, .init = make_dir, .fini = remove_dir, .timeout = 120);
+
+typedef struct pfm {
+    int width, height;
+    float data[96 * 54];
+} pfm;
+
+static void read_pfm(const char *path, pfm *p)
+{
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "no %s", path);
+    float scale;
+    cr_assert_eq(fscanf(f, "Pf %d %d %f", &p->width, &p->height, &scale), 3);
+    fgetc(f);
+    cr_assert_eq(p->width * p->height, 96 * 54);
+    cr_assert_eq(fread(p->data, sizeof(float), 96 * 54, f), (size_t)(96 * 54));
+    fclose(f);
+}
+
+static bool files_equal(const char *a, const char *b)
+{
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "cmp -s %s %s", a, b);
+    return system(cmd) == 0;
+}
+
+/* Flies `script` over `mesh`, then checks each frame as the file comment says.
+ * Returns the number of frames. */
+static int fly_and_check(const char *mesh, const char *script, const char *shared, const char *view_only,
+                         const char *env)
+{
+    char args[1024];
+    snprintf(args, sizeof args, "view %s --size " SIZE " %s %s --script %s --shots %s", mesh, shared, view_only,
+             script, dir);
+    run_result r = run_softrast_env(dir, env, args);
+    cr_assert_eq(r.status, 0, "flight %s failed: %s", script, r.err);
+    int frames = 0;
+    for (char *line = strtok(r.out, "\n"); line; line = strtok(NULL, "\n"), frames++) {
+        int frame;
+        char camera[512];
+        cr_assert_eq(sscanf(line, "frame %d: %511[^\n]", &frame, camera), 2, "bad line: %s", line);
+        char shot[256], render[1400], png[256], depth[256];
+        snprintf(shot, sizeof shot, "%s/frame-%04d", dir, frame);
+        snprintf(png, sizeof png, "%s/render.png", dir);
+        snprintf(depth, sizeof depth, "%s/render.pfm", dir);
+        snprintf(render, sizeof render, "render %s --size " SIZE " %s %s --out %s --depth %s", mesh, shared, camera,
+                 png, depth);
+        run_result rr = run_softrast(dir, render);
+        cr_assert_eq(rr.status, 0, "render failed: %s", rr.err);
+        char shot_png[300], shot_pfm[300];
+        snprintf(shot_png, sizeof shot_png, "%s.png", shot);
+        snprintf(shot_pfm, sizeof shot_pfm, "%s.pfm", shot);
+        cr_assert(files_equal(png, shot_png), "frame %d of %s differs from render %s", frame, script, camera);
+        cr_assert(files_equal(depth, shot_pfm), "frame %d depth of %s differs from render", frame, script);
+        pfm p;
+        read_pfm(shot_pfm, &p);
+        for (int i = 0; i < p.width * p.height; i++)
+            cr_assert(isfinite(p.data[i]) && p.data[i] >= 0.0f && p.data[i] <= 1.0f,
+                      "frame %d pixel %d depth %g", frame, i, p.data[i]);
+    }
+    return frames;
+}
+
+Test(flights, through_walls_and_pillars_of_the_room)
+{
+    cr_assert_eq(fly_and_check("assets/room.obj", "tests/flights/room_walls.txt", "", "--no-window", ""), 10);
+}
+
+Test(flights, stiff_near_and_far_planes_in_the_room)
+{
+    cr_assert_eq(fly_and_check("assets/room.obj", "tests/flights/room_stiff.txt", "", "--no-window", ""), 6);
+}
+
+Test(flights, interpolated_frames_between_keys)
+{
+    cr_assert_eq(fly_and_check("assets/room.obj", "tests/flights/room_walls.txt", "", "--no-window --frames 16", ""),
+                 16);
+}
+
+Test(flights, inside_a_closed_mesh_every_pixel_is_covered)
+{
+    cr_assert_eq(fly_and_check("assets/sphere.obj", "tests/flights/inside_sphere.txt", "--cull none", "--no-window", ""),
+                 6);
+    for (int frame = 0; frame < 3; frame++) {
+        char path[256];
+        pfm p;
+        snprintf(path, sizeof path, "%s/frame-%04d.pfm", dir, frame);
+        read_pfm(path, &p);
+        for (int i = 0; i < p.width * p.height; i++)
+            cr_assert_lt(p.data[i], 1.0f, "frame %d: pixel %d inside the sphere is uncovered", frame, i);
+    }
+}
+
+/* The window path (SDL's offscreen video driver, no display needed) saves
+ * the same frames as the windowless one. */
+Test(flights, offscreen_window_saves_the_same_frames)
+{
+    fly_and_check("assets/room.obj", "tests/flights/room_walls.txt", "", "--frames 3", "SDL_VIDEODRIVER=offscreen");
+    char keep[128], cmd[512];
+    snprintf(keep, sizeof keep, "%s/windowed", dir);
+    snprintf(cmd, sizeof cmd, "mkdir %s && mv %s/frame-* %s", keep, dir, keep);
+    cr_assert_eq(system(cmd), 0);
+    fly_and_check("assets/room.obj", "tests/flights/room_walls.txt", "", "--frames 3 --no-window", "");
+    for (int frame = 0; frame < 3; frame++) {
+        char a[256], b[256];
+        snprintf(a, sizeof a, "%s/frame-%04d.png", dir, frame);
+        snprintf(b, sizeof b, "%s/frame-%04d.png", keep, frame);
+        cr_assert(files_equal(a, b), "frame %d differs between window and no window", frame);
+    }
+}
+
+/* A real X window under Xvfb, read back as a screenshot: the same pixels as
+ * the render of that camera. */
+Test(flights, xvfb_window_screenshot_equals_the_render)
+{
+    cr_assert_eq(system("command -v xvfb-run >/dev/null"), 0, "xvfb-run is missing (tools/deps.sh installs xvfb)");
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd,
+             "xvfb-run -a -s '-screen 0 640x480x24' %s view assets/room.obj --size " SIZE
+             " --script tests/flights/room_walls.txt --frames 2 --shots %s --grab %s >/dev/null 2>%s/xvfb.err",
+             softrast_bin(), dir, dir, dir);
+    cr_assert_eq(system(cmd), 0, "xvfb-run failed (see %s/xvfb.err)", dir);
+    for (int frame = 0; frame < 2; frame++) {
+        char shot[256], grab[256];
+        snprintf(shot, sizeof shot, "%s/frame-%04d.png", dir, frame);
+        snprintf(grab, sizeof grab, "%s/window-%04d.png", dir, frame);
+        cr_assert(files_equal(shot, grab), "window screenshot %d differs from the frame", frame);
+    }
+}
