@@ -23,7 +23,7 @@ SAN_LIB_OBJ  := $(LIB_SRC:%.c=build/san/%.o)
 SAN_APP_OBJ  := $(APP_SRC:%.c=build/san/%.o)
 SAN_TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
-.PHONY: all deps run test test-fast test-san test-assets assets docs-images clean
+.PHONY: all deps run test test-fast test-san test-assets test-install install assets docs-images clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast
@@ -69,22 +69,18 @@ build/san/softrast-tests: $(SAN_TEST_OBJ) $(filter-out %/main.o,$(SAN_APP_OBJ)) 
 	@echo "  LINK    $@"
 	@$(CC) $(SAN) $^ $(LIBS) -lcriterion -o $@
 
-build/example: examples/draw_into_buffer.c build/libsoftrast.a
-	$(CC) $(ALL_CFLAGS) $(CFLAGS) $^ $(LIBS) -o $@
-
 # The viewer on the default scene (assets/room.obj, from inside the room).
 ROOM_CAMERA := --eye -8,3,-8 --target 4,1.5,6 --fov 75
 run: all
 	./build/softrast view
 
-test: deps test-fast test-san test-assets
+test: deps test-fast test-san test-assets test-install
 
 # Tests read data relative to the project root; the binaries find it via SOFTRAST_ROOT.
 CONTRACT := ../shared/tools/check-cli-contract
 
-test-fast: build/softrast build/softrast-tests build/example
+test-fast: build/softrast build/softrast-tests
 	SOFTRAST_BIN=build/softrast ./build/softrast-tests --jobs 2
-	./build/example build/example.png
 	@if [ -f $(CONTRACT) ]; then python3 $(CONTRACT) build/softrast; \
 	 else echo "note: $(CONTRACT) not found beside the checkout; CLI contract not checked"; fi
 
@@ -115,6 +111,28 @@ GEN_SRC := $(wildcard tools/gen_*.c)
 build/gen-assets: $(GEN_SRC) tools/gen_assets.h
 	@mkdir -p build
 	$(CC) $(ALL_CFLAGS) $(CFLAGS) $(GEN_SRC) $(LIBS) -o $@
+
+VERSION := 0.1.0
+
+# The library, its headers, the program and a pkg-config file under PREFIX.
+install: build/softrast build/libsoftrast.a
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/softrast
+	install -m 755 build/softrast $(DESTDIR)$(PREFIX)/bin/softrast
+	install -m 644 build/libsoftrast.a $(DESTDIR)$(PREFIX)/lib/libsoftrast.a
+	install -m 644 include/softrast/*.h $(DESTDIR)$(PREFIX)/include/softrast/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' tools/softrast.pc.in \
+		> $(DESTDIR)$(PREFIX)/lib/pkgconfig/softrast.pc
+
+# Installs into a scratch prefix and builds the embedding example against the
+# installed copy, the way a user of the library would.
+INSTALL_CHECK := $(CURDIR)/build/install-check
+test-install:
+	@rm -rf $(INSTALL_CHECK)
+	@$(MAKE) --no-print-directory install PREFIX=$(INSTALL_CHECK) >/dev/null
+	PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig $(CC) -std=c11 -Wall -Wextra -Werror \
+		examples/draw_into_buffer.c $$(PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig pkg-config --cflags --libs softrast) \
+		-o $(INSTALL_CHECK)/example
+	$(INSTALL_CHECK)/example $(INSTALL_CHECK)/example.png
 
 clean:
 	rm -rf build
