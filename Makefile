@@ -105,6 +105,18 @@ docs-images: build/softrast
 	./build/softrast render assets/room.obj $(ROOM_CAMERA) --size 640x360 --out docs/images/room.png --depth-png docs/images/room-depth.png
 	./build/softrast render assets/room.obj $(ROOM_CAMERA) --size 640x360 --shade id --out docs/images/room-id.png
 	./build/softrast render assets/torus.obj --eye 0,2.2,-2.6 --target 0,0,0 --size 320x240 --shade normal --out docs/images/torus-normal.png
+	$(call viewer_shot,,viewer)
+	$(call viewer_shot,--keys F4,viewer-depth)
+	$(call viewer_shot,--keys F2,viewer-wireframe)
+	$(call viewer_shot,--keys F1,viewer-help)
+
+# A screenshot of the viewer's window under Xvfb: $(1) extra options, $(2) name.
+define viewer_shot
+	rm -rf build/shot && mkdir -p build/shot
+	xvfb-run -a -s "-screen 0 1024x768x24" ./build/softrast view --size 640x360 --overlays $(1) \
+		--script tests/flights/room_walls.txt --frames 1 --grab build/shot >/dev/null
+	cp build/shot/window-0000.png docs/images/$(2).png
+endef
 
 GEN_SRC := $(wildcard tools/gen_*.c)
 

@@ -74,6 +74,7 @@ static void draw_fan_triangle(draw_state *st, const sr_screen_vertex tri[3], boo
         st->stats->culled++;
         return;
     }
+    st->stats->drawn++;
     if (st->desc->observer)
         st->desc->observer(st->desc->observer_user, tri, clipped, id);
     st->stats->fragments += sr_raster_triangle(st->fb, st->rect, st->desc->shade, &st->shade, tri, area2, id);
