@@ -2,8 +2,12 @@
  *
  * Left-handed (+x right, +y up, +z forward): view = glm_lookat_lh, projection
  * = glm_perspective_lh_zo (vertical fov) or glm_ortho_lh_zo, mapping view
- * depth near → z_ndc 0 and far → 1. sr_camera_check rejects what no matrix
- * can be built from, with one line in err.
+ * depth near → z_ndc 0 and far → 1. Two variants keep the clip volume
+ * 0 ≤ z ≤ w and change only the z row: reversed_z maps near → 1 and far → 0
+ * (draw into a reversed_z framebuffer), and far = +inf (perspective only)
+ * puts the far plane at infinity (z_ndc = 1 − n/d, or n/d reversed), both
+ * computed directly rather than by rounding 1 − f/(f − n). sr_camera_check
+ * rejects what no matrix can be built from, with one line in err.
  */
 #ifndef SOFTRAST_CAMERA_H
 #define SOFTRAST_CAMERA_H
@@ -22,6 +26,7 @@ typedef struct sr_camera {
     float fov_deg;      /* vertical */
     float near, far;
     float ortho_height; /* > 0: orthographic with this view height */
+    bool reversed_z;    /* near → z_ndc 1, far → 0 */
 } sr_camera;
 
 /* Defaults: at -z looking at the origin, up +y, 60°, near 0.1, far 100. */
@@ -37,7 +42,8 @@ void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out);
 
 /* The view-space distance along the view axis of a point stored with depth
  * z_ndc (inverts the projection: n·f / (f − z·(f − n)) for perspective,
- * n + z·(f − n) for orthographic). ctx is the sr_camera; fits sr_depth_map. */
+ * n + z·(f − n) for orthographic, with z → 1 − z when reversed).
+ * ctx is the sr_camera; fits sr_depth_map. */
 double sr_camera_view_distance(float z_ndc, const void *camera);
 
 #endif

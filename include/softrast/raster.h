@@ -5,7 +5,7 @@
  * covered only if the edge is a top or left edge (the top-left rule of
  * Direct3D and OpenGL), so pixels on an edge shared by two triangles are drawn
  * exactly once. Depth is z_ndc interpolated linearly in screen space, tested
- * LESS; varyings are interpolated perspective-correctly through 1/w, and the
+ * LESS (GREATER in a reversed_z framebuffer); varyings are interpolated perspective-correctly through 1/w, and the
  * loop is specialised per shading mode.
  */
 #ifndef SOFTRAST_RASTER_H

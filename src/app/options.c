@@ -79,7 +79,9 @@ static bool parse_choice(const char *text, const char *const *choices, int *out)
 static void describe_expected(const sr_option *o, char *buf, size_t cap)
 {
     switch (o->kind) {
-    case SR_OPT_FLOAT: snprintf(buf, cap, "a finite number in [%g, %g]", o->lo, o->hi); break;
+    case SR_OPT_FLOAT:
+        snprintf(buf, cap, "a finite number in [%g, %g]%s", o->lo, o->hi, o->allow_infinity ? ", or inf" : "");
+        break;
     case SR_OPT_INT:   snprintf(buf, cap, "a whole number in [%g, %g]", o->lo, o->hi); break;
     case SR_OPT_VEC3:  snprintf(buf, cap, "three finite numbers X,Y,Z"); break;
     case SR_OPT_SIZE:  snprintf(buf, cap, "WxH with each side in [%g, %g]", o->lo, o->hi); break;
@@ -98,6 +100,10 @@ static bool apply_value(const sr_option *o, const char *text)
     double d;
     switch (o->kind) {
     case SR_OPT_FLOAT:
+        if (o->allow_infinity && (strcmp(text, "inf") == 0 || strcmp(text, "+inf") == 0)) {
+            *(float *)o->target = INFINITY;
+            return true;
+        }
         if (!parse_double(text, o->lo, o->hi, &d))
             return false;
         *(float *)o->target = (float)d;

@@ -15,7 +15,7 @@
 #include "softrast/error.h"
 
 typedef enum sr_option_kind {
-    SR_OPT_FLOAT,  /* float *, within [lo, hi] */
+    SR_OPT_FLOAT,  /* float *, within [lo, hi], or +inf if allow_infinity */
     SR_OPT_INT,    /* int *, within [lo, hi] */
     SR_OPT_VEC3,   /* float[3], "X,Y,Z" */
     SR_OPT_SIZE,   /* int[2], "WxH", each within [lo, hi] */
@@ -33,6 +33,7 @@ typedef struct sr_option {
     double lo, hi;
     const char *const *choices; /* NULL-terminated, for SR_OPT_CHOICE */
     bool *seen;                 /* optional: set when the option is given */
+    bool allow_infinity;        /* SR_OPT_FLOAT: "inf" is accepted (as +inf) */
 } sr_option;
 
 /* Parses argv[first..argc). Non-option words go to positional (at most

@@ -19,13 +19,14 @@ void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
         { "--up", SR_OPT_VEC3, s->camera.up, "X,Y,Z", "up direction (default 0,1,0)" },
         { "--fov", SR_OPT_FLOAT, &s->camera.fov_deg, "DEG", "vertical field of view in degrees (default 60)", 1e-3, 179.999 },
         { "--near", SR_OPT_FLOAT, &s->camera.near, "N", "near clip plane distance (default 0.1)", 1e-30, 3e38 },
-        { "--far", SR_OPT_FLOAT, &s->camera.far, "F", "far clip plane distance (default 100)", 1e-30, 3e38 },
+        { "--far", SR_OPT_FLOAT, &s->camera.far, "F", "far clip plane distance, or inf (default 100)", 1e-30, 3e38, .allow_infinity = true },
         { "--ortho", SR_OPT_FLOAT, &s->camera.ortho_height, "HEIGHT", "orthographic projection of this view height", 1e-30, 3e38 },
         { "--rotate-y", SR_OPT_FLOAT, &s->rotate_y, "DEG", "turn the mesh about +y; positive turns +z toward +x", -1e6, 1e6 },
         { "--cull", SR_OPT_CHOICE, &s->cull, "back|front|none", "faces to drop (default back)", .choices = SR_CULL_NAMES },
         { "--front", SR_OPT_CHOICE, &s->front, "cw|ccw", "winding on screen of a front face (default cw)", .choices = FRONT_NAMES },
         { "--shade", SR_OPT_CHOICE, &s->shade, "id|color|normal|texture|lambert|depth", "shading mode (default lambert)", .choices = SR_SHADE_NAMES },
         { "--texture", SR_OPT_STRING, &s->texture_path, "FILE.png", "texture (default: the mesh's map_Kd, if any)" },
+        { "--reversed-z", SR_OPT_FLAG, &s->camera.reversed_z, NULL, "reversed depth: near maps to 1, far to 0, test GREATER, clear 0" },
         { "--filter", SR_OPT_CHOICE, &s->filter, "bilinear|nearest", "texture filter (default bilinear)", .choices = FILTER_NAMES },
     };
     for (int i = 0; i < SR_SCENE_OPTION_COUNT; i++)
@@ -54,7 +55,10 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
     bool wants_normals = everything || shade_uses_normals((sr_shade)s->shade);
     if (wants_normals && !sr_mesh_compute_normals(&scene->mesh, err))
         return false;
-    return sr_framebuffer_create(&scene->fb, s->size[0], s->size[1], err);
+    if (!sr_framebuffer_create(&scene->fb, s->size[0], s->size[1], err))
+        return false;
+    scene->fb.reversed_z = s->camera.reversed_z;
+    return true;
 }
 
 void sr_scene_free(sr_scene *scene)

@@ -6,7 +6,7 @@
 #include "options.h"
 #include "softrast/softrast.h"
 
-#define SR_SCENE_OPTION_COUNT 14
+#define SR_SCENE_OPTION_COUNT 15
 
 typedef struct sr_scene_setup {
     const char *mesh_path;

@@ -20,6 +20,7 @@ static const char HELP_TEXT[] =
     "F1 help   F2 wireframe (clipped triangles in red)\n"
     "F3 shading mode         F5 culling mode\n"
     "F4 depth view           L  depth: z_ndc / linear distance\n"
+    "Z         reversed z (near 1, far 0, GREATER) on / off\n"
     "[ ]  near plane / 2, x 2    { }  far plane / 2, x 2\n"
     "F12 save screenshot (PNG) and depth (PFM)";
 
@@ -64,6 +65,7 @@ bool sr_viewer_resize(sr_viewer *v, int width, int height, sr_error *err)
         sr_framebuffer_destroy(&fb);
         return sr_error_set(err, "out of memory for a %dx%d display image", width, height);
     }
+    fb.reversed_z = v->scene.fb.reversed_z;
     sr_framebuffer_destroy(&v->scene.fb);
     free(v->display);
     v->scene.fb = fb;
@@ -153,12 +155,12 @@ void sr_viewer_status(const sr_viewer *v, char *buf, size_t cap)
     snprintf(buf, cap,
              "%.1f ms  %.0f fps  %s%s  cull %s   F1 help\n"
              "triangles %llu  rejected %llu  clipped %llu  culled %llu  drawn %llu\n"
-             "eye %.3g %.3g %.3g  near %.3g  far %.3g  speed %.3g",
+             "eye %.3g %.3g %.3g  near %.3g  far %.3g%s  speed %.3g",
              v->frame_ms, v->frame_ms > 0.0 ? 1000.0 / v->frame_ms : 0.0, SR_SHADE_NAMES[v->setup.shade],
              v->show_depth ? (v->depth_linear ? " (depth view, linear)" : " (depth view)") : "",
              SR_CULL_NAMES[v->setup.cull], (unsigned long long)s->triangles, (unsigned long long)s->rejected,
              (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->drawn, eye[0], eye[1], eye[2],
-             v->setup.camera.near, v->setup.camera.far, v->speed);
+             v->setup.camera.near, v->setup.camera.far, v->setup.camera.reversed_z ? " (reversed z)" : "", v->speed);
 }
 
 bool sr_viewer_save(const sr_viewer *v, const char *prefix, sr_error *err)

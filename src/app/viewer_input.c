@@ -58,6 +58,7 @@ static void key_down(sr_viewer *v, const SDL_KeyboardEvent *k)
     case SDLK_F5:           v->setup.cull = (v->setup.cull + 1) % (SR_CULL_NONE + 1); break;
     case SDLK_F12:          v->screenshot_wanted = true; break;
     case SDLK_l:            v->depth_linear = !v->depth_linear; break;
+    case SDLK_z:            v->setup.camera.reversed_z = v->scene.fb.reversed_z = !v->scene.fb.reversed_z; break;
     case SDLK_r:            v->fly = v->home; break;
     case SDLK_TAB:          set_mouse_look(v, !v->mouse_look); break;
     case SDLK_LEFTBRACKET:  step_clip_plane(v, shift, 1.0f / NEAR_FAR_STEP); break;

@@ -126,10 +126,17 @@ static inline bool mode_reads_varyings(sr_shade mode)
     return mode != SR_SHADE_ID && mode != SR_SHADE_DEPTH;
 }
 
-/* The per-pixel loop; always inlined with a constant mode so each mode gets
- * its own loop with the shading branch folded away. */
+/* LESS for the standard depth convention, GREATER for reversed z. */
+static inline bool depth_passes(float z, float stored, bool greater)
+{
+    return greater ? z > stored : z < stored;
+}
+
+/* The per-pixel loop; always inlined with a constant mode and depth test so
+ * each combination gets its own loop with those branches folded away. */
 static inline __attribute__((always_inline)) uint64_t
-raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade, uint32_t id)
+raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, const sr_shade_context *shade,
+            uint32_t id)
 {
     uint64_t fragments = 0;
     const int64_t step_x[3] = { s->e[0].a * SR_SUBPIXEL_ONE, s->e[1].a * SR_SUBPIXEL_ONE, s->e[2].a * SR_SUBPIXEL_ONE };
@@ -142,7 +149,7 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_co
                 continue;
             float l1 = (float)e1 * s->inv_area2, l2 = (float)e2 * s->inv_area2;
             float z = depth_at(s, l1, l2);
-            if (!(z < fb->depth[row + (size_t)i]))
+            if (!depth_passes(z, fb->depth[row + (size_t)i], greater))
                 continue;
             fb->depth[row + (size_t)i] = z;
             fragments++;
@@ -157,6 +164,12 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_co
     return fragments;
 }
 
+static inline __attribute__((always_inline)) uint64_t
+raster_mode(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade, uint32_t id)
+{
+    return fb->reversed_z ? raster_loop(s, fb, mode, true, shade, id) : raster_loop(s, fb, mode, false, shade, id);
+}
+
 uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, sr_shade mode,
                             const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
                             uint32_t triangle_id)
@@ -166,11 +179,11 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, sr_shade mo
     order_clockwise(tri, area2, v);
     setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, rect, &s);
     switch (mode) {
-    case SR_SHADE_ID:      return raster_loop(&s, fb, SR_SHADE_ID, shade, triangle_id);
-    case SR_SHADE_COLOR:   return raster_loop(&s, fb, SR_SHADE_COLOR, shade, triangle_id);
-    case SR_SHADE_NORMAL:  return raster_loop(&s, fb, SR_SHADE_NORMAL, shade, triangle_id);
-    case SR_SHADE_TEXTURE: return raster_loop(&s, fb, SR_SHADE_TEXTURE, shade, triangle_id);
-    case SR_SHADE_LAMBERT: return raster_loop(&s, fb, SR_SHADE_LAMBERT, shade, triangle_id);
-    default:               return raster_loop(&s, fb, SR_SHADE_DEPTH, shade, triangle_id);
+    case SR_SHADE_ID:      return raster_mode(&s, fb, SR_SHADE_ID, shade, triangle_id);
+    case SR_SHADE_COLOR:   return raster_mode(&s, fb, SR_SHADE_COLOR, shade, triangle_id);
+    case SR_SHADE_NORMAL:  return raster_mode(&s, fb, SR_SHADE_NORMAL, shade, triangle_id);
+    case SR_SHADE_TEXTURE: return raster_mode(&s, fb, SR_SHADE_TEXTURE, shade, triangle_id);
+    case SR_SHADE_LAMBERT: return raster_mode(&s, fb, SR_SHADE_LAMBERT, shade, triangle_id);
+    default:               return raster_mode(&s, fb, SR_SHADE_DEPTH, shade, triangle_id);
     }
 }

@@ -52,8 +52,10 @@ bool sr_camera_check(const sr_camera *cam, sr_error *err)
         return sr_error_set(err, "camera up is zero or parallel to the view direction");
     if (!(cam->near > 0.0f) || !isfinite(cam->near))
         return sr_error_set(err, "near plane must be a positive finite number (got %g)", cam->near);
-    if (!(cam->far > cam->near) || !isfinite(cam->far))
-        return sr_error_set(err, "far plane must be finite and beyond near (near %g, far %g)", cam->near, cam->far);
+    bool far_ok = cam->far > cam->near && (isfinite(cam->far) || cam->ortho_height <= 0.0f);
+    if (!far_ok)
+        return sr_error_set(err, "far plane must be beyond near, and finite for an orthographic camera "
+                                 "(near %g, far %g)", cam->near, cam->far);
     if (cam->ortho_height > 0.0f ? !isfinite(cam->ortho_height)
                                  : !(cam->fov_deg > 0.0f && cam->fov_deg < 180.0f))
         return sr_error_set(err, "fov must be between 0 and 180 degrees (got %g)", cam->fov_deg);
@@ -65,21 +67,47 @@ void sr_camera_view(const sr_camera *cam, mat4 out)
     glm_lookat_lh((float *)cam->eye, (float *)cam->target, (float *)cam->up, out);
 }
 
+/* z_clip = a·z_view + b (w is z_view for perspective, 1 for orthographic):
+ * the z row for the reversed and infinite mappings, in double so the
+ * coefficients are the correctly rounded ones (the point of reversed z). */
+static void reversed_or_infinite_z(const sr_camera *cam, mat4 out)
+{
+    double n = cam->near, f = cam->far, a, b;
+    bool ortho = cam->ortho_height > 0.0f, infinite = isinf(f);
+    if (ortho) {
+        a = -1.0 / (f - n);
+        b = f / (f - n);
+    } else if (infinite) {
+        a = cam->reversed_z ? 0.0 : 1.0;
+        b = cam->reversed_z ? n : -n;
+    } else {
+        a = -n / (f - n);
+        b = n * f / (f - n);
+    }
+    out[2][2] = (float)a;
+    out[3][2] = (float)b;
+}
+
 void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out)
 {
+    float far = isinf(cam->far) ? 2.0f * cam->near : cam->far; /* the z row is rewritten below */
     if (cam->ortho_height > 0.0f) {
         float h = cam->ortho_height * 0.5f, w = h * aspect;
-        glm_ortho_lh_zo(-w, w, -h, h, cam->near, cam->far, out);
+        glm_ortho_lh_zo(-w, w, -h, h, cam->near, far, out);
     } else {
-        glm_perspective_lh_zo(glm_rad(cam->fov_deg), aspect, cam->near, cam->far, out);
+        glm_perspective_lh_zo(glm_rad(cam->fov_deg), aspect, cam->near, far, out);
     }
+    if (cam->reversed_z || isinf(cam->far))
+        reversed_or_infinite_z(cam, out);
 }
 
 double sr_camera_view_distance(float z_ndc, const void *camera)
 {
     const sr_camera *cam = camera;
-    double n = cam->near, f = cam->far, z = z_ndc;
+    double n = cam->near, f = cam->far, z = cam->reversed_z ? 1.0 - z_ndc : z_ndc;
     if (cam->ortho_height > 0.0f)
         return n + z * (f - n);
+    if (isinf(f))
+        return n / (1.0 - z);
     return n * f / (f - z * (f - n));
 }

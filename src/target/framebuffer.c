@@ -20,11 +20,16 @@ static bool side_in_range(int side)
     return side >= 1 && side <= SR_MAX_FRAMEBUFFER_SIDE;
 }
 
-/* A pixel holds a drawn depth only if something passed the LESS test against
- * the clear value; NaN and inf never count (they cannot come from a draw). */
-static bool depth_is_written(float d)
+float sr_framebuffer_depth_clear(const sr_framebuffer *fb)
 {
-    return isfinite(d) && d < SR_DEPTH_CLEAR;
+    return fb->reversed_z ? SR_DEPTH_CLEAR_REVERSED : SR_DEPTH_CLEAR;
+}
+
+/* A pixel holds a drawn depth only if something passed the depth test against
+ * the clear value; NaN and inf never count (they cannot come from a draw). */
+static bool depth_is_written(const sr_framebuffer *fb, float d)
+{
+    return isfinite(d) && (fb->reversed_z ? d > SR_DEPTH_CLEAR_REVERSED : d < SR_DEPTH_CLEAR);
 }
 
 bool sr_framebuffer_create(sr_framebuffer *fb, int width, int height, sr_error *err)
@@ -61,18 +66,19 @@ void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color)
     size_t n = pixel_count(fb);
     for (size_t i = 0; i < n; i++)
         fb->color[i] = color;
+    float clear = sr_framebuffer_depth_clear(fb);
     for (size_t i = 0; i < n; i++)
-        fb->depth[i] = SR_DEPTH_CLEAR;
+        fb->depth[i] = clear;
 }
 
 bool sr_framebuffer_depth_range(const sr_framebuffer *fb, float *lo, float *hi)
 {
     size_t n = pixel_count(fb);
     bool any = false;
-    float min = SR_DEPTH_CLEAR, max = 0.0f;
+    float min = 0.0f, max = 0.0f;
     for (size_t i = 0; i < n; i++) {
         float d = fb->depth[i];
-        if (!depth_is_written(d))
+        if (!depth_is_written(fb, d))
             continue;
         if (!any || d < min)
             min = d;
@@ -109,20 +115,32 @@ static double identity(float z, const void *ctx)
     return z;
 }
 
+/* Reversed depth grows toward the eye; negated, it grows with distance. */
+static double negated(float z, const void *ctx)
+{
+    (void)ctx;
+    return -(double)z;
+}
+
 void sr_framebuffer_depth_to_gray_mapped(const sr_framebuffer *fb, sr_depth_map map, const void *ctx, uint32_t *out)
 {
     size_t n = pixel_count(fb);
     float zlo = 0.0f, zhi = 0.0f;
     sr_framebuffer_depth_range(fb, &zlo, &zhi);
-    /* The maps used are monotonic increasing, so the range maps end to end. */
+    /* The maps are monotonic, so the range maps end to end (maybe swapped). */
     double lo = map(zlo, ctx), hi = map(zhi, ctx);
+    if (lo > hi) {
+        double t = lo;
+        lo = hi;
+        hi = t;
+    }
     for (size_t i = 0; i < n; i++) {
         float d = fb->depth[i];
-        out[i] = depth_is_written(d) ? value_gray(map(d, ctx), lo, hi) : gray_pixel(SR_GRAY_BACKGROUND);
+        out[i] = depth_is_written(fb, d) ? value_gray(map(d, ctx), lo, hi) : gray_pixel(SR_GRAY_BACKGROUND);
     }
 }
 
 void sr_framebuffer_depth_to_gray(const sr_framebuffer *fb, uint32_t *out)
 {
-    sr_framebuffer_depth_to_gray_mapped(fb, identity, NULL, out);
+    sr_framebuffer_depth_to_gray_mapped(fb, fb->reversed_z ? negated : identity, NULL, out);
 }
