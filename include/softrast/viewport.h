@@ -17,8 +17,10 @@
  * rectangle is clamped, vertices are never moved). */
 #define SR_NDC_SLACK 1e-3
 
-/* False when w <= 0, a value is not finite or x, y, z lie past the slack: the
- * caller drops the triangle. Never true for a vertex the clipper left inside. */
+/* False when w <= 0, when 1/w or a varying/w is not finite (NaN or inf in a
+ * varying, or w below 2^-128), or when x, y, z lie past the slack: the caller
+ * drops the polygon and counts it. Never false for a vertex with finite
+ * varyings that the clipper left inside. */
 bool sr_viewport_map(const sr_vertex_out *v, int varyings, int width, int height, sr_screen_vertex *out);
 
 #endif

@@ -89,5 +89,13 @@ int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats)
     }
     if (poly->count < 3)
         poly->count = 0;
+    /* Inside every plane, w <= 0 leaves only the clip-space origin (|x|, |y|,
+     * z <= w and z >= 0): the triangle's plane then contains the eye and the
+     * polygon has no area on screen, so dropping it loses no pixel, and the
+     * divide never sees w <= 0. Rounding puts such a vertex there when an
+     * edge runs through the eye and the near plane is tiny (1e-6). */
+    for (int i = 0; i < poly->count; i++)
+        if (!(poly->vert[i].v[SR_W] > 0.0f))
+            poly->count = 0;
     return poly->count;
 }

@@ -20,7 +20,10 @@ bool sr_viewport_map(const sr_vertex_out *v, int varyings, int width, int height
     out->y = llrint((1.0 - y) * 0.5 * height * SR_SUBPIXEL_ONE);
     out->z = (float)z;
     out->inv_w = (float)inv_w;
-    for (int i = 0; i < varyings; i++)
+    bool finite = isfinite(out->inv_w); /* 1/w overflows float for w < 2^-128 */
+    for (int i = 0; i < varyings; i++) {
         out->var_w[i] = (float)(v->v[SR_VARYINGS_AT + i] * inv_w);
-    return true;
+        finite = finite && isfinite(out->var_w[i]);
+    }
+    return finite;
 }

@@ -1,0 +1,271 @@
+/* Stages 5 and 6: the fan (v0, vi, vi+1) of a clipped polygon, and the
+ * divide + viewport mapping: NDC to 1/256-pixel units with a top-left origin,
+ * 1/w kept, varyings divided by w, and refusal of anything that would divide
+ * by w <= 0 or produce inf or NaN (DESIGN.md, conventions and "Clipping: the
+ * numerical contract"). */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cglm/cglm.h>
+#include <cglm/clipspace/persp_lh_zo.h>
+#include <criterion/criterion.h>
+
+#include "clip_helpers.h"
+
+#define FB_W 640
+#define FB_H 480
+#define ONE SR_SUBPIXEL_ONE
+
+/* ---- viewport mapping -------------------------------------------------- */
+
+static sr_screen_vertex map_ok(double x, double y, double z, double w, int width, int height)
+{
+    sr_vertex_out v = vert4(x, y, z, w);
+    sr_screen_vertex s;
+    cr_assert(sr_viewport_map(&v, 0, width, height, &s), "(%g, %g, %g, %g) refused", x, y, z, w);
+    return s;
+}
+
+static bool map_refuses(float x, float y, float z, float w)
+{
+    sr_vertex_out v = vert4(0, 0, 0, 1);
+    v.v[SR_X] = x;
+    v.v[SR_Y] = y;
+    v.v[SR_Z] = z;
+    v.v[SR_W] = w;
+    sr_screen_vertex s;
+    return !sr_viewport_map(&v, 0, FB_W, FB_H, &s);
+}
+
+Test(viewport, maps_top_left_ndc_corner_to_the_origin)
+{
+    const double ws[] = { 1.0, 3.0, 0.1, 1e-6, 1e6 };
+    for (size_t i = 0; i < sizeof ws / sizeof ws[0]; i++) {
+        sr_screen_vertex s = map_ok(-ws[i], ws[i], 0, ws[i], FB_W, FB_H);
+        cr_assert(s.x == 0 && s.y == 0, "w = %g: (%lld, %lld)", ws[i], (long long)s.x, (long long)s.y);
+    }
+}
+
+Test(viewport, maps_bottom_right_ndc_corner_to_the_full_size_in_subpixels)
+{
+    const double ws[] = { 1.0, 3.0, 0.1, 1e-6, 1e6 };
+    for (size_t i = 0; i < sizeof ws / sizeof ws[0]; i++) {
+        sr_screen_vertex s = map_ok(ws[i], -ws[i], ws[i], ws[i], FB_W, FB_H);
+        cr_assert(s.x == (int64_t)FB_W * ONE && s.y == (int64_t)FB_H * ONE, "w = %g: (%lld, %lld)", ws[i],
+                  (long long)s.x, (long long)s.y);
+    }
+}
+
+Test(viewport, maps_pixel_centres_to_half_a_pixel_past_their_corner)
+{
+    /* Pixel (i, j) covers [i, i+1) × [j, j+1), row 0 at the top; its centre
+     * (i + 0.5, j + 0.5) is at NDC x = 2(i + 0.5)/W - 1, y = 1 - 2(j + 0.5)/H. */
+    const int sizes[][2] = { { 7, 5 }, { FB_W, FB_H }, { 1, 1 }, { 1920, 1080 } };
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+        int W = sizes[k][0], H = sizes[k][1];
+        for (int j = 0; j < H; j += 1 + H / 7)
+            for (int i = 0; i < W; i += 1 + W / 9) {
+                double w = 2.5, x = 2.0 * (i + 0.5) / W - 1.0, y = 1.0 - 2.0 * (j + 0.5) / H;
+                sr_screen_vertex s = map_ok(x * w, y * w, 0.5 * w, w, W, H);
+                cr_assert(s.x == (int64_t)i * ONE + ONE / 2 && s.y == (int64_t)j * ONE + ONE / 2,
+                          "%dx%d pixel (%d, %d) -> (%lld, %lld)", W, H, i, j, (long long)s.x, (long long)s.y);
+            }
+    }
+}
+
+Test(viewport, keeps_z_ndc_and_inverse_w)
+{
+    sr_screen_vertex s = map_ok(0.5, -0.25, 0.75, 2.0, FB_W, FB_H);
+    cr_assert_eq(s.z, 0.375f);
+    cr_assert_eq(s.inv_w, 0.5f);
+}
+
+Test(viewport, divides_varyings_by_w)
+{
+    sr_vertex_out v = vert4(0.5, -0.25, 0.75, 4.0);
+    for (int i = 0; i < SR_MAX_VARYINGS; i++)
+        v.v[SR_VARYINGS_AT + i] = (float)(i - 3);
+    sr_screen_vertex s;
+    cr_assert(sr_viewport_map(&v, SR_MAX_VARYINGS, FB_W, FB_H, &s));
+    for (int i = 0; i < SR_MAX_VARYINGS; i++)
+        cr_assert_eq(s.var_w[i], (float)(i - 3) / 4.0f, "varying %d", i);
+}
+
+Test(viewport, refuses_w_zero_or_negative)
+{
+    const float ws[] = { 0.0f, -0.0f, -FLT_TRUE_MIN, -1e-30f, -1.0f, -INFINITY };
+    for (size_t i = 0; i < sizeof ws / sizeof ws[0]; i++)
+        cr_assert(map_refuses(0, 0, 0, ws[i]), "w = %a accepted", ws[i]);
+    cr_assert(map_refuses(-1, 1, 0, -1), "(-1, 1, 0, -1): x/w, y/w, z/w look inside, but w < 0");
+}
+
+Test(viewport, refuses_nan_or_inf_in_any_position_coordinate)
+{
+    const float bad[3] = { NAN, INFINITY, -INFINITY };
+    for (int k = 0; k < 4; k++)
+        for (int j = 0; j < 3; j++) {
+            float c[4] = { 0.25f, 0.25f, 0.5f, 1.0f };
+            c[k] = bad[j];
+            cr_assert(map_refuses(c[0], c[1], c[2], c[3]), "coordinate %d = %f accepted", k, c[k]);
+        }
+}
+
+Test(viewport, refuses_points_past_the_ndc_slack)
+{
+    double past = 1.0 + 2 * SR_NDC_SLACK;
+    cr_assert(map_refuses((float)past, 0, 0.5f, 1), "x past right");
+    cr_assert(map_refuses((float)-past, 0, 0.5f, 1), "x past left");
+    cr_assert(map_refuses(0, (float)past, 0.5f, 1), "y past top");
+    cr_assert(map_refuses(0, (float)-past, 0.5f, 1), "y past bottom");
+    cr_assert(map_refuses(0, 0, (float)past, 1), "z past far");
+    cr_assert(map_refuses(0, 0, (float)(-2 * SR_NDC_SLACK), 1), "z before near");
+}
+
+Test(viewport, accepts_points_a_rounding_hair_outside)
+{
+    float hair = (float)(1.0 + SR_NDC_SLACK / 2);
+    cr_assert_not(map_refuses(hair, -hair, hair, 1));
+    cr_assert_not(map_refuses(-hair, hair, (float)(-SR_NDC_SLACK / 2), 1));
+}
+
+Test(viewport, never_returns_an_infinite_inverse_w_or_varying)
+{
+    /* Inside the volume (|x|, |y|, z <= w) with w so small that 1/w, or a
+     * varying divided by w, overflows float: refuse, or return finite values. */
+    const float ws[] = { 1e-30f, 1e-38f, 1e-39f, 1e-44f, FLT_TRUE_MIN };
+    for (size_t i = 0; i < sizeof ws / sizeof ws[0]; i++) {
+        sr_vertex_out v = vert4(0, 0, 0, 1);
+        v.v[SR_W] = ws[i];
+        v.v[SR_VARYINGS_AT] = 1.0f;
+        sr_screen_vertex s;
+        if (!sr_viewport_map(&v, 1, FB_W, FB_H, &s))
+            continue;
+        cr_assert(isfinite(s.inv_w) && isfinite(s.var_w[0]), "w = %a: 1/w = %a, varying/w = %a", ws[i], s.inv_w,
+                  s.var_w[0]);
+    }
+}
+
+/* ---- fan: (v0, vi, vi+1) after mapping ---------------------------------- */
+
+#define FAN_TRIANGLES 4000
+
+/* Twice the signed area in subpixel units², > 0 clockwise on screen (y down). */
+static int64_t area2(const sr_screen_vertex *a, const sr_screen_vertex *b, const sr_screen_vertex *c)
+{
+    return (b->x - a->x) * (c->y - a->y) - (b->y - a->y) * (c->x - a->x);
+}
+
+/* A perspective (near 0.1, far 100) view-space triangle, clipped as the
+ * pipeline does and mapped. depth_inside keeps all three vertices between
+ * near and far, so only the viewport sides clip. False if nothing is left. */
+static bool clipped_screen_polygon(test_rng *r, bool depth_inside, sr_vertex_out tri[3], sr_screen_vertex s[],
+                                   int *n)
+{
+    mat4 P;
+    glm_perspective_lh_zo(glm_rad(60.0f), (float)FB_W / FB_H, 0.1f, 100.0f, P);
+    for (int i = 0; i < 3; i++) {
+        double z = depth_inside ? rng_uniform(r, 0.2, 90) : rng_uniform(r, -20, 40);
+        vec4 view = { (float)(fabs(z) * rng_uniform(r, -2, 2)), (float)(fabs(z) * rng_uniform(r, -2, 2)), (float)z, 1 },
+             clip;
+        glm_mat4_mulv(P, view, clip);
+        tri[i] = vert4(clip[0], clip[1], clip[2], clip[3]);
+    }
+    unsigned c[3] = { sr_clip_outcode(tri[0].v), sr_clip_outcode(tri[1].v), sr_clip_outcode(tri[2].v) };
+    if (c[0] & c[1] & c[2])
+        return false;
+    sr_polygon poly = poly3(tri[0], tri[1], tri[2]);
+    *n = sr_clip_polygon(&poly, c[0] | c[1] | c[2], SR_VARYINGS_AT);
+    for (int i = 0; i < *n; i++)
+        cr_assert(sr_viewport_map(&poly.vert[i], 0, FB_W, FB_H, &s[i]), "vertex %d refused", i);
+    return *n >= 3;
+}
+
+Test(fan, triangles_of_a_clipped_polygon_all_have_the_same_sign)
+{
+    test_rng r = { 60 };
+    int mixed_w = 0;
+    for (int k = 0; k < FAN_TRIANGLES; k++) {
+        sr_vertex_out tri[3];
+        sr_screen_vertex s[SR_MAX_CLIP_VERTS];
+        int n;
+        if (!clipped_screen_polygon(&r, false, tri, s, &n))
+            continue;
+        mixed_w += tri[0].v[SR_W] < 0 || tri[1].v[SR_W] < 0 || tri[2].v[SR_W] < 0;
+        int pos = 0, neg = 0, fans = 0;
+        for (int i = 1; i + 1 < n; i++, fans++) {
+            int64_t a = area2(&s[0], &s[i], &s[i + 1]);
+            pos += a > 0;
+            neg += a < 0;
+        }
+        cr_assert_eq(fans, n - 2);
+        cr_assert(pos == 0 || neg == 0, "%d-gon fans into %d clockwise and %d counter-clockwise triangles", n, pos, neg);
+    }
+    cr_assert_gt(mixed_w, 100, "too few triangles across the eye plane");
+}
+
+Test(fan, areas_sum_to_the_screen_area_of_triangle_within_viewport)
+{
+    /* Independent reference: project the unclipped triangle (all w > 0, depth
+     * inside) in double and clip it to the viewport rectangle in 2D. */
+    test_rng r = { 61 };
+    int checked = 0;
+    for (int k = 0; k < FAN_TRIANGLES; k++) {
+        sr_vertex_out tri[3];
+        sr_screen_vertex s[SR_MAX_CLIP_VERTS];
+        int n;
+        if (!clipped_screen_polygon(&r, true, tri, s, &n))
+            continue;
+        int64_t sum = 0;
+        for (int i = 1; i + 1 < n; i++)
+            sum += area2(&s[0], &s[i], &s[i + 1]);
+        ref_poly ref = { .n = 3 };
+        for (int i = 0; i < 3; i++) {
+            double w = tri[i].v[SR_W];
+            double ndc[4] = { tri[i].v[SR_X] / w, tri[i].v[SR_Y] / w, 0.5, 1.0 };
+            memcpy(ref.v[i], ndc, sizeof ndc);
+        }
+        ref_clip(&ref, (1u << SR_PLANE_LEFT) | (1u << SR_PLANE_RIGHT) | (1u << SR_PLANE_BOTTOM) | (1u << SR_PLANE_TOP));
+        double px[REF_MAX_VERTS], py[REF_MAX_VERTS], perimeter = 0;
+        for (int i = 0; i < ref.n; i++) {
+            px[i] = (ref.v[i][0] + 1) * FB_W / 2;
+            py[i] = (1 - ref.v[i][1]) * FB_H / 2;
+        }
+        for (int i = 0; i < ref.n; i++)
+            perimeter += hypot(px[(i + 1) % ref.n] - px[i], py[(i + 1) % ref.n] - py[i]);
+        double want = fabs(shoelace(px, py, ref.n)), got = fabs((double)sum) / 2 / ((double)ONE * ONE);
+        /* Snapping moves each vertex by at most 1/512 px per axis. */
+        cr_assert(fabs(got - want) <= perimeter / 256 + 1e-6 * want, "fan area %.6f px², reference %.6f px²", got,
+                  want);
+        checked++;
+    }
+    cr_assert_gt(checked, FAN_TRIANGLES / 4);
+}
+
+Test(fan, winding_on_screen_matches_the_clip_space_determinant)
+{
+    /* With y down, a triangle's screen winding is -sign det[(x, y, w)_i]; the
+     * clipped polygon must keep it even when some input w are negative. */
+    test_rng r = { 62 };
+    int mixed_w = 0;
+    for (int k = 0; k < FAN_TRIANGLES; k++) {
+        sr_vertex_out tri[3];
+        sr_screen_vertex s[SR_MAX_CLIP_VERTS];
+        int n;
+        if (!clipped_screen_polygon(&r, false, tri, s, &n))
+            continue;
+        const float *a = tri[0].v, *b = tri[1].v, *c = tri[2].v;
+        double det = (double)a[SR_X] * ((double)b[SR_Y] * c[SR_W] - (double)b[SR_W] * c[SR_Y]) -
+                     (double)a[SR_Y] * ((double)b[SR_X] * c[SR_W] - (double)b[SR_W] * c[SR_X]) +
+                     (double)a[SR_W] * ((double)b[SR_X] * c[SR_Y] - (double)b[SR_Y] * c[SR_X]);
+        int64_t sum = 0;
+        for (int i = 1; i + 1 < n; i++)
+            sum += area2(&s[0], &s[i], &s[i + 1]);
+        if (sum == 0)
+            continue;
+        mixed_w += a[SR_W] < 0 || b[SR_W] < 0 || c[SR_W] < 0;
+        cr_assert((sum > 0) == (det < 0), "area2 %lld, det %g", (long long)sum, det);
+    }
+    cr_assert_gt(mixed_w, 100, "too few triangles across the eye plane");
+}
