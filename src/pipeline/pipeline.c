@@ -53,6 +53,8 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
         return sr_error_set(err, "color shading needs vertex colors and the mesh has none");
     if (d->shade == SR_SHADE_TEXTURE && (!d->mesh->uvs || !d->texture || !d->texture->texels))
         return sr_error_set(err, "texture shading needs texture coordinates and a texture");
+    if (d->texture && d->texture->texels && (d->texture->width < 1 || d->texture->height < 1))
+        return sr_error_set(err, "texture of size %dx%d cannot be sampled", d->texture->width, d->texture->height);
     return true;
 }
 

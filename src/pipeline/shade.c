@@ -30,11 +30,13 @@ static void texel_rgb(const sr_texture *tex, int x, int y, float rgb[3])
     rgb[2] = (float)(t & 0xFF) * CHANNEL_SCALE;
 }
 
+/* Rows count from the bottom as v does, so v = k/H picks row k from the
+ * bottom exactly as u = k/W picks column k (a texel's lower edge belongs to it). */
 static void sample_nearest(const sr_texture *tex, double fx, double fy, float rgb[3])
 {
     int x = wrap_index((long)floor(fx), tex->width);
-    int y = wrap_index((long)floor(fy), tex->height);
-    texel_rgb(tex, x, y, rgb);
+    int from_bottom = wrap_index((long)floor((double)tex->height - fy), tex->height);
+    texel_rgb(tex, x, tex->height - 1 - from_bottom, rgb);
 }
 
 /* Texel centres sit at half-integers: blend the four around (fx, fy). */
