@@ -31,6 +31,7 @@
 #include "pipeline.h"
 #include "raster.h"
 #include "shade.h"
+#include "shapes.h"
 #include "texture.h"
 #include "types.h"
 #include "vertex.h"

@@ -1,4 +1,6 @@
 #include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
 
 #include "app.h"
 
@@ -6,4 +8,24 @@ int sr_app_fail(const char *message)
 {
     fprintf(stderr, "softrast: error: %s\n", message);
     return 1;
+}
+
+double sr_app_now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+void sr_app_median_min(double *ms, int n, double *median, double *min)
+{
+    qsort(ms, (size_t)n, sizeof *ms, compare_double);
+    *min = ms[0];
+    *median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
 }

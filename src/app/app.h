@@ -4,8 +4,15 @@
 
 int sr_app_render(int argc, char **argv);
 int sr_app_view(int argc, char **argv);
+int sr_app_bench(int argc, char **argv);
 
 /* Prints "softrast: error: <message>" on stderr and returns the exit status 1. */
 int sr_app_fail(const char *message);
+
+/* A monotonic clock in milliseconds. */
+double sr_app_now_ms(void);
+
+/* Sorts ms[0..n) and gives its median and minimum (n >= 1). */
+void sr_app_median_min(double *ms, int n, double *median, double *min);
 
 #endif

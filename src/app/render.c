@@ -2,7 +2,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "app.h"
@@ -65,28 +64,15 @@ static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_err
     return true;
 }
 
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
-
 /* A timed frame is what a viewer pays: clear color and depth, then the draw. */
 static bool draw_frame(sr_scene *scene, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err)
 {
-    double start = now_ms();
+    double start = sr_app_now_ms();
     *stats = (sr_stats){ 0 };
     sr_framebuffer_clear(&scene->fb, 0x000000);
     bool ok = sr_draw(&scene->fb, desc, stats, err);
-    *ms = now_ms() - start;
+    *ms = sr_app_now_ms() - start;
     return ok;
-}
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr_stats *stats,
@@ -98,11 +84,8 @@ static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr
     bool ok = frames == 1 || draw_frame(scene, desc, stats, &warm, err);
     for (int f = 0; ok && f < frames; f++)
         ok = draw_frame(scene, desc, stats, &ms[f], err);
-    if (ok) {
-        qsort(ms, (size_t)frames, sizeof *ms, compare_double);
-        times->min = ms[0];
-        times->median = frames % 2 ? ms[frames / 2] : 0.5 * (ms[frames / 2 - 1] + ms[frames / 2]);
-    }
+    if (ok)
+        sr_app_median_min(ms, frames, &times->median, &times->min);
     free(ms);
     return ok;
 }

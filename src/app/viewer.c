@@ -1,8 +1,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "app.h"
 #include "overlay.h"
 #include "viewer.h"
 
@@ -93,13 +93,6 @@ static void collect_wire(void *user, const sr_screen_vertex tri[3], bool clipped
     }
 }
 
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
-
 static void show_image(sr_viewer *v)
 {
     const sr_framebuffer *fb = &v->scene.fb;
@@ -137,11 +130,11 @@ bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
         desc.observer = collect_wire;
         desc.observer_user = v;
     }
-    double start = now_ms();
+    double start = sr_app_now_ms();
     v->stats = (sr_stats){ 0 };
     sr_framebuffer_clear(&v->scene.fb, 0x000000);
     bool ok = sr_draw(&v->scene.fb, &desc, &v->stats, err);
-    v->frame_ms = now_ms() - start;
+    v->frame_ms = sr_app_now_ms() - start;
     show_image(v);
     if (ok && overlays)
         draw_overlays(v);

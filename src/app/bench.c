@@ -1,0 +1,177 @@
+/* softrast bench — the benchmark scenes, timed as a viewer pays for a frame. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app.h"
+#include "bench_scenes.h"
+#include "options.h"
+
+#define MAX_FRAMES 10000
+#define MAX_THREADS 256
+#define SCALING_POINTS 4
+
+static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", "scaling", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_SCALING };
+
+typedef struct bench_job {
+    int scene, frames, threads;
+} bench_job;
+
+typedef struct bench_result {
+    double median, min;
+    sr_stats stats;
+} bench_result;
+
+static const char USAGE[] =
+    "usage: softrast bench [options]\n"
+    "Times the benchmark scenes: median and minimum ms per frame over --frames frames\n"
+    "(after one untimed warm-up), a frame being clear + draw, as in the viewer. Run it from\n"
+    "the project's root (the fly scene reads assets/room.obj).";
+
+static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_error *err)
+{
+    const sr_option table[] = {
+        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|depth|scaling", "which scenes (default all)", .choices = SCENE_NAMES },
+        { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
+        { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, MAX_THREADS },
+        { 0 },
+    };
+    int positional = 0;
+    if (!sr_options_parse(table, argc, argv, 2, NULL, 0, &positional, help, err))
+        return false;
+    if (*help)
+        sr_options_print_help(stdout, USAGE, table);
+    return true;
+}
+
+static bool time_scene(const sr_bench_scene *s, int frames, bench_result *r, sr_error *err)
+{
+    sr_framebuffer fb;
+    if (!sr_framebuffer_create(&fb, s->width, s->height, err))
+        return false;
+    double *ms = malloc((size_t)frames * sizeof *ms);
+    bool ok = ms != NULL;
+    for (int f = -1; ok && f < frames; f++) { /* frame -1 is the warm-up */
+        sr_camera cam;
+        sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade,
+                              .texture = s->texture.texels ? &s->texture : NULL };
+        sr_bench_scene_camera(s, f < 0 ? 0 : f, frames, &cam);
+        sr_camera_view(&cam, desc.view);
+        sr_camera_projection(&cam, (float)s->width / (float)s->height, desc.projection);
+        double start = sr_app_now_ms();
+        r->stats = (sr_stats){ 0 };
+        sr_framebuffer_clear(&fb, 0);
+        ok = sr_draw(&fb, &desc, &r->stats, err);
+        if (f >= 0)
+            ms[f] = sr_app_now_ms() - start;
+    }
+    if (ok)
+        sr_app_median_min(ms, frames, &r->median, &r->min);
+    free(ms);
+    sr_framebuffer_destroy(&fb);
+    return ok;
+}
+
+static void print_header(void)
+{
+    printf("%-8s %10s %11s %10s %10s %10s %12s\n", "scene", "triangles", "size", "ms median", "ms min",
+           "Mtri/s", "Mfragment/s");
+}
+
+static void print_row(const char *name, const sr_bench_scene *s, const bench_result *r)
+{
+    char size[32];
+    snprintf(size, sizeof size, "%dx%d", s->width, s->height);
+    printf("%-8s %10llu %11s %10.2f %10.2f %10.2f %12.1f\n", name, (unsigned long long)r->stats.triangles, size,
+           r->median, r->min, r->stats.triangles / r->median / 1e3, r->stats.fragments / r->median / 1e3);
+    fflush(stdout);
+}
+
+static bool run_scene(sr_bench_scene *s, bool made, int frames, bench_result *r, sr_error *err)
+{
+    bool ok = made && time_scene(s, frames, r, err);
+    if (ok)
+        print_row(s->name, s, r);
+    sr_bench_scene_free(s);
+    return ok;
+}
+
+/* Least-squares slope of log(ms) against log(work): 1 is linear. */
+static double log_slope(const double *work, const double *ms, int n)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int i = 0; i < n; i++) {
+        double x = log(work[i]), y = log(ms[i]);
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+    }
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+static bool run_scaling(int frames, sr_error *err)
+{
+    static const uint64_t tris[SCALING_POINTS] = { 10000, 100000, 1000000, 4000000 };
+    static const int sizes[SCALING_POINTS][2] = { { 640, 360 }, { 1280, 720 }, { 1920, 1080 }, { 3840, 2160 } };
+    double work[SCALING_POINTS], ms[SCALING_POINTS];
+    bench_result r;
+    sr_bench_scene s;
+    for (int i = 0; i < SCALING_POINTS; i++) {
+        if (!run_scene(&s, sr_bench_dense(&s, tris[i], 1920, 1080, SR_SHADE_LAMBERT, err), frames, &r, err))
+            return false;
+        work[i] = (double)r.stats.triangles;
+        ms[i] = r.median;
+    }
+    printf("scaling: time ~ triangles^%.2f (1.00 is linear)\n", log_slope(work, ms, SCALING_POINTS));
+    for (int i = 0; i < SCALING_POINTS; i++) {
+        if (!run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, sizes[i][0], sizes[i][1], SR_SHADE_LAMBERT,
+                                          err), frames, &r, err))
+            return false;
+        work[i] = (double)sizes[i][0] * sizes[i][1];
+        ms[i] = r.median;
+    }
+    printf("scaling: time ~ pixels^%.2f at %u triangles (1.00 is linear)\n", log_slope(work, ms, SCALING_POINTS),
+           SR_BENCH_DENSE_TRIANGLES);
+    return true;
+}
+
+static bool wants(const bench_job *job, int scene)
+{
+    return job->scene == SCENE_ALL || job->scene == scene;
+}
+
+static bool run(const bench_job *job, sr_error *err)
+{
+    sr_bench_scene s;
+    bench_result r;
+    print_header();
+    if (wants(job, SCENE_DENSE) && !run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080,
+                                                                 SR_SHADE_LAMBERT, err), job->frames, &r, err))
+        return false;
+    if (wants(job, SCENE_FLY) && !run_scene(&s, sr_bench_fly(&s, err), job->frames, &r, err))
+        return false;
+    if (wants(job, SCENE_FILL) && !run_scene(&s, sr_bench_fill(&s, err), job->frames, &r, err))
+        return false;
+    if (wants(job, SCENE_DEPTH) && !run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080,
+                                                                 SR_SHADE_DEPTH, err), job->frames, &r, err))
+        return false;
+    return !wants(job, SCENE_SCALING) || run_scaling(job->frames, err);
+}
+
+int sr_app_bench(int argc, char **argv)
+{
+    bench_job job = { .frames = 10 };
+    sr_error err = { { 0 } };
+    bool help = false;
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    job.threads = cores > 0 && cores <= MAX_THREADS ? (int)cores : 1;
+    if (!parse_job(&job, argc, argv, &help, &err))
+        return sr_app_fail(err.message);
+    if (help)
+        return 0;
+    return run(&job, &err) ? 0 : sr_app_fail(err.message);
+}

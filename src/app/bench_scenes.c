@@ -1,0 +1,82 @@
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_scenes.h"
+
+#define FILL_QUADS 64
+#define CHECKER_SIDE 256
+#define CHECKER_CELL 32
+
+/* Key frames through the room (eye, target, up, fov, near, far): through the
+ * west pillar and wall, back in at a slant, up through the ceiling. */
+static float FLY_KEYS[][SR_SCRIPT_NUMBERS] = {
+    { -8.0f, 3.0f, -8.0f, 4.0f, 1.5f, 6.0f, 0, 1, 0, 75, 0.1f, 100 },
+    { 0.0f, 2.0f, 0.0f, -20.0f, 2.0f, 0.0f, 0, 1, 0, 75, 0.1f, 100 },
+    { -5.0f, 2.0f, 0.0f, -25.0f, 2.0f, 0.0f, 0, 1, 0, 75, 0.1f, 100 },
+    { -10.0f, 2.0f, 0.3f, -30.0f, 2.0f, 0.3f, 0, 1, 0, 75, 0.1f, 100 },
+    { -10.0f, 3.0f, -4.1f, 0.0f, 1.0f, -6.0f, 0, 1, 0, 90, 0.1f, 100 },
+    { 2.0f, 5.9f, 2.0f, 2.0f, 0.0f, 2.001f, 0, 1, 0, 60, 0.1f, 100 },
+};
+
+static void scene_init(sr_bench_scene *s, const char *name, const char *what, sr_shade shade, int w, int h)
+{
+    *s = (sr_bench_scene){ .name = name, .what = what, .shade = shade, .width = w, .height = h,
+                           .camera = sr_camera_default() };
+}
+
+bool sr_bench_dense(sr_bench_scene *s, uint64_t triangles, int width, int height, sr_shade shade, sr_error *err)
+{
+    uint32_t segments, sides;
+    scene_init(s, shade == SR_SHADE_DEPTH ? "depth" : "dense", "closed torus, lambert", shade, width, height);
+    if (shade == SR_SHADE_DEPTH)
+        s->what = "the dense torus in the depth view: no varyings";
+    sr_shape_torus_grid(triangles, &segments, &sides);
+    glm_vec3_copy((vec3){ 0.0f, 1.1f, -1.9f }, s->camera.eye);
+    return sr_shape_torus(&s->mesh, 1.0f, 0.4f, segments, sides, err);
+}
+
+bool sr_bench_fly(sr_bench_scene *s, sr_error *err)
+{
+    scene_init(s, "fly", "the room on a path through walls and pillars, lambert + texture", SR_SHADE_LAMBERT,
+               1920, 1080);
+    s->path = (sr_script){ .count = sizeof FLY_KEYS / sizeof FLY_KEYS[0], .keys = FLY_KEYS };
+    return sr_obj_load(&s->mesh, "assets/room.obj", err) && sr_texture_load(&s->texture, "assets/room.png", err);
+}
+
+/* A two-tone checker, so bilinear filtering has edges to blend. */
+static bool make_checker(sr_texture *t, sr_error *err)
+{
+    t->texels = malloc((size_t)CHECKER_SIDE * CHECKER_SIDE * sizeof *t->texels);
+    if (!t->texels)
+        return sr_error_set(err, "out of memory for the checker texture");
+    t->width = t->height = CHECKER_SIDE;
+    for (int y = 0; y < CHECKER_SIDE; y++)
+        for (int x = 0; x < CHECKER_SIDE; x++)
+            t->texels[y * CHECKER_SIDE + x] = ((x / CHECKER_CELL + y / CHECKER_CELL) & 1) ? 0xD0C090u : 0x304060u;
+    return true;
+}
+
+bool sr_bench_fill(sr_bench_scene *s, sr_error *err)
+{
+    scene_init(s, "fill", "64 full-screen textured quads back to front, bilinear", SR_SHADE_TEXTURE, 1920, 1080);
+    glm_vec3_copy((vec3){ 0.0f, 0.0f, 0.0f }, s->camera.eye);
+    glm_vec3_copy((vec3){ 0.0f, 0.0f, 1.0f }, s->camera.target);
+    s->camera.ortho_height = 2.0f;
+    /* Far to near, so every quad passes the depth test over the last. */
+    return sr_shape_quads(&s->mesh, FILL_QUADS, 4.0f, 64.0f, -0.5f, err) && make_checker(&s->texture, err);
+}
+
+void sr_bench_scene_free(sr_bench_scene *s)
+{
+    sr_mesh_free(&s->mesh);
+    sr_texture_free(&s->texture);
+    *s = (sr_bench_scene){ 0 };
+}
+
+void sr_bench_scene_camera(const sr_bench_scene *s, int f, int n, sr_camera *cam)
+{
+    if (s->path.count)
+        sr_script_camera(&s->path, f, n, cam);
+    else
+        *cam = s->camera;
+}

@@ -1,0 +1,36 @@
+/* bench_scenes.h — the benchmark's scenes, made in memory so the numbers do
+ * not depend on files: a dense torus, a flight through the room, full-screen
+ * textured quads. */
+#ifndef SOFTRAST_APP_BENCH_SCENES_H
+#define SOFTRAST_APP_BENCH_SCENES_H
+
+#include "softrast/softrast.h"
+#include "view_script.h"
+
+#define SR_BENCH_DENSE_TRIANGLES 1048576u
+
+typedef struct sr_bench_scene {
+    const char *name, *what;
+    sr_mesh mesh;
+    sr_texture texture;
+    sr_shade shade;
+    int width, height;
+    sr_camera camera;  /* the fixed camera, when path.count is 0 */
+    sr_script path;    /* a camera path over the timed frames */
+} sr_bench_scene;
+
+/* A torus of about `triangles` triangles filling most of the frame. */
+bool sr_bench_dense(sr_bench_scene *s, uint64_t triangles, int width, int height, sr_shade shade, sr_error *err);
+
+/* The room from assets/, on a path through its walls and pillars. */
+bool sr_bench_fly(sr_bench_scene *s, sr_error *err);
+
+/* 64 full-screen textured quads drawn back to front, bilinear. */
+bool sr_bench_fill(sr_bench_scene *s, sr_error *err);
+
+void sr_bench_scene_free(sr_bench_scene *s);
+
+/* The camera of frame f of n. */
+void sr_bench_scene_camera(const sr_bench_scene *s, int f, int n, sr_camera *cam);
+
+#endif
