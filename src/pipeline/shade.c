@@ -5,24 +5,27 @@
 
 #define CHANNEL_SCALE (1.0f / 255.0f)
 
-/* The fractional part in [0, 1): wrap = repeat. Non-finite gives 0, and huge
- * values (where float has no fraction left) give 0 too, so the texel index
- * below never overflows. */
-static double wrap_unit(float t)
+/* Float has no fraction left from here on, and int conversion stays safe. */
+#define NO_FRACTION 8388608.0f /* 2^23 */
+
+/* floor for |x| < 2^31, without a libm call in the per-pixel path. */
+static inline int floor_int(float x)
 {
-    if (!isfinite(t))
-        return 0.0;
-    double f = (double)t - floor((double)t);
-    return f < 1.0 ? f : 0.0;
+    int i = (int)x;
+    return i - (x < (float)i);
 }
 
-static int wrap_index(long i, int n)
+/* The fractional part in [0, 1): wrap = repeat. NaN, inf and values too big
+ * to have a fraction give 0, so the texel indices below never overflow. */
+static inline float wrap_unit(float t)
 {
-    long r = i % n;
-    return (int)(r < 0 ? r + n : r);
+    if (!(fabsf(t) < NO_FRACTION))
+        return 0.0f;
+    float f = t - (float)floor_int(t);
+    return f < 1.0f ? f : 0.0f;
 }
 
-static void texel_rgb(const sr_texture *tex, int x, int y, float rgb[3])
+static inline void texel_rgb(const sr_texture *tex, int x, int y, float rgb[3])
 {
     uint32_t t = tex->texels[(size_t)y * (size_t)tex->width + (size_t)x];
     rgb[0] = (float)((t >> 16) & 0xFF) * CHANNEL_SCALE;
@@ -30,26 +33,42 @@ static void texel_rgb(const sr_texture *tex, int x, int y, float rgb[3])
     rgb[2] = (float)(t & 0xFF) * CHANNEL_SCALE;
 }
 
-/* Rows count from the bottom as v does, so v = k/H picks row k from the
- * bottom exactly as u = k/W picks column k (a texel's lower edge belongs to it). */
-static void sample_nearest(const sr_texture *tex, double fx, double fy, float rgb[3])
+/* The texel a wrapped coordinate in [0, 1) falls in; a texel's lower edge
+ * belongs to it. Rounding may carry f·n up to n, hence the clamp. */
+static inline int texel_index(float f, int n)
 {
-    int x = wrap_index((long)floor(fx), tex->width);
-    int from_bottom = wrap_index((long)floor((double)tex->height - fy), tex->height);
-    texel_rgb(tex, x, tex->height - 1 - from_bottom, rgb);
+    int i = (int)(f * (float)n);
+    return i < n ? i : n - 1;
 }
 
-/* Texel centres sit at half-integers: blend the four around (fx, fy). */
-static void sample_bilinear(const sr_texture *tex, double fx, double fy, float rgb[3])
+/* Rows count from the bottom as v does, so v = k/H picks row k from the
+ * bottom exactly as u = k/W picks column k. */
+static void sample_nearest(const sr_texture *tex, float fu, float fv, float rgb[3])
 {
-    double x = fx - 0.5, y = fy - 0.5;
-    double x0 = floor(x), y0 = floor(y);
-    float ax = (float)(x - x0), ay = (float)(y - y0);
-    int xs[2] = { wrap_index((long)x0, tex->width), wrap_index((long)x0 + 1, tex->width) };
-    int ys[2] = { wrap_index((long)y0, tex->height), wrap_index((long)y0 + 1, tex->height) };
+    texel_rgb(tex, texel_index(fu, tex->width), tex->height - 1 - texel_index(fv, tex->height), rgb);
+}
+
+/* The two texels around coordinate c (texel centres at half-integers), wrapped,
+ * and the weight of the second. c lies in [-0.5, n - 0.5]. */
+static inline float bilinear_pair(float c, int n, int *i0, int *i1)
+{
+    int lo = floor_int(c);
+    *i0 = lo < 0 ? n - 1 : lo;
+    *i1 = lo + 1 >= n ? 0 : lo + 1;
+    return c - (float)lo;
+}
+
+static void sample_bilinear(const sr_texture *tex, float fu, float fv, float rgb[3])
+{
+    int x0, x1, y0, y1;
+    float ax = bilinear_pair(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1);
+    /* Image rows run top down, v bottom up. */
+    float ay = bilinear_pair((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1);
     float c[4][3];
-    for (int k = 0; k < 4; k++)
-        texel_rgb(tex, xs[k & 1], ys[k >> 1], c[k]);
+    texel_rgb(tex, x0, y0, c[0]);
+    texel_rgb(tex, x1, y0, c[1]);
+    texel_rgb(tex, x0, y1, c[2]);
+    texel_rgb(tex, x1, y1, c[3]);
     for (int i = 0; i < 3; i++) {
         float top = c[0][i] + ax * (c[1][i] - c[0][i]);
         float bottom = c[2][i] + ax * (c[3][i] - c[2][i]);
@@ -59,11 +78,9 @@ static void sample_bilinear(const sr_texture *tex, double fx, double fy, float r
 
 void sr_shade_sample(const sr_texture *tex, sr_filter filter, float u, float v, float rgb[3])
 {
-    /* uv (0, 0) is the image's bottom-left; rows are stored top first. */
-    double fx = wrap_unit(u) * tex->width;
-    double fy = (1.0 - wrap_unit(v)) * tex->height;
+    float fu = wrap_unit(u), fv = wrap_unit(v);
     if (filter == SR_FILTER_NEAREST)
-        sample_nearest(tex, fx, fy, rgb);
+        sample_nearest(tex, fu, fv, rgb);
     else
-        sample_bilinear(tex, fx, fy, rgb);
+        sample_bilinear(tex, fu, fv, rgb);
 }
