@@ -13,6 +13,11 @@
  * zero light direction is SR_DEFAULT_LIGHT. The caller owns the framebuffer,
  * the mesh and the texture; sr_draw only writes pixels and adds to stats.
  * Triangle ids (for SR_SHADE_ID) are the mesh's triangle slots, from 0.
+ *
+ * With threads > 1 the screen is cut into SR_TILE_SIDE-pixel tiles: threads
+ * transform vertices and set up triangles in ranges, bin the fan triangles
+ * into per-tile lists that keep submission order, then each tile is drawn by
+ * one thread. The image and depth are bit-identical for every thread count.
  */
 #ifndef SOFTRAST_PIPELINE_H
 #define SOFTRAST_PIPELINE_H
@@ -26,8 +31,17 @@
 #include "texture.h"
 #include "types.h"
 
+#define SR_TILE_SIDE 64 /* pixels on a side of a tile of the threaded path */
+
 /* Toward the light: from above, a little left and in front of a camera at -z. */
 #define SR_DEFAULT_LIGHT { -0.35f, 0.8f, -0.5f }
+
+/* Scratch memory a draw reuses from frame to frame (transformed vertices,
+ * tile bins). Optional: a draw without one makes and frees its own. One
+ * workspace serves one draw at a time. */
+typedef struct sr_workspace sr_workspace;
+sr_workspace *sr_workspace_create(void); /* NULL when out of memory */
+void sr_workspace_destroy(sr_workspace *ws);
 
 /* Sees every fan triangle that survives culling, before it is rasterized
  * (the viewer's wireframe overlay, tests of the clipper's output). */
@@ -42,8 +56,10 @@ typedef struct sr_draw_desc {
     sr_filter filter;
     const sr_texture *texture; /* required by texture shading; lambert uses it when given */
     vec3 light_dir;
-    sr_triangle_observer observer;
+    sr_triangle_observer observer; /* called in order, from one thread: a draw with one runs on one */
     void *observer_user;
+    int threads;               /* threads in all, the caller's included; 0 or 1: one */
+    sr_workspace *workspace;
 } sr_draw_desc;
 
 /* Draws the mesh into fb (which the caller clears). False, with a message,

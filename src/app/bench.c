@@ -3,14 +3,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "app.h"
 #include "bench_scenes.h"
 #include "options.h"
+#include "scene_setup.h"
 
 #define MAX_FRAMES 10000
-#define MAX_THREADS 256
 #define SCALING_POINTS 4
 
 static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", "scaling", NULL };
@@ -36,7 +35,7 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
     const sr_option table[] = {
         { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|depth|scaling", "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
-        { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, MAX_THREADS },
+        { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { 0 },
     };
     int positional = 0;
@@ -47,17 +46,19 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
     return true;
 }
 
-static bool time_scene(const sr_bench_scene *s, int frames, bench_result *r, sr_error *err)
+static bool time_scene(const sr_bench_scene *s, int frames, int threads, bench_result *r, sr_error *err)
 {
     sr_framebuffer fb;
     if (!sr_framebuffer_create(&fb, s->width, s->height, err))
         return false;
+    sr_workspace *ws = sr_workspace_create();
     double *ms = malloc((size_t)frames * sizeof *ms);
-    bool ok = ms != NULL;
+    bool ok = ms && ws;
     for (int f = -1; ok && f < frames; f++) { /* frame -1 is the warm-up */
         sr_camera cam;
         sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade,
-                              .texture = s->texture.texels ? &s->texture : NULL };
+                              .texture = s->texture.texels ? &s->texture : NULL, .threads = threads,
+                              .workspace = ws };
         sr_bench_scene_camera(s, f < 0 ? 0 : f, frames, &cam);
         sr_camera_view(&cam, desc.view);
         sr_camera_projection(&cam, (float)s->width / (float)s->height, desc.projection);
@@ -70,7 +71,10 @@ static bool time_scene(const sr_bench_scene *s, int frames, bench_result *r, sr_
     }
     if (ok)
         sr_app_median_min(ms, frames, &r->median, &r->min);
+    if (!ms || !ws)
+        sr_error_set(err, "out of memory for the benchmark");
     free(ms);
+    sr_workspace_destroy(ws);
     sr_framebuffer_destroy(&fb);
     return ok;
 }
@@ -90,9 +94,9 @@ static void print_row(const char *name, const sr_bench_scene *s, const bench_res
     fflush(stdout);
 }
 
-static bool run_scene(sr_bench_scene *s, bool made, int frames, bench_result *r, sr_error *err)
+static bool run_scene(sr_bench_scene *s, bool made, const bench_job *job, bench_result *r, sr_error *err)
 {
-    bool ok = made && time_scene(s, frames, r, err);
+    bool ok = made && time_scene(s, job->frames, job->threads, r, err);
     if (ok)
         print_row(s->name, s, r);
     sr_bench_scene_free(s);
@@ -113,7 +117,7 @@ static double log_slope(const double *work, const double *ms, int n)
     return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-static bool run_scaling(int frames, sr_error *err)
+static bool run_scaling(const bench_job *job, sr_error *err)
 {
     static const uint64_t tris[SCALING_POINTS] = { 10000, 100000, 1000000, 4000000 };
     static const int sizes[SCALING_POINTS][2] = { { 640, 360 }, { 1280, 720 }, { 1920, 1080 }, { 3840, 2160 } };
@@ -121,7 +125,7 @@ static bool run_scaling(int frames, sr_error *err)
     bench_result r;
     sr_bench_scene s;
     for (int i = 0; i < SCALING_POINTS; i++) {
-        if (!run_scene(&s, sr_bench_dense(&s, tris[i], 1920, 1080, SR_SHADE_LAMBERT, err), frames, &r, err))
+        if (!run_scene(&s, sr_bench_dense(&s, tris[i], 1920, 1080, SR_SHADE_LAMBERT, err), job, &r, err))
             return false;
         work[i] = (double)r.stats.triangles;
         ms[i] = r.median;
@@ -129,7 +133,7 @@ static bool run_scaling(int frames, sr_error *err)
     printf("scaling: time ~ triangles^%.2f (1.00 is linear)\n", log_slope(work, ms, SCALING_POINTS));
     for (int i = 0; i < SCALING_POINTS; i++) {
         if (!run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, sizes[i][0], sizes[i][1], SR_SHADE_LAMBERT,
-                                          err), frames, &r, err))
+                                          err), job, &r, err))
             return false;
         work[i] = (double)sizes[i][0] * sizes[i][1];
         ms[i] = r.median;
@@ -150,16 +154,16 @@ static bool run(const bench_job *job, sr_error *err)
     bench_result r;
     print_header();
     if (wants(job, SCENE_DENSE) && !run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080,
-                                                                 SR_SHADE_LAMBERT, err), job->frames, &r, err))
+                                                                 SR_SHADE_LAMBERT, err), job, &r, err))
         return false;
-    if (wants(job, SCENE_FLY) && !run_scene(&s, sr_bench_fly(&s, err), job->frames, &r, err))
+    if (wants(job, SCENE_FLY) && !run_scene(&s, sr_bench_fly(&s, err), job, &r, err))
         return false;
-    if (wants(job, SCENE_FILL) && !run_scene(&s, sr_bench_fill(&s, err), job->frames, &r, err))
+    if (wants(job, SCENE_FILL) && !run_scene(&s, sr_bench_fill(&s, err), job, &r, err))
         return false;
     if (wants(job, SCENE_DEPTH) && !run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080,
-                                                                 SR_SHADE_DEPTH, err), job->frames, &r, err))
+                                                                 SR_SHADE_DEPTH, err), job, &r, err))
         return false;
-    return !wants(job, SCENE_SCALING) || run_scaling(job->frames, err);
+    return !wants(job, SCENE_SCALING) || run_scaling(job, err);
 }
 
 int sr_app_bench(int argc, char **argv)
@@ -167,8 +171,7 @@ int sr_app_bench(int argc, char **argv)
     bench_job job = { .frames = 10 };
     sr_error err = { { 0 } };
     bool help = false;
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    job.threads = cores > 0 && cores <= MAX_THREADS ? (int)cores : 1;
+    job.threads = sr_scene_default_threads();
     if (!parse_job(&job, argc, argv, &help, &err))
         return sr_app_fail(err.message);
     if (help)

@@ -2,19 +2,17 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "app.h"
 #include "scene_setup.h"
 
 #define MAX_FRAMES 100000
-#define MAX_THREADS 256
-#define RENDER_OPTION_COUNT (SR_SCENE_OPTION_COUNT + 7) /* own options and the terminator */
+#define RENDER_OPTION_COUNT (SR_SCENE_OPTION_COUNT + 6) /* own options and the terminator */
 
 typedef struct render_job {
     sr_scene_setup scene;
     const char *out_path, *depth_path, *depth_png_path;
-    int frames, threads;
+    int frames;
     bool stats;
 } render_job;
 
@@ -31,8 +29,6 @@ static void job_defaults(render_job *job)
 {
     *job = (render_job){ .frames = 1 };
     sr_scene_setup_defaults(&job->scene);
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    job->threads = cores > 0 && cores <= MAX_THREADS ? (int)cores : 1;
 }
 
 static void render_options(render_job *job, sr_option *table)
@@ -43,7 +39,6 @@ static void render_options(render_job *job, sr_option *table)
         { "--depth", SR_OPT_STRING, &job->depth_path, "FILE.pfm", "write the raw float32 depth buffer (PFM)" },
         { "--depth-png", SR_OPT_STRING, &job->depth_png_path, "FILE.png", "write the depth buffer, remapped to the visible range" },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames, after one untimed warm-up when N > 1 (default 1)", 1, MAX_FRAMES },
-        { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, MAX_THREADS },
         { "--stats", SR_OPT_FLAG, &job->stats, NULL, "print one JSON line of per-frame statistics" },
         { 0 },
     };

@@ -1,3 +1,5 @@
+#include <unistd.h>
+
 #include "scene_setup.h"
 
 const char *const SR_SHADE_NAMES[] = { "lambert", "id", "color", "normal", "texture", "depth", NULL };
@@ -5,9 +7,15 @@ const char *const SR_CULL_NAMES[] = { "back", "front", "none", NULL };
 static const char *const FRONT_NAMES[] = { "cw", "ccw", NULL };
 static const char *const FILTER_NAMES[] = { "bilinear", "nearest", NULL };
 
+int sr_scene_default_threads(void)
+{
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    return cores < 1 ? 1 : cores > SR_MAX_THREAD_OPTION ? SR_MAX_THREAD_OPTION : (int)cores;
+}
+
 void sr_scene_setup_defaults(sr_scene_setup *s)
 {
-    *s = (sr_scene_setup){ .size = { 1280, 720 }, .camera = sr_camera_default() };
+    *s = (sr_scene_setup){ .size = { 1280, 720 }, .camera = sr_camera_default(), .threads = sr_scene_default_threads() };
 }
 
 void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
@@ -28,6 +36,7 @@ void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
         { "--texture", SR_OPT_STRING, &s->texture_path, "FILE.png", "texture (default: the mesh's map_Kd, if any)" },
         { "--reversed-z", SR_OPT_FLAG, &s->camera.reversed_z, NULL, "reversed depth: near maps to 1, far to 0, test GREATER, clear 0" },
         { "--filter", SR_OPT_CHOICE, &s->filter, "bilinear|nearest", "texture filter (default bilinear)", .choices = FILTER_NAMES },
+        { "--threads", SR_OPT_INT, &s->threads, "N", "threads in all, the calling one included (default: all cores)", 1, SR_MAX_THREAD_OPTION },
     };
     for (int i = 0; i < SR_SCENE_OPTION_COUNT; i++)
         table[i] = entries[i];
@@ -55,6 +64,9 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
     bool wants_normals = everything || shade_uses_normals((sr_shade)s->shade);
     if (wants_normals && !sr_mesh_compute_normals(&scene->mesh, err))
         return false;
+    scene->workspace = sr_workspace_create();
+    if (!scene->workspace)
+        return sr_error_set(err, "out of memory for a workspace");
     if (!sr_framebuffer_create(&scene->fb, s->size[0], s->size[1], err))
         return false;
     scene->fb.reversed_z = s->camera.reversed_z;
@@ -66,6 +78,8 @@ void sr_scene_free(sr_scene *scene)
     sr_mesh_free(&scene->mesh);
     sr_texture_free(&scene->texture);
     sr_framebuffer_destroy(&scene->fb);
+    sr_workspace_destroy(scene->workspace);
+    scene->workspace = NULL;
 }
 
 void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene)
@@ -83,7 +97,8 @@ bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc 
     float aspect = (float)scene->fb.width / (float)scene->fb.height;
     *desc = (sr_draw_desc){ .mesh = &scene->mesh, .shade = (sr_shade)s->shade, .cull = (sr_cull)s->cull,
                             .front = (sr_front)s->front, .filter = (sr_filter)s->filter,
-                            .texture = scene->texture.texels ? &scene->texture : NULL };
+                            .texture = scene->texture.texels ? &scene->texture : NULL,
+                            .threads = s->threads, .workspace = scene->workspace };
     glm_rotate_make(desc->world, glm_rad(s->rotate_y), (vec3){ 0.0f, 1.0f, 0.0f });
     sr_camera_view(&s->camera, desc->view);
     sr_camera_projection(&s->camera, aspect, desc->projection);

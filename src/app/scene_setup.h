@@ -6,7 +6,8 @@
 #include "options.h"
 #include "softrast/softrast.h"
 
-#define SR_SCENE_OPTION_COUNT 15
+#define SR_SCENE_OPTION_COUNT 16
+#define SR_MAX_THREAD_OPTION 64
 
 typedef struct sr_scene_setup {
     const char *mesh_path;
@@ -16,6 +17,7 @@ typedef struct sr_scene_setup {
     float rotate_y;
     int shade, cull, front, filter; /* sr_shade, sr_cull, sr_front, sr_filter */
     const char *texture_path;
+    int threads; /* threads in all for each draw */
 } sr_scene_setup;
 
 /* What the files gave, owned here and released by sr_scene_free. */
@@ -23,12 +25,16 @@ typedef struct sr_scene {
     sr_mesh mesh;
     sr_texture texture;
     sr_framebuffer fb;
+    sr_workspace *workspace; /* reused by every draw of the scene */
 } sr_scene;
 
 extern const char *const SR_SHADE_NAMES[];
 extern const char *const SR_CULL_NAMES[];
 
 void sr_scene_setup_defaults(sr_scene_setup *s);
+
+/* The machine's cores (at least 1, at most SR_MAX_THREAD_OPTION). */
+int sr_scene_default_threads(void);
 
 /* Writes the SR_SCENE_OPTION_COUNT shared option entries into table. */
 void sr_scene_setup_options(sr_scene_setup *s, sr_option *table);

@@ -1,24 +1,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "draw_internal.h"
 #include "softrast/assemble.h"
 #include "softrast/clip.h"
-#include "softrast/cull.h"
-#include "softrast/pipeline.h"
-#include "softrast/raster.h"
 #include "softrast/vertex.h"
 #include "softrast/viewport.h"
-
-/* What one draw call carries from triangle to triangle. */
-typedef struct draw_state {
-    sr_framebuffer *fb;
-    const sr_draw_desc *desc;
-    sr_shade_context shade;
-    sr_raster_rect rect;
-    const sr_vertex_out *verts;
-    const unsigned char *outcodes;
-    sr_stats *stats;
-} draw_state;
 
 static bool matrix_is_zero(const mat4 m)
 {
@@ -68,76 +55,112 @@ static void shade_context_make(const sr_draw_desc *d, const sr_varying_layout *l
     glm_vec3_copy(light, c->light_dir);
 }
 
-/* Stages 6 to 10 for one fan triangle. */
-static void draw_fan_triangle(draw_state *st, const sr_screen_vertex tri[3], bool clipped, uint32_t id)
-{
-    int64_t area2 = sr_cull_area2(&tri[0], &tri[1], &tri[2]);
-    if (!sr_cull_keeps(area2, st->desc->cull, st->desc->front)) {
-        st->stats->culled++;
-        return;
-    }
-    st->stats->drawn++;
-    if (st->desc->observer)
-        st->desc->observer(st->desc->observer_user, tri, clipped, id);
-    st->stats->fragments += sr_raster_triangle(st->fb, st->rect, st->desc->shade, &st->shade, tri, area2, id);
-}
-
-/* Stages 5 and 6: map every polygon vertex once, then fan (v0, vi, vi+1).
- * A vertex the viewport refuses (only possible from rounding on absurd
- * input) drops the polygon, counted as rejected. */
-static void draw_polygon(draw_state *st, const sr_polygon *poly, bool clipped, uint32_t id)
-{
-    sr_screen_vertex screen[SR_MAX_CLIP_VERTS];
-    for (int i = 0; i < poly->count; i++) {
-        if (!sr_viewport_map(&poly->vert[i], st->shade.layout.count, st->fb->width, st->fb->height, &screen[i])) {
-            st->stats->rejected++;
-            return;
-        }
-    }
-    for (int i = 1; i + 1 < poly->count; i++)
-        draw_fan_triangle(st, (sr_screen_vertex[3]){ screen[0], screen[i], screen[i + 1] }, clipped, id);
-}
-
-/* Stages 2 to 4 for triangle slot k. */
-static void draw_slot(draw_state *st, uint32_t k)
-{
-    uint32_t idx[3];
-    if (!sr_assemble_triangle(st->desc->mesh, k, idx))
-        return;
-    st->stats->triangles++;
-    unsigned c0 = st->outcodes[idx[0]], c1 = st->outcodes[idx[1]], c2 = st->outcodes[idx[2]];
-    unsigned any = c0 | c1 | c2;
-    if ((any & SR_OUT_NONFINITE) || (c0 & c1 & c2)) {
-        st->stats->rejected++;
-        st->stats->nonfinite += (any & SR_OUT_NONFINITE) != 0;
-        return;
-    }
-    sr_polygon poly = { .count = 3, .vert = { st->verts[idx[0]], st->verts[idx[1]], st->verts[idx[2]] } };
-    if (any) {
-        st->stats->clipped++;
-        sr_clip_polygon(&poly, any, SR_VARYINGS_AT + st->shade.layout.count);
-    }
-    draw_polygon(st, &poly, any != 0, k);
-}
-
-static bool run_vertex_stage(const sr_draw_desc *d, const sr_varying_layout *l, sr_vertex_out **verts,
-                             unsigned char **outcodes, sr_error *err)
-{
-    uint32_t n = d->mesh->vertex_count;
+typedef struct vertex_phase {
+    const sr_draw_state *st;
     sr_vertex_transform xf;
+} vertex_phase;
+
+/* Stages 1 and 3 per unique vertex, and stage 6 for those inside every
+ * plane, so an unclipped triangle maps none of its corners again. A vertex
+ * inside whose divide fails (a non-finite varying, w below 2^-128) is marked
+ * non-finite: the triangles that use it are dropped and counted. */
+static void vertex_range(void *ctx, int t)
+{
+    const vertex_phase *ph = ctx;
+    const sr_draw_state *st = ph->st;
+    uint32_t first = (uint32_t)((uint64_t)st->vertex_count * t / st->threads);
+    uint32_t end = (uint32_t)((uint64_t)st->vertex_count * (t + 1) / st->threads);
+    sr_vertex_out *verts = st->ws->verts.data;
+    unsigned char *outcodes = st->ws->outcodes.data;
+    sr_screen_vertex *screen = st->ws->screen.data;
+    sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, first, end - first, verts + first);
+    for (uint32_t i = first; i < end; i++) {
+        unsigned code = sr_clip_outcode(verts[i].v);
+        if (code == 0 && !sr_viewport_map(&verts[i], st->shade.layout.count, st->fb->width, st->fb->height,
+                                          &screen[i]))
+            code = SR_OUT_NONFINITE;
+        outcodes[i] = (unsigned char)code;
+    }
+}
+
+static bool run_vertex_phase(const sr_draw_state *st, sr_error *err)
+{
+    const sr_draw_desc *d = st->desc;
+    uint32_t n = st->vertex_count;
+    sr_workspace *ws = st->ws;
+    if (!sr_array_reserve(&ws->verts, n, sizeof(sr_vertex_out)) ||
+        !sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
+        !sr_array_reserve(&ws->screen, n, sizeof(sr_screen_vertex)))
+        return sr_error_set(err, "out of memory for %u transformed vertices", n);
+    vertex_phase ph = { .st = st };
     mat4 world, view, projection;
     matrix_or_identity(d->world, world);
     matrix_or_identity(d->view, view);
     matrix_or_identity(d->projection, projection);
-    sr_vertex_make_transform(world, view, projection, &xf);
-    *verts = malloc((n ? n : 1) * sizeof **verts);
-    *outcodes = malloc(n ? n : 1);
-    if (!*verts || !*outcodes)
-        return sr_error_set(err, "out of memory for %u transformed vertices", n);
-    sr_vertex_run(d->mesh, &xf, l, 0, n, *verts);
-    for (uint32_t i = 0; i < n; i++)
-        (*outcodes)[i] = (unsigned char)sr_clip_outcode((*verts)[i].v);
+    sr_vertex_make_transform(world, view, projection, &ph.xf);
+    sr_parallel_run(st->threads, vertex_range, &ph);
     return true;
+}
+
+/* The one-thread path: every fan triangle goes straight to the rasterizer,
+ * over the whole framebuffer, in submission order. */
+static uint32_t store_in_place(sr_fan_sink *sink, const sr_screen_vertex *v, int n)
+{
+    (void)sink, (void)v, (void)n;
+    return 0; /* the rasterizer gets the vertices themselves, no references */
+}
+
+static void raster_now(sr_fan_sink *sink, const sr_screen_vertex tri[3], const uint32_t ref[3], int64_t area2,
+                       uint32_t id, bool clipped)
+{
+    (void)ref;
+    const sr_draw_state *st = sink->st;
+    const sr_draw_desc *d = st->desc;
+    if (d->observer)
+        d->observer(d->observer_user, tri, clipped, id);
+    sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
+    sink->work->stats.fragments += sr_raster_triangle(st->fb, all, d->shade, &st->shade, tri, area2, id);
+}
+
+static void draw_direct(sr_draw_state *st)
+{
+    sr_fan_sink sink = { .store = store_in_place, .triangle = raster_now, .st = st, .work = &st->ws->threads[0] };
+    sr_draw_primitives(&sink, 0, st->slots);
+}
+
+static void add_stats(sr_stats *to, const sr_stats *from)
+{
+    to->triangles += from->triangles;
+    to->rejected += from->rejected;
+    to->nonfinite += from->nonfinite;
+    to->clipped += from->clipped;
+    to->culled += from->culled;
+    to->drawn += from->drawn;
+    to->fragments += from->fragments;
+}
+
+static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
+{
+    for (int t = 0; t < st->threads; t++)
+        st->ws->threads[t].stats = (sr_stats){ 0 };
+    if (!run_vertex_phase(st, err))
+        return false;
+    if (st->threads == 1)
+        draw_direct(st);
+    else if (!sr_draw_binned(st))
+        return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
+    for (int t = 0; t < st->threads; t++)
+        add_stats(stats, &st->ws->threads[t].stats);
+    return true;
+}
+
+/* Several threads need the observer called in order from one thread, so a
+ * draw with an observer runs on one. */
+static int thread_count(const sr_draw_desc *d)
+{
+    if (d->observer || d->threads <= 1)
+        return 1;
+    return d->threads < SR_MAX_THREADS ? d->threads : SR_MAX_THREADS;
 }
 
 bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err)
@@ -149,21 +172,17 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
         layout = sr_vertex_layout(desc->shade, desc->mesh, desc->texture && desc->texture->texels);
     if (!check_inputs(fb, desc, &layout, err))
         return false;
-    sr_stats scratch_stats = { 0 };
-    draw_state st = { .fb = fb, .desc = desc, .stats = stats ? stats : &scratch_stats,
-                      .rect = { 0, 0, fb->width, fb->height } };
+    sr_workspace *ws = desc->workspace ? desc->workspace : sr_workspace_create();
+    if (!ws)
+        return sr_error_set(err, "out of memory for a workspace");
+    sr_draw_state st = { .fb = fb, .desc = desc, .ws = ws, .threads = thread_count(desc),
+                         .vertex_count = desc->mesh->vertex_count, .slots = sr_mesh_triangle_slots(desc->mesh),
+                         .tiles_x = (fb->width + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
+                         .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE };
     shade_context_make(desc, &layout, &st.shade);
-    sr_vertex_out *verts = NULL;
-    unsigned char *outcodes = NULL;
-    bool ok = run_vertex_stage(desc, &layout, &verts, &outcodes, err);
-    if (ok) {
-        st.verts = verts;
-        st.outcodes = outcodes;
-        uint32_t slots = sr_mesh_triangle_slots(desc->mesh);
-        for (uint32_t k = 0; k < slots; k++)
-            draw_slot(&st, k);
-    }
-    free(verts);
-    free(outcodes);
+    sr_stats scratch = { 0 };
+    bool ok = draw_with(&st, stats ? stats : &scratch, err);
+    if (!desc->workspace)
+        sr_workspace_destroy(ws);
     return ok;
 }

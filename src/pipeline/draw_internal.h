@@ -1,0 +1,88 @@
+/* draw_internal.h — what the draw call's own files share: the per-draw
+ * state, the workspace's layout, and the fan-triangle sink that lets one
+ * primitive stage (assembly to culling) feed either the rasterizer directly
+ * (one thread) or the tile bins (several). Not public API. */
+#ifndef SOFTRAST_DRAW_INTERNAL_H
+#define SOFTRAST_DRAW_INTERNAL_H
+
+#include <stddef.h>
+
+#include "softrast/pipeline.h"
+#include "softrast/raster.h"
+
+#define SR_MAX_THREADS 64
+
+/* A growable array of fixed-size elements. */
+typedef struct sr_array {
+    void *data;
+    size_t count, capacity, elem;
+} sr_array;
+
+bool sr_array_reserve(sr_array *a, size_t count, size_t elem);
+void *sr_array_push(sr_array *a, size_t elem); /* NULL when out of memory */
+void sr_array_free(sr_array *a);
+
+/* A fan triangle in a bin: its three vertices as references (below the mesh's
+ * vertex count: the shared screen vertex; from there on: the binning
+ * thread's clip vertices), its exact area and its id. */
+typedef struct sr_record {
+    uint32_t ref[3];
+    uint32_t id;
+    int64_t area2;
+} sr_record;
+
+/* One thread's share of a draw: its counts, and in the binned path the clip
+ * vertices, records and per-tile lists of record indices it made. Aligned
+ * apart so one thread's counters never share a cache line with another's. */
+#define SR_CACHE_LINE 128
+typedef struct sr_thread_work {
+    _Alignas(SR_CACHE_LINE) sr_stats stats;
+    sr_array clip_verts; /* sr_screen_vertex */
+    sr_array records;    /* sr_record */
+    sr_array *bins;      /* one sr_array of uint32_t per tile */
+    size_t bin_count;
+    bool out_of_memory;
+} sr_thread_work;
+
+struct sr_workspace {
+    sr_array verts;    /* sr_vertex_out, one per mesh vertex */
+    sr_array outcodes; /* unsigned char */
+    sr_array screen;   /* sr_screen_vertex, valid where the outcode is 0 */
+    sr_thread_work threads[SR_MAX_THREADS];
+};
+
+/* The per-draw state every stage reads. */
+typedef struct sr_draw_state {
+    sr_framebuffer *fb;
+    const sr_draw_desc *desc;
+    sr_shade_context shade;
+    sr_workspace *ws;
+    int threads;
+    uint32_t vertex_count, slots;
+    int tiles_x, tiles_y;
+} sr_draw_state;
+
+/* Receives the fan triangles that survive culling. `store` keeps a clipped
+ * polygon's screen vertices for the triangles that follow and returns the
+ * reference of the first (refs count on from there). */
+typedef struct sr_fan_sink sr_fan_sink;
+struct sr_fan_sink {
+    uint32_t (*store)(sr_fan_sink *sink, const sr_screen_vertex *v, int n);
+    void (*triangle)(sr_fan_sink *sink, const sr_screen_vertex tri[3], const uint32_t ref[3], int64_t area2,
+                     uint32_t id, bool clipped);
+    const sr_draw_state *st;
+    sr_thread_work *work;
+};
+
+/* Stages 2 to 7 for triangle slots [first, end): assembly, classification,
+ * clipping, fan, viewport (of cut vertices) and culling, into sink. */
+void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end);
+
+/* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread. */
+void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx);
+
+/* The binned path: primitives into per-thread tile bins, then each tile
+ * rasterized by one thread in submission order. False when out of memory. */
+bool sr_draw_binned(sr_draw_state *st);
+
+#endif

@@ -1,0 +1,84 @@
+/* Stages 2 to 7 for a range of triangle slots, shared by the one-thread and
+ * the binned paths so both see exactly the same fan triangles. */
+#include "draw_internal.h"
+#include "softrast/assemble.h"
+#include "softrast/clip.h"
+#include "softrast/cull.h"
+#include "softrast/viewport.h"
+
+/* Stage 7 for one fan triangle whose vertices are tri[] (refs name them for
+ * the sink). */
+static void cull_and_emit(sr_fan_sink *sink, const sr_screen_vertex tri[3], const uint32_t ref[3], uint32_t id,
+                          bool clipped)
+{
+    const sr_draw_desc *d = sink->st->desc;
+    int64_t area2 = sr_cull_area2(&tri[0], &tri[1], &tri[2]);
+    if (!sr_cull_keeps(area2, d->cull, d->front)) {
+        sink->work->stats.culled++;
+        return;
+    }
+    sink->work->stats.drawn++;
+    sink->triangle(sink, tri, ref, area2, id, clipped);
+}
+
+/* Stages 5 and 6 for a clipped polygon: map every vertex once, store them
+ * with the sink, fan (v0, vi, vi+1). A vertex the viewport refuses (rounding
+ * on absurd input, or a non-finite varying) drops the polygon, counted. */
+static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, uint32_t id)
+{
+    const sr_draw_state *st = sink->st;
+    sr_screen_vertex screen[SR_MAX_CLIP_VERTS];
+    for (int i = 0; i < poly->count; i++) {
+        if (!sr_viewport_map(&poly->vert[i], st->shade.layout.count, st->fb->width, st->fb->height, &screen[i])) {
+            sink->work->stats.rejected++;
+            return;
+        }
+    }
+    if (poly->count < 3)
+        return;
+    uint32_t base = sink->store(sink, screen, poly->count);
+    for (int i = 1; i + 1 < poly->count; i++) {
+        const uint32_t ref[3] = { base, base + (uint32_t)i, base + (uint32_t)i + 1 };
+        cull_and_emit(sink, (sr_screen_vertex[3]){ screen[0], screen[i], screen[i + 1] }, ref, id, true);
+    }
+}
+
+/* An unclipped triangle uses the screen vertices the vertex phase mapped. */
+static void emit_inside(sr_fan_sink *sink, const uint32_t idx[3], uint32_t id)
+{
+    const sr_screen_vertex *screen = sink->st->ws->screen.data;
+    cull_and_emit(sink, (sr_screen_vertex[3]){ screen[idx[0]], screen[idx[1]], screen[idx[2]] }, idx, id, false);
+}
+
+/* Stages 2 to 4 for triangle slot k. */
+static void emit_slot(sr_fan_sink *sink, uint32_t k)
+{
+    const sr_draw_state *st = sink->st;
+    sr_stats *stats = &sink->work->stats;
+    const unsigned char *outcodes = st->ws->outcodes.data;
+    uint32_t idx[3];
+    if (!sr_assemble_triangle(st->desc->mesh, k, idx))
+        return;
+    stats->triangles++;
+    unsigned c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]], any = c0 | c1 | c2;
+    if ((any & SR_OUT_NONFINITE) || (c0 & c1 & c2)) {
+        stats->rejected++;
+        stats->nonfinite += (any & SR_OUT_NONFINITE) != 0;
+        return;
+    }
+    if (!any) {
+        emit_inside(sink, idx, k);
+        return;
+    }
+    const sr_vertex_out *verts = st->ws->verts.data;
+    sr_polygon poly = { .count = 3, .vert = { verts[idx[0]], verts[idx[1]], verts[idx[2]] } };
+    stats->clipped++;
+    sr_clip_polygon(&poly, any, SR_VARYINGS_AT + st->shade.layout.count);
+    emit_polygon(sink, &poly, k);
+}
+
+void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
+{
+    for (uint32_t k = first; k < end; k++)
+        emit_slot(sink, k);
+}

@@ -1,0 +1,68 @@
+#include <stdlib.h>
+#include <string.h>
+
+#include "draw_internal.h"
+
+bool sr_array_reserve(sr_array *a, size_t count, size_t elem)
+{
+    if (a->elem != elem) {
+        sr_array_free(a);
+        a->elem = elem;
+    }
+    if (count <= a->capacity)
+        return true;
+    size_t cap = a->capacity ? a->capacity : 64;
+    while (cap < count)
+        cap *= 2;
+    void *data = realloc(a->data, cap * elem);
+    if (!data)
+        return false;
+    a->data = data;
+    a->capacity = cap;
+    return true;
+}
+
+void *sr_array_push(sr_array *a, size_t elem)
+{
+    if (!sr_array_reserve(a, a->count + 1, elem))
+        return NULL;
+    return (char *)a->data + elem * a->count++;
+}
+
+void sr_array_free(sr_array *a)
+{
+    free(a->data);
+    *a = (sr_array){ 0 };
+}
+
+/* aligned_alloc keeps the per-thread parts on their own cache lines. */
+sr_workspace *sr_workspace_create(void)
+{
+    size_t size = (sizeof(sr_workspace) + SR_CACHE_LINE - 1) / SR_CACHE_LINE * SR_CACHE_LINE;
+    sr_workspace *ws = aligned_alloc(SR_CACHE_LINE, size);
+    if (ws)
+        memset(ws, 0, size);
+    return ws;
+}
+
+static void thread_work_free(sr_thread_work *w)
+{
+    sr_array_free(&w->clip_verts);
+    sr_array_free(&w->records);
+    for (size_t i = 0; i < w->bin_count; i++)
+        sr_array_free(&w->bins[i]);
+    free(w->bins);
+    *w = (sr_thread_work){ 0 };
+}
+
+void sr_workspace_destroy(sr_workspace *ws)
+{
+    if (!ws)
+        return;
+    sr_array_free(&ws->verts);
+    sr_array_free(&ws->outcodes);
+    sr_array_free(&ws->screen);
+    for (int t = 0; t < SR_MAX_THREADS; t++)
+        thread_work_free(&ws->threads[t]);
+    free(ws);
+}
