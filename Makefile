@@ -23,7 +23,7 @@ SAN_LIB_OBJ  := $(LIB_SRC:%.c=build/san/%.o)
 SAN_APP_OBJ  := $(APP_SRC:%.c=build/san/%.o)
 SAN_TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
-.PHONY: all deps run test test-fast test-san test-assets test-install install assets docs-images clean
+.PHONY: all deps run test test-fast test-san test-assets test-install install assets docs-images bench report clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast
@@ -145,6 +145,13 @@ test-install:
 		examples/draw_into_buffer.c $$(PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig pkg-config --cflags --libs softrast) \
 		-o $(INSTALL_CHECK)/example
 	$(INSTALL_CHECK)/example $(INSTALL_CHECK)/example.png
+
+# Speed: the benchmark scenes, and error against time for every accuracy knob.
+bench: all
+	./build/softrast bench
+
+report: all
+	./build/softrast bench --report --frames 5
 
 clean:
 	rm -rf build

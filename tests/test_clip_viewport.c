@@ -24,7 +24,7 @@ static sr_screen_vertex map_ok(double x, double y, double z, double w, int width
 {
     sr_vertex_out v = vert4(x, y, z, w);
     sr_screen_vertex s;
-    cr_assert(sr_viewport_map(&v, 0, width, height, &s), "(%g, %g, %g, %g) refused", x, y, z, w);
+    cr_assert(sr_viewport_map(&v, 0, &(sr_viewport){ width, height, SR_SUBPIXEL_BITS, 1.0f }, &s), "(%g, %g, %g, %g) refused", x, y, z, w);
     return s;
 }
 
@@ -36,7 +36,7 @@ static bool map_refuses(float x, float y, float z, float w)
     v.v[SR_Z] = z;
     v.v[SR_W] = w;
     sr_screen_vertex s;
-    return !sr_viewport_map(&v, 0, FB_W, FB_H, &s);
+    return !sr_viewport_map(&v, 0, &(sr_viewport){ FB_W, FB_H, SR_SUBPIXEL_BITS, 1.0f }, &s);
 }
 
 Test(viewport, maps_top_left_ndc_corner_to_the_origin)
@@ -88,7 +88,7 @@ Test(viewport, divides_varyings_by_w)
     for (int i = 0; i < SR_MAX_VARYINGS; i++)
         v.v[SR_VARYINGS_AT + i] = (float)(i - 3);
     sr_screen_vertex s;
-    cr_assert(sr_viewport_map(&v, SR_MAX_VARYINGS, FB_W, FB_H, &s));
+    cr_assert(sr_viewport_map(&v, SR_MAX_VARYINGS, &(sr_viewport){ FB_W, FB_H, SR_SUBPIXEL_BITS, 1.0f }, &s));
     for (int i = 0; i < SR_MAX_VARYINGS; i++)
         cr_assert_eq(s.var_w[i], (float)(i - 3) / 4.0f, "varying %d", i);
 }
@@ -140,7 +140,7 @@ Test(viewport, never_returns_an_infinite_inverse_w_or_varying)
         v.v[SR_W] = ws[i];
         v.v[SR_VARYINGS_AT] = 1.0f;
         sr_screen_vertex s;
-        if (!sr_viewport_map(&v, 1, FB_W, FB_H, &s))
+        if (!sr_viewport_map(&v, 1, &(sr_viewport){ FB_W, FB_H, SR_SUBPIXEL_BITS, 1.0f }, &s))
             continue;
         cr_assert(isfinite(s.inv_w) && isfinite(s.var_w[0]), "w = %a: 1/w = %a, varying/w = %a", ws[i], s.inv_w,
                   s.var_w[0]);
@@ -176,9 +176,9 @@ static bool clipped_screen_polygon(test_rng *r, bool depth_inside, sr_vertex_out
     if (c[0] & c[1] & c[2])
         return false;
     sr_polygon poly = poly3(tri[0], tri[1], tri[2]);
-    *n = sr_clip_polygon(&poly, c[0] | c[1] | c[2], SR_VARYINGS_AT);
+    *n = sr_clip_polygon(&poly, c[0] | c[1] | c[2], SR_VARYINGS_AT, SR_CLIP_DOUBLE);
     for (int i = 0; i < *n; i++)
-        cr_assert(sr_viewport_map(&poly.vert[i], 0, FB_W, FB_H, &s[i]), "vertex %d refused", i);
+        cr_assert(sr_viewport_map(&poly.vert[i], 0, &(sr_viewport){ FB_W, FB_H, SR_SUBPIXEL_BITS, 1.0f }, &s[i]), "vertex %d refused", i);
     return *n >= 3;
 }
 

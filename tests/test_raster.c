@@ -18,7 +18,7 @@ static uint64_t raster_direct(sr_framebuffer *fb, sr_raster_rect rect, const ref
     sr_screen_vertex s[3];
     for (int k = 0; k < 3; k++)
         s[k] = (sr_screen_vertex){ .x = v[k].x, .y = v[k].y, .z = TRIANGLE_Z, .inv_w = 1.0f };
-    return sr_raster_triangle(fb, rect, SR_SHADE_ID, &id_shade, s, ref_turn(v[0], v[1], v[2]), 0);
+    return sr_raster_triangle(fb, rect, SR_SUBPIXEL_BITS, SR_SHADE_ID, &id_shade, s, ref_turn(v[0], v[1], v[2]), 0);
 }
 
 Test(raster, covers_exactly_the_reference_pixels_of_random_triangles)

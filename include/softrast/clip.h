@@ -10,7 +10,7 @@
  *
  * The watertight rule (DESIGN.md): every cut vertex is interpolated from the
  * inside end point toward the outside one, t = d_in / (d_in - d_out), in
- * double precision, and its coordinate for the plane is then set exactly on
+ * double precision (float on request), and its coordinate for the plane is then set exactly on
  * the plane (x = -w for left, z = 0 for near, ...). Two triangles sharing an
  * edge therefore get bit-identical cut vertices whichever way they walk it.
  */
@@ -31,6 +31,11 @@ typedef enum sr_clip_plane {
     SR_PLANE_TOP       /* y <= w */
 } sr_clip_plane;
 
+/* How cut vertices are computed: double (the default, exact enough for
+ * every test scene) or float (cheaper, measured in docs/report.md). The sign
+ * tests are exact either way. */
+typedef enum sr_clip_precision { SR_CLIP_DOUBLE = 0, SR_CLIP_FLOAT } sr_clip_precision;
+
 #define SR_OUT_PLANES ((1u << SR_CLIP_PLANES) - 1u)
 #define SR_OUT_NONFINITE (1u << SR_CLIP_PLANES)
 
@@ -43,12 +48,12 @@ unsigned sr_clip_outcode(const float *clip);
 /* The cut vertex of edge inside -> outside (d_in >= 0 > d_out) on a plane;
  * floats = 4 + number of varyings to interpolate. */
 void sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
-                       int floats, sr_vertex_out *cut);
+                       int floats, sr_clip_precision precision, sr_vertex_out *cut);
 
 /* Clips poly in place against the planes whose bits are set in `planes`.
  * Returns the vertex count (0: nothing left, or a degenerate sliver whose
  * rounding made it non-convex past the bound; never more than
  * SR_MAX_CLIP_VERTS). */
-int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats);
+int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, sr_clip_precision precision);
 
 #endif

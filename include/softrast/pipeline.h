@@ -25,6 +25,7 @@
 #include <stdbool.h>
 #include <cglm/cglm.h>
 
+#include "clip.h"
 #include "error.h"
 #include "framebuffer.h"
 #include "mesh.h"
@@ -32,6 +33,10 @@
 #include "types.h"
 
 #define SR_TILE_SIDE 64 /* pixels on a side of a tile of the threaded path */
+#define SR_MAX_GUARD_BAND 64.0f
+/* Snapped coordinates stay below 2^SR_FIXED_POINT_BITS so the 64-bit edge
+ * functions cannot overflow whatever the precision asked for. */
+#define SR_FIXED_POINT_BITS 30
 
 /* Toward the light: from above, a little left and in front of a camera at -z. */
 #define SR_DEFAULT_LIGHT { -0.35f, 0.8f, -0.5f }
@@ -60,6 +65,11 @@ typedef struct sr_draw_desc {
     void *observer_user;
     int threads;               /* threads in all, the caller's included; 0 or 1: one */
     sr_workspace *workspace;
+    /* Accuracy knobs, for measuring what each costs (docs/report.md); zero is
+     * the default the contract pins. */
+    int subpixel_bits;                  /* 0: SR_SUBPIXEL_BITS; else SR_MIN..SR_MAX_SUBPIXEL_BITS */
+    sr_clip_precision clip_precision;   /* SR_CLIP_DOUBLE */
+    float guard_band;                   /* 0 or 1: clip x, y at the viewport; G > 1: at ±G·w */
 } sr_draw_desc;
 
 /* Draws the mesh into fb (which the caller clears). False, with a message,

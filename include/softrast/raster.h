@@ -1,7 +1,7 @@
 /* softrast/raster.h — stages 8 and 9: triangle setup, coverage, depth test.
  *
  * Edge functions are evaluated exactly in 64-bit integers on vertices snapped
- * to 1/256 pixel, at pixel centres (i + 0.5, j + 0.5). A centre on an edge is
+ * to 1/256 pixel (or another SR_MIN..SR_MAX_SUBPIXEL_BITS precision), at pixel centres (i + 0.5, j + 0.5). A centre on an edge is
  * covered only if the edge is a top or left edge (the top-left rule of
  * Direct3D and OpenGL), so pixels on an edge shared by two triangles are drawn
  * exactly once. Depth is z_ndc interpolated linearly in screen space, tested
@@ -23,8 +23,10 @@ typedef struct sr_raster_rect {
 } sr_raster_rect;
 
 /* Draws one triangle of nonzero signed area2 (either winding) into fb within
- * rect; returns the number of fragments that passed the depth test. */
-uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, sr_shade mode,
+ * rect, its vertices in units of 2^-subpixel_bits pixel (SR_SUBPIXEL_BITS
+ * unless the draw asked for another precision); returns the number of
+ * fragments that passed the depth test. */
+uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
                             const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
                             uint32_t triangle_id);
 

@@ -23,6 +23,8 @@ enum { SR_X = 0, SR_Y, SR_Z, SR_W, SR_VARYINGS_AT };
 #define SR_MAX_CLIP_VERTS (3 + SR_CLIP_PLANES) /* each plane adds at most one vertex */
 #define SR_SUBPIXEL_BITS 8                      /* 1/256 px, as Direct3D 11 requires */
 #define SR_SUBPIXEL_ONE (1 << SR_SUBPIXEL_BITS)
+#define SR_MIN_SUBPIXEL_BITS 2                  /* the range a draw may ask for (accuracy studies) */
+#define SR_MAX_SUBPIXEL_BITS 16
 
 typedef enum sr_shade {
     SR_SHADE_LAMBERT = 0, /* one directional light on the albedo (texture, vertex color or gray) */

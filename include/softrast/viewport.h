@@ -1,9 +1,14 @@
 /* softrast/viewport.h — stage 6: perspective divide and viewport mapping.
  *
  * NDC (x, y in [-1, 1], z in [0, 1]) to pixels: px = (x + 1)·W/2,
- * py = (1 - y)·H/2 (top-left origin, y down), snapped to 1/256 pixel. 1/w is
- * kept, and the varyings are stored divided by w for perspective-correct
- * interpolation.
+ * py = (1 - y)·H/2 (top-left origin, y down), snapped to 1/256 pixel (or
+ * 2^-subpixel_bits). 1/w is kept, and the varyings are stored divided by w
+ * for perspective-correct interpolation.
+ *
+ * A guard band G > 1 means clip space was squeezed by 1/G in x and y before
+ * clipping (the draw's guard-band mode), so the side planes sat at ±G·w: the
+ * divide scales x and y back by G, and vertices land up to (G − 1)·W/2 pixels
+ * outside the framebuffer, still bounded for the fixed-point conversion.
  */
 #ifndef SOFTRAST_VIEWPORT_H
 #define SOFTRAST_VIEWPORT_H
@@ -17,10 +22,16 @@
  * rectangle is clamped, vertices are never moved). */
 #define SR_NDC_SLACK 1e-3
 
+typedef struct sr_viewport {
+    int width, height;
+    int subpixel_bits; /* SR_SUBPIXEL_BITS */
+    float guard;       /* 1: no guard band */
+} sr_viewport;
+
 /* False when w <= 0, when 1/w or a varying/w is not finite (NaN or inf in a
  * varying, or w below 2^-128), or when x, y, z lie past the slack: the caller
  * drops the polygon and counts it. Never false for a vertex with finite
  * varyings that the clipper left inside. */
-bool sr_viewport_map(const sr_vertex_out *v, int varyings, int width, int height, sr_screen_vertex *out);
+bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp, sr_screen_vertex *out);
 
 #endif

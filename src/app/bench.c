@@ -7,6 +7,7 @@
 #include "app.h"
 #include "bench_scenes.h"
 #include "options.h"
+#include "report.h"
 #include "scene_setup.h"
 
 #define MAX_FRAMES 10000
@@ -17,6 +18,8 @@ enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_SCALING
 
 typedef struct bench_job {
     int scene, frames, threads;
+    bool report;
+    const char *report_dir;
 } bench_job;
 
 typedef struct bench_result {
@@ -36,6 +39,8 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
         { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|depth|scaling", "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
+        { "--report", SR_OPT_FLAG, &job->report, NULL, "measure error against time for every accuracy knob instead" },
+        { "--report-dir", SR_OPT_STRING, &job->report_dir, "DIR", "where --report writes report.md and report.svg (default docs)" },
         { 0 },
     };
     int positional = 0;
@@ -176,5 +181,6 @@ int sr_app_bench(int argc, char **argv)
         return sr_app_fail(err.message);
     if (help)
         return 0;
-    return run(&job, &err) ? 0 : sr_app_fail(err.message);
+    bool ok = job.report ? sr_report_write(job.report_dir ? job.report_dir : "docs", job.frames, &err) : run(&job, &err);
+    return ok ? 0 : sr_app_fail(err.message);
 }

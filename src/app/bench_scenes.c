@@ -18,6 +18,14 @@ static float FLY_KEYS[][SR_SCRIPT_NUMBERS] = {
     { 2.0f, 5.9f, 2.0f, 2.0f, 0.0f, 2.001f, 0, 1, 0, 60, 0.1f, 100 },
 };
 
+/* The room again with stiff planes (near 1e-6, far 1e9): along the west wall,
+ * on its plane, a hair above the floor. */
+static float STIFF_KEYS[][SR_SCRIPT_NUMBERS] = {
+    { -8.0f, 3.0f, -8.0f, 4.0f, 1.5f, 6.0f, 0, 1, 0, 75, 1e-6f, 1e9f },
+    { -10.0f, 2.0f, 0.0f, 10.0f, 2.0f, 0.0f, 0, 1, 0, 75, 1e-6f, 1e9f },
+    { 0.0f, 1e-6f, 0.0f, 5.0f, 0.0f, 5.0f, 0, 1, 0, 120, 1e-6f, 1e9f },
+};
+
 static void scene_init(sr_bench_scene *s, const char *name, const char *what, sr_shade shade, int w, int h)
 {
     *s = (sr_bench_scene){ .name = name, .what = what, .shade = shade, .width = w, .height = h,
@@ -35,11 +43,24 @@ bool sr_bench_dense(sr_bench_scene *s, uint64_t triangles, int width, int height
     return sr_shape_torus(&s->mesh, 1.0f, 0.4f, segments, sides, err);
 }
 
+bool sr_bench_dense_default(sr_bench_scene *s, sr_error *err)
+{
+    return sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080, SR_SHADE_LAMBERT, err);
+}
+
 bool sr_bench_fly(sr_bench_scene *s, sr_error *err)
 {
     scene_init(s, "fly", "the room on a path through walls and pillars, lambert + texture", SR_SHADE_LAMBERT,
                1920, 1080);
     s->path = (sr_script){ .count = sizeof FLY_KEYS / sizeof FLY_KEYS[0], .keys = FLY_KEYS };
+    return sr_obj_load(&s->mesh, "assets/room.obj", err) && sr_texture_load(&s->texture, "assets/room.png", err);
+}
+
+bool sr_bench_stiff(sr_bench_scene *s, sr_error *err)
+{
+    scene_init(s, "stiff", "the room with near 1e-6 and far 1e9, on and beside its walls and floor",
+               SR_SHADE_LAMBERT, 1920, 1080);
+    s->path = (sr_script){ .count = sizeof STIFF_KEYS / sizeof STIFF_KEYS[0], .keys = STIFF_KEYS };
     return sr_obj_load(&s->mesh, "assets/room.obj", err) && sr_texture_load(&s->texture, "assets/room.png", err);
 }
 

@@ -22,8 +22,14 @@ typedef struct sr_bench_scene {
 /* A torus of about `triangles` triangles filling most of the frame. */
 bool sr_bench_dense(sr_bench_scene *s, uint64_t triangles, int width, int height, sr_shade shade, sr_error *err);
 
+/* The dense scene as the benchmark times it: 1M triangles at 1920x1080. */
+bool sr_bench_dense_default(sr_bench_scene *s, sr_error *err);
+
 /* The room from assets/, on a path through its walls and pillars. */
 bool sr_bench_fly(sr_bench_scene *s, sr_error *err);
+
+/* The room with near 1e-6 and far 1e9, on and beside its walls. */
+bool sr_bench_stiff(sr_bench_scene *s, sr_error *err);
 
 /* 64 full-screen textured quads drawn back to front, bilinear. */
 bool sr_bench_fill(sr_bench_scene *s, sr_error *err);

@@ -52,10 +52,11 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex tri[3], const
         lo_y = tri[k].y < lo_y ? tri[k].y : lo_y;
         hi_y = tri[k].y > hi_y ? tri[k].y : hi_y;
     }
-    int tx0 = clamp_tile(lo_x >> SR_SUBPIXEL_BITS, SR_TILE_SIDE, st->tiles_x);
-    int tx1 = clamp_tile(hi_x >> SR_SUBPIXEL_BITS, SR_TILE_SIDE, st->tiles_x);
-    int ty0 = clamp_tile(lo_y >> SR_SUBPIXEL_BITS, SR_TILE_SIDE, st->tiles_y);
-    int ty1 = clamp_tile(hi_y >> SR_SUBPIXEL_BITS, SR_TILE_SIDE, st->tiles_y);
+    int bits = st->vp.subpixel_bits;
+    int tx0 = clamp_tile(lo_x >> bits, SR_TILE_SIDE, st->tiles_x);
+    int tx1 = clamp_tile(hi_x >> bits, SR_TILE_SIDE, st->tiles_x);
+    int ty0 = clamp_tile(lo_y >> bits, SR_TILE_SIDE, st->tiles_y);
+    int ty1 = clamp_tile(hi_y >> bits, SR_TILE_SIDE, st->tiles_y);
     for (int ty = ty0; ty <= ty1; ty++) {
         for (int tx = tx0; tx <= tx1; tx++) {
             uint32_t *slot = sr_array_push(&w->bins[ty * st->tiles_x + tx], sizeof *slot);
@@ -124,7 +125,8 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile)
             const sr_record *rec = &((const sr_record *)w->records.data)[list[i]];
             sr_screen_vertex tri[3] = { *vertex_of(st, w, rec->ref[0]), *vertex_of(st, w, rec->ref[1]),
                                         *vertex_of(st, w, rec->ref[2]) };
-            fragments += sr_raster_triangle(st->fb, rect, st->desc->shade, &st->shade, tri, rec->area2, rec->id);
+            fragments += sr_raster_triangle(st->fb, rect, st->vp.subpixel_bits, st->desc->shade, &st->shade, tri,
+                                            rec->area2, rec->id);
         }
     }
     return fragments;

@@ -40,8 +40,8 @@ static void place_on_plane(sr_clip_plane plane, float *c)
     }
 }
 
-void sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
-                       int floats, sr_vertex_out *cut)
+static void intersect_double(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                             int floats, sr_vertex_out *cut)
 {
     double d_in = sr_clip_distance(plane, inside->v);
     double d_out = sr_clip_distance(plane, outside->v);
@@ -50,6 +50,25 @@ void sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const s
         double a = inside->v[i], b = outside->v[i];
         cut->v[i] = (float)(a + t * (b - a));
     }
+}
+
+static void intersect_float(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                            int floats, sr_vertex_out *cut)
+{
+    float d_in = (float)sr_clip_distance(plane, inside->v);
+    float d_out = (float)sr_clip_distance(plane, outside->v);
+    float t = d_in / (d_in - d_out);
+    for (int i = 0; i < floats; i++)
+        cut->v[i] = inside->v[i] + t * (outside->v[i] - inside->v[i]);
+}
+
+void sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                       int floats, sr_clip_precision precision, sr_vertex_out *cut)
+{
+    if (precision == SR_CLIP_FLOAT)
+        intersect_float(plane, inside, outside, floats, cut);
+    else
+        intersect_double(plane, inside, outside, floats, cut);
     place_on_plane(plane, cut->v);
 }
 
@@ -57,7 +76,7 @@ void sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const s
  * made the polygon cross the plane more than twice and the output would pass
  * the bound (only slivers thinner than float precision do that). */
 static int clip_against_plane(const sr_vertex_out *in, int n, sr_clip_plane plane, int floats,
-                              sr_vertex_out *out)
+                              sr_clip_precision precision, sr_vertex_out *out)
 {
     int m = 0;
     for (int i = 0; i < n; i++) {
@@ -69,20 +88,20 @@ static int clip_against_plane(const sr_vertex_out *in, int n, sr_clip_plane plan
         if (a_in)
             out[m++] = *a;
         if (a_in && !b_in)
-            sr_clip_intersect(plane, a, b, floats, &out[m++]);
+            sr_clip_intersect(plane, a, b, floats, precision, &out[m++]);
         else if (!a_in && b_in)
-            sr_clip_intersect(plane, b, a, floats, &out[m++]);
+            sr_clip_intersect(plane, b, a, floats, precision, &out[m++]);
     }
     return m;
 }
 
-int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats)
+int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, sr_clip_precision precision)
 {
     sr_vertex_out scratch[SR_MAX_CLIP_VERTS];
     for (int p = 0; p < SR_CLIP_PLANES && poly->count >= 3; p++) {
         if (!(planes & (1u << p)))
             continue;
-        int n = clip_against_plane(poly->vert, poly->count, (sr_clip_plane)p, floats, scratch);
+        int n = clip_against_plane(poly->vert, poly->count, (sr_clip_plane)p, floats, precision, scratch);
         poly->count = n < 3 ? 0 : n;
         for (int i = 0; i < poly->count; i++)
             poly->vert[i] = scratch[i];

@@ -9,6 +9,7 @@
 
 #include "softrast/pipeline.h"
 #include "softrast/raster.h"
+#include "softrast/viewport.h"
 
 #define SR_MAX_THREADS 64
 
@@ -56,6 +57,8 @@ typedef struct sr_draw_state {
     sr_framebuffer *fb;
     const sr_draw_desc *desc;
     sr_shade_context shade;
+    sr_viewport vp;
+    sr_clip_precision precision;
     sr_workspace *ws;
     int threads;
     uint32_t vertex_count, slots;

@@ -1,3 +1,4 @@
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,6 +22,34 @@ static void matrix_or_identity(const mat4 m, mat4 out)
         glm_mat4_copy((vec4 *)m, out);
 }
 
+static int subpixel_bits(const sr_draw_desc *d)
+{
+    return d->subpixel_bits ? d->subpixel_bits : SR_SUBPIXEL_BITS;
+}
+
+static float guard_band(const sr_draw_desc *d)
+{
+    return d->guard_band > 1.0f ? d->guard_band : 1.0f;
+}
+
+/* The knobs must keep every snapped coordinate below 2^SR_FIXED_POINT_BITS. */
+static bool check_accuracy_knobs(const sr_framebuffer *fb, const sr_draw_desc *d, sr_error *err)
+{
+    int bits = subpixel_bits(d);
+    if (bits < SR_MIN_SUBPIXEL_BITS || bits > SR_MAX_SUBPIXEL_BITS)
+        return sr_error_set(err, "subpixel bits %d outside %d..%d", bits, SR_MIN_SUBPIXEL_BITS, SR_MAX_SUBPIXEL_BITS);
+    if (!(d->guard_band >= 0.0f && d->guard_band <= SR_MAX_GUARD_BAND))
+        return sr_error_set(err, "guard band %g outside 0..%g", d->guard_band, SR_MAX_GUARD_BAND);
+    if ((unsigned)d->clip_precision > SR_CLIP_FLOAT)
+        return sr_error_set(err, "unknown clip precision %d", (int)d->clip_precision);
+    int side = fb->width > fb->height ? fb->width : fb->height;
+    double extent = ceil(guard_band(d)) * side * (double)((int64_t)1 << bits);
+    if (extent > (double)((int64_t)1 << SR_FIXED_POINT_BITS))
+        return sr_error_set(err, "%d subpixel bits with a guard band of %g do not fit a %d-pixel framebuffer",
+                            bits, guard_band(d), side);
+    return true;
+}
+
 static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const sr_varying_layout *l,
                          sr_error *err)
 {
@@ -32,6 +61,8 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
     if ((unsigned)d->shade >= SR_SHADE_COUNT || (unsigned)d->cull > SR_CULL_NONE ||
         (unsigned)d->front > SR_FRONT_CCW || (unsigned)d->filter > SR_FILTER_NEAREST)
         return sr_error_set(err, "draw with an unknown shading, culling, front or filter mode");
+    if (!check_accuracy_knobs(fb, d, err))
+        return false;
     if (!sr_assemble_indices_valid(d->mesh))
         return sr_error_set(err, "mesh has an index past its %u vertices", d->mesh->vertex_count);
     if (l->normal >= 0 && !d->mesh->normals)
@@ -76,8 +107,7 @@ static void vertex_range(void *ctx, int t)
     sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, first, end - first, verts + first);
     for (uint32_t i = first; i < end; i++) {
         unsigned code = sr_clip_outcode(verts[i].v);
-        if (code == 0 && !sr_viewport_map(&verts[i], st->shade.layout.count, st->fb->width, st->fb->height,
-                                          &screen[i]))
+        if (code == 0 && !sr_viewport_map(&verts[i], st->shade.layout.count, &st->vp, &screen[i]))
             code = SR_OUT_NONFINITE;
         outcodes[i] = (unsigned char)code;
     }
@@ -98,6 +128,12 @@ static bool run_vertex_phase(const sr_draw_state *st, sr_error *err)
     matrix_or_identity(d->view, view);
     matrix_or_identity(d->projection, projection);
     sr_vertex_make_transform(world, view, projection, &ph.xf);
+    /* A guard band clips x and y at ±G·w: squeeze x and y by 1/G here, clip
+     * at ±w as always, and let the viewport scale them back. */
+    for (int col = 0; col < 4; col++) {
+        ph.xf.clip_from_object[col][0] /= st->vp.guard;
+        ph.xf.clip_from_object[col][1] /= st->vp.guard;
+    }
     sr_parallel_run(st->threads, vertex_range, &ph);
     return true;
 }
@@ -119,7 +155,8 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex tri[3], const u
     if (d->observer)
         d->observer(d->observer_user, tri, clipped, id);
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
-    sink->work->stats.fragments += sr_raster_triangle(st->fb, all, d->shade, &st->shade, tri, area2, id);
+    sink->work->stats.fragments +=
+        sr_raster_triangle(st->fb, all, st->vp.subpixel_bits, d->shade, &st->shade, tri, area2, id);
 }
 
 static void draw_direct(sr_draw_state *st)
@@ -178,7 +215,9 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     sr_draw_state st = { .fb = fb, .desc = desc, .ws = ws, .threads = thread_count(desc),
                          .vertex_count = desc->mesh->vertex_count, .slots = sr_mesh_triangle_slots(desc->mesh),
                          .tiles_x = (fb->width + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
-                         .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE };
+                         .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
+                         .vp = { fb->width, fb->height, subpixel_bits(desc), guard_band(desc) },
+                         .precision = desc->clip_precision };
     shade_context_make(desc, &layout, &st.shade);
     sr_stats scratch = { 0 };
     bool ok = draw_with(&st, stats ? stats : &scratch, err);

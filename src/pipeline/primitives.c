@@ -29,7 +29,7 @@ static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, uint32_t id)
     const sr_draw_state *st = sink->st;
     sr_screen_vertex screen[SR_MAX_CLIP_VERTS];
     for (int i = 0; i < poly->count; i++) {
-        if (!sr_viewport_map(&poly->vert[i], st->shade.layout.count, st->fb->width, st->fb->height, &screen[i])) {
+        if (!sr_viewport_map(&poly->vert[i], st->shade.layout.count, &st->vp, &screen[i])) {
             sink->work->stats.rejected++;
             return;
         }
@@ -73,7 +73,7 @@ static void emit_slot(sr_fan_sink *sink, uint32_t k)
     const sr_vertex_out *verts = st->ws->verts.data;
     sr_polygon poly = { .count = 3, .vert = { verts[idx[0]], verts[idx[1]], verts[idx[2]] } };
     stats->clipped++;
-    sr_clip_polygon(&poly, any, SR_VARYINGS_AT + st->shade.layout.count);
+    sr_clip_polygon(&poly, any, SR_VARYINGS_AT + st->shade.layout.count, st->precision);
     emit_polygon(sink, &poly, k);
 }
 

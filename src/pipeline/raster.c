@@ -2,7 +2,6 @@
 
 #include "softrast/raster.h"
 
-#define PIXEL_CENTRE (SR_SUBPIXEL_ONE / 2)
 
 /* E(P) = a·Px + b·Py + c, the edge function of a → b in subpixel units: >= 0
  * on the inside of a clockwise (area2 > 0) triangle. `bias` is 0 on a top or
@@ -41,9 +40,10 @@ static void edges_make(const sr_screen_vertex v[3], edge e[3])
     e[2] = edge_make(&v[0], &v[1]);
 }
 
-static int64_t subpixel_centre(int i)
+/* Pixel i's centre, i + 0.5, in subpixel units of `bits` fractional bits. */
+static int64_t subpixel_centre(int i, int bits)
 {
-    return (int64_t)i * SR_SUBPIXEL_ONE + PIXEL_CENTRE;
+    return ((int64_t)i << bits) + ((int64_t)1 << (bits - 1));
 }
 
 /* Everything the per-pixel loop reads, set up once per triangle. Attributes
@@ -56,12 +56,14 @@ typedef struct setup {
     int varyings;
     float var0[SR_MAX_VARYINGS], dvar1[SR_MAX_VARYINGS], dvar2[SR_MAX_VARYINGS];
     sr_raster_rect box;
+    int bits; /* subpixel bits of the vertices */
 } setup;
 
-static int64_t floor_div(int64_t a, int64_t b)
+/* floor(a / 2^bits): an arithmetic shift, which gcc and clang define for
+ * negative a (vertices may lie a hair left of or above the framebuffer). */
+static int64_t floor_shift(int64_t a, int bits)
 {
-    int64_t q = a / b;
-    return (a % b != 0 && a < 0) ? q - 1 : q;
+    return a >> bits;
 }
 
 static int clamp_int(int64_t v, int lo, int hi)
@@ -71,8 +73,9 @@ static int clamp_int(int64_t v, int lo, int hi)
 
 /* Pixels whose centres can lie in the triangle, clamped to rect (never the
  * vertices: moving one would move a shared edge). */
-static sr_raster_rect scan_box(const sr_screen_vertex v[3], sr_raster_rect rect)
+static sr_raster_rect scan_box(const sr_screen_vertex v[3], sr_raster_rect rect, int bits)
 {
+    int64_t one = (int64_t)1 << bits, half = one / 2;
     int64_t lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
     for (int k = 1; k < 3; k++) {
         lo_x = v[k].x < lo_x ? v[k].x : lo_x;
@@ -81,16 +84,17 @@ static sr_raster_rect scan_box(const sr_screen_vertex v[3], sr_raster_rect rect)
         hi_y = v[k].y > hi_y ? v[k].y : hi_y;
     }
     return (sr_raster_rect){
-        .x0 = clamp_int(floor_div(lo_x - PIXEL_CENTRE + SR_SUBPIXEL_ONE - 1, SR_SUBPIXEL_ONE), rect.x0, rect.x1),
-        .x1 = clamp_int(floor_div(hi_x - PIXEL_CENTRE, SR_SUBPIXEL_ONE) + 1, rect.x0, rect.x1),
-        .y0 = clamp_int(floor_div(lo_y - PIXEL_CENTRE + SR_SUBPIXEL_ONE - 1, SR_SUBPIXEL_ONE), rect.y0, rect.y1),
-        .y1 = clamp_int(floor_div(hi_y - PIXEL_CENTRE, SR_SUBPIXEL_ONE) + 1, rect.y0, rect.y1),
+        .x0 = clamp_int(floor_shift(lo_x - half + one - 1, bits), rect.x0, rect.x1),
+        .x1 = clamp_int(floor_shift(hi_x - half, bits) + 1, rect.x0, rect.x1),
+        .y0 = clamp_int(floor_shift(lo_y - half + one - 1, bits), rect.y0, rect.y1),
+        .y1 = clamp_int(floor_shift(hi_y - half, bits) + 1, rect.y0, rect.y1),
     };
 }
 
-static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings, sr_raster_rect rect,
+static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings, sr_raster_rect rect, int bits,
                        setup *s)
 {
+    s->bits = bits;
     edges_make(v, s->e);
     s->inv_area2 = (float)(1.0 / (double)area2);
     s->z0 = v[0].z;
@@ -105,7 +109,7 @@ static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings,
         s->dvar1[k] = v[1].var_w[k] - v[0].var_w[k];
         s->dvar2[k] = v[2].var_w[k] - v[0].var_w[k];
     }
-    s->box = scan_box(v, rect);
+    s->box = scan_box(v, rect, bits);
 }
 
 static inline float depth_at(const setup *s, float l1, float l2)
@@ -139,9 +143,10 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, con
             uint32_t id)
 {
     uint64_t fragments = 0;
-    const int64_t step_x[3] = { s->e[0].a * SR_SUBPIXEL_ONE, s->e[1].a * SR_SUBPIXEL_ONE, s->e[2].a * SR_SUBPIXEL_ONE };
+    const int64_t one = (int64_t)1 << s->bits; /* a multiply: the coefficients may be negative */
+    const int64_t step_x[3] = { s->e[0].a * one, s->e[1].a * one, s->e[2].a * one };
     for (int j = s->box.y0; j < s->box.y1; j++) {
-        int64_t px = subpixel_centre(s->box.x0), py = subpixel_centre(j);
+        int64_t px = subpixel_centre(s->box.x0, s->bits), py = subpixel_centre(j, s->bits);
         int64_t e0 = edge_at(&s->e[0], px, py), e1 = edge_at(&s->e[1], px, py), e2 = edge_at(&s->e[2], px, py);
         size_t row = (size_t)j * (size_t)fb->width;
         for (int i = s->box.x0; i < s->box.x1; i++, e0 += step_x[0], e1 += step_x[1], e2 += step_x[2]) {
@@ -170,14 +175,15 @@ raster_mode(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_co
     return fb->reversed_z ? raster_loop(s, fb, mode, true, shade, id) : raster_loop(s, fb, mode, false, shade, id);
 }
 
-uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, sr_shade mode,
+uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
                             const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
                             uint32_t triangle_id)
 {
     sr_screen_vertex v[3];
     setup s;
     order_clockwise(tri, area2, v);
-    setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, rect, &s);
+    setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, rect,
+               subpixel_bits, &s);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(&s, fb, SR_SHADE_ID, shade, triangle_id);
     case SR_SHADE_COLOR:   return raster_mode(&s, fb, SR_SHADE_COLOR, shade, triangle_id);

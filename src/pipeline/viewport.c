@@ -7,7 +7,7 @@ static bool within_slack(double ndc, double lo)
     return ndc >= lo - SR_NDC_SLACK && ndc <= 1.0 + SR_NDC_SLACK;
 }
 
-bool sr_viewport_map(const sr_vertex_out *v, int varyings, int width, int height, sr_screen_vertex *out)
+bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp, sr_screen_vertex *out)
 {
     double w = v->v[SR_W];
     if (!(w > 0.0) || !isfinite(w))
@@ -16,8 +16,9 @@ bool sr_viewport_map(const sr_vertex_out *v, int varyings, int width, int height
     double x = v->v[SR_X] * inv_w, y = v->v[SR_Y] * inv_w, z = v->v[SR_Z] * inv_w;
     if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(z, 0.0))
         return false;
-    out->x = llrint((x + 1.0) * 0.5 * width * SR_SUBPIXEL_ONE);
-    out->y = llrint((1.0 - y) * 0.5 * height * SR_SUBPIXEL_ONE);
+    double scale = (double)((int64_t)1 << vp->subpixel_bits), guard = vp->guard;
+    out->x = llrint((guard * x + 1.0) * 0.5 * vp->width * scale);
+    out->y = llrint((1.0 - guard * y) * 0.5 * vp->height * scale);
     out->z = (float)z;
     out->inv_w = (float)inv_w;
     bool finite = isfinite(out->inv_w); /* 1/w overflows float for w < 2^-128 */

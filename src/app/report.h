@@ -1,0 +1,15 @@
+/* report.h — `softrast bench --report`: error against run time for every
+ * accuracy/speed knob, written as docs/report.md and docs/report.svg. */
+#ifndef SOFTRAST_APP_REPORT_H
+#define SOFTRAST_APP_REPORT_H
+
+#include <stdbool.h>
+
+#include "softrast/error.h"
+
+/* Measures each knob on the dense, fly and stiff scenes against a reference
+ * render (double clipping, 16 subpixel bits) and writes the report files
+ * into dir. frames: timed frames per configuration. */
+bool sr_report_write(const char *dir, int frames, sr_error *err);
+
+#endif

@@ -1,0 +1,28 @@
+/* report_svg.h — writing the error-against-time report: a Markdown table per
+ * scene and one SVG scatter plot of id error against milliseconds. */
+#ifndef SOFTRAST_APP_REPORT_SVG_H
+#define SOFTRAST_APP_REPORT_SVG_H
+
+#include <stdbool.h>
+
+#include "softrast/error.h"
+
+#define SR_REPORT_KNOBS 7
+#define SR_REPORT_SCENES 3
+
+typedef struct sr_report_point {
+    const char *knob;
+    double ms;          /* median per frame */
+    double id_error;    /* fraction of pixels whose triangle id differs from the reference */
+    double depth_error; /* largest depth difference where both drew */
+} sr_report_point;
+
+typedef struct sr_report_scene {
+    const char *name, *what;
+    int frames; /* camera positions compared */
+    sr_report_point points[SR_REPORT_KNOBS];
+} sr_report_scene;
+
+bool sr_report_files(const char *dir, const sr_report_scene *scenes, int frames, sr_error *err);
+
+#endif
