@@ -63,11 +63,11 @@ build/san/softrast: $(SAN_APP_OBJ) build/san/libsoftrast.a
 # event handling and option parsing directly.
 build/softrast-tests: $(TEST_OBJ) $(filter-out %/main.o,$(APP_OBJ)) build/libsoftrast.a
 	@echo "  LINK    $@"
-	@$(CC) $(CFLAGS) $^ $(LIBS) -lcriterion -o $@
+	@$(CC) $(CFLAGS) $^ $(LIBS) -lcriterion -lgmp -o $@
 
 build/san/softrast-tests: $(SAN_TEST_OBJ) $(filter-out %/main.o,$(SAN_APP_OBJ)) build/san/libsoftrast.a
 	@echo "  LINK    $@"
-	@$(CC) $(SAN) $^ $(LIBS) -lcriterion -o $@
+	@$(CC) $(SAN) $^ $(LIBS) -lcriterion -lgmp -o $@
 
 # The viewer on the default scene (assets/room.obj, from inside the room).
 ROOM_CAMERA := --eye -8,3,-8 --target 4,1.5,6 --fov 75

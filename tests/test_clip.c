@@ -150,7 +150,7 @@ static void for_each_pattern(uint64_t seed, pattern_check *check)
                 sr_vertex_out tri[3];
                 pattern_triangle(&r, plane, pattern, tri);
                 sr_polygon poly = poly3(tri[0], tri[1], tri[2]);
-                int n = sr_clip_polygon(&poly, 1u << plane, SR_VARYINGS_AT, SR_CLIP_DOUBLE);
+                int n = sr_clip_polygon(&poly, 1u << plane, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE });
                 cr_assert_eq(n, poly.count, "return value %d, count %d", n, poly.count);
                 check(plane, pattern, tri, &poly);
             }
@@ -279,7 +279,7 @@ Test(clip, vertices_exactly_on_the_plane_are_kept_unchanged)
                 if ((on >> i) & 1)
                     set_plane_distance(plane, &tri[i], 0.0);
             sr_polygon poly = poly3(tri[0], tri[1], tri[2]);
-            cr_assert_eq(sr_clip_polygon(&poly, 1u << plane, SR_VARYINGS_AT, SR_CLIP_DOUBLE), 3, "plane %s on-mask %d",
+            cr_assert_eq(sr_clip_polygon(&poly, 1u << plane, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE }), 3, "plane %s on-mask %d",
                          plane_name(plane), on);
             for (int i = 0; i < 3; i++)
                 cr_assert(floats_identical(poly.vert[i].v, tri[i].v, SR_VARYINGS_AT), "plane %s vertex %d moved",
@@ -292,7 +292,7 @@ Test(clip, planes_not_in_the_mask_are_ignored)
     /* Outside right and top, inside the others; only near is asked for. */
     sr_vertex_out tri[3] = { vert4(0, 0, 0.5, 1), vert4(3, 0, 0.5, 1), vert4(0, 3, 0.5, 1) };
     sr_polygon poly = poly3(tri[0], tri[1], tri[2]);
-    cr_assert_eq(sr_clip_polygon(&poly, 1u << SR_PLANE_NEAR, SR_VARYINGS_AT, SR_CLIP_DOUBLE), 3);
+    cr_assert_eq(sr_clip_polygon(&poly, 1u << SR_PLANE_NEAR, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE }), 3);
     for (int i = 0; i < 3; i++)
         cr_assert(floats_identical(poly.vert[i].v, tri[i].v, SR_VARYINGS_AT), "vertex %d moved", i);
 }
@@ -313,7 +313,7 @@ Test(clip, all_planes_reach_the_nine_vertex_bound_on_a_hexagonal_section)
         tri[i] = vert4(k * opp[0], k * opp[1], (k * opp[2] + 1.0) / 2.0, 1.0);
     }
     sr_polygon poly = poly3(tri[0], tri[1], tri[2]);
-    cr_assert_eq(sr_clip_polygon(&poly, SR_OUT_PLANES, SR_VARYINGS_AT, SR_CLIP_DOUBLE), SR_MAX_CLIP_VERTS);
+    cr_assert_eq(sr_clip_polygon(&poly, SR_OUT_PLANES, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE }), SR_MAX_CLIP_VERTS);
     cr_assert_eq(SR_MAX_CLIP_VERTS, 9);
 }
 
@@ -326,7 +326,7 @@ Test(clip, polygon_that_would_pass_the_vertex_bound_is_dropped)
     poly.count = SR_MAX_CLIP_VERTS;
     for (int i = 0; i < SR_MAX_CLIP_VERTS; i++)
         poly.vert[i] = vert4(i % 2 ? 1.5 : 0.5, -0.9 + 0.2 * i, 0.5, 1.0);
-    cr_assert_eq(sr_clip_polygon(&poly, 1u << SR_PLANE_RIGHT, SR_VARYINGS_AT, SR_CLIP_DOUBLE), 0);
+    cr_assert_eq(sr_clip_polygon(&poly, 1u << SR_PLANE_RIGHT, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE }), 0);
     cr_assert_eq(poly.count, 0);
 }
 
@@ -352,7 +352,7 @@ Test(clip, intersect_interpolates_varyings_with_the_position_t)
             continue;
         done++;
         sr_vertex_out cut;
-        sr_clip_intersect((sr_clip_plane)plane, &in, &out, floats, SR_CLIP_DOUBLE, &cut);
+        sr_clip_intersect((sr_clip_plane)plane, &in, &out, floats, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE }, &cut);
         double scale = 0;
         for (int k = 0; k < 4; k++)
             scale = fmax(scale, fmax(fabs(in.v[k]), fabs(out.v[k])));
@@ -375,7 +375,7 @@ static void varyings_follow_position(int plane, int pattern, const sr_vertex_out
     for (int i = 0; i < 3; i++)
         for (int k = 0; k < 4; k++)
             p.vert[i].v[SR_VARYINGS_AT + k] = p.vert[i].v[k];
-    sr_clip_polygon(&p, 1u << plane, SR_VARYINGS_AT + 4, SR_CLIP_DOUBLE);
+    sr_clip_polygon(&p, 1u << plane, SR_VARYINGS_AT + 4, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE });
     for (int i = 0; i < p.count; i++)
         for (int k = 0; k < 4; k++)
             if (k != placed_coord(plane))

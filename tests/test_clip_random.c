@@ -86,10 +86,10 @@ static int clip_segment(sr_vertex_out a, sr_vertex_out b, unsigned mask, sr_vert
             return 0;
         sr_vertex_out cut;
         if (a_in && !b_in) {
-            sr_clip_intersect((sr_clip_plane)p, &a, &b, SR_VARYINGS_AT + 1, SR_CLIP_DOUBLE, &cut);
+            sr_clip_intersect((sr_clip_plane)p, &a, &b, SR_VARYINGS_AT + 1, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE }, &cut);
             b = cut;
         } else if (!a_in && b_in) {
-            sr_clip_intersect((sr_clip_plane)p, &b, &a, SR_VARYINGS_AT + 1, SR_CLIP_DOUBLE, &cut);
+            sr_clip_intersect((sr_clip_plane)p, &b, &a, SR_VARYINGS_AT + 1, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE }, &cut);
             a = cut;
         }
     }
@@ -122,7 +122,7 @@ static int check_shared_edge(sr_vertex_out a, sr_vertex_out b, sr_vertex_out c, 
                        sr_clip_outcode(p[s].vert[2].v);
         if (outcode_mask && (mask[s] & SR_OUT_NONFINITE || all))
             return -1; /* the pipeline rejects it before clipping */
-        sr_clip_polygon(&p[s], mask[s], SR_VARYINGS_AT + 1, SR_CLIP_DOUBLE);
+        sr_clip_polygon(&p[s], mask[s], SR_VARYINGS_AT + 1, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE });
     }
     int cuts = 0;
     for (int s = 0; s < 2; s++) {
@@ -196,7 +196,7 @@ static int for_each_random_triangle(uint64_t seed, all_planes_check *check)
         sr_vertex_out tri[3];
         random_w1_triangle(&r, tri);
         sr_polygon poly = poly3(tri[0], tri[1], tri[2]);
-        sr_clip_polygon(&poly, SR_OUT_PLANES, SR_VARYINGS_AT, SR_CLIP_DOUBLE);
+        sr_clip_polygon(&poly, SR_OUT_PLANES, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE });
         kept += poly.count > 0;
         check(tri, &poly);
     }
@@ -265,7 +265,7 @@ static void outcode_mask_is_enough(const sr_vertex_out tri[3], const sr_polygon 
 {
     sr_polygon p = poly3(tri[0], tri[1], tri[2]);
     unsigned mask = sr_clip_outcode(tri[0].v) | sr_clip_outcode(tri[1].v) | sr_clip_outcode(tri[2].v);
-    sr_clip_polygon(&p, mask, SR_VARYINGS_AT, SR_CLIP_DOUBLE);
+    sr_clip_polygon(&p, mask, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE });
     cr_assert_eq(p.count, poly->count, "mask %#x", mask);
     for (int i = 0; i < p.count; i++)
         cr_assert(floats_identical(p.vert[i].v, poly->vert[i].v, SR_VARYINGS_AT), "vertex %d differs", i);
@@ -362,7 +362,7 @@ static int for_each_scene_triangle(double near, double far, uint64_t seed, scene
             for (int k = 0; k < 4; k++)
                 in.magnitude = fmax(in.magnitude, fabs(poly.vert[i].v[k]));
         if (c0 | c1 | c2)
-            sr_clip_polygon(&poly, c0 | c1 | c2, SR_VARYINGS_AT, SR_CLIP_DOUBLE);
+            sr_clip_polygon(&poly, c0 | c1 | c2, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE });
         kept += poly.count > 0;
         check(&poly, &in);
     }

@@ -176,7 +176,7 @@ static bool clipped_screen_polygon(test_rng *r, bool depth_inside, sr_vertex_out
     if (c[0] & c[1] & c[2])
         return false;
     sr_polygon poly = poly3(tri[0], tri[1], tri[2]);
-    *n = sr_clip_polygon(&poly, c[0] | c[1] | c[2], SR_VARYINGS_AT, SR_CLIP_DOUBLE);
+    *n = sr_clip_polygon(&poly, c[0] | c[1] | c[2], SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE });
     for (int i = 0; i < *n; i++)
         cr_assert(sr_viewport_map(&poly.vert[i], 0, &(sr_viewport){ FB_W, FB_H, SR_SUBPIXEL_BITS, 1.0f }, &s[i]), "vertex %d refused", i);
     return *n >= 3;

@@ -60,7 +60,7 @@ Test(knobs, explicit_defaults_draw_exactly_the_default_image)
     static float depth0[W * H], depth1[W * H];
     sr_error err;
     cr_assert(draw((sr_draw_desc){ 0 }, ids0, depth0, &err), "%s", err.message);
-    cr_assert(draw((sr_draw_desc){ .subpixel_bits = SR_SUBPIXEL_BITS, .clip_precision = SR_CLIP_DOUBLE,
+    cr_assert(draw((sr_draw_desc){ .subpixel_bits = SR_SUBPIXEL_BITS, .clip_precision = SR_CLIP_ADAPTIVE,
                                    .guard_band = 1.0f },
                    ids1, depth1, &err),
               "%s", err.message);
@@ -77,7 +77,8 @@ Test(knobs, every_setting_stays_within_a_percent_of_the_fine_reference)
     sr_error err;
     cr_assert(draw((sr_draw_desc){ .subpixel_bits = SR_MAX_SUBPIXEL_BITS }, ref, ref_depth, &err), "%s", err.message);
     const sr_draw_desc settings[] = { { .subpixel_bits = 4 }, { .subpixel_bits = 12 },
-                                      { .clip_precision = SR_CLIP_FLOAT }, { .guard_band = 2.0f },
+                                      { .clip_precision = SR_CLIP_FLOAT }, { .clip_precision = SR_CLIP_DOUBLE },
+                                      { .clip_precision = SR_CLIP_EXACT }, { .guard_band = 2.0f },
                                       { .guard_band = 8.0f }, { .threads = 2, .subpixel_bits = 12 } };
     for (size_t i = 0; i < sizeof settings / sizeof *settings; i++) {
         cr_assert(draw(settings[i], ids, depth, &err), "%s", err.message);

@@ -2,7 +2,7 @@
 # Makes sure the Debian packages softrast builds and tests with are installed.
 # As root it installs what is missing; otherwise it prints the exact command.
 set -eu
-PACKAGES="build-essential pkg-config python3 libcglm-dev libsdl2-dev libsdl2-image-dev libcriterion-dev xvfb xauth"
+PACKAGES="build-essential pkg-config python3 libcglm-dev libsdl2-dev libsdl2-image-dev libcriterion-dev libgmp-dev xvfb xauth"
 missing=""
 for p in $PACKAGES; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -10,7 +10,7 @@
  *
  * The watertight rule (DESIGN.md): every cut vertex is interpolated from the
  * inside end point toward the outside one, t = d_in / (d_in - d_out), in
- * double precision (float on request), and its coordinate for the plane is then set exactly on
+ * the precision sr_clip_config asks for, and its coordinate for the plane is then set exactly on
  * the plane (x = -w for left, z = 0 for near, ...). Two triangles sharing an
  * edge therefore get bit-identical cut vertices whichever way they walk it.
  */
@@ -31,10 +31,36 @@ typedef enum sr_clip_plane {
     SR_PLANE_TOP       /* y <= w */
 } sr_clip_plane;
 
-/* How cut vertices are computed: double (the default, exact enough for
- * every test scene) or float (cheaper, measured in docs/report.md). The sign
- * tests are exact either way. */
-typedef enum sr_clip_precision { SR_CLIP_DOUBLE = 0, SR_CLIP_FLOAT } sr_clip_precision;
+/* How cut vertices are computed. The sign tests are exact in every mode.
+ * ADAPTIVE (the default) picks per edge the cheapest of float, double and
+ * exact whose a-priori error bound keeps the cut vertex within the
+ * configured tolerance (docs/precision.md); the others force one. EXACT
+ * carries the plane distances and the numerator as exact expansions and
+ * rounds once, right even for end points of 1e30 around a visible piece of
+ * size 1. The choice depends only on the unordered edge, never on the walk
+ * direction, so shared edges stay bit-identical. */
+typedef enum sr_clip_precision {
+    SR_CLIP_ADAPTIVE = 0,
+    SR_CLIP_FLOAT,
+    SR_CLIP_DOUBLE,
+    SR_CLIP_EXACT,
+    SR_CLIP_PRECISIONS
+} sr_clip_precision;
+
+/* How many cut vertices each precision made (index: sr_clip_precision). */
+typedef struct sr_clip_counts {
+    uint64_t cuts[SR_CLIP_PRECISIONS];
+} sr_clip_counts;
+
+/* The error a cut vertex may carry, in NDC units, when no tolerance is
+ * given: half a 1/256-pixel step on a 16384-pixel side. */
+#define SR_CLIP_DEFAULT_TOLERANCE (1.0 / (256.0 * 16384.0))
+
+typedef struct sr_clip_config {
+    sr_clip_precision precision;
+    double ndc_tolerance;  /* adaptive: allowed error in NDC; 0: SR_CLIP_DEFAULT_TOLERANCE */
+    sr_clip_counts *counts; /* optional: incremented per cut vertex */
+} sr_clip_config;
 
 #define SR_OUT_PLANES ((1u << SR_CLIP_PLANES) - 1u)
 #define SR_OUT_NONFINITE (1u << SR_CLIP_PLANES)
@@ -46,14 +72,15 @@ double sr_clip_distance(sr_clip_plane plane, const float *clip);
 unsigned sr_clip_outcode(const float *clip);
 
 /* The cut vertex of edge inside -> outside (d_in >= 0 > d_out) on a plane;
- * floats = 4 + number of varyings to interpolate. */
-void sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
-                       int floats, sr_clip_precision precision, sr_vertex_out *cut);
+ * floats = 4 + number of varyings to interpolate. cfg may be NULL (adaptive,
+ * default tolerance). Returns the precision it used. */
+sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                                    int floats, const sr_clip_config *cfg, sr_vertex_out *cut);
 
 /* Clips poly in place against the planes whose bits are set in `planes`.
  * Returns the vertex count (0: nothing left, or a degenerate sliver whose
  * rounding made it non-convex past the bound; never more than
  * SR_MAX_CLIP_VERTS). */
-int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, sr_clip_precision precision);
+int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg);
 
 #endif

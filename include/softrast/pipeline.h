@@ -68,7 +68,7 @@ typedef struct sr_draw_desc {
     /* Accuracy knobs, for measuring what each costs (docs/report.md); zero is
      * the default the contract pins. */
     int subpixel_bits;                  /* 0: SR_SUBPIXEL_BITS; else SR_MIN..SR_MAX_SUBPIXEL_BITS */
-    sr_clip_precision clip_precision;   /* SR_CLIP_DOUBLE */
+    sr_clip_precision clip_precision;   /* SR_CLIP_ADAPTIVE: per edge, within half a subpixel step */
     float guard_band;                   /* 0 or 1: clip x, y at the viewport; G > 1: at ±G·w */
 } sr_draw_desc;
 

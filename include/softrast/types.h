@@ -73,6 +73,7 @@ typedef struct sr_stats {
     uint64_t culled;    /* fan triangles dropped as facing away or zero area */
     uint64_t drawn;     /* fan triangles rasterized */
     uint64_t fragments; /* pixels that passed the depth test */
+    uint64_t cuts_float, cuts_double, cuts_exact; /* cut vertices by the precision the clipper used */
 } sr_stats;
 
 #endif

@@ -100,10 +100,12 @@ static bool write_outputs(const render_job *job, sr_scene *scene, sr_error *err)
 static void print_stats(int frames, const frame_times *t, const sr_stats *s)
 {
     printf("{\"frames\": %d, \"ms_median\": %.4f, \"ms_min\": %.4f, \"triangles\": %llu, \"rejected\": %llu, "
-           "\"clipped\": %llu, \"culled\": %llu, \"fragments\": %llu, \"nonfinite\": %llu}\n",
+           "\"clipped\": %llu, \"culled\": %llu, \"fragments\": %llu, \"nonfinite\": %llu, \"drawn\": %llu, "
+           "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu}\n",
            frames, t->median, t->min, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
            (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->fragments,
-           (unsigned long long)s->nonfinite);
+           (unsigned long long)s->nonfinite, (unsigned long long)s->drawn, (unsigned long long)s->cuts_float,
+           (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact);
 }
 
 static bool render(render_job *job, sr_scene *scene, sr_error *err)

@@ -23,18 +23,20 @@ typedef struct knob {
 } knob;
 
 static const knob KNOBS[SR_REPORT_KNOBS] = {
-    { "default: 8 bits, double clip, 6 planes, standard z, 1 thread", 8, SR_CLIP_DOUBLE, 0.0f, false, 1 },
-    { "4 subpixel bits", 4, SR_CLIP_DOUBLE, 0.0f, false, 1 },
-    { "12 subpixel bits", 12, SR_CLIP_DOUBLE, 0.0f, false, 1 },
+    { "default: 8 bits, adaptive clip, 6 planes, standard z, 1 thread", 8, SR_CLIP_ADAPTIVE, 0.0f, false, 1 },
+    { "4 subpixel bits", 4, SR_CLIP_ADAPTIVE, 0.0f, false, 1 },
+    { "12 subpixel bits", 12, SR_CLIP_ADAPTIVE, 0.0f, false, 1 },
     { "float clipping", 8, SR_CLIP_FLOAT, 0.0f, false, 1 },
-    { "guard band 2 (x, y clipped at 2w)", 8, SR_CLIP_DOUBLE, 2.0f, false, 1 },
-    { "reversed z", 8, SR_CLIP_DOUBLE, 0.0f, true, 1 },
-    { "2 threads", 8, SR_CLIP_DOUBLE, 0.0f, false, REPORT_THREADS_MANY },
+    { "double clipping", 8, SR_CLIP_DOUBLE, 0.0f, false, 1 },
+    { "exact clipping", 8, SR_CLIP_EXACT, 0.0f, false, 1 },
+    { "guard band 2 (x, y clipped at 2w)", 8, SR_CLIP_ADAPTIVE, 2.0f, false, 1 },
+    { "reversed z", 8, SR_CLIP_ADAPTIVE, 0.0f, true, 1 },
+    { "2 threads", 8, SR_CLIP_ADAPTIVE, 0.0f, false, REPORT_THREADS_MANY },
 };
 
 /* Reversed z in the reference: with near 1e-6 and far 1e9 the standard
  * mapping rounds whole walls to the clear depth and loses them. */
-static const knob REFERENCE = { "reference: 16 bits, double clip, reversed z", REFERENCE_BITS, SR_CLIP_DOUBLE, 0.0f,
+static const knob REFERENCE = { "reference: 16 bits, exact clip, reversed z", REFERENCE_BITS, SR_CLIP_EXACT, 0.0f,
                                 true, 1 };
 
 /* The frames of a scene: its path's key frames, or its one camera. */

@@ -33,8 +33,8 @@ static bool write_markdown(const char *path, const sr_report_scene *scenes, int 
     fprintf(f, "# Error against run time\n\n"
                "Regenerate: `./build/softrast bench --report --frames %d` (or `make report`), from the\n"
                "project's root; it writes this file and [report.svg](report.svg).\n\n"
-               "Every knob is measured against a reference render of the same frames with double-precision\n"
-               "clipping, 16 subpixel bits and reversed z. *ids differing*: the fraction of pixels whose\n"
+               "Every knob is measured against a reference render of the same frames with exact clipping,\n"
+               "16 subpixel bits and reversed z. *ids differing*: the fraction of pixels whose\n"
                "triangle id (`--shade id`) differs from the reference; *largest depth difference*: in\n"
                "standard z_ndc, over pixels where both drew the same triangle. Times are medians over %d draws of each camera,\n"
                "id shading, 1920x1080, on this machine (2 cores, shared: compare ratios, not absolutes).\n",

@@ -7,7 +7,7 @@
 
 #include "softrast/error.h"
 
-#define SR_REPORT_KNOBS 7
+#define SR_REPORT_KNOBS 9
 #define SR_REPORT_SCENES 3
 
 typedef struct sr_report_point {

@@ -1,6 +1,14 @@
+#include <float.h>
 #include <math.h>
 
+#include "clip_exact.h"
 #include "softrast/clip.h"
+
+/* The rounding error of a + t(b − a) with t = d_in / (d_in − d_out) is at
+ * most this many units in the last place of |a| + |t|(|a| + |b|): one each
+ * for the two distances, the subtraction (which never cancels: d_in >= 0 >
+ * d_out), the division, b − a, the product and the sum, with room to spare. */
+#define ROUNDING_BOUND 8.0
 
 double sr_clip_distance(sr_clip_plane plane, const float *c)
 {
@@ -62,21 +70,56 @@ static void intersect_float(sr_clip_plane plane, const sr_vertex_out *inside, co
         cut->v[i] = inside->v[i] + t * (outside->v[i] - inside->v[i]);
 }
 
-void sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
-                       int floats, sr_clip_precision precision, sr_vertex_out *cut)
+/* The adaptive choice, from a float estimate: the error bound of a
+ * precision is ROUNDING_BOUND · ε · M / w over the coordinates, M = |a| +
+ * |t|(|a| + |b|), w the cut vertex's w (NDC error = clip error / w). A cut
+ * at w <= 0, or any overflow, goes exact. */
+static sr_clip_precision choose_precision(sr_clip_plane plane, const sr_vertex_out *inside,
+                                          const sr_vertex_out *outside, double tolerance)
 {
-    if (precision == SR_CLIP_FLOAT)
+    float d_in = (float)sr_clip_distance(plane, inside->v), d_out = (float)sr_clip_distance(plane, outside->v);
+    float t = d_in / (d_in - d_out), m = 0.0f;
+    for (int i = 0; i < SR_VARYINGS_AT; i++) {
+        float a = fabsf(inside->v[i]), b = fabsf(outside->v[i]);
+        float bound = a + t * (a + b);
+        m = bound > m ? bound : m;
+    }
+    float w = inside->v[SR_W] + t * (outside->v[SR_W] - inside->v[SR_W]);
+    double relative = (double)m / (double)w;
+    if (!(w > 0.0f) || !isfinite(relative))
+        return SR_CLIP_EXACT;
+    if (ROUNDING_BOUND * FLT_EPSILON * relative <= tolerance)
+        return SR_CLIP_FLOAT;
+    if (ROUNDING_BOUND * DBL_EPSILON * relative <= tolerance)
+        return SR_CLIP_DOUBLE;
+    return SR_CLIP_EXACT;
+}
+
+sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                                    int floats, const sr_clip_config *cfg, sr_vertex_out *cut)
+{
+    sr_clip_precision p = cfg ? cfg->precision : SR_CLIP_ADAPTIVE;
+    if (p == SR_CLIP_ADAPTIVE) {
+        double tolerance = cfg && cfg->ndc_tolerance > 0.0 ? cfg->ndc_tolerance : SR_CLIP_DEFAULT_TOLERANCE;
+        p = choose_precision(plane, inside, outside, tolerance);
+    }
+    if (p == SR_CLIP_FLOAT)
         intersect_float(plane, inside, outside, floats, cut);
-    else
+    else if (p == SR_CLIP_DOUBLE)
         intersect_double(plane, inside, outside, floats, cut);
+    else
+        sr_clip_intersect_exact(plane, inside, outside, floats, cut);
     place_on_plane(plane, cut->v);
+    if (cfg && cfg->counts)
+        cfg->counts->cuts[p]++;
+    return p;
 }
 
 /* One Sutherland–Hodgman pass. Returns the output count, or -1 if rounding
  * made the polygon cross the plane more than twice and the output would pass
  * the bound (only slivers thinner than float precision do that). */
 static int clip_against_plane(const sr_vertex_out *in, int n, sr_clip_plane plane, int floats,
-                              sr_clip_precision precision, sr_vertex_out *out)
+                              const sr_clip_config *cfg, sr_vertex_out *out)
 {
     int m = 0;
     for (int i = 0; i < n; i++) {
@@ -88,20 +131,20 @@ static int clip_against_plane(const sr_vertex_out *in, int n, sr_clip_plane plan
         if (a_in)
             out[m++] = *a;
         if (a_in && !b_in)
-            sr_clip_intersect(plane, a, b, floats, precision, &out[m++]);
+            sr_clip_intersect(plane, a, b, floats, cfg, &out[m++]);
         else if (!a_in && b_in)
-            sr_clip_intersect(plane, b, a, floats, precision, &out[m++]);
+            sr_clip_intersect(plane, b, a, floats, cfg, &out[m++]);
     }
     return m;
 }
 
-int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, sr_clip_precision precision)
+int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
 {
     sr_vertex_out scratch[SR_MAX_CLIP_VERTS];
     for (int p = 0; p < SR_CLIP_PLANES && poly->count >= 3; p++) {
         if (!(planes & (1u << p)))
             continue;
-        int n = clip_against_plane(poly->vert, poly->count, (sr_clip_plane)p, floats, precision, scratch);
+        int n = clip_against_plane(poly->vert, poly->count, (sr_clip_plane)p, floats, cfg, scratch);
         poly->count = n < 3 ? 0 : n;
         for (int i = 0; i < poly->count; i++)
             poly->vert[i] = scratch[i];

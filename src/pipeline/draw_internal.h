@@ -38,6 +38,7 @@ typedef struct sr_record {
 #define SR_CACHE_LINE 128
 typedef struct sr_thread_work {
     _Alignas(SR_CACHE_LINE) sr_stats stats;
+    sr_clip_counts cuts;
     sr_array clip_verts; /* sr_screen_vertex */
     sr_array records;    /* sr_record */
     sr_array *bins;      /* one sr_array of uint32_t per tile */
@@ -59,6 +60,7 @@ typedef struct sr_draw_state {
     sr_shade_context shade;
     sr_viewport vp;
     sr_clip_precision precision;
+    double clip_tolerance; /* NDC error a cut vertex may carry: half a subpixel step */
     sr_workspace *ws;
     int threads;
     uint32_t vertex_count, slots;

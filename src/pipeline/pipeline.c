@@ -40,7 +40,7 @@ static bool check_accuracy_knobs(const sr_framebuffer *fb, const sr_draw_desc *d
         return sr_error_set(err, "subpixel bits %d outside %d..%d", bits, SR_MIN_SUBPIXEL_BITS, SR_MAX_SUBPIXEL_BITS);
     if (!(d->guard_band >= 0.0f && d->guard_band <= SR_MAX_GUARD_BAND))
         return sr_error_set(err, "guard band %g outside 0..%g", d->guard_band, SR_MAX_GUARD_BAND);
-    if ((unsigned)d->clip_precision > SR_CLIP_FLOAT)
+    if ((unsigned)d->clip_precision >= SR_CLIP_PRECISIONS)
         return sr_error_set(err, "unknown clip precision %d", (int)d->clip_precision);
     int side = fb->width > fb->height ? fb->width : fb->height;
     double extent = ceil(guard_band(d)) * side * (double)((int64_t)1 << bits);
@@ -174,20 +174,30 @@ static void add_stats(sr_stats *to, const sr_stats *from)
     to->culled += from->culled;
     to->drawn += from->drawn;
     to->fragments += from->fragments;
+    to->cuts_float += from->cuts_float;
+    to->cuts_double += from->cuts_double;
+    to->cuts_exact += from->cuts_exact;
 }
 
 static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
 {
-    for (int t = 0; t < st->threads; t++)
+    for (int t = 0; t < st->threads; t++) {
         st->ws->threads[t].stats = (sr_stats){ 0 };
+        st->ws->threads[t].cuts = (sr_clip_counts){ { 0 } };
+    }
     if (!run_vertex_phase(st, err))
         return false;
     if (st->threads == 1)
         draw_direct(st);
     else if (!sr_draw_binned(st))
         return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
-    for (int t = 0; t < st->threads; t++)
-        add_stats(stats, &st->ws->threads[t].stats);
+    for (int t = 0; t < st->threads; t++) {
+        sr_thread_work *w = &st->ws->threads[t];
+        w->stats.cuts_float = w->cuts.cuts[SR_CLIP_FLOAT];
+        w->stats.cuts_double = w->cuts.cuts[SR_CLIP_DOUBLE];
+        w->stats.cuts_exact = w->cuts.cuts[SR_CLIP_EXACT];
+        add_stats(stats, &w->stats);
+    }
     return true;
 }
 
@@ -218,6 +228,9 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
                          .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
                          .vp = { fb->width, fb->height, subpixel_bits(desc), guard_band(desc) },
                          .precision = desc->clip_precision };
+    /* Half a subpixel step, in NDC of the squeezed clip space of a guard band. */
+    int side = fb->width > fb->height ? fb->width : fb->height;
+    st.clip_tolerance = 1.0 / ((double)((int64_t)1 << st.vp.subpixel_bits) * side * st.vp.guard);
     shade_context_make(desc, &layout, &st.shade);
     sr_stats scratch = { 0 };
     bool ok = draw_with(&st, stats ? stats : &scratch, err);
