@@ -4,31 +4,23 @@
 #include <stdlib.h>
 
 #include "run_helpers.h"
+#include "temp_dir.h"
 
-static char dir[64];
-
-static void make_dir(void)
+/* A fresh directory holding the one-triangle mesh every test draws. */
+static void make_dir_with_triangle(void)
 {
-    strcpy(dir, "/tmp/softrast-cli-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-    write_text(dir, "tri.obj", "v -1 0.2 0\nv 1 0.2 0\nv 0 1 0\nf 1 2 3\n");
+    temp_dir_make();
+    write_text(temp_dir, "tri.obj", "v -1 0.2 0\nv 1 0.2 0\nv 0 1 0\nf 1 2 3\n");
 }
 
-static void remove_dir(void)
-{
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    cr_assert_eq(system(cmd), 0);
-}
-
-TestSuite(cli, .init = make_dir, .fini = remove_dir);
+TestSuite(cli, .init = make_dir_with_triangle, .fini = temp_dir_remove);
 
 /* One error line that starts with the prefix and mentions `needle`. */
 static void assert_one_error(const char *args, const char *needle)
 {
     char full[1024];
-    snprintf(full, sizeof full, args, dir, dir);
-    run_result r = run_softrast(dir, full);
+    snprintf(full, sizeof full, args, temp_dir, temp_dir);
+    run_result r = run_softrast(temp_dir, full);
     cr_assert(r.status != 0 && r.status < 128, "`softrast %s` exited %d", full, r.status);
     cr_assert_eq(strncmp(r.err, "softrast: error: ", 17), 0, "stderr was: %s", r.err);
     cr_assert_eq(count_lines(r.err), 1, "want one line, stderr was: %s", r.err);
@@ -42,7 +34,7 @@ Test(cli, missing_mesh_file_names_the_path)
 
 Test(cli, malformed_obj_gives_file_and_line)
 {
-    write_text(dir, "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
+    write_text(temp_dir, "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
     assert_one_error("render %s/bad.obj", "bad.obj:4:");
 }
 
@@ -85,7 +77,7 @@ Test(cli, unknown_choice_lists_the_choices)
 
 Test(cli, unwritable_output_is_an_error)
 {
-    assert_one_error("render %s/tri.obj --out %s/no/such/dir/a.png", "a.png");
+    assert_one_error("render %s/tri.obj --out %s/no/such/temp_dir/a.png", "a.png");
 }
 
 Test(cli, missing_texture_is_an_error)
@@ -95,7 +87,7 @@ Test(cli, missing_texture_is_an_error)
 
 Test(cli, texture_shading_without_uvs_is_an_error)
 {
-    write_text(dir, "t.png", "not a png");
+    write_text(temp_dir, "t.png", "not a png");
     assert_one_error("render %s/tri.obj --shade texture --texture %s/t.png", "t.png");
 }
 
@@ -110,7 +102,7 @@ Test(cli, help_lists_every_render_option)
                                            "--ortho", "--rotate-y", "--cull", "--front", "--shade", "--texture",
                                            "--filter", "--out", "--depth", "--depth-png", "--frames",
                                            "--threads", "--stats" };
-    run_result r = run_softrast(dir, "render --help");
+    run_result r = run_softrast(temp_dir, "render --help");
     cr_assert_eq(r.status, 0);
     for (size_t i = 0; i < sizeof options / sizeof *options; i++)
         cr_assert_not_null(strstr(r.out, options[i]), "render --help lacks %s", options[i]);
@@ -121,8 +113,8 @@ Test(cli, stats_is_one_json_line_with_the_named_keys)
     static const char *const keys[] = { "\"frames\"", "\"ms_median\"", "\"ms_min\"", "\"triangles\": 1,",
                                         "\"rejected\"", "\"clipped\"", "\"culled\"", "\"fragments\"" };
     char args[256];
-    snprintf(args, sizeof args, "render %s/tri.obj --size 32x32 --frames 3 --stats", dir);
-    run_result r = run_softrast(dir, args);
+    snprintf(args, sizeof args, "render %s/tri.obj --size 32x32 --frames 3 --stats", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cr_assert_eq(count_lines(r.out), 1, "stdout: %s", r.out);
     cr_assert_eq(r.out[0], '{');

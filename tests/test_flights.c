@@ -8,26 +8,12 @@
 #include <stdint.h>
 
 #include "run_helpers.h"
+#include "temp_dir.h"
 
 #define SIZE "96x54"
 #define MAX_FRAMES 16
 
-static char dir[64];
-
-static void make_dir(void)
-{
-    strcpy(dir, "/tmp/softrast-flight-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-}
-
-static void remove_dir(void)
-{
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    cr_assert_eq(system(cmd), 0);
-}
-
-TestSuite(flights, .init = make_dir, .fini = remove_dir, .timeout = 120);
+TestSuite(flights, .init = temp_dir_make, .fini = temp_dir_remove, .timeout = 120);
 
 typedef struct pfm {
     int width, height;
@@ -60,8 +46,8 @@ static int fly_and_check(const char *mesh, const char *script, const char *share
 {
     char args[1024];
     snprintf(args, sizeof args, "view %s --size " SIZE " %s %s --script %s --shots %s", mesh, shared, view_only,
-             script, dir);
-    run_result r = run_softrast_env(dir, env, args);
+             script, temp_dir);
+    run_result r = run_softrast_env(temp_dir, env, args);
     cr_assert_eq(r.status, 0, "flight %s failed: %s", script, r.err);
     int frames = 0;
     for (char *line = strtok(r.out, "\n"); line; line = strtok(NULL, "\n"), frames++) {
@@ -69,12 +55,12 @@ static int fly_and_check(const char *mesh, const char *script, const char *share
         char camera[512];
         cr_assert_eq(sscanf(line, "frame %d: %511[^\n]", &frame, camera), 2, "bad line: %s", line);
         char shot[256], render[1400], png[256], depth[256];
-        snprintf(shot, sizeof shot, "%s/frame-%04d", dir, frame);
-        snprintf(png, sizeof png, "%s/render.png", dir);
-        snprintf(depth, sizeof depth, "%s/render.pfm", dir);
+        snprintf(shot, sizeof shot, "%s/frame-%04d", temp_dir, frame);
+        snprintf(png, sizeof png, "%s/render.png", temp_dir);
+        snprintf(depth, sizeof depth, "%s/render.pfm", temp_dir);
         snprintf(render, sizeof render, "render %s --size " SIZE " %s %s --out %s --depth %s", mesh, shared, camera,
                  png, depth);
-        run_result rr = run_softrast(dir, render);
+        run_result rr = run_softrast(temp_dir, render);
         cr_assert_eq(rr.status, 0, "render failed: %s", rr.err);
         char shot_png[300], shot_pfm[300];
         snprintf(shot_png, sizeof shot_png, "%s.png", shot);
@@ -113,7 +99,7 @@ Test(flights, inside_a_closed_mesh_every_pixel_is_covered)
     for (int frame = 0; frame < 3; frame++) {
         char path[256];
         pfm p;
-        snprintf(path, sizeof path, "%s/frame-%04d.pfm", dir, frame);
+        snprintf(path, sizeof path, "%s/frame-%04d.pfm", temp_dir, frame);
         read_pfm(path, &p);
         for (int i = 0; i < p.width * p.height; i++)
             cr_assert_lt(p.data[i], 1.0f, "frame %d: pixel %d inside the sphere is uncovered", frame, i);
@@ -133,13 +119,13 @@ Test(flights, offscreen_window_saves_the_same_frames)
     fly_and_check("assets/room.obj", "tests/flights/room_walls.txt", "", "--frames 3",
                   WINDOW_ENV " SDL_VIDEODRIVER=offscreen");
     char keep[128], cmd[512];
-    snprintf(keep, sizeof keep, "%s/windowed", dir);
-    snprintf(cmd, sizeof cmd, "mkdir %s && mv %s/frame-* %s", keep, dir, keep);
+    snprintf(keep, sizeof keep, "%s/windowed", temp_dir);
+    snprintf(cmd, sizeof cmd, "mkdir %s && mv %s/frame-* %s", keep, temp_dir, keep);
     cr_assert_eq(system(cmd), 0);
     fly_and_check("assets/room.obj", "tests/flights/room_walls.txt", "", "--frames 3 --no-window", "");
     for (int frame = 0; frame < 3; frame++) {
         char a[256], b[256];
-        snprintf(a, sizeof a, "%s/frame-%04d.png", dir, frame);
+        snprintf(a, sizeof a, "%s/frame-%04d.png", temp_dir, frame);
         snprintf(b, sizeof b, "%s/frame-%04d.png", keep, frame);
         cr_assert(files_equal(a, b), "frame %d differs between window and no window", frame);
     }
@@ -154,12 +140,12 @@ Test(flights, xvfb_window_screenshot_equals_the_render)
     snprintf(cmd, sizeof cmd,
              WINDOW_ENV " xvfb-run -a -s '-screen 0 640x480x24' %s view assets/room.obj --size " SIZE
              " --script tests/flights/room_walls.txt --frames 2 --shots %s --grab %s >/dev/null 2>%s/xvfb.err",
-             softrast_bin(), dir, dir, dir);
-    cr_assert_eq(system(cmd), 0, "xvfb-run failed (see %s/xvfb.err)", dir);
+             softrast_bin(), temp_dir, temp_dir, temp_dir);
+    cr_assert_eq(system(cmd), 0, "xvfb-run failed (see %s/xvfb.err)", temp_dir);
     for (int frame = 0; frame < 2; frame++) {
         char shot[256], grab[256];
-        snprintf(shot, sizeof shot, "%s/frame-%04d.png", dir, frame);
-        snprintf(grab, sizeof grab, "%s/window-%04d.png", dir, frame);
+        snprintf(shot, sizeof shot, "%s/frame-%04d.png", temp_dir, frame);
+        snprintf(grab, sizeof grab, "%s/window-%04d.png", temp_dir, frame);
         cr_assert(files_equal(shot, grab), "window screenshot %d differs from the frame", frame);
     }
 }

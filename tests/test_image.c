@@ -1,4 +1,3 @@
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +8,7 @@
 #include <SDL_image.h>
 
 #include "softrast/image.h"
+#include "temp_dir.h"
 
 /* PNG layout: 8-byte signature, then the IHDR chunk (length, "IHDR", width,
  * height, bit depth, color type, compression, filter, interlace). */
@@ -18,40 +18,8 @@
 #define PNG_INTERLACE_OFFSET 28
 #define PNG_COLOR_TYPE_RGB 2
 
-#define TMP_DIR_TEMPLATE "/tmp/softrast-test-image-XXXXXX"
+TestSuite(image, .init = temp_dir_make, .fini = temp_dir_remove);
 
-static char tmp_dir[sizeof TMP_DIR_TEMPLATE];
-
-/* Fresh from the template each time, in case tests share one process. */
-static void make_tmp_dir(void)
-{
-    memcpy(tmp_dir, TMP_DIR_TEMPLATE, sizeof tmp_dir);
-    cr_assert_not_null(mkdtemp(tmp_dir), "mkdtemp failed");
-}
-
-static void remove_tmp_dir(void)
-{
-    DIR *d = opendir(tmp_dir);
-    if (!d)
-        return;
-    char path[512];
-    for (struct dirent *e; (e = readdir(d));) {
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
-            snprintf(path, sizeof path, "%s/%s", tmp_dir, e->d_name);
-            remove(path);
-        }
-    }
-    closedir(d);
-    rmdir(tmp_dir);
-}
-
-TestSuite(image, .init = make_tmp_dir, .fini = remove_tmp_dir);
-
-static const char *tmp_path(char *buf, size_t size, const char *name)
-{
-    snprintf(buf, size, "%s/%s", tmp_dir, name);
-    return buf;
-}
 
 /* The whole file; *size gets its length. The caller frees. */
 static unsigned char *read_file(const char *path, size_t *size)
@@ -96,7 +64,7 @@ Test(image, pfm_header_is_exact)
 {
     char path[512];
     fill_pfm_depth();
-    cr_assert(sr_image_write_pfm(tmp_path(path, sizeof path, "d.pfm"), pfm_depth, 3, 2, NULL));
+    cr_assert(sr_image_write_pfm(temp_path(path, sizeof path, "d.pfm"), pfm_depth, 3, 2, NULL));
     size_t size;
     unsigned char *data = read_file(path, &size);
     const char header[] = "Pf\n3 2\n-1\n";
@@ -110,7 +78,7 @@ Test(image, pfm_rows_are_stored_bottom_first_bit_exact)
 {
     char path[512];
     fill_pfm_depth();
-    cr_assert(sr_image_write_pfm(tmp_path(path, sizeof path, "d.pfm"), pfm_depth, 3, 2, NULL));
+    cr_assert(sr_image_write_pfm(temp_path(path, sizeof path, "d.pfm"), pfm_depth, 3, 2, NULL));
     size_t size;
     unsigned char *data = read_file(path, &size);
     const size_t header_len = strlen("Pf\n3 2\n-1\n");
@@ -139,7 +107,7 @@ Test(image, pfm_into_missing_directory_fails_naming_path)
     char path[512];
     float depth[1] = { 0.5f };
     sr_error err = { "" };
-    tmp_path(path, sizeof path, "no/such/dir/d.pfm");
+    temp_path(path, sizeof path, "no/such/dir/d.pfm");
     expect_write_fails_naming(path, sr_image_write_pfm(path, depth, 1, 1, &err), &err);
 }
 
@@ -152,7 +120,7 @@ static const uint32_t png_pixels[15] = {
 Test(image, png_round_trip_is_exact)
 {
     char path[512];
-    cr_assert(sr_image_write_png(tmp_path(path, sizeof path, "c.png"), png_pixels, 5, 3, NULL));
+    cr_assert(sr_image_write_png(temp_path(path, sizeof path, "c.png"), png_pixels, 5, 3, NULL));
     SDL_Surface *loaded = IMG_Load(path);
     cr_assert_not_null(loaded, "IMG_Load: %s", IMG_GetError());
     SDL_Surface *rgb = SDL_ConvertSurfaceFormat(loaded, SDL_PIXELFORMAT_RGB888, 0);
@@ -171,7 +139,7 @@ Test(image, png_round_trip_is_exact)
 Test(image, png_is_8_bit_rgb_color_type_2_non_interlaced)
 {
     char path[512];
-    cr_assert(sr_image_write_png(tmp_path(path, sizeof path, "c.png"), png_pixels, 5, 3, NULL));
+    cr_assert(sr_image_write_png(temp_path(path, sizeof path, "c.png"), png_pixels, 5, 3, NULL));
     size_t size;
     unsigned char *data = read_file(path, &size);
     cr_assert_gt(size, (size_t)PNG_INTERLACE_OFFSET);
@@ -188,7 +156,7 @@ Test(image, png_into_missing_directory_fails_naming_path)
 {
     char path[512];
     sr_error err = { "" };
-    tmp_path(path, sizeof path, "no/such/dir/c.png");
+    temp_path(path, sizeof path, "no/such/dir/c.png");
     expect_write_fails_naming(path, sr_image_write_png(path, png_pixels, 5, 3, &err), &err);
 }
 
@@ -196,7 +164,7 @@ Test(image, png_rejects_empty_size_with_message)
 {
     char path[512];
     sr_error err = { "" };
-    tmp_path(path, sizeof path, "empty.png");
+    temp_path(path, sizeof path, "empty.png");
     expect_write_fails_naming(path, sr_image_write_png(path, png_pixels, 0, 3, &err), &err);
     cr_expect_neq(access(path, F_OK), 0, "a file was left behind");
 }
@@ -209,7 +177,7 @@ Test(image, depth_png_is_the_gray_view)
     sr_framebuffer fb = { .width = 2, .height = 2, .color = color, .depth = depth };
     uint32_t gray[4];
     sr_framebuffer_depth_to_gray(&fb, gray);
-    cr_assert(sr_image_write_depth_png(tmp_path(path, sizeof path, "z.png"), &fb, NULL));
+    cr_assert(sr_image_write_depth_png(temp_path(path, sizeof path, "z.png"), &fb, NULL));
     SDL_Surface *loaded = IMG_Load(path);
     cr_assert_not_null(loaded, "IMG_Load: %s", IMG_GetError());
     SDL_Surface *rgb = SDL_ConvertSurfaceFormat(loaded, SDL_PIXELFORMAT_RGB888, 0);

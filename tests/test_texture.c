@@ -1,4 +1,3 @@
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,46 +8,15 @@
 #include <SDL_image.h>
 
 #include "softrast/image.h"
+#include "temp_dir.h"
 #include "softrast/texture.h"
 
 /* Signature (8) + IHDR chunk (25) + a few bytes of the next chunk: a PNG cut
  * off before any pixel data. */
 #define TRUNCATED_PNG_BYTES 40
 
-#define TMP_DIR_TEMPLATE "/tmp/softrast-test-texture-XXXXXX"
+TestSuite(texture, .init = temp_dir_make, .fini = temp_dir_remove);
 
-static char tmp_dir[sizeof TMP_DIR_TEMPLATE];
-
-/* Fresh from the template each time, in case tests share one process. */
-static void make_tmp_dir(void)
-{
-    memcpy(tmp_dir, TMP_DIR_TEMPLATE, sizeof tmp_dir);
-    cr_assert_not_null(mkdtemp(tmp_dir), "mkdtemp failed");
-}
-
-static void remove_tmp_dir(void)
-{
-    DIR *d = opendir(tmp_dir);
-    if (!d)
-        return;
-    char path[512];
-    for (struct dirent *e; (e = readdir(d));) {
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
-            snprintf(path, sizeof path, "%s/%s", tmp_dir, e->d_name);
-            remove(path);
-        }
-    }
-    closedir(d);
-    rmdir(tmp_dir);
-}
-
-TestSuite(texture, .init = make_tmp_dir, .fini = remove_tmp_dir);
-
-static const char *tmp_path(char *buf, size_t size, const char *name)
-{
-    snprintf(buf, size, "%s/%s", tmp_dir, name);
-    return buf;
-}
 
 static void write_bytes(const char *path, const void *data, size_t size)
 {
@@ -78,7 +46,7 @@ Test(texture, load_returns_written_texels_top_row_first)
 {
     char path[512];
     sr_error err = { "" };
-    cr_assert(sr_image_write_png(tmp_path(path, sizeof path, "t.png"), pixels, 4, 3, &err), "%s",
+    cr_assert(sr_image_write_png(temp_path(path, sizeof path, "t.png"), pixels, 4, 3, &err), "%s",
               err.message);
     sr_texture tex;
     cr_assert(sr_texture_load(&tex, path, &err), "%s", err.message);
@@ -97,7 +65,7 @@ Test(texture, load_drops_alpha_keeping_rgb)
     cr_assert_not_null(s);
     const uint8_t rgba[8] = { 0x12, 0x34, 0x56, 0x00, 0xAB, 0xCD, 0xEF, 0x80 };
     memcpy(s->pixels, rgba, sizeof rgba);
-    cr_assert_eq(IMG_SavePNG(s, tmp_path(path, sizeof path, "a.png")), 0, "%s", IMG_GetError());
+    cr_assert_eq(IMG_SavePNG(s, temp_path(path, sizeof path, "a.png")), 0, "%s", IMG_GetError());
     SDL_FreeSurface(s);
     sr_texture tex;
     sr_error err = { "" };
@@ -111,7 +79,7 @@ Test(texture, load_missing_file_fails_with_message_starting_with_path)
 {
     char path[512];
     sr_error err = { "" };
-    expect_load_fails(tmp_path(path, sizeof path, "missing.png"), &err);
+    expect_load_fails(temp_path(path, sizeof path, "missing.png"), &err);
     cr_expect_not_null(strstr(err.message, "cannot open"), "message: %s", err.message);
 }
 
@@ -120,7 +88,7 @@ Test(texture, load_non_image_fails_with_message)
     char path[512];
     sr_error err = { "" };
     const char garbage[] = "this is not a PNG file at all \x01\x02\x03\xff";
-    write_bytes(tmp_path(path, sizeof path, "garbage.png"), garbage, sizeof garbage);
+    write_bytes(temp_path(path, sizeof path, "garbage.png"), garbage, sizeof garbage);
     expect_load_fails(path, &err);
     cr_expect_not_null(strstr(err.message, "not a readable image"), "message: %s", err.message);
 }
@@ -129,13 +97,13 @@ Test(texture, load_truncated_png_fails_without_crash)
 {
     char path[512];
     sr_error err = { "" };
-    cr_assert(sr_image_write_png(tmp_path(path, sizeof path, "full.png"), pixels, 4, 3, NULL));
+    cr_assert(sr_image_write_png(temp_path(path, sizeof path, "full.png"), pixels, 4, 3, NULL));
     unsigned char head[TRUNCATED_PNG_BYTES];
     FILE *f = fopen(path, "rb");
     cr_assert_not_null(f);
     cr_assert_eq(fread(head, 1, sizeof head, f), sizeof head);
     fclose(f);
-    write_bytes(tmp_path(path, sizeof path, "cut.png"), head, sizeof head);
+    write_bytes(temp_path(path, sizeof path, "cut.png"), head, sizeof head);
     expect_load_fails(path, &err);
     cr_expect_not_null(strstr(err.message, "not a readable image"), "message: %s", err.message);
 }
@@ -144,14 +112,14 @@ Test(texture, load_empty_file_fails_with_message)
 {
     char path[512];
     sr_error err = { "" };
-    write_bytes(tmp_path(path, sizeof path, "empty.png"), "", 0);
+    write_bytes(temp_path(path, sizeof path, "empty.png"), "", 0);
     expect_load_fails(path, &err);
 }
 
 Test(texture, free_zeroes_struct)
 {
     char path[512];
-    cr_assert(sr_image_write_png(tmp_path(path, sizeof path, "t.png"), pixels, 4, 3, NULL));
+    cr_assert(sr_image_write_png(temp_path(path, sizeof path, "t.png"), pixels, 4, 3, NULL));
     sr_texture tex;
     cr_assert(sr_texture_load(&tex, path, NULL));
     sr_texture_free(&tex);

@@ -22,6 +22,11 @@ typedef struct sr_raster_rect {
     int x0, y0, x1, y1;
 } sr_raster_rect;
 
+/* The pixels whose centres can lie in the triangle, clamped to rect (the
+ * rectangle, never the vertices: moving one would move a shared edge);
+ * empty (x0 >= x1 or y0 >= y1) when none can. */
+sr_raster_rect sr_raster_scan_box(const sr_screen_vertex tri[3], sr_raster_rect rect, int subpixel_bits);
+
 /* Draws one triangle of nonzero signed area2 (either winding) into fb within
  * rect, its vertices in units of 2^-subpixel_bits pixel (SR_SUBPIXEL_BITS
  * unless the draw asked for another precision); returns the number of

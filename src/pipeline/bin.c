@@ -12,12 +12,6 @@ typedef struct raster_phase {
     atomic_int next_tile;
 } raster_phase;
 
-static int clamp_tile(int64_t pixel, int side, int tiles)
-{
-    int64_t t = (pixel < 0 ? 0 : pixel) / side;
-    return (int)(t < tiles ? t : tiles - 1);
-}
-
 static uint32_t store_clip_verts(sr_fan_sink *sink, const sr_screen_vertex *v, int n)
 {
     sr_array *a = &sink->work->clip_verts;
@@ -31,7 +25,7 @@ static uint32_t store_clip_verts(sr_fan_sink *sink, const sr_screen_vertex *v, i
     return first;
 }
 
-/* The tiles the triangle's bounding box touches get its record index. */
+/* The tiles the triangle's scan box touches get its record index. */
 static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex tri[3], const uint32_t ref[3], int64_t area2,
                          uint32_t id, bool clipped)
 {
@@ -45,18 +39,12 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex tri[3], const
     }
     *rec = (sr_record){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .area2 = area2 };
     uint32_t index = (uint32_t)(w->records.count - 1);
-    int64_t lo_x = tri[0].x, hi_x = tri[0].x, lo_y = tri[0].y, hi_y = tri[0].y;
-    for (int k = 1; k < 3; k++) {
-        lo_x = tri[k].x < lo_x ? tri[k].x : lo_x;
-        hi_x = tri[k].x > hi_x ? tri[k].x : hi_x;
-        lo_y = tri[k].y < lo_y ? tri[k].y : lo_y;
-        hi_y = tri[k].y > hi_y ? tri[k].y : hi_y;
-    }
-    int bits = st->vp.subpixel_bits;
-    int tx0 = clamp_tile(lo_x >> bits, SR_TILE_SIDE, st->tiles_x);
-    int tx1 = clamp_tile(hi_x >> bits, SR_TILE_SIDE, st->tiles_x);
-    int ty0 = clamp_tile(lo_y >> bits, SR_TILE_SIDE, st->tiles_y);
-    int ty1 = clamp_tile(hi_y >> bits, SR_TILE_SIDE, st->tiles_y);
+    sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
+    sr_raster_rect box = sr_raster_scan_box(tri, all, st->vp.subpixel_bits);
+    if (box.x0 >= box.x1 || box.y0 >= box.y1)
+        return; /* covers no pixel centre */
+    int tx0 = box.x0 / SR_TILE_SIDE, tx1 = (box.x1 - 1) / SR_TILE_SIDE;
+    int ty0 = box.y0 / SR_TILE_SIDE, ty1 = (box.y1 - 1) / SR_TILE_SIDE;
     for (int ty = ty0; ty <= ty1; ty++) {
         for (int tx = tx0; tx <= tx1; tx++) {
             uint32_t *slot = sr_array_push(&w->bins[ty * st->tiles_x + tx], sizeof *slot);

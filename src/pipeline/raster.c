@@ -71,9 +71,7 @@ static int clamp_int(int64_t v, int lo, int hi)
     return (int)(v < lo ? lo : v > hi ? hi : v);
 }
 
-/* Pixels whose centres can lie in the triangle, clamped to rect (never the
- * vertices: moving one would move a shared edge). */
-static sr_raster_rect scan_box(const sr_screen_vertex v[3], sr_raster_rect rect, int bits)
+sr_raster_rect sr_raster_scan_box(const sr_screen_vertex v[3], sr_raster_rect rect, int bits)
 {
     int64_t one = (int64_t)1 << bits, half = one / 2;
     int64_t lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
@@ -109,7 +107,7 @@ static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings,
         s->dvar1[k] = v[1].var_w[k] - v[0].var_w[k];
         s->dvar2[k] = v[2].var_w[k] - v[0].var_w[k];
     }
-    s->box = scan_box(v, rect, bits);
+    s->box = sr_raster_scan_box(v, rect, bits);
 }
 
 static inline float depth_at(const setup *s, float l1, float l2)
