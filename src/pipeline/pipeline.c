@@ -65,6 +65,8 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
         return false;
     if (!sr_assemble_indices_valid(d->mesh))
         return sr_error_set(err, "mesh has an index past its %u vertices", d->mesh->vertex_count);
+    if (d->mesh->vertex_count == 0)
+        return true; /* nothing to shade: an empty mesh needs no attributes */
     if (l->normal >= 0 && !d->mesh->normals)
         return sr_error_set(err, "this shading mode needs vertex normals and the mesh has none");
     if (l->color >= 0 && !d->mesh->colors)
@@ -107,6 +109,9 @@ static void vertex_range(void *ctx, int t)
     sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, first, end - first, verts + first);
     for (uint32_t i = first; i < end; i++) {
         unsigned code = sr_clip_outcode(verts[i].v);
+        for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
+            if (!isfinite(verts[i].v[SR_VARYINGS_AT + k]))
+                code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
         if (code == 0 && !sr_viewport_map(&verts[i], st->shade.layout.count, &st->vp, &screen[i]))
             code = SR_OUT_NONFINITE;
         outcodes[i] = (unsigned char)code;
