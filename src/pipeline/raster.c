@@ -89,10 +89,11 @@ sr_raster_rect sr_raster_scan_box(const sr_screen_vertex v[3], sr_raster_rect re
     };
 }
 
-static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings, sr_raster_rect rect, int bits,
+static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings, sr_raster_rect box, int bits,
                        setup *s)
 {
     s->bits = bits;
+    s->box = box;
     edges_make(v, s->e);
     s->inv_area2 = (float)(1.0 / (double)area2);
     s->z0 = v[0].z;
@@ -107,7 +108,6 @@ static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings,
         s->dvar1[k] = v[1].var_w[k] - v[0].var_w[k];
         s->dvar2[k] = v[2].var_w[k] - v[0].var_w[k];
     }
-    s->box = sr_raster_scan_box(v, rect, bits);
 }
 
 static inline float depth_at(const setup *s, float l1, float l2)
@@ -177,10 +177,15 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
                             const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
                             uint32_t triangle_id)
 {
+    /* Most triangles of a dense mesh cover no pixel centre: find that out
+     * before any setup. */
+    sr_raster_rect box = sr_raster_scan_box(tri, rect, subpixel_bits);
+    if (box.x0 >= box.x1 || box.y0 >= box.y1)
+        return 0;
     sr_screen_vertex v[3];
     setup s;
     order_clockwise(tri, area2, v);
-    setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, rect,
+    setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, box,
                subpixel_bits, &s);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(&s, fb, SR_SHADE_ID, shade, triangle_id);
