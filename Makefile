@@ -23,7 +23,7 @@ SAN_LIB_OBJ  := $(LIB_SRC:%.c=build/san/%.o)
 SAN_APP_OBJ  := $(APP_SRC:%.c=build/san/%.o)
 SAN_TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
-.PHONY: all deps run test test-fast test-san test-assets test-install install assets docs-images bench report clean
+.PHONY: all deps run test test-fast test-san test-assets test-install install assets docs-images bench report stability clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast
@@ -152,6 +152,9 @@ bench: all
 
 report: all
 	./build/softrast bench --report --frames 5
+
+stability: all
+	./build/softrast bench --stability
 
 clean:
 	rm -rf build

@@ -9,6 +9,7 @@
 #include "options.h"
 #include "report.h"
 #include "scene_setup.h"
+#include "stability.h"
 
 #define MAX_FRAMES 10000
 #define SCALING_POINTS 4
@@ -18,7 +19,7 @@ enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_SCALING
 
 typedef struct bench_job {
     int scene, frames, threads;
-    bool report;
+    bool report, stability;
     const char *report_dir;
 } bench_job;
 
@@ -40,7 +41,8 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--report", SR_OPT_FLAG, &job->report, NULL, "measure error against time for every accuracy knob instead" },
-        { "--report-dir", SR_OPT_STRING, &job->report_dir, "DIR", "where --report writes report.md and report.svg (default docs)" },
+        { "--stability", SR_OPT_FLAG, &job->stability, NULL, "measure clipping error, cracks and depth precision under stiff cameras instead (docs/stability.md)" },
+        { "--report-dir", SR_OPT_STRING, &job->report_dir, "DIR", "where --report and --stability write their .md and .svg (default docs)" },
         { 0 },
     };
     int positional = 0;
@@ -181,6 +183,9 @@ int sr_app_bench(int argc, char **argv)
         return sr_app_fail(err.message);
     if (help)
         return 0;
-    bool ok = job.report ? sr_report_write(job.report_dir ? job.report_dir : "docs", job.frames, &err) : run(&job, &err);
+    const char *dir = job.report_dir ? job.report_dir : "docs";
+    bool ok = job.stability ? sr_stability_write(dir, &err)
+              : job.report  ? sr_report_write(dir, job.frames, &err)
+                            : run(&job, &err);
     return ok ? 0 : sr_app_fail(err.message);
 }
