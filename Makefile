@@ -159,4 +159,6 @@ stability: all
 clean:
 	rm -rf build
 
+include tools/bench-compare.mk
+
 -include $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(SAN_LIB_OBJ:.o=.d) $(SAN_APP_OBJ:.o=.d) $(SAN_TEST_OBJ:.o=.d)

@@ -1,8 +1,10 @@
 #!/bin/sh
-# Makes sure the Debian packages softrast builds and tests with are installed.
-# As root it installs what is missing; otherwise it prints the exact command.
+# Makes sure the Debian packages softrast builds and tests with are installed
+# (or, given as arguments, the packages another target needs). As root it
+# installs what is missing; otherwise it prints the exact command and fails.
 set -eu
 PACKAGES="build-essential pkg-config python3 libcglm-dev libsdl2-dev libsdl2-image-dev libcriterion-dev libgmp-dev xvfb xauth"
+[ $# -gt 0 ] && PACKAGES="$*"
 missing=""
 for p in $PACKAGES; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

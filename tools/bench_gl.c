@@ -1,0 +1,156 @@
+/* bench-gl — softrast against Mesa's llvmpipe: the same scenes, matrices,
+ * size and thread count; prints softrast/llvmpipe time ratios. See bench_gl.h
+ * and docs/bench-compare.md. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "bench_gl.h"
+#include "options.h"
+
+#define DEFAULT_FRAMES 10
+#define DEFAULT_FILL_FRAMES 3 /* softrast's fill scene takes seconds a frame */
+#define DEFAULT_THREADS 2
+#define MAX_FRAMES 10000
+#define MAX_THREADS 64
+
+static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_KINDS };
+
+typedef struct job {
+    int scene, frames, fill_frames, threads;
+    bool lp_raster_all; /* LP_NUM_THREADS = threads, not threads - 1 */
+    bool sequential;
+} job;
+
+static const char USAGE[] =
+    "usage: bench-gl [options]\n"
+    "Draws softrast's benchmark scenes with softrast and with Mesa's llvmpipe (offscreen EGL),\n"
+    "same matrices, size and threads in all (the calling thread included), and prints\n"
+    "softrast/llvmpipe time ratios. Run it from the project's root (fly reads assets/).";
+
+static const char LEGEND[] =
+    "ms: median ms per frame (clear color + depth, draw; glFinish for llvmpipe) over the timed frames,\n"
+    "    after one untimed warm-up frame\n"
+    "ratio: softrast ms / llvmpipe ms (above 1: softrast is slower)\n"
+    "cpu: process CPU time / wall time over the timed frames (cores kept busy)\n"
+    "lp: LP_NUM_THREADS = llvmpipe rasterizer threads counted in /proc (the calling thread bins)\n"
+    "fragments: depth-test passes in the last frame (softrast stats / GL_SAMPLES_PASSED)\n"
+    "differing px: covered by one renderer only / color off by more than %d of 255; max dz where both drew\n"
+    "order: %s\n";
+
+static void print_table_header(void)
+{
+    printf("  %3s %3s %10s %10s %7s %6s %6s %12s %12s %17s %9s\n", "thr", "lp", "softrast", "llvmpipe", "ratio",
+           "sr cpu", "lp cpu", "sr fragments", "lp fragments", "differing px", "max dz");
+}
+
+static void print_row(const bench_gl_run *run, const bench_gl_result *r)
+{
+    const bench_gl_timing *sr = &r->softrast, *lp = &r->llvmpipe;
+    char differing[32];
+    snprintf(differing, sizeof differing, "%llu / %llu", (unsigned long long)r->diff.coverage,
+             (unsigned long long)r->diff.color);
+    printf("  %3d %3d %10.2f %10.2f %6.2fx %6.2f %6.2f %12llu %12llu %17s %9.2e\n", run->threads, run->lp_threads,
+           sr->median, lp->median, sr->median / lp->median, sr->cpu_per_wall, lp->cpu_per_wall,
+           (unsigned long long)sr->fragments, (unsigned long long)lp->fragments, differing, r->diff.max_dz);
+    fflush(stdout);
+}
+
+static bool make_scene(int kind, sr_bench_scene *s, sr_error *err)
+{
+    switch (kind) {
+    case SCENE_DENSE:
+        return sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080, SR_SHADE_LAMBERT, err);
+    case SCENE_FLY:
+        return sr_bench_fly(s, err);
+    case SCENE_FILL:
+        return sr_bench_fill(s, err);
+    default:
+        return sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080, SR_SHADE_DEPTH, err);
+    }
+}
+
+static bool run_scene(const job *j, int kind, sr_error *err)
+{
+    sr_bench_scene s;
+    if (!make_scene(kind, &s, err))
+        return false;
+    int frames = kind == SCENE_FILL && j->fill_frames < j->frames ? j->fill_frames : j->frames;
+    printf("\n%s: %s; %u triangle slots, %dx%d, %d timed frames%s\n", s.name, s.what,
+           sr_mesh_triangle_slots(&s.mesh), s.width, s.height, frames,
+           frames < j->frames ? " (capped by --fill-frames: softrast takes seconds a frame here)" : "");
+    print_table_header();
+    const int thread_counts[] = { 1, j->threads };
+    bool ok = true;
+    for (int i = 0; ok && i < (j->threads > 1 ? 2 : 1); i++) {
+        int t = thread_counts[i];
+        bench_gl_run run = { .frames = frames, .threads = t, .lp_threads = j->lp_raster_all ? t : t - 1,
+                             .sequential = j->sequential };
+        bench_gl_result r;
+        ok = bench_gl_compare(&s, &run, &r, err);
+        if (ok)
+            print_row(&run, &r);
+    }
+    sr_bench_scene_free(&s);
+    return ok;
+}
+
+/* A first context proves llvmpipe runs here before any scene is built. */
+static bool print_renderer(sr_error *err)
+{
+    bench_gl_context *ctx = NULL;
+    if (!bench_gl_context_create(&ctx, 0, err))
+        return false;
+    printf("GL_RENDERER: %s\nGL_VERSION:  %s\n", bench_gl_context_renderer(ctx), bench_gl_context_version(ctx));
+    bench_gl_context_destroy(ctx);
+    return true;
+}
+
+static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
+{
+    const sr_option table[] = {
+        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|depth", "which scenes (default all)",
+          .choices = SCENE_NAMES },
+        { "--frames", SR_OPT_INT, &j->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
+        { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N", "at most N timed frames for fill (default 3)", 1,
+          MAX_FRAMES },
+        { "--threads", SR_OPT_INT, &j->threads, "N", "run at 1 and at N threads in all (default 2)", 1,
+          MAX_THREADS },
+        { "--lp-raster-all", SR_OPT_FLAG, &j->lp_raster_all, NULL,
+          "LP_NUM_THREADS = N (N rasterizers + the calling thread), not N - 1" },
+        { "--sequential", SR_OPT_FLAG, &j->sequential, NULL,
+          "all softrast frames, then all llvmpipe frames (default: alternate frame by frame)" },
+        { 0 },
+    };
+    int positional = 0;
+    if (!sr_options_parse(table, argc, argv, 1, NULL, 0, &positional, help, err))
+        return false;
+    if (*help)
+        sr_options_print_help(stdout, USAGE, table);
+    return true;
+}
+
+static bool run(const job *j, sr_error *err)
+{
+    if (!print_renderer(err))
+        return false;
+    printf(LEGEND, BENCH_GL_COLOR_TOLERANCE,
+           j->sequential ? "all softrast frames, then all llvmpipe frames (--sequential)"
+                         : "softrast and llvmpipe frames alternate, so a burst of load hits both");
+    for (int kind = SCENE_DENSE; kind < SCENE_KINDS; kind++)
+        if ((j->scene == SCENE_ALL || j->scene == kind) && !run_scene(j, kind, err))
+            return false;
+    return true;
+}
+
+int main(int argc, char **argv)
+{
+    job j = { .frames = DEFAULT_FRAMES, .fill_frames = DEFAULT_FILL_FRAMES, .threads = DEFAULT_THREADS };
+    sr_error err = { { 0 } };
+    bool help = false;
+    if (!parse_job(&j, argc, argv, &help, &err) || (!help && !run(&j, &err))) {
+        fprintf(stderr, "bench-gl: error: %s\n", err.message);
+        return 1;
+    }
+    return 0;
+}
