@@ -71,6 +71,16 @@ double sr_clip_distance(sr_clip_plane plane, const float *clip);
 
 unsigned sr_clip_outcode(const float *clip);
 
+/* Where an object-space box lies against the clip volume under a transform:
+ * every point inside every plane (the draw can skip classification and
+ * clipping), every point outside one plane (the draw can skip the mesh), or
+ * neither / unknown. Decided on the 8 corners with a margin of
+ * SR_CLIP_BOX_MARGIN times the size of the terms summed into a coordinate, so
+ * the float rounding of the vertices cannot cross a plane the corners clear. */
+typedef enum sr_clip_box { SR_BOX_CROSSES = 0, SR_BOX_INSIDE, SR_BOX_OUTSIDE } sr_clip_box;
+#define SR_CLIP_BOX_MARGIN 1e-4
+sr_clip_box sr_clip_classify_box(const float clip_from_object[4][4], const float lo[3], const float hi[3]);
+
 /* The cut vertex of edge inside -> outside (d_in >= 0 > d_out) on a plane;
  * floats = 4 + number of varyings to interpolate. cfg may be NULL (adaptive,
  * default tolerance). Returns the precision it used. */

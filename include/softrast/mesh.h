@@ -29,6 +29,8 @@ typedef struct sr_mesh {
     uint32_t index_count;
     uint32_t *indices;
     sr_topology topology;
+    bool bounded;        /* bounds_lo/hi hold the positions' bounds (sr_mesh_update_bounds) */
+    vec3 bounds_lo, bounds_hi;
     char *texture_path; /* the used material's map_Kd (relative to the .mtl's folder, the .mtl to the OBJ's), or NULL */
 } sr_mesh;
 
@@ -41,6 +43,12 @@ void sr_mesh_free(sr_mesh *mesh);
 /* Axis-aligned bounds of the positions; false for a mesh with no vertices or
  * with a non-finite position. */
 bool sr_mesh_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi);
+
+/* Stores the bounds in the mesh so a draw can skip clipping for a mesh
+ * inside the view and skip a mesh outside it. Loaders and shapes call it;
+ * call it again after moving positions (a mesh with stale bounds draws
+ * wrongly, one without bounds just draws without the shortcut). */
+void sr_mesh_update_bounds(sr_mesh *mesh);
 
 /* Fills in smooth vertex normals (area-weighted face normals, front faces
  * clockwise as seen from outside) when the mesh has none. False if out of memory. */

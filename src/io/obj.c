@@ -397,5 +397,7 @@ bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err)
         return sr_error_set(err, "%s: cannot open: %s", path, strerror(errno));
     bool ok = read_statements(&o) && build_mesh(&o, mesh);
     obj_reader_free(&o);
+    if (ok)
+        sr_mesh_update_bounds(mesh);
     return ok;
 }

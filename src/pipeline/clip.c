@@ -34,6 +34,42 @@ unsigned sr_clip_outcode(const float *c)
     return code;
 }
 
+/* Corner k of the box, through the transform (column-major, column vectors);
+ * returns the largest sum of term magnitudes, the scale of the vertex
+ * stage's float rounding there. */
+static double box_corner(const float m[4][4], const float lo[3], const float hi[3], int k, double c[4])
+{
+    double p[3] = { (k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2] }, scale = 0.0;
+    for (int r = 0; r < 4; r++) {
+        c[r] = m[0][r] * p[0] + m[1][r] * p[1] + m[2][r] * p[2] + m[3][r];
+        double size = fabs(m[0][r] * p[0]) + fabs(m[1][r] * p[1]) + fabs(m[2][r] * p[2]) + fabs(m[3][r]);
+        scale = size > scale ? size : scale;
+    }
+    return scale;
+}
+
+sr_clip_box sr_clip_classify_box(const float clip_from_object[4][4], const float lo[3], const float hi[3])
+{
+    unsigned all_out = SR_OUT_PLANES, any_near = 0;
+    for (int k = 0; k < 8; k++) {
+        double c[4];
+        double margin = SR_CLIP_BOX_MARGIN * box_corner(clip_from_object, lo, hi, k, c);
+        if (!isfinite(c[0]) || !isfinite(c[1]) || !isfinite(c[2]) || !isfinite(c[3]) || !isfinite(margin))
+            return SR_BOX_CROSSES;
+        double d[SR_CLIP_PLANES] = { c[SR_Z], c[SR_W] - c[SR_Z], c[SR_W] + c[SR_X],
+                                     c[SR_W] - c[SR_X], c[SR_W] + c[SR_Y], c[SR_W] - c[SR_Y] };
+        unsigned out = 0;
+        for (int p = 0; p < SR_CLIP_PLANES; p++) {
+            out |= (unsigned)(d[p] < -margin) << p;
+            any_near |= (unsigned)(d[p] < margin) << p;
+        }
+        all_out &= out;
+    }
+    if (all_out)
+        return SR_BOX_OUTSIDE;
+    return any_near ? SR_BOX_CROSSES : SR_BOX_INSIDE;
+}
+
 /* Puts the cut vertex exactly on the plane, so its distance is 0 and later
  * planes, the divide and the viewport see a point that is inside. */
 static void place_on_plane(sr_clip_plane plane, float *c)

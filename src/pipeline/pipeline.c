@@ -91,6 +91,7 @@ static void shade_context_make(const sr_draw_desc *d, const sr_varying_layout *l
 typedef struct vertex_phase {
     const sr_draw_state *st;
     sr_vertex_transform xf;
+    bool inside; /* the mesh's bounds are inside every plane: no classification */
 } vertex_phase;
 
 /* Stages 1 and 3 per unique vertex, and stage 6 for those inside every
@@ -108,7 +109,7 @@ static void vertex_range(void *ctx, int t)
     sr_screen_vertex *screen = st->ws->screen.data;
     sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, first, end - first, verts + first);
     for (uint32_t i = first; i < end; i++) {
-        unsigned code = sr_clip_outcode(verts[i].v);
+        unsigned code = ph->inside ? 0 : sr_clip_outcode(verts[i].v);
         for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
             if (!isfinite(verts[i].v[SR_VARYINGS_AT + k]))
                 code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
@@ -118,29 +119,43 @@ static void vertex_range(void *ctx, int t)
     }
 }
 
-static bool run_vertex_phase(const sr_draw_state *st, sr_error *err)
+static void make_transform(const sr_draw_state *st, sr_vertex_transform *xf)
 {
     const sr_draw_desc *d = st->desc;
+    mat4 world, view, projection;
+    matrix_or_identity(d->world, world);
+    matrix_or_identity(d->view, view);
+    matrix_or_identity(d->projection, projection);
+    sr_vertex_make_transform(world, view, projection, xf);
+    /* A guard band clips x and y at ±G·w: squeeze x and y by 1/G here, clip
+     * at ±w as always, and let the viewport scale them back. */
+    for (int col = 0; col < 4; col++) {
+        xf->clip_from_object[col][0] /= st->vp.guard;
+        xf->clip_from_object[col][1] /= st->vp.guard;
+    }
+}
+
+static bool run_vertex_phase(const sr_draw_state *st, const vertex_phase *ph, sr_error *err)
+{
     uint32_t n = st->vertex_count;
     sr_workspace *ws = st->ws;
     if (!sr_array_reserve(&ws->verts, n, sizeof(sr_vertex_out)) ||
         !sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
         !sr_array_reserve(&ws->screen, n, sizeof(sr_screen_vertex)))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
-    vertex_phase ph = { .st = st };
-    mat4 world, view, projection;
-    matrix_or_identity(d->world, world);
-    matrix_or_identity(d->view, view);
-    matrix_or_identity(d->projection, projection);
-    sr_vertex_make_transform(world, view, projection, &ph.xf);
-    /* A guard band clips x and y at ±G·w: squeeze x and y by 1/G here, clip
-     * at ±w as always, and let the viewport scale them back. */
-    for (int col = 0; col < 4; col++) {
-        ph.xf.clip_from_object[col][0] /= st->vp.guard;
-        ph.xf.clip_from_object[col][1] /= st->vp.guard;
-    }
-    sr_parallel_run(st->threads, vertex_range, &ph);
+    sr_parallel_run(st->threads, vertex_range, (void *)ph);
     return true;
+}
+
+/* A mesh outside the view: every assembled triangle is rejected, nothing
+ * is transformed. */
+static void reject_all(const sr_draw_state *st)
+{
+    sr_stats *stats = &st->ws->threads[0].stats;
+    uint32_t idx[3];
+    for (uint32_t k = 0; k < st->slots; k++)
+        stats->triangles += sr_assemble_triangle(st->desc->mesh, k, idx);
+    stats->rejected = stats->triangles;
 }
 
 /* The one-thread path: every fan triangle goes straight to the rasterizer,
@@ -190,12 +205,22 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         st->ws->threads[t].stats = (sr_stats){ 0 };
         st->ws->threads[t].cuts = (sr_clip_counts){ { 0 } };
     }
-    if (!run_vertex_phase(st, err))
-        return false;
-    if (st->threads == 1)
-        draw_direct(st);
-    else if (!sr_draw_binned(st))
-        return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
+    vertex_phase ph = { .st = st };
+    make_transform(st, &ph.xf);
+    const sr_mesh *mesh = st->desc->mesh;
+    sr_clip_box box = mesh->bounded ? sr_clip_classify_box(ph.xf.clip_from_object, mesh->bounds_lo, mesh->bounds_hi)
+                                    : SR_BOX_CROSSES;
+    if (box == SR_BOX_OUTSIDE) {
+        reject_all(st);
+    } else {
+        ph.inside = box == SR_BOX_INSIDE;
+        if (!run_vertex_phase(st, &ph, err))
+            return false;
+        if (st->threads == 1)
+            draw_direct(st);
+        else if (!sr_draw_binned(st))
+            return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
+    }
     for (int t = 0; t < st->threads; t++) {
         sr_thread_work *w = &st->ws->threads[t];
         w->stats.cuts_float = w->cuts.cuts[SR_CLIP_FLOAT];

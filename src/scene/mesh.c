@@ -92,3 +92,8 @@ bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err)
         glm_vec3_normalize(mesh->normals[i]);
     return true;
 }
+
+void sr_mesh_update_bounds(sr_mesh *mesh)
+{
+    mesh->bounded = sr_mesh_bounds(mesh, mesh->bounds_lo, mesh->bounds_hi);
+}

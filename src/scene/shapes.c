@@ -44,6 +44,7 @@ bool sr_shape_torus(sr_mesh *mesh, float major, float minor, uint32_t segments, 
     for (uint32_t k = 0; k < segments; k++)
         for (uint32_t m = 0; m < sides; m++)
             torus_cell(&mesh->indices[6 * (k * sides + m)], row, k, m);
+    sr_mesh_update_bounds(mesh);
     return true;
 }
 
@@ -75,5 +76,6 @@ bool sr_shape_quads(sr_mesh *mesh, uint32_t count, float size, float first_z, fl
         for (int i = 0; i < 6; i++)
             mesh->indices[6 * q + i] = tri[i];
     }
+    sr_mesh_update_bounds(mesh);
     return true;
 }
