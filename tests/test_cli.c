@@ -91,6 +91,22 @@ Test(cli, texture_shading_without_uvs_is_an_error)
     assert_one_error("render %s/tri.obj --shade texture --texture %s/t.png", "t.png");
 }
 
+/* libpng would print its own line before ours; a corrupt texture is still
+ * one error line. */
+Test(cli, truncated_png_texture_is_one_error_line)
+{
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "head -c 60 assets/checker.png > %s/cut.png", temp_dir);
+    cr_assert_eq(system(cmd), 0);
+    char args[512];
+    snprintf(args, sizeof args, "render assets/cube.obj --shade texture --texture %s/cut.png", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert(r.status != 0 && r.status < 128, "exit %d", r.status);
+    cr_assert_eq(count_lines(r.err), 1, "stderr was: %s", r.err);
+    cr_assert_eq(strncmp(r.err, "softrast: error: ", 17), 0, "stderr was: %s", r.err);
+    cr_assert_not_null(strstr(r.err, "cut.png"), "%s", r.err);
+}
+
 Test(cli, unknown_command_is_an_error)
 {
     assert_one_error("paint %s", "paint");

@@ -1,4 +1,6 @@
 #include <errno.h>
+#include <fcntl.h>
+#include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +26,28 @@ static const char *file_extension(const char *path)
     return dot + 1;
 }
 
+/* SDL_image leaves libpng's default error handler in place, which prints
+ * "libpng error: ..." on stderr before SDL_image returns its own error; that
+ * would make a corrupt texture two lines where softrast promises one. stderr
+ * is pointed at /dev/null for the decode only (textures load on the calling
+ * thread, before any drawing), and the message comes back through
+ * IMG_GetError. */
+static SDL_Surface *decode_quietly(SDL_RWops *rw, const char *type)
+{
+    fflush(stderr);
+    int saved = dup(STDERR_FILENO), null = open("/dev/null", O_WRONLY);
+    if (saved >= 0 && null >= 0)
+        dup2(null, STDERR_FILENO);
+    SDL_Surface *s = IMG_LoadTyped_RW(rw, 1, type);
+    if (saved >= 0 && null >= 0)
+        dup2(saved, STDERR_FILENO);
+    if (saved >= 0)
+        close(saved);
+    if (null >= 0)
+        close(null);
+    return s;
+}
+
 /* Opening the file ourselves gives a clean strerror for a missing or
  * unreadable file; SDL_image would only say "Couldn't open". IMG_Load needs
  * no SDL_Init (it initialises its own decoders), so this works headless. */
@@ -40,7 +64,7 @@ static SDL_Surface *load_surface(const char *path, sr_error *err)
         sr_error_set(err, "%s: cannot open: %s", path, SDL_GetError());
         return NULL;
     }
-    SDL_Surface *s = IMG_LoadTyped_RW(rw, 1, file_extension(path));
+    SDL_Surface *s = decode_quietly(rw, file_extension(path));
     if (!s)
         sr_error_set(err, "%s: not a readable image: %s", path, IMG_GetError());
     return s;
