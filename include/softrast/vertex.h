@@ -2,8 +2,8 @@
  *
  * Transforms each unique vertex of a mesh once: clip = P·V·W·position (cglm,
  * column vectors), and writes only the varyings the shading mode reads, as
- * sr_varying_layout lays them out (world-space normals through the inverse
- * transpose of W).
+ * sr_varying_layout lays them out (world-space unit normals through the
+ * inverse transpose of W, as its cofactor matrix so a singular W is fine).
  */
 #ifndef SOFTRAST_VERTEX_H
 #define SOFTRAST_VERTEX_H
@@ -16,7 +16,7 @@
 
 typedef struct sr_vertex_transform {
     mat4 clip_from_object; /* P · V · W */
-    mat3 normal_matrix;    /* inverse transpose of W's upper 3x3 */
+    mat3 normal_matrix;    /* cofactors of W's upper 3x3: a positive multiple of the inverse transpose */
 } sr_vertex_transform;
 
 /* The varyings `shade` reads, given what the mesh and texture provide:

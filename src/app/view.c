@@ -122,12 +122,19 @@ static void window_present(window *w, const sr_viewer *v)
     SDL_RenderPresent(w->renderer);
 }
 
-/* Reads back what the window shows, as a person's screenshot would. */
+/* Reads back what the window shows, as a person's screenshot would. The
+ * window must still be the framebuffer's size: a window resized during a
+ * scripted flight would be read at its new size. */
 static bool window_grab(window *w, const sr_viewer *v, const char *path, sr_error *err)
 {
     const sr_framebuffer *fb = &v->scene.fb;
+    int out_w = 0, out_h = 0;
+    if (SDL_GetRendererOutputSize(w->renderer, &out_w, &out_h) != 0 || out_w != fb->width || out_h != fb->height)
+        return sr_error_set(err, "--grab: the window is %dx%d, not the framebuffer's %dx%d (was it resized?)", out_w,
+                            out_h, fb->width, fb->height);
     uint32_t *pixels = SDL_malloc((size_t)fb->width * (size_t)fb->height * sizeof *pixels);
-    bool ok = pixels && SDL_RenderReadPixels(w->renderer, NULL, SDL_PIXELFORMAT_RGB888, pixels,
+    SDL_Rect all = { 0, 0, fb->width, fb->height };
+    bool ok = pixels && SDL_RenderReadPixels(w->renderer, &all, SDL_PIXELFORMAT_RGB888, pixels,
                                              fb->width * (int)sizeof *pixels) == 0;
     ok = ok ? sr_image_write_png(path, pixels, fb->width, fb->height, err)
             : sr_error_set(err, "cannot read the window back: %s", SDL_GetError());
@@ -206,11 +213,19 @@ static bool take_screenshot(sr_viewer *v, sr_error *err)
     return true;
 }
 
+static int framebuffer_side(int window_side)
+{
+    return window_side < 1 ? 1 : window_side > SR_MAX_FRAMEBUFFER_SIDE ? SR_MAX_FRAMEBUFFER_SIDE : window_side;
+}
+
+/* A window past the framebuffer's limit keeps the largest framebuffer, and
+ * the presentation stretches it. */
 static bool handle_window_event(sr_viewer *v, window *w, const SDL_Event *e, sr_error *err)
 {
-    if (e->type == SDL_WINDOWEVENT && e->window.event == SDL_WINDOWEVENT_SIZE_CHANGED)
-        return sr_viewer_resize(v, e->window.data1, e->window.data2, err) &&
-               window_texture(w, e->window.data1, e->window.data2, err);
+    if (e->type == SDL_WINDOWEVENT && e->window.event == SDL_WINDOWEVENT_SIZE_CHANGED) {
+        int width = framebuffer_side(e->window.data1), height = framebuffer_side(e->window.data2);
+        return sr_viewer_resize(v, width, height, err) && window_texture(w, width, height, err);
+    }
     sr_viewer_handle_event(v, e);
     return true;
 }

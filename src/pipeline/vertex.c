@@ -35,15 +35,30 @@ sr_varying_layout sr_vertex_layout(sr_shade shade, const sr_mesh *mesh, bool tex
     return l;
 }
 
+/* Normals go through the cofactor matrix of W's upper 3x3 (columns
+ * a1×a2, a2×a0, a0×a1), which is det·(W⁻¹)ᵀ: the inverse transpose up to a
+ * positive scale once multiplied by the sign of det, and finite even for a
+ * singular W (a mesh flattened by a zero scale keeps its normals). The
+ * vertex stage normalises. */
+static void normal_matrix(const mat4 world, mat3 out)
+{
+    vec3 a[3];
+    for (int c = 0; c < 3; c++)
+        glm_vec3_copy((float *)world[c], a[c]);
+    glm_vec3_cross(a[1], a[2], out[0]);
+    glm_vec3_cross(a[2], a[0], out[1]);
+    glm_vec3_cross(a[0], a[1], out[2]);
+    if (glm_vec3_dot(a[0], out[0]) < 0.0f)
+        glm_mat3_scale(out, -1.0f);
+}
+
 void sr_vertex_make_transform(const mat4 world, const mat4 view, const mat4 projection,
                               sr_vertex_transform *xf)
 {
-    mat4 vw, inv;
+    mat4 vw;
     glm_mat4_mul((vec4 *)view, (vec4 *)world, vw);
     glm_mat4_mul((vec4 *)projection, vw, xf->clip_from_object);
-    glm_mat4_inv((vec4 *)world, inv);
-    glm_mat4_transpose(inv);
-    glm_mat4_pick3(inv, xf->normal_matrix);
+    normal_matrix(world, xf->normal_matrix);
 }
 
 static void copy_varying(float *dst, int slot, const float *src, int size)
@@ -63,6 +78,7 @@ void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_
         if (layout->normal >= 0) {
             vec3 n;
             glm_mat3_mulv((vec3 *)xf->normal_matrix, mesh->normals[i], n);
+            glm_vec3_normalize(n);
             copy_varying(v, layout->normal, n, 3);
         }
         if (layout->uv >= 0)
