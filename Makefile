@@ -23,7 +23,7 @@ SAN_LIB_OBJ  := $(LIB_SRC:%.c=build/san/%.o)
 SAN_APP_OBJ  := $(APP_SRC:%.c=build/san/%.o)
 SAN_TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
-.PHONY: all deps run test test-fast test-san test-assets test-install install assets docs-images bench report stability clean
+.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-assets test-install install assets docs-images bench report stability clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast
@@ -74,7 +74,12 @@ ROOM_CAMERA := --eye -8,3,-8 --target 4,1.5,6 --fov 75
 run: all
 	./build/softrast view
 
-test: deps test-fast test-san test-assets test-install
+# The fuzzers' regression inputs, then a short bounded round of each target
+# (tolerating the open clip_precision finding of fuzz/known/, see fuzz/README.md).
+test: deps test-fast test-san test-assets test-install fuzz-regressions fuzz-smoke-ci
+
+fuzz-smoke-ci:
+	@$(MAKE) --no-print-directory fuzz-smoke FUZZ_TOLERATE=clip_precision
 
 # Tests read data relative to the project root; the binaries find it via SOFTRAST_ROOT.
 CONTRACT := ../shared/tools/check-cli-contract
@@ -160,5 +165,6 @@ clean:
 	rm -rf build
 
 include tools/bench-compare.mk
+include fuzz/fuzz.mk
 
 -include $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(SAN_LIB_OBJ:.o=.d) $(SAN_APP_OBJ:.o=.d) $(SAN_TEST_OBJ:.o=.d)

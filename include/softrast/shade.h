@@ -3,7 +3,8 @@
  * sr_shade_fragment is inline so the rasterizer's per-pixel loop, specialised
  * per mode with a constant `mode`, compiles to straight-line code with no
  * switch per pixel. Colors are 0x00RRGGBB; every conversion clamps and maps
- * NaN to 0, so a non-finite varying can darken a pixel but never crash.
+ * NaN to 0. (A triangle with a NaN or inf in a varying the mode reads never
+ * gets here: the vertex phase drops it and counts it non-finite.)
  * Textures wrap (repeat); uv (0, 0) is the bottom-left of the image.
  */
 #ifndef SOFTRAST_SHADE_H

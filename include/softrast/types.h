@@ -68,7 +68,8 @@ typedef struct sr_screen_vertex {
 typedef struct sr_stats {
     uint64_t triangles; /* assembled (non-degenerate) */
     uint64_t rejected;  /* dropped whole: outside one plane, or non-finite */
-    uint64_t nonfinite; /* of those, dropped for NaN or inf */
+    uint64_t nonfinite; /* of those, dropped for NaN or inf in a position or a read varying,
+                           or a divide past float range */
     uint64_t clipped;   /* crossed at least one plane */
     uint64_t culled;    /* fan triangles dropped as facing away or zero area */
     uint64_t drawn;     /* fan triangles rasterized */

@@ -9,6 +9,9 @@
  * for the two distances, the subtraction (which never cancels: d_in >= 0 >
  * d_out), the division, b − a, the product and the sum, with room to spare. */
 #define ROUNDING_BOUND 8.0
+/* Below this scale float products go subnormal and lose the relative
+ * precision the bound assumes: such edges go exact. */
+#define TINY_SCALE 1e-30f
 
 double sr_clip_distance(sr_clip_plane plane, const float *c)
 {
@@ -108,21 +111,27 @@ static void intersect_float(sr_clip_plane plane, const sr_vertex_out *inside, co
 
 /* The adaptive choice, from a float estimate: the error bound of a
  * precision is ROUNDING_BOUND · ε · M / w over the coordinates, M = |a| +
- * |t|(|a| + |b|), w the cut vertex's w (NDC error = clip error / w). A cut
- * at w <= 0, or any overflow, goes exact. */
+ * |t|(|a| + |b|), w the cut vertex's w (NDC error = clip error / w), taken
+ * at its smallest. A cut that may be at w <= 0, or any overflow, goes exact. */
 static sr_clip_precision choose_precision(sr_clip_plane plane, const sr_vertex_out *inside,
                                           const sr_vertex_out *outside, double tolerance)
 {
     float d_in = (float)sr_clip_distance(plane, inside->v), d_out = (float)sr_clip_distance(plane, outside->v);
     float t = d_in / (d_in - d_out), m = 0.0f;
+    bool overflowed = !isfinite(t); /* float ran out of range: the estimate says nothing */
     for (int i = 0; i < SR_VARYINGS_AT; i++) {
         float a = fabsf(inside->v[i]), b = fabsf(outside->v[i]);
         float bound = a + t * (a + b);
+        overflowed = overflowed || !isfinite(bound) || !isfinite(a + b);
         m = bound > m ? bound : m;
     }
+    /* The estimated w is itself a + t(b − a) in float: divide by the least w
+     * its own error bound allows, so a w that cancelled cannot pass for a
+     * large one and let float through. */
     float w = inside->v[SR_W] + t * (outside->v[SR_W] - inside->v[SR_W]);
-    double relative = (double)m / (double)w;
-    if (!(w > 0.0f) || !isfinite(relative))
+    float w_low = w - (float)ROUNDING_BOUND * FLT_EPSILON * m;
+    double relative = (double)m / (double)w_low;
+    if (overflowed || !(w_low > 0.0f) || !isfinite(relative) || !isfinite(d_in - d_out) || m < TINY_SCALE)
         return SR_CLIP_EXACT;
     if (ROUNDING_BOUND * FLT_EPSILON * relative <= tolerance)
         return SR_CLIP_FLOAT;

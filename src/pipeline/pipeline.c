@@ -212,7 +212,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
                                     : SR_BOX_CROSSES;
     if (box == SR_BOX_OUTSIDE) {
         reject_all(st);
-    } else {
+    } else if (st->vertex_count > 0) { /* an empty mesh (valid indices: none) has nothing to draw */
         ph.inside = box == SR_BOX_INSIDE;
         if (!run_vertex_phase(st, &ph, err))
             return false;

@@ -22,8 +22,9 @@ static void cull_and_emit(sr_fan_sink *sink, const sr_screen_vertex tri[3], cons
 }
 
 /* Stages 5 and 6 for a clipped polygon: map every vertex once, store them
- * with the sink, fan (v0, vi, vi+1). A vertex the viewport refuses (rounding
- * on absurd input, or a non-finite varying) drops the polygon, counted. */
+ * with the sink, fan (v0, vi, vi+1). A vertex the viewport refuses (a divide
+ * past float range) drops the polygon, counted rejected and non-finite as
+ * the vertex phase counts such vertices. */
 static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, uint32_t id)
 {
     const sr_draw_state *st = sink->st;
@@ -31,6 +32,7 @@ static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, uint32_t id)
     for (int i = 0; i < poly->count; i++) {
         if (!sr_viewport_map(&poly->vert[i], st->shade.layout.count, &st->vp, &screen[i])) {
             sink->work->stats.rejected++;
+            sink->work->stats.nonfinite++;
             return;
         }
     }
