@@ -134,6 +134,51 @@ static inline bool depth_passes(float z, float stored, bool greater)
     return greater ? z > stored : z < stored;
 }
 
+/* Depth test, depth write and shading of covered pixel i of a row; returns
+ * 1 if the fragment passed. */
+static inline __attribute__((always_inline)) uint64_t
+fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, const sr_shade_context *shade,
+           uint32_t id, size_t at, int64_t e1, int64_t e2)
+{
+    float l1 = (float)e1 * s->inv_area2, l2 = (float)e2 * s->inv_area2;
+    float z = depth_at(s, l1, l2);
+    if (!depth_passes(z, fb->depth[at], greater))
+        return 0;
+    fb->depth[at] = z;
+    if (mode != SR_SHADE_DEPTH) {
+        float var[SR_MAX_VARYINGS];
+        if (mode_reads_varyings(mode))
+            varyings_at(s, l1, l2, var);
+        fb->color[at] = sr_shade_fragment(mode, shade, var, id);
+    }
+    return 1;
+}
+
+/* Triangles at least this wide in pixels find each row's covered span by
+ * division instead of testing every pixel of the scan box (half of which a
+ * large triangle does not cover); narrower ones test pixel by pixel. */
+#define SPAN_MIN_WIDTH 16
+
+static int64_t floor_div_pos(int64_t a, int64_t b)
+{
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+/* The offsets d >= 0 with e + d·step >= bias, intersected into [*lo, *hi]:
+ * the same integers the per-pixel test accepts. */
+static void edge_span(int64_t e, int64_t step, int64_t bias, int64_t *lo, int64_t *hi)
+{
+    if (step > 0) {
+        int64_t first = -floor_div_pos(e - bias, step); /* ceil((bias - e) / step) */
+        *lo = first > *lo ? first : *lo;
+    } else if (step < 0) {
+        int64_t last = floor_div_pos(e - bias, -step);
+        *hi = last < *hi ? last : *hi;
+    } else if (e < bias) {
+        *hi = -1;
+    }
+}
+
 /* The per-pixel loop; always inlined with a constant mode and depth test so
  * each combination gets its own loop with those branches folded away. */
 static inline __attribute__((always_inline)) uint64_t
@@ -143,26 +188,25 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, con
     uint64_t fragments = 0;
     const int64_t one = (int64_t)1 << s->bits; /* a multiply: the coefficients may be negative */
     const int64_t step_x[3] = { s->e[0].a * one, s->e[1].a * one, s->e[2].a * one };
+    bool spans = s->box.x1 - s->box.x0 >= SPAN_MIN_WIDTH;
     for (int j = s->box.y0; j < s->box.y1; j++) {
         int64_t px = subpixel_centre(s->box.x0, s->bits), py = subpixel_centre(j, s->bits);
         int64_t e0 = edge_at(&s->e[0], px, py), e1 = edge_at(&s->e[1], px, py), e2 = edge_at(&s->e[2], px, py);
-        size_t row = (size_t)j * (size_t)fb->width;
-        for (int i = s->box.x0; i < s->box.x1; i++, e0 += step_x[0], e1 += step_x[1], e2 += step_x[2]) {
-            if (e0 < s->e[0].bias || e1 < s->e[1].bias || e2 < s->e[2].bias)
-                continue;
-            float l1 = (float)e1 * s->inv_area2, l2 = (float)e2 * s->inv_area2;
-            float z = depth_at(s, l1, l2);
-            if (!depth_passes(z, fb->depth[row + (size_t)i], greater))
-                continue;
-            fb->depth[row + (size_t)i] = z;
-            fragments++;
-            if (mode == SR_SHADE_DEPTH)
-                continue;
-            float var[SR_MAX_VARYINGS];
-            if (mode_reads_varyings(mode))
-                varyings_at(s, l1, l2, var);
-            fb->color[row + (size_t)i] = sr_shade_fragment(mode, shade, var, id);
+        size_t row = (size_t)j * (size_t)fb->width + (size_t)s->box.x0;
+        if (spans) {
+            int64_t lo = 0, hi = s->box.x1 - s->box.x0 - 1;
+            edge_span(e0, step_x[0], s->e[0].bias, &lo, &hi);
+            edge_span(e1, step_x[1], s->e[1].bias, &lo, &hi);
+            edge_span(e2, step_x[2], s->e[2].bias, &lo, &hi);
+            e1 += lo * step_x[1];
+            e2 += lo * step_x[2];
+            for (int64_t d = lo; d <= hi; d++, e1 += step_x[1], e2 += step_x[2])
+                fragments += fill_pixel(s, fb, mode, greater, shade, id, row + (size_t)d, e1, e2);
+            continue;
         }
+        for (int d = 0; d < s->box.x1 - s->box.x0; d++, e0 += step_x[0], e1 += step_x[1], e2 += step_x[2])
+            if (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias)
+                fragments += fill_pixel(s, fb, mode, greater, shade, id, row + (size_t)d, e1, e2);
     }
     return fragments;
 }
