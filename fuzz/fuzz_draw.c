@@ -20,7 +20,6 @@
  */
 #include <float.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,6 +39,8 @@
 #include "softrast/vertex.h"
 #include "softrast/viewport.h"
 
+#include "fuzz_common.h" /* fail(), CHECK() */
+
 #define MAX_SIDE 64
 #define MAX_VERTS 16
 #define MAX_INDICES 48
@@ -53,28 +54,6 @@
 /* Interpolated values stay within the inputs' range up to float rounding of
  * the largest input magnitude (t rounds to 1 when d_out ≪ d_in). */
 #define CLIP_RANGE_REL_TOL 1e-6
-
-/* ---- failing ----------------------------------------------------------- */
-
-static void fail(const char *file, int line, const char *expr, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5), noreturn));
-
-static void fail(const char *file, int line, const char *expr, const char *fmt, ...)
-{
-    fprintf(stderr, "\n%s:%d: invariant failed: %s\n  ", file, line, expr);
-    va_list ap;
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fprintf(stderr, "\n");
-    abort();
-}
-
-#define CHECK(cond, ...)                                            \
-    do {                                                            \
-        if (!(cond))                                                \
-            fail(__FILE__, __LINE__, #cond, __VA_ARGS__);           \
-    } while (0)
 
 /* A finding already reported and waiting for a fix in src/ can be let
  * through by naming its tag in FUZZ_TOLERATE (comma-separated), so a long run

@@ -18,7 +18,6 @@
 #include <errno.h>
 #include <math.h>
 #include <signal.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -35,34 +34,14 @@
 #include "softrast/obj.h"
 #include "softrast/pipeline.h"
 
+#include "fuzz_common.h" /* fail(), CHECK() */
+
 #define MTL_SEPARATOR "\n#mtl\n"
 #define MTL_NAME "m.mtl"
 #define DRAW_SIDE 16
 #define DRAW_MAX_VERTICES 4096 /* keeps each run fast; the loader's limits are tested by tests/ */
 
 static char dir[64], obj_path[96], mtl_path[96];
-
-/* ---- failing ----------------------------------------------------------- */
-
-static void fail(const char *file, int line, const char *expr, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5), noreturn));
-
-static void fail(const char *file, int line, const char *expr, const char *fmt, ...)
-{
-    fprintf(stderr, "\n%s:%d: invariant failed: %s\n  ", file, line, expr);
-    va_list ap;
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fprintf(stderr, "\n");
-    abort();
-}
-
-#define CHECK(cond, ...)                                            \
-    do {                                                            \
-        if (!(cond))                                                \
-            fail(__FILE__, __LINE__, #cond, __VA_ARGS__);           \
-    } while (0)
 
 /* ---- the scratch folder ------------------------------------------------- */
 

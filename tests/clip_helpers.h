@@ -14,31 +14,9 @@
 
 #include "softrast/clip.h"
 #include "softrast/viewport.h"
+#include "test_rng.h"
 
-/* ---- random numbers: splitmix64, a fixed seed per test ---------------- */
-
-typedef struct test_rng {
-    uint64_t state;
-} test_rng;
-
-static inline uint64_t rng_next(test_rng *r)
-{
-    uint64_t z = (r->state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-/* Uniform in [lo, hi). */
-static inline double rng_uniform(test_rng *r, double lo, double hi)
-{
-    return lo + (hi - lo) * (double)(rng_next(r) >> 11) * 0x1.0p-53;
-}
-
-static inline int rng_below(test_rng *r, int n)
-{
-    return (int)(rng_next(r) % (uint64_t)n);
-}
+/* ---- random numbers (test_rng.h) -------------------------------------- */
 
 /* ±10^e with e uniform in [lo_exp, hi_exp]: magnitudes spread over decades. */
 static inline double rng_log_signed(test_rng *r, double lo_exp, double hi_exp)

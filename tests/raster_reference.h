@@ -110,33 +110,33 @@ static inline int64_t clamp64(int64_t v, int64_t lo, int64_t hi)
     return v < lo ? lo : v > hi ? hi : v;
 }
 
-static inline int64_t random_centre(scene_rng *r, int64_t pixels)
+static inline int64_t random_centre(test_rng *r, int64_t pixels)
 {
-    return scene_rng_range(r, 0, pixels - 1) * ONE + HALF;
+    return rng_range(r, 0, pixels - 1) * ONE + HALF;
 }
 
 /* A triangle of the given kind with every vertex in [lo, hi]^2 (subpixels of
  * an image of w x h pixels), either winding. */
-static inline void random_triangle(scene_rng *r, kind k, int w, int h, ref_point v[3])
+static inline void random_triangle(test_rng *r, kind k, int w, int h, ref_point v[3])
 {
     int64_t xmax = (int64_t)w * ONE, ymax = (int64_t)h * ONE;
     for (int i = 0; i < 3; i++)
-        v[i] = (ref_point){ scene_rng_range(r, 0, xmax), scene_rng_range(r, 0, ymax) };
+        v[i] = (ref_point){ rng_range(r, 0, xmax), rng_range(r, 0, ymax) };
     switch (k) {
     case KIND_ANY:
         break;
     case KIND_TINY:
         for (int i = 1; i < 3; i++) {
-            v[i].x = clamp64(v[0].x + scene_rng_range(r, -TINY_REACH, TINY_REACH), 0, xmax);
-            v[i].y = clamp64(v[0].y + scene_rng_range(r, -TINY_REACH, TINY_REACH), 0, ymax);
+            v[i].x = clamp64(v[0].x + rng_range(r, -TINY_REACH, TINY_REACH), 0, xmax);
+            v[i].y = clamp64(v[0].y + rng_range(r, -TINY_REACH, TINY_REACH), 0, ymax);
         }
         break;
     case KIND_SLIVER: {
-        double t = scene_rng_unit(r);
+        double t = rng_unit(r);
         v[2].x = clamp64(v[0].x + (int64_t)(t * (double)(v[1].x - v[0].x)) +
-                             scene_rng_range(r, -SLIVER_OFFSET, SLIVER_OFFSET), 0, xmax);
+                             rng_range(r, -SLIVER_OFFSET, SLIVER_OFFSET), 0, xmax);
         v[2].y = clamp64(v[0].y + (int64_t)(t * (double)(v[1].y - v[0].y)) +
-                             scene_rng_range(r, -SLIVER_OFFSET, SLIVER_OFFSET), 0, ymax);
+                             rng_range(r, -SLIVER_OFFSET, SLIVER_OFFSET), 0, ymax);
         break;
     }
     case KIND_CENTRES:
@@ -145,19 +145,19 @@ static inline void random_triangle(scene_rng *r, kind k, int w, int h, ref_point
         break;
     case KIND_CENTRE_LINES:
         for (int i = 0; i < 3; i++) {
-            if (scene_rng_next(r) & 1)
+            if (rng_next(r) & 1)
                 v[i].x = random_centre(r, w);
-            if (scene_rng_next(r) & 1)
+            if (rng_next(r) & 1)
                 v[i].y = random_centre(r, h);
         }
-        if (scene_rng_next(r) & 1)
+        if (rng_next(r) & 1)
             v[1].y = v[0].y; /* a horizontal edge */
-        if (scene_rng_next(r) & 1)
-            v[2].x = v[scene_rng_next(r) & 1].x; /* a vertical edge */
+        if (rng_next(r) & 1)
+            v[2].x = v[rng_next(r) & 1].x; /* a vertical edge */
         break;
     case KIND_CORNERS:
         for (int i = 0; i < 3; i++)
-            v[i] = (ref_point){ scene_rng_range(r, 0, w) * ONE, scene_rng_range(r, 0, h) * ONE };
+            v[i] = (ref_point){ rng_range(r, 0, w) * ONE, rng_range(r, 0, h) * ONE };
         break;
     case KIND_AXIS_EDGES:
         v[0] = (ref_point){ random_centre(r, w), random_centre(r, h) };
@@ -167,7 +167,7 @@ static inline void random_triangle(scene_rng *r, kind k, int w, int h, ref_point
     default:
         break;
     }
-    if (scene_rng_next(r) & 1) {
+    if (rng_next(r) & 1) {
         ref_point t = v[1];
         v[1] = v[2];
         v[2] = t;
@@ -175,11 +175,11 @@ static inline void random_triangle(scene_rng *r, kind k, int w, int h, ref_point
 }
 
 /* Moves every vertex up to half the image size outside it, for rect clamping. */
-static inline void overhang(scene_rng *r, int w, int h, ref_point v[3])
+static inline void overhang(test_rng *r, int w, int h, ref_point v[3])
 {
     for (int i = 0; i < 3; i++) {
-        v[i].x += scene_rng_range(r, -(int64_t)w * HALF, (int64_t)w * HALF);
-        v[i].y += scene_rng_range(r, -(int64_t)h * HALF, (int64_t)h * HALF);
+        v[i].x += rng_range(r, -(int64_t)w * HALF, (int64_t)w * HALF);
+        v[i].y += rng_range(r, -(int64_t)h * HALF, (int64_t)h * HALF);
     }
 }
 

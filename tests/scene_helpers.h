@@ -34,6 +34,7 @@
 #include "softrast/mesh.h"
 #include "softrast/pipeline.h"
 #include "softrast/types.h"
+#include "test_rng.h" /* deterministic random numbers */
 
 #define SCENE_BACKGROUND 0x000000u
 #define SCENE_OUTPUT_DIR "build/test-output"
@@ -44,32 +45,6 @@
 #define SCENE_DIFF_MISSING 0x0000FFu /* expected, not drawn */
 #define SCENE_DIFF_CHANGED 0xFF00FFu /* both drawn, different values */
 #define SCENE_DIFF_SAME 0x404040u    /* drawn and expected alike */
-
-/* ---- deterministic random numbers (splitmix64: the same on every libc) ---- */
-
-typedef struct scene_rng {
-    uint64_t state;
-} scene_rng;
-
-static inline uint64_t scene_rng_next(scene_rng *r)
-{
-    uint64_t z = (r->state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-/* Uniform in [lo, hi] (inclusive). */
-static inline int64_t scene_rng_range(scene_rng *r, int64_t lo, int64_t hi)
-{
-    return lo + (int64_t)(scene_rng_next(r) % (uint64_t)(hi - lo + 1));
-}
-
-/* Uniform in [0, 1). */
-static inline double scene_rng_unit(scene_rng *r)
-{
-    return (double)(scene_rng_next(r) >> 11) * (1.0 / 9007199254740992.0);
-}
 
 /* ---- meshes ---- */
 

@@ -157,6 +157,15 @@ static int64_t area2(const sr_screen_vertex *a, const sr_screen_vertex *b, const
     return (b->x - a->x) * (c->y - a->y) - (b->y - a->y) * (c->x - a->x);
 }
 
+/* Twice the area of the fan (s[0], s[i], s[i+1]) over an n-gon, summed. */
+static int64_t fan_area2(const sr_screen_vertex s[], int n)
+{
+    int64_t sum = 0;
+    for (int i = 1; i + 1 < n; i++)
+        sum += area2(&s[0], &s[i], &s[i + 1]);
+    return sum;
+}
+
 /* A perspective (near 0.1, far 100) view-space triangle, clipped as the
  * pipeline does and mapped. depth_inside keeps all three vertices between
  * near and far, so only the viewport sides clip. False if nothing is left. */
@@ -217,9 +226,7 @@ Test(fan, areas_sum_to_the_screen_area_of_triangle_within_viewport)
         int n;
         if (!clipped_screen_polygon(&r, true, tri, s, &n))
             continue;
-        int64_t sum = 0;
-        for (int i = 1; i + 1 < n; i++)
-            sum += area2(&s[0], &s[i], &s[i + 1]);
+        int64_t sum = fan_area2(s, n);
         ref_poly ref = { .n = 3 };
         for (int i = 0; i < 3; i++) {
             double w = tri[i].v[SR_W];
@@ -259,9 +266,7 @@ Test(fan, winding_on_screen_matches_the_clip_space_determinant)
         double det = (double)a[SR_X] * ((double)b[SR_Y] * c[SR_W] - (double)b[SR_W] * c[SR_Y]) -
                      (double)a[SR_Y] * ((double)b[SR_X] * c[SR_W] - (double)b[SR_W] * c[SR_X]) +
                      (double)a[SR_W] * ((double)b[SR_X] * c[SR_Y] - (double)b[SR_Y] * c[SR_X]);
-        int64_t sum = 0;
-        for (int i = 1; i + 1 < n; i++)
-            sum += area2(&s[0], &s[i], &s[i + 1]);
+        int64_t sum = fan_area2(s, n);
         if (sum == 0)
             continue;
         mixed_w += a[SR_W] < 0 || b[SR_W] < 0 || c[SR_W] < 0;

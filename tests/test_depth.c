@@ -186,19 +186,26 @@ static void flat_draw(sr_framebuffer *fb, sr_mesh *mesh, sr_shade shade, sr_stat
     draw(fb, &desc, stats);
 }
 
+/* A fresh FLAT x FLAT framebuffer with mesh drawn on it in pixel space. */
+static sr_stats flat_render(sr_framebuffer *fb, sr_mesh *mesh, sr_shade shade)
+{
+    scene_fb_make(fb, FLAT, FLAT);
+    sr_stats stats = { 0 };
+    flat_draw(fb, mesh, shade, &stats);
+    return stats;
+}
+
 static const float red[3] = { 1, 0, 0 }, green[3] = { 0, 1, 0 };
 static const float big[3][2] = { { 2, 2 }, { 62, 4 }, { 6, 60 } }, other[3][2] = { { 60, 60 }, { 3, 30 }, { 58, 1 } };
 
 Test(depth, buffer_keeps_clear_value_where_nothing_is_drawn)
 {
-    sr_framebuffer fb;
-    scene_fb_make(&fb, FLAT, FLAT);
     sr_mesh mesh;
     scene_mesh_alloc(&mesh, 3, 1, true);
     const float small[3][2] = { { 10, 10 }, { 30, 12 }, { 12, 25 } }, z[3] = { 0.3f, 0.5f, 0.7f };
     flat_triangle(&mesh, 0, small, z, red);
-    sr_stats stats = { 0 };
-    flat_draw(&fb, &mesh, SR_SHADE_COLOR, &stats);
+    sr_framebuffer fb;
+    sr_stats stats = flat_render(&fb, &mesh, SR_SHADE_COLOR);
     size_t drawn = 0;
     for (size_t i = 0; i < scene_pixel_count(&fb); i++) {
         bool is_drawn = fb.color[i] != SCENE_BACKGROUND;
@@ -225,9 +232,7 @@ Test(depth, less_keeps_the_nearer_triangle_in_either_draw_order)
         scene_mesh_alloc(&mesh, 6, 2, true);
         flat_triangle(&mesh, order ? 3 : 0, big, near_z, red);
         flat_triangle(&mesh, order ? 0 : 3, other, far_z, green);
-        scene_fb_make(&fb[order], FLAT, FLAT);
-        sr_stats stats = { 0 };
-        flat_draw(&fb[order], &mesh, SR_SHADE_COLOR, &stats);
+        flat_render(&fb[order], &mesh, SR_SHADE_COLOR);
         sr_mesh_free(&mesh);
     }
     scene_expect_images_equal("depth_less_keeps_the_nearer_triangle_in_either_draw_order", fb[1].color, fb[0].color,
@@ -263,9 +268,7 @@ Test(depth, less_resolves_intersecting_triangles_per_pixel)
         flat_triangle(&mesh, order ? 0 : 6, ramp, down, green);
         flat_triangle(&mesh, order ? 3 : 9, ramp2, down2, green);
         sr_framebuffer fb;
-        scene_fb_make(&fb, FLAT, FLAT);
-        sr_stats stats = { 0 };
-        flat_draw(&fb, &mesh, SR_SHADE_COLOR, &stats);
+        flat_render(&fb, &mesh, SR_SHADE_COLOR);
         for (int j = 0; j < FLAT; j++) {
             for (int i = 0; i < FLAT; i++) {
                 double x = i + 0.5, z_red = 0.2 + 0.6 * x / FLAT, z_green = 0.8 - 0.6 * x / FLAT;
@@ -291,9 +294,7 @@ Test(depth, less_keeps_the_first_of_equal_depths)
     flat_triangle(&mesh, 0, big, z, red);
     flat_triangle(&mesh, 3, big, z, green);
     sr_framebuffer fb;
-    scene_fb_make(&fb, FLAT, FLAT);
-    sr_stats stats = { 0 };
-    flat_draw(&fb, &mesh, SR_SHADE_COLOR, &stats);
+    sr_stats stats = flat_render(&fb, &mesh, SR_SHADE_COLOR);
     size_t reds = scene_count_color(&fb, 0xFF0000u);
     cr_expect_eq(scene_count_drawn(&fb), reds, "the second, equal-depth triangle drew over the first");
     cr_expect_eq(stats.fragments, reds, "fragments %llu, pixels %zu", (unsigned long long)stats.fragments, reds);

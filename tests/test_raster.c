@@ -21,12 +21,26 @@ static uint64_t raster_direct(sr_framebuffer *fb, sr_raster_rect rect, const ref
     return sr_raster_triangle(fb, rect, SR_SUBPIXEL_BITS, SR_SHADE_ID, &id_shade, s, ref_turn(v[0], v[1], v[2]), 0);
 }
 
+/* Rasterizes v within rect on a cleared fb and expects exactly the reference
+ * pixels drawn (none outside rect), one fragment each. */
+static void expect_reference_raster(const char *name, int t, kind k, const ref_point v[3], sr_framebuffer *fb,
+                                    sr_raster_rect rect)
+{
+    static unsigned char want[FB_W * FB_H];
+    sr_framebuffer_clear(fb, SCENE_BACKGROUND);
+    memset(want, 0, sizeof want);
+    uint64_t fragments = raster_direct(fb, rect, v);
+    size_t count = ref_mask(v, FB_W, rect, want);
+    expect_mask(name, t, k, v, fb, want);
+    cr_assert_eq(fragments, count, "triangle %d: %llu fragments, %zu pixels", t, (unsigned long long)fragments,
+                 count);
+}
+
 Test(raster, covers_exactly_the_reference_pixels_of_random_triangles)
 {
     sr_framebuffer fb;
     scene_fb_make(&fb, FB_W, FB_H);
-    unsigned char want[FB_W * FB_H];
-    scene_rng rng = { RANDOM_SEED };
+    test_rng rng = { RANDOM_SEED };
     int drawn = 0;
     for (int t = 0; t < RANDOM_TRIANGLES; t++) {
         kind k = (kind)(t % KIND_COUNT);
@@ -34,12 +48,8 @@ Test(raster, covers_exactly_the_reference_pixels_of_random_triangles)
         random_triangle(&rng, k, FB_W, FB_H, v);
         if (ref_turn(v[0], v[1], v[2]) == 0)
             continue; /* sr_raster_triangle takes nonzero area only */
-        sr_framebuffer_clear(&fb, SCENE_BACKGROUND);
-        uint64_t fragments = raster_direct(&fb, full_rect, v);
-        size_t count = ref_mask(v, FB_W, full_rect, want);
-        expect_mask("raster_covers_exactly_the_reference_pixels_of_random_triangles", t, k, v, &fb, want);
-        cr_assert_eq(fragments, count, "triangle %d: returned %llu fragments, covered %zu pixels", t,
-                     (unsigned long long)fragments, count);
+        expect_reference_raster("raster_covers_exactly_the_reference_pixels_of_random_triangles", t, k, v, &fb,
+                                full_rect);
         drawn++;
     }
     cr_expect_gt(drawn, RANDOM_TRIANGLES * 9 / 10, "too many degenerate triangles: %d drawn", drawn);
@@ -52,7 +62,7 @@ Test(raster, coverage_is_the_same_for_all_six_vertex_orders)
     sr_framebuffer fb;
     scene_fb_make(&fb, FB_W, FB_H);
     unsigned char first[FB_W * FB_H];
-    scene_rng rng = { RANDOM_SEED + 2 };
+    test_rng rng = { RANDOM_SEED + 2 };
     for (int t = 0; t < RANDOM_TRIANGLES / 10; t++) {
         kind k = (kind)(t % KIND_COUNT);
         ref_point v[3];
@@ -78,8 +88,7 @@ Test(raster, writes_only_inside_rect_for_overhanging_triangles)
 {
     sr_framebuffer fb;
     scene_fb_make(&fb, FB_W, FB_H);
-    unsigned char want[FB_W * FB_H];
-    scene_rng rng = { RANDOM_SEED + 3 };
+    test_rng rng = { RANDOM_SEED + 3 };
     for (int t = 0; t < RANDOM_TRIANGLES / 3; t++) {
         kind k = (kind)(t % KIND_COUNT);
         ref_point v[3];
@@ -90,17 +99,11 @@ Test(raster, writes_only_inside_rect_for_overhanging_triangles)
         /* Every third triangle uses the whole image; the others a random tile. */
         sr_raster_rect rect = full_rect;
         if (t % 3) {
-            int x0 = (int)scene_rng_range(&rng, 0, FB_W - 1), y0 = (int)scene_rng_range(&rng, 0, FB_H - 1);
-            rect = (sr_raster_rect){ x0, y0, (int)scene_rng_range(&rng, x0 + 1, FB_W),
-                                     (int)scene_rng_range(&rng, y0 + 1, FB_H) };
+            int x0 = (int)rng_range(&rng, 0, FB_W - 1), y0 = (int)rng_range(&rng, 0, FB_H - 1);
+            rect = (sr_raster_rect){ x0, y0, (int)rng_range(&rng, x0 + 1, FB_W),
+                                     (int)rng_range(&rng, y0 + 1, FB_H) };
         }
-        sr_framebuffer_clear(&fb, SCENE_BACKGROUND);
-        memset(want, 0, sizeof want);
-        uint64_t fragments = raster_direct(&fb, rect, v);
-        size_t count = ref_mask(v, FB_W, rect, want);
-        expect_mask("raster_writes_only_inside_rect_for_overhanging_triangles", t, k, v, &fb, want);
-        cr_assert_eq(fragments, count, "triangle %d: %llu fragments, %zu pixels", t,
-                     (unsigned long long)fragments, count);
+        expect_reference_raster("raster_writes_only_inside_rect_for_overhanging_triangles", t, k, v, &fb, rect);
     }
     sr_framebuffer_destroy(&fb);
 }
@@ -139,7 +142,7 @@ Test(raster, rectangle_on_pixel_centres_draws_top_left_rows_and_columns_once)
 Test(raster, matches_reference_at_maximum_framebuffer_side)
 {
     const int sizes[2][2] = { { SR_MAX_FRAMEBUFFER_SIDE, 2 }, { 2, SR_MAX_FRAMEBUFFER_SIDE } };
-    scene_rng rng = { RANDOM_SEED + 4 };
+    test_rng rng = { RANDOM_SEED + 4 };
     for (int s = 0; s < 2; s++) {
         int w = sizes[s][0], h = sizes[s][1];
         sr_framebuffer fb;

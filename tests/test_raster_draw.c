@@ -45,6 +45,17 @@ static void one_triangle_mesh(sr_mesh *mesh)
         mesh->indices[k] = k;
 }
 
+/* The pixels the pipeline must draw for v over the whole image (none when v
+ * has zero area: it is culled), into want; returns how many. */
+static size_t reference_mask(const ref_point v[3], unsigned char *want)
+{
+    if (ref_turn(v[0], v[1], v[2]) == 0) {
+        memset(want, 0, (size_t)FB_W * FB_H);
+        return 0;
+    }
+    return ref_mask(v, FB_W, full_rect, want);
+}
+
 Test(raster, draw_covers_exactly_the_reference_pixels_of_random_triangles)
 {
     sr_framebuffer fb;
@@ -52,7 +63,7 @@ Test(raster, draw_covers_exactly_the_reference_pixels_of_random_triangles)
     scene_fb_make(&fb, FB_W, FB_H);
     one_triangle_mesh(&mesh);
     unsigned char want[FB_W * FB_H];
-    scene_rng rng = { RANDOM_SEED + 1 };
+    test_rng rng = { RANDOM_SEED + 1 };
     for (int t = 0; t < RANDOM_TRIANGLES; t++) {
         kind k = (kind)(t % KIND_COUNT);
         ref_point v[3];
@@ -60,7 +71,7 @@ Test(raster, draw_covers_exactly_the_reference_pixels_of_random_triangles)
         bool flat = ref_turn(v[0], v[1], v[2]) == 0;
         sr_framebuffer_clear(&fb, SCENE_BACKGROUND);
         sr_stats stats = raster_through_draw(&fb, &mesh, v);
-        size_t count = flat ? (memset(want, 0, sizeof want), 0) : ref_mask(v, FB_W, full_rect, want);
+        size_t count = reference_mask(v, want);
         expect_mask("raster_draw_covers_exactly_the_reference_pixels_of_random_triangles", t, k, v, &fb, want);
         cr_assert_eq(stats.fragments, count, "triangle %d: %llu fragments, %zu pixels", t,
                      (unsigned long long)stats.fragments, count);
@@ -83,7 +94,7 @@ Test(raster, draw_snaps_vertices_to_the_nearest_subpixel)
     scene_fb_make(&fb, FB_W, FB_H);
     one_triangle_mesh(&mesh);
     unsigned char want[FB_W * FB_H];
-    scene_rng rng = { RANDOM_SEED + 5 };
+    test_rng rng = { RANDOM_SEED + 5 };
     for (int t = 0; t < RANDOM_TRIANGLES; t++) {
         kind k = (kind)(t % KIND_COUNT);
         ref_point v[3], snapped[3];
@@ -93,16 +104,15 @@ Test(raster, draw_snaps_vertices_to_the_nearest_subpixel)
             int64_t *c[2] = { &v[i].x, &v[i].y }, *s_out[2] = { &snapped[i].x, &snapped[i].y };
             int64_t limit[2] = { (int64_t)FB_W * ONE * QUARTERS, (int64_t)FB_H * ONE * QUARTERS };
             for (int a = 0; a < 2; a++) {
-                int64_t off = (scene_rng_next(&rng) & 1 ? 1 : 3) * (scene_rng_next(&rng) & 1 ? 1 : -1);
+                int64_t off = (rng_next(&rng) & 1 ? 1 : 3) * (rng_next(&rng) & 1 ? 1 : -1);
                 int64_t q = clamp64(*c[a] * QUARTERS + off, 0, limit[a]); /* in 1/1024 px */
                 xy[i][a] = (float)q / (ONE * QUARTERS);
                 *s_out[a] = (q + QUARTERS / 2) / QUARTERS; /* nearest: q is never 2 mod 4 */
             }
         }
-        bool flat = ref_turn(snapped[0], snapped[1], snapped[2]) == 0;
         sr_framebuffer_clear(&fb, SCENE_BACKGROUND);
         sr_stats stats = draw_at(&fb, &mesh, xy);
-        size_t count = flat ? (memset(want, 0, sizeof want), 0) : ref_mask(snapped, FB_W, full_rect, want);
+        size_t count = reference_mask(snapped, want);
         expect_mask("raster_draw_snaps_vertices_to_the_nearest_subpixel", t, k, snapped, &fb, want);
         cr_assert_eq(stats.fragments, count);
     }

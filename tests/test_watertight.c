@@ -67,6 +67,27 @@ static void set_vertex(sr_mesh *mesh, uint32_t i, pt p)
     mesh->positions[i][2] = FLAT_Z;
 }
 
+/* Draws mesh (back faces culled) on a FLAT_SIZE square and expects none of
+ * its `what` culled and each pixel inside the polygon (n corners) hit once. */
+static void draw_covers_polygon_once(const char *name, const char *what, const sr_mesh *mesh, const pt *polygon,
+                                     int n)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, FLAT_SIZE, FLAT_SIZE);
+    sr_draw_desc desc = { .mesh = mesh, .cull = SR_CULL_BACK };
+    scene_pixel_ortho(&desc, FLAT_SIZE, FLAT_SIZE);
+    scene_hit_counter counter;
+    sr_stats stats = { 0 };
+    scene_count_hits(&fb, &desc, &counter, &stats);
+    cr_expect_eq(stats.culled, 0, "%s: %llu %s culled (wrong winding?)", name, (unsigned long long)stats.culled,
+                 what);
+    static unsigned char regions[FLAT_SIZE * FLAT_SIZE];
+    polygon_regions(polygon, n, FLAT_SIZE, regions);
+    scene_expect_each_pixel_once(name, &counter, regions);
+    scene_hit_counter_free(&counter);
+    sr_framebuffer_destroy(&fb);
+}
+
 /* A fan of spokes (in clockwise order on screen) around centre c, drawn once. */
 static void check_fan(const char *name, pt c, const pt *spokes, int n)
 {
@@ -79,20 +100,7 @@ static void check_fan(const char *name, pt c, const pt *spokes, int n)
         mesh.indices[3 * k + 1] = (uint32_t)k + 1;
         mesh.indices[3 * k + 2] = (uint32_t)(k + 1) % (uint32_t)n + 1;
     }
-    sr_framebuffer fb;
-    scene_fb_make(&fb, FLAT_SIZE, FLAT_SIZE);
-    sr_draw_desc desc = { .mesh = &mesh, .cull = SR_CULL_BACK };
-    scene_pixel_ortho(&desc, FLAT_SIZE, FLAT_SIZE);
-    scene_hit_counter counter;
-    sr_stats stats = { 0 };
-    scene_count_hits(&fb, &desc, &counter, &stats);
-    cr_expect_eq(stats.culled, 0, "%s: %llu fan triangles culled (wrong winding?)", name,
-                 (unsigned long long)stats.culled);
-    static unsigned char regions[FLAT_SIZE * FLAT_SIZE];
-    polygon_regions(spokes, n, FLAT_SIZE, regions);
-    scene_expect_each_pixel_once(name, &counter, regions);
-    scene_hit_counter_free(&counter);
-    sr_framebuffer_destroy(&fb);
+    draw_covers_polygon_once(name, "fan triangles", &mesh, spokes, n);
     sr_mesh_free(&mesh);
 }
 
@@ -120,17 +128,17 @@ Test(watertight, fan_with_edges_through_pixel_centres_covers_each_pixel_once)
 Test(watertight, fan_of_random_spokes_covers_each_pixel_once)
 {
     enum { N = 29 };
-    scene_rng rng = { SEED };
+    test_rng rng = { SEED };
     for (int round = 0; round < 8; round++) {
-        pt c = { 64 * ONE + scene_rng_range(&rng, -4 * ONE, 4 * ONE),
-                 64 * ONE + scene_rng_range(&rng, -4 * ONE, 4 * ONE) };
+        pt c = { 64 * ONE + rng_range(&rng, -4 * ONE, 4 * ONE),
+                 64 * ONE + rng_range(&rng, -4 * ONE, 4 * ONE) };
         double angles[N];
         for (int k = 0; k < N; k++)
-            angles[k] = scene_rng_unit(&rng) * 2.0 * GLM_PI;
+            angles[k] = rng_unit(&rng) * 2.0 * GLM_PI;
         qsort(angles, N, sizeof angles[0], compare_angle);
         pt spokes[N];
         for (int k = 0; k < N; k++) {
-            double radius = 20.0 + 36.0 * scene_rng_unit(&rng);
+            double radius = 20.0 + 36.0 * rng_unit(&rng);
             spokes[k] = (pt){ c.x + (int64_t)llround(radius * cos(angles[k]) * ONE),
                               c.y + (int64_t)llround(radius * sin(angles[k]) * ONE) };
         }
@@ -150,7 +158,7 @@ Test(watertight, fan_of_random_spokes_covers_each_pixel_once)
 /* An n x n grid of cells over [lo, hi]^2 (subpixels), each cell split along
  * a diagonal chosen by the rng, interior vertices moved by up to `jitter`. */
 static void check_grid(const char *name, int n, int64_t lo, int64_t hi, int64_t jitter, bool centres,
-                       scene_rng *rng)
+                       test_rng *rng)
 {
     uint32_t side = (uint32_t)n + 1;
     sr_mesh mesh;
@@ -165,8 +173,8 @@ static void check_grid(const char *name, int n, int64_t lo, int64_t hi, int64_t 
                 p.y = p.y / ONE * ONE + HALF;
             }
             if (r > 0 && q > 0 && r < side - 1 && q < side - 1) {
-                p.x += scene_rng_range(rng, -jitter, jitter);
-                p.y += scene_rng_range(rng, -jitter, jitter);
+                p.x += rng_range(rng, -jitter, jitter);
+                p.y += rng_range(rng, -jitter, jitter);
             }
             grid[r * side + q] = p;
             set_vertex(&mesh, r * side + q, p);
@@ -177,7 +185,7 @@ static void check_grid(const char *name, int n, int64_t lo, int64_t hi, int64_t 
         for (uint32_t q = 0; q < (uint32_t)n; q++) {
             uint32_t a = r * side + q, b = a + 1, d = a + side, e = d + 1; /* a b on top, d e below */
             uint32_t *ix = &mesh.indices[6 * t++];
-            if (scene_rng_next(rng) & 1) { /* diagonal a-e; clockwise on screen (y down) */
+            if (rng_next(rng) & 1) { /* diagonal a-e; clockwise on screen (y down) */
                 uint32_t v[6] = { a, b, e, a, e, d };
                 memcpy(ix, v, sizeof v);
             } else { /* diagonal b-d */
@@ -187,39 +195,26 @@ static void check_grid(const char *name, int n, int64_t lo, int64_t hi, int64_t 
         }
     }
     pt outline[4] = { grid[0], grid[side - 1], grid[side * side - 1], grid[(side - 1) * side] };
-    sr_framebuffer fb;
-    scene_fb_make(&fb, FLAT_SIZE, FLAT_SIZE);
-    sr_draw_desc desc = { .mesh = &mesh, .cull = SR_CULL_BACK };
-    scene_pixel_ortho(&desc, FLAT_SIZE, FLAT_SIZE);
-    scene_hit_counter counter;
-    sr_stats stats = { 0 };
-    scene_count_hits(&fb, &desc, &counter, &stats);
-    cr_expect_eq(stats.culled, 0, "%s: %llu triangles culled (wrong winding?)", name,
-                 (unsigned long long)stats.culled);
-    static unsigned char regions[FLAT_SIZE * FLAT_SIZE];
-    polygon_regions(outline, 4, FLAT_SIZE, regions);
-    scene_expect_each_pixel_once(name, &counter, regions);
-    scene_hit_counter_free(&counter);
-    sr_framebuffer_destroy(&fb);
+    draw_covers_polygon_once(name, "triangles", &mesh, outline, 4);
     free(grid);
     sr_mesh_free(&mesh);
 }
 
 Test(watertight, grid_of_jittered_triangles_covers_each_pixel_once)
 {
-    scene_rng rng = { SEED + 1 };
+    test_rng rng = { SEED + 1 };
     check_grid("watertight_grid_of_jittered_triangles", 13, 4 * ONE + 77, 123 * ONE + 190, 3 * ONE, false, &rng);
 }
 
 Test(watertight, grid_with_vertices_on_pixel_centres_covers_each_pixel_once)
 {
-    scene_rng rng = { SEED + 2 };
+    test_rng rng = { SEED + 2 };
     check_grid("watertight_grid_with_vertices_on_pixel_centres", 15, 4 * ONE, 124 * ONE, 0, true, &rng);
 }
 
 Test(watertight, grid_of_thin_cells_covers_each_pixel_once)
 {
-    scene_rng rng = { SEED + 3 };
+    test_rng rng = { SEED + 3 };
     /* 61 cells over 121 px, about 2 px wide: jitter of up to 0.4 px keeps
      * every cell convex (so no triangle folds over) while slanting all edges. */
     check_grid("watertight_grid_of_thin_cells", 61, 3 * ONE + 5, 124 * ONE + 251, 2 * ONE / 5, false, &rng);

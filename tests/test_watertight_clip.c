@@ -23,7 +23,7 @@
 #define VIEW_H 120
 #define OUTLINE_PIXELS 0.02 /* region samples this far around each pixel centre */
 
-static void ground_mesh(sr_mesh *mesh, scene_rng *rng)
+static void ground_mesh(sr_mesh *mesh, test_rng *rng)
 {
     uint32_t side = GROUND_CELLS + 1;
     scene_mesh_alloc(mesh, side * side, 2u * GROUND_CELLS * GROUND_CELLS, false);
@@ -35,8 +35,8 @@ static void ground_mesh(sr_mesh *mesh, scene_rng *rng)
             p[1] = 0.0f;
             p[2] = -GROUND_HALF + step * (float)r;
             if (r > 0 && q > 0 && r < side - 1 && q < side - 1) {
-                p[0] += (float)(GROUND_JITTER * (2.0 * scene_rng_unit(rng) - 1.0));
-                p[2] += (float)(GROUND_JITTER * (2.0 * scene_rng_unit(rng) - 1.0));
+                p[0] += (float)(GROUND_JITTER * (2.0 * rng_unit(rng) - 1.0));
+                p[2] += (float)(GROUND_JITTER * (2.0 * rng_unit(rng) - 1.0));
             }
         }
     }
@@ -47,7 +47,7 @@ static void ground_mesh(sr_mesh *mesh, scene_rng *rng)
              * above with +z up the screen, (a, d, e) and (a, d, b) are clockwise. */
             uint32_t a = r * side + q, b = a + 1, d = a + side, e = d + 1;
             uint32_t v[2][6] = { { a, d, e, a, e, b }, { a, d, b, d, e, b } };
-            memcpy(ix, v[scene_rng_next(rng) & 1], sizeof v[0]);
+            memcpy(ix, v[rng_next(rng) & 1], sizeof v[0]);
             ix += 6;
         }
     }
@@ -92,7 +92,7 @@ static void ground_regions(const sr_camera *cam, unsigned char *regions)
 static void check_ground(const char *name, const sr_camera *cam, scene_hit_counter *counter)
 {
     sr_mesh mesh;
-    scene_rng rng = { SEED + 4 };
+    test_rng rng = { SEED + 4 };
     ground_mesh(&mesh, &rng);
     sr_framebuffer fb;
     scene_fb_make(&fb, VIEW_W, VIEW_H);
