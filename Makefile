@@ -23,6 +23,14 @@ SAN_LIB_OBJ  := $(LIB_SRC:%.c=build/san/%.o)
 SAN_APP_OBJ  := $(APP_SRC:%.c=build/san/%.o)
 SAN_TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
+# The 8-lane span kernels are built for AVX2 (chosen at run time when the
+# CPU has it); never -mfma, which would round differently from the scalar path.
+ifneq ($(filter x86_64 i%86,$(shell uname -m)),)
+AVX2_OBJ := $(patsubst %,%/src/pipeline/span_avx2.o,build build/san build/fuzz)
+$(AVX2_OBJ): ALL_CFLAGS += -mavx2
+$(AVX2_OBJ): FUZZ_CFLAGS += -mavx2
+endif
+
 .PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-assets test-install install assets docs-images bench report stability clean
 .DEFAULT_GOAL := all
 

@@ -70,6 +70,7 @@ typedef struct sr_draw_desc {
     int subpixel_bits;                  /* 0: SR_SUBPIXEL_BITS; else SR_MIN..SR_MAX_SUBPIXEL_BITS */
     sr_clip_precision clip_precision;   /* SR_CLIP_ADAPTIVE: per edge, within half a subpixel step */
     float guard_band;                   /* 0 or 1: clip x, y at the viewport; G > 1: at ±G·w */
+    sr_simd simd;                       /* SR_SIMD_AUTO: the best per-pixel loop the CPU has */
 } sr_draw_desc;
 
 /* Draws the mesh into fb (which the caller clears). False, with a message,

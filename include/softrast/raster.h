@@ -27,6 +27,11 @@ typedef struct sr_raster_rect {
  * empty (x0 >= x1 or y0 >= y1) when none can. */
 sr_raster_rect sr_raster_scan_box(const sr_screen_vertex tri[3], sr_raster_rect rect, int subpixel_bits);
 
+/* The per-pixel loop a request gets on this CPU: AUTO (or anything
+ * unknown) is the best it has, AVX2 without AVX2 falls back to SSE2. */
+sr_simd sr_raster_simd_resolve(sr_simd want);
+const char *sr_simd_name(sr_simd simd); /* "auto", "scalar", "sse2", "avx2" */
+
 /* Draws one triangle of nonzero signed area2 (either winding) into fb within
  * rect, its vertices in units of 2^-subpixel_bits pixel (SR_SUBPIXEL_BITS
  * unless the draw asked for another precision); returns the number of

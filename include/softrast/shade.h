@@ -25,6 +25,7 @@ typedef struct sr_shade_context {
     const sr_texture *texture;
     sr_filter filter;
     float light_dir[3]; /* unit vector toward the light, world space */
+    sr_simd simd;       /* which per-pixel loop runs the shading */
 } sr_shade_context;
 
 /* 0..1 to 0..255, clamped; NaN gives 0. */

@@ -40,6 +40,11 @@ typedef enum sr_cull { SR_CULL_BACK = 0, SR_CULL_FRONT, SR_CULL_NONE } sr_cull;
 typedef enum sr_front { SR_FRONT_CW = 0, SR_FRONT_CCW } sr_front;
 typedef enum sr_filter { SR_FILTER_BILINEAR = 0, SR_FILTER_NEAREST } sr_filter;
 
+/* The per-pixel loop's instruction set: AUTO picks the best the CPU has
+ * (AVX2, else SSE2); the others force one, for tests and the report. Every
+ * choice gives bit-identical pixels and depths. */
+typedef enum sr_simd { SR_SIMD_AUTO = 0, SR_SIMD_SCALAR, SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_COUNT } sr_simd;
+
 /* Where each varying sits in sr_vertex_out.v (an offset from SR_VARYINGS_AT),
  * or -1 when the shading mode does not read it. */
 typedef struct sr_varying_layout {

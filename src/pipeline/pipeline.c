@@ -40,6 +40,8 @@ static bool check_accuracy_knobs(const sr_framebuffer *fb, const sr_draw_desc *d
         return sr_error_set(err, "subpixel bits %d outside %d..%d", bits, SR_MIN_SUBPIXEL_BITS, SR_MAX_SUBPIXEL_BITS);
     if (!(d->guard_band >= 0.0f && d->guard_band <= SR_MAX_GUARD_BAND))
         return sr_error_set(err, "guard band %g outside 0..%g", d->guard_band, SR_MAX_GUARD_BAND);
+    if ((unsigned)d->simd >= SR_SIMD_COUNT)
+        return sr_error_set(err, "unknown SIMD choice %d", (int)d->simd);
     if ((unsigned)d->clip_precision >= SR_CLIP_PRECISIONS)
         return sr_error_set(err, "unknown clip precision %d", (int)d->clip_precision);
     int side = fb->width > fb->height ? fb->width : fb->height;
@@ -84,7 +86,8 @@ static void shade_context_make(const sr_draw_desc *d, const sr_varying_layout *l
     if (!glm_vec3_eq(((float *)d->light_dir), 0.0f))
         glm_vec3_copy((float *)d->light_dir, light);
     glm_vec3_normalize(light);
-    *c = (sr_shade_context){ .layout = *l, .texture = d->texture, .filter = d->filter };
+    *c = (sr_shade_context){ .layout = *l, .texture = d->texture, .filter = d->filter,
+                             .simd = sr_raster_simd_resolve(d->simd) };
     glm_vec3_copy(light, c->light_dir);
 }
 

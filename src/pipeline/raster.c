@@ -1,15 +1,10 @@
+#include <stdlib.h>
 #include <string.h>
 
-#include "softrast/raster.h"
+#include "raster_setup.h"
 
 
-/* E(P) = a·Px + b·Py + c, the edge function of a → b in subpixel units: >= 0
- * on the inside of a clockwise (area2 > 0) triangle. `bias` is 0 on a top or
- * left edge and 1 otherwise, so E >= bias decides coverage with the
- * top-left rule in exact integers. */
-typedef struct edge {
-    int64_t a, b, c, bias;
-} edge;
+typedef sr_edge edge;
 
 static edge edge_make(const sr_screen_vertex *p, const sr_screen_vertex *q)
 {
@@ -46,18 +41,7 @@ static int64_t subpixel_centre(int i, int bits)
     return ((int64_t)i << bits) + ((int64_t)1 << (bits - 1));
 }
 
-/* Everything the per-pixel loop reads, set up once per triangle. Attributes
- * are a0 + λ1·d1 + λ2·d2, with λ from the exact edge values. */
-typedef struct setup {
-    edge e[3];
-    float inv_area2;
-    float z0, dz1, dz2;
-    float iw0, diw1, diw2;
-    int varyings;
-    float var0[SR_MAX_VARYINGS], dvar1[SR_MAX_VARYINGS], dvar2[SR_MAX_VARYINGS];
-    sr_raster_rect box;
-    int bits; /* subpixel bits of the vertices */
-} setup;
+typedef sr_tri_setup setup;
 
 /* floor(a / 2^bits): an arithmetic shift, which gcc and clang define for
  * negative a (vertices may lie a hair left of or above the framebuffer). */
@@ -95,6 +79,8 @@ static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings,
     s->bits = bits;
     s->box = box;
     edges_make(v, s->e);
+    for (int k = 0; k < 3; k++)
+        s->step_x[k] = s->e[k].a * ((int64_t)1 << bits); /* a multiply: a may be negative */
     s->inv_area2 = (float)(1.0 / (double)area2);
     s->z0 = v[0].z;
     s->dz1 = v[1].z - v[0].z;
@@ -179,36 +165,110 @@ static void edge_span(int64_t e, int64_t step, int64_t bias, int64_t *lo, int64_
     }
 }
 
-/* The per-pixel loop; always inlined with a constant mode and depth test so
- * each combination gets its own loop with those branches folded away. */
+/* Row j of the scan box: the pixel index and edge values where its
+ * candidate pixels start, and how many there are (the whole row of a narrow
+ * triangle; the exact covered span of a wide one). */
+typedef struct row_range {
+    size_t at;
+    int64_t e[3];
+    int count;
+} row_range;
+
+static inline row_range row_make(const setup *s, const sr_framebuffer *fb, bool spans, int j)
+{
+    int64_t px = subpixel_centre(s->box.x0, s->bits), py = subpixel_centre(j, s->bits);
+    int64_t lo = 0, hi = s->box.x1 - s->box.x0 - 1;
+    row_range r;
+    for (int k = 0; k < 3; k++) {
+        r.e[k] = edge_at(&s->e[k], px, py);
+        if (spans)
+            edge_span(r.e[k], s->step_x[k], s->e[k].bias, &lo, &hi);
+    }
+    r.count = lo <= hi ? (int)(hi - lo + 1) : 0;
+    for (int k = 0; k < 3; k++)
+        r.e[k] += lo * s->step_x[k];
+    r.at = (size_t)j * (size_t)fb->width + (size_t)s->box.x0 + (size_t)lo;
+    return r;
+}
+
+static inline bool wide(const setup *s)
+{
+    return s->box.x1 - s->box.x0 >= SPAN_MIN_WIDTH;
+}
+
+/* The scalar per-pixel loop; always inlined with a constant mode and depth
+ * test so each combination gets its own loop with those branches folded away. */
 static inline __attribute__((always_inline)) uint64_t
 raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, const sr_shade_context *shade,
             uint32_t id)
 {
     uint64_t fragments = 0;
-    const int64_t one = (int64_t)1 << s->bits; /* a multiply: the coefficients may be negative */
-    const int64_t step_x[3] = { s->e[0].a * one, s->e[1].a * one, s->e[2].a * one };
-    bool spans = s->box.x1 - s->box.x0 >= SPAN_MIN_WIDTH;
+    const int64_t *step = s->step_x;
+    bool spans = wide(s);
     for (int j = s->box.y0; j < s->box.y1; j++) {
-        int64_t px = subpixel_centre(s->box.x0, s->bits), py = subpixel_centre(j, s->bits);
-        int64_t e0 = edge_at(&s->e[0], px, py), e1 = edge_at(&s->e[1], px, py), e2 = edge_at(&s->e[2], px, py);
-        size_t row = (size_t)j * (size_t)fb->width + (size_t)s->box.x0;
-        if (spans) {
-            int64_t lo = 0, hi = s->box.x1 - s->box.x0 - 1;
-            edge_span(e0, step_x[0], s->e[0].bias, &lo, &hi);
-            edge_span(e1, step_x[1], s->e[1].bias, &lo, &hi);
-            edge_span(e2, step_x[2], s->e[2].bias, &lo, &hi);
-            e1 += lo * step_x[1];
-            e2 += lo * step_x[2];
-            for (int64_t d = lo; d <= hi; d++, e1 += step_x[1], e2 += step_x[2])
-                fragments += fill_pixel(s, fb, mode, greater, shade, id, row + (size_t)d, e1, e2);
-            continue;
-        }
-        for (int d = 0; d < s->box.x1 - s->box.x0; d++, e0 += step_x[0], e1 += step_x[1], e2 += step_x[2])
-            if (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias)
-                fragments += fill_pixel(s, fb, mode, greater, shade, id, row + (size_t)d, e1, e2);
+        row_range r = row_make(s, fb, spans, j);
+        int64_t e0 = r.e[0], e1 = r.e[1], e2 = r.e[2];
+        for (int d = 0; d < r.count; d++, e0 += step[0], e1 += step[1], e2 += step[2])
+            if (spans || (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias))
+                fragments += fill_pixel(s, fb, mode, greater, shade, id, r.at + (size_t)d, e1, e2);
     }
     return fragments;
+}
+
+/* The SIMD loop of a wide triangle: each row's covered span goes to the kernel. */
+static uint64_t raster_simd(const setup *s, sr_framebuffer *fb, sr_span_kernel kernel,
+                            const sr_shade_context *shade, uint32_t id)
+{
+    uint64_t fragments = 0;
+    for (int j = s->box.y0; j < s->box.y1; j++) {
+        row_range r = row_make(s, fb, true, j);
+        if (r.count > 0)
+            fragments += kernel(s, shade, fb, id, r.at, r.count, r.e);
+    }
+    return fragments;
+}
+
+/* Doubles hold the edge values exactly below 2^53; the kernels need that over
+ * the scan box and up to one group of lanes past its right side. An edge
+ * function is linear, so its largest magnitude is at a corner. */
+#define SIMD_EDGE_LIMIT ((int64_t)1 << 52)
+#define SIMD_MAX_LANES 8
+
+static bool edges_fit_double(const setup *s)
+{
+    int64_t xs[2] = { subpixel_centre(s->box.x0, s->bits), subpixel_centre(s->box.x1 - 1 + SIMD_MAX_LANES, s->bits) };
+    int64_t ys[2] = { subpixel_centre(s->box.y0, s->bits), subpixel_centre(s->box.y1 - 1, s->bits) };
+    for (int k = 0; k < 3; k++)
+        for (int c = 0; c < 4; c++)
+            if (llabs(edge_at(&s->e[k], xs[c & 1], ys[c >> 1])) >= SIMD_EDGE_LIMIT)
+                return false;
+    return true;
+}
+
+sr_simd sr_raster_simd_resolve(sr_simd want)
+{
+    bool avx2 = sr_span_kernel_avx2(SR_SHADE_ID, false) != NULL;
+#if defined(__x86_64__) || defined(__i386__)
+    avx2 = avx2 && __builtin_cpu_supports("avx2");
+#endif
+    if (want == SR_SIMD_AUTO || want >= SR_SIMD_COUNT)
+        return avx2 ? SR_SIMD_AVX2 : SR_SIMD_SSE2;
+    return want == SR_SIMD_AVX2 && !avx2 ? SR_SIMD_SSE2 : want;
+}
+
+const char *sr_simd_name(sr_simd simd)
+{
+    static const char *const names[SR_SIMD_COUNT] = { "auto", "scalar", "sse2", "avx2" };
+    return (unsigned)simd < SR_SIMD_COUNT ? names[simd] : "unknown";
+}
+
+static sr_span_kernel span_kernel(sr_simd simd, sr_shade mode, bool greater)
+{
+    switch (sr_raster_simd_resolve(simd)) {
+    case SR_SIMD_AVX2: return sr_span_kernel_avx2(mode, greater);
+    case SR_SIMD_SSE2: return sr_span_kernel_sse2(mode, greater);
+    default:           return NULL;
+    }
 }
 
 static inline __attribute__((always_inline)) uint64_t
@@ -231,6 +291,9 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
     order_clockwise(tri, area2, v);
     setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, box,
                subpixel_bits, &s);
+    sr_span_kernel kernel = span_kernel(shade->simd, mode, fb->reversed_z);
+    if (kernel && wide(&s) && edges_fit_double(&s))
+        return raster_simd(&s, fb, kernel, shade, triangle_id);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(&s, fb, SR_SHADE_ID, shade, triangle_id);
     case SR_SHADE_COLOR:   return raster_mode(&s, fb, SR_SHADE_COLOR, shade, triangle_id);

@@ -1,0 +1,22 @@
+/* The 8-lane span kernels, built with -mavx2 (the Makefile adds it for this
+ * file on x86-64) and chosen at run time only on a CPU that has AVX2. No
+ * -mfma: a fused multiply-add would round differently from the scalar path. */
+#include "raster_setup.h"
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#define SPAN_SQRT(x) ((vf)_mm256_sqrt_ps((__m256)(x)))
+#define SPAN_MOVEMASK(mask) _mm256_movemask_ps((__m256)(mask))
+#define SPAN_GATHER(texels, index) ((vi)_mm256_i32gather_epi32((const int *)(texels), (__m256i)(index), 4))
+#define SPAN_LANE_INDICES 0, 1, 2, 3, 4, 5, 6, 7
+#define SPAN_LANES 8
+#define SPAN_KERNEL_GETTER sr_span_kernel_avx2
+#include "span_kernel.h"
+#else
+sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater)
+{
+    (void)mode;
+    (void)greater;
+    return NULL;
+}
+#endif

@@ -1,0 +1,373 @@
+/* span_kernel.h — the per-pixel work of raster.c, SPAN_LANES pixels at a
+ * time, in GCC/Clang vector extensions. Included once per instruction set
+ * (span_sse2.c: 4 lanes; span_avx2.c: 8 lanes, built with -mavx2), each
+ * defining SPAN_LANES, SPAN_KERNEL_GETTER and (optionally) SPAN_SQRT first.
+ *
+ * Every lane does exactly the float operations of the scalar loop and of
+ * shade.h, in the same order and without fused multiply-adds, so the colors
+ * and depths are bit-identical to the scalar path (tests/test_simd.c):
+ * λ = (float)E · inv_area2 with E exact in double, depth and 1/w from λ,
+ * the varyings divided by 1/w, then the mode's shading. Lanes past the row
+ * or outside the triangle are masked; memory is read and written only for
+ * the row's pixels (a neighbouring tile belongs to another thread). */
+#include <math.h>
+#include <string.h>
+
+#include "raster_setup.h"
+
+typedef float vf __attribute__((vector_size(SPAN_LANES * 4)));
+typedef int32_t vi __attribute__((vector_size(SPAN_LANES * 4)));
+/* Edge values are doubles, kept as two half-width vectors that each fit a
+ * register (a full-width vector of doubles would be split through memory). */
+typedef double vdh __attribute__((vector_size(SPAN_LANES * 4)));
+typedef float vfh __attribute__((vector_size(SPAN_LANES * 2)));
+
+typedef struct edge_lanes {
+    vdh lo, hi; /* lanes 0 .. SPAN_LANES/2 − 1, then the rest */
+} edge_lanes;
+
+#ifndef SPAN_SQRT
+static inline __attribute__((always_inline)) vf span_sqrt_lanes(vf x)
+{
+    for (int l = 0; l < SPAN_LANES; l++)
+        x[l] = sqrtf(x[l]);
+    return x;
+}
+#define SPAN_SQRT(x) span_sqrt_lanes(x)
+#endif
+
+/* Lane-wise mask ? a : b, masks being all ones or all zeros per lane. */
+static inline __attribute__((always_inline)) vi select_i(vi mask, vi a, vi b)
+{
+    return (mask & a) | (~mask & b);
+}
+
+static inline __attribute__((always_inline)) vf select_f(vi mask, vf a, vf b)
+{
+    return (vf)select_i(mask, (vi)a, (vi)b);
+}
+
+/* n values from p (a whole vector when n is SPAN_LANES), zeros past n. */
+static inline __attribute__((always_inline)) vf load_f(const float *p, int n)
+{
+    vf v = { 0 };
+    if (n == SPAN_LANES)
+        memcpy(&v, p, sizeof v);
+    else
+        for (int l = 0; l < n; l++)
+            v[l] = p[l];
+    return v;
+}
+
+static inline __attribute__((always_inline)) vi load_i(const uint32_t *p, int n)
+{
+    vi v = { 0 };
+    if (n == SPAN_LANES)
+        memcpy(&v, p, sizeof v);
+    else
+        for (int l = 0; l < n; l++)
+            v[l] = (int32_t)p[l];
+    return v;
+}
+
+static inline __attribute__((always_inline)) void store_f(float *p, vf v, int n)
+{
+    if (n == SPAN_LANES)
+        memcpy(p, &v, sizeof v);
+    else
+        for (int l = 0; l < n; l++)
+            p[l] = v[l];
+}
+
+static inline __attribute__((always_inline)) void store_i(uint32_t *p, vi v, int n)
+{
+    if (n == SPAN_LANES)
+        memcpy(p, &v, sizeof v);
+    else
+        for (int l = 0; l < n; l++)
+            p[l] = (uint32_t)v[l];
+}
+
+static inline __attribute__((always_inline)) vf edge_to_float(edge_lanes e)
+{
+    return __builtin_shufflevector(__builtin_convertvector(e.lo, vfh), __builtin_convertvector(e.hi, vfh),
+                                   SPAN_LANE_INDICES);
+}
+
+static inline __attribute__((always_inline)) vi lanes_index(void)
+{
+    vi k;
+    for (int l = 0; l < SPAN_LANES; l++)
+        k[l] = l;
+    return k;
+}
+
+/* One bit per lane, set where the mask is. */
+static inline __attribute__((always_inline)) unsigned lane_bits(vi mask)
+{
+#ifdef SPAN_MOVEMASK
+    return (unsigned)SPAN_MOVEMASK(mask);
+#else
+    unsigned bits = 0;
+    for (int l = 0; l < SPAN_LANES; l++)
+        bits |= (mask[l] != 0) << l;
+    return bits;
+#endif
+}
+
+/* The interpolants of one group of pixels. */
+typedef struct lanes {
+    vf l1, l2;
+    vf var[SR_MAX_VARYINGS];
+} lanes;
+
+static inline __attribute__((always_inline)) vf depth_lanes(const sr_tri_setup *s, vf l1, vf l2)
+{
+    vf z = s->z0 + l1 * s->dz1 + l2 * s->dz2;
+    vf zero = { 0 };
+    vf one = zero + 1.0f;
+    return select_f(z > zero, select_f(z < one, z, one), zero);
+}
+
+static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, lanes *p)
+{
+    vf w = 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2);
+    for (int k = 0; k < s->varyings; k++)
+        p->var[k] = (s->var0[k] + p->l1 * s->dvar1[k] + p->l2 * s->dvar2[k]) * w;
+}
+
+/* sr_shade_channel per lane. */
+static inline __attribute__((always_inline)) vi channel_lanes(vf c)
+{
+    vf zero = { 0 };
+    vf one = zero + 1.0f;
+    vf clamped = select_f(c > zero, select_f(c < one, c, one), zero);
+    return __builtin_convertvector(clamped * 255.0f + 0.5f, vi);
+}
+
+static inline __attribute__((always_inline)) vi pack_lanes(vf r, vf g, vf b)
+{
+    return channel_lanes(r) << 16 | channel_lanes(g) << 8 | channel_lanes(b);
+}
+
+/* sr_shade_floor_int per lane: truncate, then step down where that rounded up. */
+static inline __attribute__((always_inline)) vi floor_lanes(vf x)
+{
+    vi i = __builtin_convertvector(x, vi);
+    return i + (x < __builtin_convertvector(i, vf));
+}
+
+static inline __attribute__((always_inline)) vf wrap_unit_lanes(vf t)
+{
+    vf zero = { 0 };
+    vi finite = (vf)((vi)t & 0x7FFFFFFF) < SR_SHADE_NO_FRACTION;
+    vf kept = select_f(finite, t, zero);
+    vf f = kept - __builtin_convertvector(floor_lanes(kept), vf);
+    return select_f(f < 1.0f, f, zero);
+}
+
+static inline __attribute__((always_inline)) vi texel_index_lanes(vf f, int n)
+{
+    vi i = __builtin_convertvector(f * (float)n, vi);
+    return select_i(i < n, i, (vi){ 0 } + (n - 1));
+}
+
+static inline __attribute__((always_inline)) vi gather_texels(const sr_texture *tex, vi index)
+{
+#ifdef SPAN_GATHER
+    return SPAN_GATHER(tex->texels, index);
+#else
+    vi t;
+    for (int l = 0; l < SPAN_LANES; l++)
+        t[l] = (int32_t)tex->texels[index[l]];
+    return t;
+#endif
+}
+
+typedef struct rgb_lanes {
+    vf c[3];
+} rgb_lanes;
+
+static inline __attribute__((always_inline)) rgb_lanes texel_rgb_lanes(vi t)
+{
+    rgb_lanes o;
+    for (int i = 0; i < 3; i++)
+        o.c[i] = __builtin_convertvector((t >> (16 - 8 * i)) & 0xFF, vf) * SR_SHADE_CHANNEL_SCALE;
+    return o;
+}
+
+static inline __attribute__((always_inline)) rgb_lanes sample_nearest_lanes(const sr_texture *tex, vf fu, vf fv)
+{
+    vi x = texel_index_lanes(fu, tex->width);
+    vi y = (tex->height - 1) - texel_index_lanes(fv, tex->height);
+    return texel_rgb_lanes(gather_texels(tex, y * tex->width + x));
+}
+
+/* sr_shade_bilinear_pair per lane. */
+static inline __attribute__((always_inline)) vf bilinear_pair_lanes(vf c, int n, vi *i0, vi *i1)
+{
+    vi lo = floor_lanes(c);
+    vi zero = { 0 };
+    *i0 = select_i(lo < 0, zero + (n - 1), lo);
+    *i1 = select_i(lo + 1 >= n, zero, lo + 1);
+    return c - __builtin_convertvector(lo, vf);
+}
+
+static inline __attribute__((always_inline)) rgb_lanes sample_bilinear_lanes(const sr_texture *tex, vf fu, vf fv)
+{
+    vi x0, x1, y0, y1;
+    vf ax = bilinear_pair_lanes(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1);
+    vf ay = bilinear_pair_lanes((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1);
+    vi row0 = y0 * tex->width, row1 = y1 * tex->width;
+    rgb_lanes c00 = texel_rgb_lanes(gather_texels(tex, row0 + x0));
+    rgb_lanes c10 = texel_rgb_lanes(gather_texels(tex, row0 + x1));
+    rgb_lanes c01 = texel_rgb_lanes(gather_texels(tex, row1 + x0));
+    rgb_lanes c11 = texel_rgb_lanes(gather_texels(tex, row1 + x1));
+    rgb_lanes o;
+    for (int i = 0; i < 3; i++) {
+        vf top = c00.c[i] + ax * (c10.c[i] - c00.c[i]);
+        vf bottom = c01.c[i] + ax * (c11.c[i] - c01.c[i]);
+        o.c[i] = top + ay * (bottom - top);
+    }
+    return o;
+}
+
+static inline __attribute__((always_inline)) rgb_lanes sample_lanes(const sr_shade_context *c, vf u, vf v)
+{
+    vf fu = wrap_unit_lanes(u), fv = wrap_unit_lanes(v);
+    return c->filter == SR_FILTER_NEAREST ? sample_nearest_lanes(c->texture, fu, fv)
+                                          : sample_bilinear_lanes(c->texture, fu, fv);
+}
+
+static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_context *c, const vf *n)
+{
+    vf len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    vf zero = { 0 };
+    vf d = (n[0] * c->light_dir[0] + n[1] * c->light_dir[1] + n[2] * c->light_dir[2]) / SPAN_SQRT(len2);
+    vf lit = SR_LAMBERT_AMBIENT + (1.0f - SR_LAMBERT_AMBIENT) * select_f(d > zero, d, zero);
+    return select_f(len2 > zero, lit, zero + SR_LAMBERT_AMBIENT);
+}
+
+static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(const sr_shade_context *c, const vf *var)
+{
+    if (c->layout.uv >= 0)
+        return sample_lanes(c, var[c->layout.uv], var[c->layout.uv + 1]);
+    rgb_lanes o;
+    for (int i = 0; i < 3; i++)
+        o.c[i] = c->layout.color >= 0 ? var[c->layout.color + i] : (vf){ 0 } + SR_LAMBERT_GRAY;
+    return o;
+}
+
+/* sr_shade_fragment per lane. */
+static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, const sr_shade_context *c,
+                                                            const vf *var, uint32_t id)
+{
+    vi zero = { 0 };
+    switch (mode) {
+    case SR_SHADE_ID:
+        return zero + (int32_t)((id + 1u) & 0xFFFFFFu);
+    case SR_SHADE_COLOR: {
+        const vf *k = var + c->layout.color;
+        return pack_lanes(k[0], k[1], k[2]);
+    }
+    case SR_SHADE_NORMAL: {
+        const vf *n = var + c->layout.normal;
+        return pack_lanes(0.5f + 0.5f * n[0], 0.5f + 0.5f * n[1], 0.5f + 0.5f * n[2]);
+    }
+    case SR_SHADE_TEXTURE: {
+        rgb_lanes t = sample_lanes(c, var[c->layout.uv], var[c->layout.uv + 1]);
+        return pack_lanes(t.c[0], t.c[1], t.c[2]);
+    }
+    case SR_SHADE_LAMBERT: {
+        vf k = lambert_lanes(c, var + c->layout.normal);
+        rgb_lanes a = albedo_lanes(c, var);
+        return pack_lanes(k * a.c[0], k * a.c[1], k * a.c[2]);
+    }
+    default:
+        return zero;
+    }
+}
+
+/* Depth test, depth write and shading of up to SPAN_LANES pixels at `at`:
+ * `live` marks the lanes within the row. */
+static inline __attribute__((always_inline)) uint64_t
+fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, bool greater,
+           uint32_t id, size_t at, int n, vi live, const edge_lanes e[3])
+{
+    lanes p;
+    p.l1 = edge_to_float(e[1]) * s->inv_area2;
+    p.l2 = edge_to_float(e[2]) * s->inv_area2;
+    vf z = depth_lanes(s, p.l1, p.l2);
+    vf stored = load_f(fb->depth + at, n);
+    vi pass = live & (greater ? z > stored : z < stored);
+    unsigned passed = lane_bits(pass);
+    if (!passed)
+        return 0;
+    stored = select_f(pass, z, stored);
+    store_f(fb->depth + at, stored, n);
+    if (mode != SR_SHADE_DEPTH) {
+        if (mode != SR_SHADE_ID)
+            varyings_lanes(s, &p);
+        vi color = select_i(pass, shade_lanes(mode, c, p.var, id), load_i(fb->color + at, n));
+        store_i(fb->color + at, color, n);
+    }
+    return (uint64_t)__builtin_popcount(passed);
+}
+
+static inline __attribute__((always_inline)) uint64_t
+span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, bool greater,
+         uint32_t id, size_t at, int count, const int64_t e_first[3])
+{
+    vi lane = lanes_index();
+    vdh lane_lo, lane_hi;
+    for (int l = 0; l < SPAN_LANES / 2; l++) {
+        lane_lo[l] = l;
+        lane_hi[l] = l + SPAN_LANES / 2;
+    }
+    edge_lanes e[3];
+    vdh step[3];
+    for (int k = 1; k < 3; k++) {
+        double first = (double)e_first[k], per_pixel = (double)s->step_x[k];
+        e[k] = (edge_lanes){ first + lane_lo * per_pixel, first + lane_hi * per_pixel };
+        step[k] = (vdh){ 0 } + per_pixel * SPAN_LANES;
+    }
+    uint64_t fragments = 0;
+    for (int d = 0; d < count; d += SPAN_LANES) {
+        int n = count - d < SPAN_LANES ? count - d : SPAN_LANES;
+        fragments += fill_group(s, c, fb, mode, greater, id, at + (size_t)d, n, lane < n, e);
+        for (int k = 1; k < 3; k++) {
+            e[k].lo += step[k];
+            e[k].hi += step[k];
+        }
+    }
+    return fragments;
+}
+
+#define SPAN_KERNEL(mode, greater, name)                                                                      \
+    static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id,  \
+                         size_t at, int count, const int64_t e[3])                                            \
+    {                                                                                                         \
+        return span_row(s, c, fb, mode, greater, id, at, count, e);                                           \
+    }
+
+#define SPAN_KERNELS(mode, name) SPAN_KERNEL(mode, false, name##_less) SPAN_KERNEL(mode, true, name##_greater)
+
+SPAN_KERNELS(SR_SHADE_LAMBERT, span_lambert)
+SPAN_KERNELS(SR_SHADE_ID, span_id)
+SPAN_KERNELS(SR_SHADE_COLOR, span_color)
+SPAN_KERNELS(SR_SHADE_NORMAL, span_normal)
+SPAN_KERNELS(SR_SHADE_TEXTURE, span_texture)
+SPAN_KERNELS(SR_SHADE_DEPTH, span_depth)
+
+sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater)
+{
+    static const sr_span_kernel kernels[SR_SHADE_COUNT][2] = {
+        [SR_SHADE_LAMBERT] = { span_lambert_less, span_lambert_greater },
+        [SR_SHADE_ID] = { span_id_less, span_id_greater },
+        [SR_SHADE_COLOR] = { span_color_less, span_color_greater },
+        [SR_SHADE_NORMAL] = { span_normal_less, span_normal_greater },
+        [SR_SHADE_TEXTURE] = { span_texture_less, span_texture_greater },
+        [SR_SHADE_DEPTH] = { span_depth_less, span_depth_greater },
+    };
+    return (unsigned)mode < SR_SHADE_COUNT ? kernels[mode][greater] : NULL;
+}
