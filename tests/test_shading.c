@@ -28,6 +28,8 @@
 /* uv read back from a texel is its centre; the exact uv may lie anywhere in
  * the texel, plus rounding: 1.5 texels. */
 #define UV_TOLERANCE (1.5 / CODE_SIZE)
+/* The bilinear filter's 8-bit weights and rounded lerps (shade.h). */
+#define BILINEAR_TOLERANCE (2.0 / 255)
 #define UV_MARGIN 0.01 /* skip pixels this close to the quad's border (wrap) */
 #define CHANNEL_TOLERANCE 1 /* 8-bit color channels: one step */
 
@@ -387,5 +389,48 @@ Test(shading, bilinear_sample_at_a_texel_centre_is_that_texel_and_halfway_is_the
     sr_shade_sample(&tex, SR_FILTER_BILINEAR, 0.25f, 0.25f, c); /* bottom-left */
     cr_expect_float_eq(c[0], 100.0f / 255, 1e-6);
     sr_shade_sample(&tex, SR_FILTER_BILINEAR, 0.5f, 0.5f, c); /* the middle: all four alike */
-    cr_expect_float_eq(c[0], (0 + 200 + 100 + 255) / 4.0f / 255, 1e-6);
+    cr_expect_float_eq(c[0], (0 + 200 + 100 + 255) / 4.0f / 255, BILINEAR_TOLERANCE);
+}
+
+/* The exact bilinear filter in double, channel `shift` of the texels: the
+ * reference the 8-bit fixed-point filter of shade.h must stay within
+ * BILINEAR_TOLERANCE of. */
+static double exact_bilinear(const sr_texture *tex, double fu, double fv, int shift)
+{
+    double cx = fu * tex->width - 0.5, cy = (1.0 - fv) * tex->height - 0.5;
+    double lx = floor(cx), ly = floor(cy), ax = cx - lx, ay = cy - ly;
+    int x[2] = { ((int)lx + tex->width) % tex->width, ((int)lx + 1) % tex->width };
+    int y[2] = { ((int)ly + tex->height) % tex->height, ((int)ly + 1) % tex->height };
+    double c[2][2];
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++)
+            c[j][i] = (double)((tex->texels[y[j] * tex->width + x[i]] >> shift) & 0xFF);
+    double top = c[0][0] + ax * (c[0][1] - c[0][0]), bottom = c[1][0] + ax * (c[1][1] - c[1][0]);
+    return (top + ay * (bottom - top)) / 255.0;
+}
+
+Test(shading, bilinear_sample_is_within_two_steps_of_the_exact_filter)
+{
+    enum { W = 7, H = 5, SAMPLES = 20000 };
+    uint32_t texels[W * H];
+    test_rng rng = { 0xB1B1 };
+    for (int i = 0; i < W * H; i++)
+        texels[i] = (uint32_t)rng_next(&rng) & 0xFFFFFFu;
+    texels[3] = 0xFF000000u | 0x00FF00u; /* a stray top byte must not leak into the color */
+    sr_texture tex = { W, H, texels };
+    double worst = 0;
+    for (int k = 0; k < SAMPLES; k++) {
+        float fu = (float)rng_unit(&rng), fv = (float)rng_unit(&rng);
+        float c[3];
+        sr_shade_sample(&tex, SR_FILTER_BILINEAR, fu, fv, c);
+        for (int i = 0; i < 3; i++) {
+            texels[3] &= 0xFFFFFFu;
+            double d = fabs(c[i] - exact_bilinear(&tex, fu, fv, 16 - 8 * i));
+            texels[3] |= 0xFF000000u;
+            worst = d > worst ? d : worst;
+        }
+        cr_assert_eq(sr_shade_sample_packed(&tex, SR_FILTER_BILINEAR, fu, fv) >> 24, 0u, "top byte set");
+    }
+    cr_expect_leq(worst, BILINEAR_TOLERANCE, "largest error %g (%g steps of 1/255)", worst, worst * 255);
+    cr_expect_gt(worst, 0.1 / 255, "the fixed-point filter should differ from the exact one somewhere");
 }

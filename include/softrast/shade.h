@@ -63,12 +63,17 @@ static inline float sr_shade_wrap_unit(float t)
     return f < 1.0f ? f : 0.0f;
 }
 
-static inline void sr_shade_texel_rgb(const sr_texture *tex, int x, int y, float rgb[3])
+/* A packed 0x00RRGGBB color as 0..1 floats. */
+static inline void sr_shade_unpack(uint32_t t, float rgb[3])
 {
-    uint32_t t = tex->texels[(size_t)y * (size_t)tex->width + (size_t)x];
     rgb[0] = (float)((t >> 16) & 0xFF) * SR_SHADE_CHANNEL_SCALE;
     rgb[1] = (float)((t >> 8) & 0xFF) * SR_SHADE_CHANNEL_SCALE;
     rgb[2] = (float)(t & 0xFF) * SR_SHADE_CHANNEL_SCALE;
+}
+
+static inline uint32_t sr_shade_texel(const sr_texture *tex, int x, int y)
+{
+    return tex->texels[(size_t)y * (size_t)tex->width + (size_t)x] & 0xFFFFFFu;
 }
 
 /* The texel a wrapped coordinate in [0, 1) falls in; a texel's lower edge
@@ -81,48 +86,63 @@ static inline int sr_shade_texel_index(float f, int n)
 
 /* Rows count from the bottom as v does, so v = k/H picks row k from the
  * bottom exactly as u = k/W picks column k. */
-static inline void sr_shade_sample_nearest(const sr_texture *tex, float fu, float fv, float rgb[3])
+static inline uint32_t sr_shade_sample_nearest(const sr_texture *tex, float fu, float fv)
 {
-    sr_shade_texel_rgb(tex, sr_shade_texel_index(fu, tex->width), tex->height - 1 - sr_shade_texel_index(fv, tex->height), rgb);
+    return sr_shade_texel(tex, sr_shade_texel_index(fu, tex->width), tex->height - 1 - sr_shade_texel_index(fv, tex->height));
 }
 
-/* The two texels around coordinate c (texel centres at half-integers), wrapped,
- * and the weight of the second. c lies in [-0.5, n - 0.5]. */
-static inline float sr_shade_bilinear_pair(float c, int n, int *i0, int *i1)
+/* Bilinear weights are fixed point with SR_SHADE_WEIGHT_BITS fraction bits
+ * (Direct3D asks for at least 8), rounded to nearest. */
+#define SR_SHADE_WEIGHT_BITS 8
+#define SR_SHADE_WEIGHT_ONE (1u << SR_SHADE_WEIGHT_BITS)
+
+/* The two texels around coordinate c (texel centres at half-integers),
+ * wrapped, and the weight of the second in 0..SR_SHADE_WEIGHT_ONE. c lies in
+ * [-0.5, n - 0.5]. */
+static inline uint32_t sr_shade_bilinear_pair(float c, int n, int *i0, int *i1)
 {
     int lo = sr_shade_floor_int(c);
     *i0 = lo < 0 ? n - 1 : lo;
     *i1 = lo + 1 >= n ? 0 : lo + 1;
-    return c - (float)lo;
+    return (uint32_t)((c - (float)lo) * (float)SR_SHADE_WEIGHT_ONE + 0.5f);
 }
 
-static inline void sr_shade_sample_bilinear(const sr_texture *tex, float fu, float fv, float rgb[3])
+/* (a·(1 − w) + b·w) per channel of two packed texels, in exact integers,
+ * rounded to nearest: red and blue share one 32-bit multiply in separate
+ * 16-bit halves (a channel times a weight stays below 2^16, so neither half
+ * carries into the other), as a SIMD lane does them. */
+static inline uint32_t sr_shade_lerp_texels(uint32_t a, uint32_t b, uint32_t w)
+{
+    uint32_t v = SR_SHADE_WEIGHT_ONE - w;
+    uint32_t rb = ((a & 0xFF00FFu) * v + (b & 0xFF00FFu) * w + 0x800080u) >> SR_SHADE_WEIGHT_BITS & 0xFF00FFu;
+    uint32_t g = (((a >> 8) & 0xFFu) * v + ((b >> 8) & 0xFFu) * w + 0x80u) >> SR_SHADE_WEIGHT_BITS;
+    return rb | g << 8;
+}
+
+/* Within 2/255 of the exact bilinear filter (tests/test_shading.c): half a
+ * step from each weight's rounding and from each lerp's. */
+static inline uint32_t sr_shade_sample_bilinear(const sr_texture *tex, float fu, float fv)
 {
     int x0, x1, y0, y1;
-    float ax = sr_shade_bilinear_pair(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1);
+    uint32_t wx = sr_shade_bilinear_pair(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1);
     /* Image rows run top down, v bottom up. */
-    float ay = sr_shade_bilinear_pair((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1);
-    float c[4][3];
-    sr_shade_texel_rgb(tex, x0, y0, c[0]);
-    sr_shade_texel_rgb(tex, x1, y0, c[1]);
-    sr_shade_texel_rgb(tex, x0, y1, c[2]);
-    sr_shade_texel_rgb(tex, x1, y1, c[3]);
-    for (int i = 0; i < 3; i++) {
-        float top = c[0][i] + ax * (c[1][i] - c[0][i]);
-        float bottom = c[2][i] + ax * (c[3][i] - c[2][i]);
-        rgb[i] = top + ay * (bottom - top);
-    }
+    uint32_t wy = sr_shade_bilinear_pair((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1);
+    uint32_t top = sr_shade_lerp_texels(sr_shade_texel(tex, x0, y0), sr_shade_texel(tex, x1, y0), wx);
+    uint32_t bottom = sr_shade_lerp_texels(sr_shade_texel(tex, x0, y1), sr_shade_texel(tex, x1, y1), wx);
+    return sr_shade_lerp_texels(top, bottom, wy);
+}
+
+/* The filtered texel at (u, v), packed 0x00RRGGBB. */
+static inline uint32_t sr_shade_sample_packed(const sr_texture *tex, sr_filter filter, float u, float v)
+{
+    float fu = sr_shade_wrap_unit(u), fv = sr_shade_wrap_unit(v);
+    return filter == SR_FILTER_NEAREST ? sr_shade_sample_nearest(tex, fu, fv) : sr_shade_sample_bilinear(tex, fu, fv);
 }
 
 static inline void sr_shade_sample(const sr_texture *tex, sr_filter filter, float u, float v, float rgb[3])
 {
-    float fu = sr_shade_wrap_unit(u), fv = sr_shade_wrap_unit(v);
-    if (filter == SR_FILTER_NEAREST)
-        sr_shade_sample_nearest(tex, fu, fv, rgb);
-    else
-        sr_shade_sample_bilinear(tex, fu, fv, rgb);
+    sr_shade_unpack(sr_shade_sample_packed(tex, filter, u, v), rgb);
 }
-
 
 static inline float sr_shade_lambert_intensity(const sr_shade_context *c, const float *n)
 {
@@ -160,8 +180,7 @@ static inline uint32_t sr_shade_fragment(sr_shade mode, const sr_shade_context *
         return sr_shade_pack(0.5f + 0.5f * n[0], 0.5f + 0.5f * n[1], 0.5f + 0.5f * n[2]);
     }
     case SR_SHADE_TEXTURE:
-        sr_shade_sample(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1], rgb);
-        return sr_shade_pack(rgb[0], rgb[1], rgb[2]);
+        return sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]);
     case SR_SHADE_LAMBERT: {
         float k = sr_shade_lambert_intensity(c, var + c->layout.normal);
         sr_shade_albedo(c, var, rgb);

@@ -175,20 +175,21 @@ static inline __attribute__((always_inline)) vi texel_index_lanes(vf f, int n)
 static inline __attribute__((always_inline)) vi gather_texels(const sr_texture *tex, vi index)
 {
 #ifdef SPAN_GATHER
-    return SPAN_GATHER(tex->texels, index);
+    vi t = SPAN_GATHER(tex->texels, index);
 #else
     vi t;
     for (int l = 0; l < SPAN_LANES; l++)
         t[l] = (int32_t)tex->texels[index[l]];
-    return t;
 #endif
+    return t & 0xFFFFFF;
 }
 
 typedef struct rgb_lanes {
     vf c[3];
 } rgb_lanes;
 
-static inline __attribute__((always_inline)) rgb_lanes texel_rgb_lanes(vi t)
+/* sr_shade_unpack per lane. */
+static inline __attribute__((always_inline)) rgb_lanes unpack_lanes(vi t)
 {
     rgb_lanes o;
     for (int i = 0; i < 3; i++)
@@ -196,43 +197,50 @@ static inline __attribute__((always_inline)) rgb_lanes texel_rgb_lanes(vi t)
     return o;
 }
 
-static inline __attribute__((always_inline)) rgb_lanes sample_nearest_lanes(const sr_texture *tex, vf fu, vf fv)
+static inline __attribute__((always_inline)) vi sample_nearest_lanes(const sr_texture *tex, vf fu, vf fv)
 {
     vi x = texel_index_lanes(fu, tex->width);
     vi y = (tex->height - 1) - texel_index_lanes(fv, tex->height);
-    return texel_rgb_lanes(gather_texels(tex, y * tex->width + x));
+    return gather_texels(tex, y * tex->width + x);
 }
 
 /* sr_shade_bilinear_pair per lane. */
-static inline __attribute__((always_inline)) vf bilinear_pair_lanes(vf c, int n, vi *i0, vi *i1)
+static inline __attribute__((always_inline)) vi bilinear_pair_lanes(vf c, int n, vi *i0, vi *i1)
 {
     vi lo = floor_lanes(c);
     vi zero = { 0 };
     *i0 = select_i(lo < 0, zero + (n - 1), lo);
     *i1 = select_i(lo + 1 >= n, zero, lo + 1);
-    return c - __builtin_convertvector(lo, vf);
+    return __builtin_convertvector((c - __builtin_convertvector(lo, vf)) * (float)SR_SHADE_WEIGHT_ONE + 0.5f, vi);
 }
 
-static inline __attribute__((always_inline)) rgb_lanes sample_bilinear_lanes(const sr_texture *tex, vf fu, vf fv)
+/* sr_shade_lerp_texels per lane: the products fit 16 bits, so 16-bit
+ * multiplies give the scalar path's 32-bit ones (the weight is in both
+ * halves of its lane). */
+typedef uint16_t vu16 __attribute__((vector_size(SPAN_LANES * 4)));
+
+static inline __attribute__((always_inline)) vi lerp_texels_lanes(vi a, vi b, vi w)
+{
+    vi v = (int32_t)SR_SHADE_WEIGHT_ONE - w;
+    vu16 w2 = (vu16)(w | w << 16), v2 = (vu16)(v | v << 16);
+    vi rb = (vi)((vu16)(a & 0xFF00FF) * v2 + (vu16)(b & 0xFF00FF) * w2) + 0x800080;
+    vi g = (vi)((vu16)((a >> 8) & 0xFF) * v2 + (vu16)((b >> 8) & 0xFF) * w2) + 0x80;
+    return ((rb >> SR_SHADE_WEIGHT_BITS) & 0xFF00FF) | (g >> SR_SHADE_WEIGHT_BITS) << 8;
+}
+
+static inline __attribute__((always_inline)) vi sample_bilinear_lanes(const sr_texture *tex, vf fu, vf fv)
 {
     vi x0, x1, y0, y1;
-    vf ax = bilinear_pair_lanes(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1);
-    vf ay = bilinear_pair_lanes((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1);
+    vi wx = bilinear_pair_lanes(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1);
+    vi wy = bilinear_pair_lanes((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1);
     vi row0 = y0 * tex->width, row1 = y1 * tex->width;
-    rgb_lanes c00 = texel_rgb_lanes(gather_texels(tex, row0 + x0));
-    rgb_lanes c10 = texel_rgb_lanes(gather_texels(tex, row0 + x1));
-    rgb_lanes c01 = texel_rgb_lanes(gather_texels(tex, row1 + x0));
-    rgb_lanes c11 = texel_rgb_lanes(gather_texels(tex, row1 + x1));
-    rgb_lanes o;
-    for (int i = 0; i < 3; i++) {
-        vf top = c00.c[i] + ax * (c10.c[i] - c00.c[i]);
-        vf bottom = c01.c[i] + ax * (c11.c[i] - c01.c[i]);
-        o.c[i] = top + ay * (bottom - top);
-    }
-    return o;
+    vi top = lerp_texels_lanes(gather_texels(tex, row0 + x0), gather_texels(tex, row0 + x1), wx);
+    vi bottom = lerp_texels_lanes(gather_texels(tex, row1 + x0), gather_texels(tex, row1 + x1), wx);
+    return lerp_texels_lanes(top, bottom, wy);
 }
 
-static inline __attribute__((always_inline)) rgb_lanes sample_lanes(const sr_shade_context *c, vf u, vf v)
+/* sr_shade_sample_packed per lane. */
+static inline __attribute__((always_inline)) vi sample_lanes(const sr_shade_context *c, vf u, vf v)
 {
     vf fu = wrap_unit_lanes(u), fv = wrap_unit_lanes(v);
     return c->filter == SR_FILTER_NEAREST ? sample_nearest_lanes(c->texture, fu, fv)
@@ -251,7 +259,7 @@ static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_con
 static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(const sr_shade_context *c, const vf *var)
 {
     if (c->layout.uv >= 0)
-        return sample_lanes(c, var[c->layout.uv], var[c->layout.uv + 1]);
+        return unpack_lanes(sample_lanes(c, var[c->layout.uv], var[c->layout.uv + 1]));
     rgb_lanes o;
     for (int i = 0; i < 3; i++)
         o.c[i] = c->layout.color >= 0 ? var[c->layout.color + i] : (vf){ 0 } + SR_LAMBERT_GRAY;
@@ -274,10 +282,8 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, const
         const vf *n = var + c->layout.normal;
         return pack_lanes(0.5f + 0.5f * n[0], 0.5f + 0.5f * n[1], 0.5f + 0.5f * n[2]);
     }
-    case SR_SHADE_TEXTURE: {
-        rgb_lanes t = sample_lanes(c, var[c->layout.uv], var[c->layout.uv + 1]);
-        return pack_lanes(t.c[0], t.c[1], t.c[2]);
-    }
+    case SR_SHADE_TEXTURE:
+        return sample_lanes(c, var[c->layout.uv], var[c->layout.uv + 1]);
     case SR_SHADE_LAMBERT: {
         vf k = lambert_lanes(c, var + c->layout.normal);
         rgb_lanes a = albedo_lanes(c, var);
