@@ -6,9 +6,11 @@
  * SOFTRAST_LARGE_WORLD_VERBOSE=1 to print the measured differences. */
 #include <stdio.h>
 
+#include "run_helpers.h"
 #include "scene_helpers.h"
 #include "softrast/obj.h"
 #include "softrast/shapes.h"
+#include "softrast/texture.h"
 #include "temp_dir.h"
 
 #define WIDTH 320
@@ -196,11 +198,11 @@ Test(large_world, absolute_float_coordinates_1e7_away_miss_the_bound)
 
 /* The torus written as an OBJ at `centre` (right-handed: z negated, each
  * face's winding reversed, so it loads as the same triangles in order). */
-static const char *write_torus_obj(const double centre[3], char *path, size_t size)
+static const char *write_torus_obj(const double centre[3], const char *name, char *path, size_t size)
 {
     sr_mesh m;
     make_torus(&m);
-    FILE *f = fopen(temp_path(path, size, "far.obj"), "w");
+    FILE *f = fopen(temp_path(path, size, name), "w");
     cr_assert_not_null(f);
     for (uint32_t i = 0; i < m.vertex_count; i++)
         fprintf(f, "v %.17g %.17g %.17g\n", centre[0] + m.positions[i][0], centre[1] + m.positions[i][1],
@@ -218,7 +220,7 @@ static void load_torus_at(double distance, sr_mesh *m)
     char path[256];
     far_point(distance, centre);
     sr_error err = { "" };
-    cr_assert(sr_obj_load(m, write_torus_obj(centre, path, sizeof path), &err), "%s", err.message);
+    cr_assert(sr_obj_load(m, write_torus_obj(centre, "far.obj", path, sizeof path), &err), "%s", err.message);
 }
 
 Test(large_world, an_obj_1e7_away_loads_relative_to_its_centre_and_draws_as_at_the_origin)
@@ -235,6 +237,42 @@ Test(large_world, an_obj_1e7_away_loads_relative_to_its_centre_and_draws_as_at_t
     cr_expect_leq(d.ids, MAX_ID_FRACTION * WIDTH * HEIGHT, "%zu pixels differ in id", d.ids);
     cr_expect_leq(d.depth, MAX_DEPTH_DIFF, "depth differs by %g", d.depth);
     sr_mesh_free(&m);
+}
+
+/* `softrast render OBJ --shade id` with the eye EYE from the torus at centre,
+ * looking at it; the image in out. */
+static void render_ids(const double centre[3], const char *name, sr_texture *out)
+{
+    char obj[256], png[272], args[1024];
+    write_torus_obj(centre, name, obj, sizeof obj);
+    snprintf(png, sizeof png, "%s.png", obj);
+    snprintf(args, sizeof args,
+             "render %s --size %dx%d --shade id --eye %.17g,%.17g,%.17g --target %.17g,%.17g,%.17g --out %s", obj,
+             WIDTH, HEIGHT, centre[0] + EYE[0], centre[1] + EYE[1], centre[2] + EYE[2], centre[0], centre[1],
+             centre[2], png);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+    sr_error err = { "" };
+    cr_assert(sr_texture_load(out, png, &err), "%s", err.message);
+}
+
+Test(large_world, softrast_render_of_an_obj_1e7_away_with_the_eye_beside_it_draws_as_at_the_origin)
+{
+    static const double zero[3];
+    double centre[3];
+    far_point(1e7, centre);
+    sr_texture near, far;
+    render_ids(zero, "near.obj", &near);
+    render_ids(centre, "far.obj", &far);
+    size_t differ = 0, drawn = 0;
+    for (size_t i = 0; i < (size_t)WIDTH * HEIGHT; i++) {
+        differ += near.texels[i] != far.texels[i];
+        drawn += near.texels[i] != near.texels[0]; /* the corner is background */
+    }
+    cr_assert_gt(drawn, (size_t)(WIDTH * HEIGHT / 10), "the torus fills a good part of the view");
+    cr_expect_leq(differ, MAX_ID_FRACTION * WIDTH * HEIGHT, "%zu pixels differ in id", differ);
+    sr_texture_free(&near);
+    sr_texture_free(&far);
 }
 
 /* The torus spans 2.8, and 16 times that is 44.8 (SR_MESH_RECENTRE_RATIO);

@@ -25,8 +25,10 @@ sr_dmat4 sr_dmat4_from_mat4(const mat4 a);
 sr_dmat4 sr_dmat4_mul(const sr_dmat4 *a, const sr_dmat4 *b);
 /* a · T(t): a applied after a translation by t */
 sr_dmat4 sr_dmat4_translate(const sr_dmat4 *a, const double t[3]);
-/* Each entry rounded to the nearest float once; beyond float range it
- * becomes ±inf (as float arithmetic would overflow), NaN stays NaN. */
+/* d rounded to the nearest float; beyond float range ±inf (as float
+ * arithmetic would overflow, where a plain cast is undefined), NaN stays NaN. */
+float sr_double_to_float(double d);
+/* Each entry rounded to float once, by sr_double_to_float. */
 void sr_dmat4_to_mat4(const sr_dmat4 *a, mat4 out);
 
 #endif

@@ -47,8 +47,7 @@ sr_dmat4 sr_dmat4_translate(const sr_dmat4 *a, const double t[3])
     return p;
 }
 
-/* Converting a double beyond float range to float is undefined behaviour. */
-static float round_to_float(double d)
+float sr_double_to_float(double d)
 {
     if (fabs(d) > FLT_MAX)
         return (float)copysign(INFINITY, d);
@@ -59,5 +58,5 @@ void sr_dmat4_to_mat4(const sr_dmat4 *a, mat4 out)
 {
     for (int c = 0; c < 4; c++)
         for (int r = 0; r < 4; r++)
-            out[c][r] = round_to_float(a->m[c][r]);
+            out[c][r] = sr_double_to_float(a->m[c][r]);
 }
