@@ -2,6 +2,7 @@
  * with no window. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <string.h>
 
 #include "../src/app/viewer.h"
 
@@ -15,8 +16,8 @@ static void open_room(void)
     setup.mesh_path = "assets/room.obj";
     setup.size[0] = 64;
     setup.size[1] = 36;
-    glm_vec3_copy((vec3){ -8.0f, 3.0f, -8.0f }, setup.camera.eye);
-    glm_vec3_copy((vec3){ -8.0f, 3.0f, 0.0f }, setup.camera.target);
+    memcpy(setup.eye, (double[3]){ -8.0, 3.0, -8.0 }, sizeof setup.eye); /* as --eye and --target set them */
+    memcpy(setup.target, (double[3]){ -8.0, 3.0, 0.0 }, sizeof setup.target);
     setup.eye_set = setup.target_set = true;
     cr_assert(sr_viewer_init(&viewer, &setup, &err), "%s", err.message);
     viewer.speed = 2.0f;

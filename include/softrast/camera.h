@@ -8,6 +8,13 @@
  * puts the far plane at infinity (z_ndc = 1 − n/d, or n/d reversed), both
  * computed directly rather than by rounding 1 − f/(f − n). sr_camera_check
  * rejects what no matrix can be built from, with one line in err.
+ *
+ * eye and target are float and relative to the camera's double `origin`
+ * (world point = origin + eye; zero, the default, makes them absolute), so
+ * a camera 1e7 from the world origin still moves in small steps: put the
+ * origin at or near the eye. sr_camera_view_d gives the view in double for
+ * sr_draw_desc.view_d, where it cancels a mesh's origin (docs/precision.md);
+ * sr_camera_view is the same matrix rounded to float.
  */
 #ifndef SOFTRAST_CAMERA_H
 #define SOFTRAST_CAMERA_H
@@ -15,6 +22,7 @@
 #include <stdbool.h>
 #include <cglm/cglm.h>
 
+#include "dmat4.h"
 #include "error.h"
 
 #define SR_CAMERA_FOV 60.0f
@@ -22,6 +30,7 @@
 #define SR_CAMERA_FAR 100.0f
 
 typedef struct sr_camera {
+    double origin[3];   /* eye and target are relative to it */
     vec3 eye, target, up;
     float fov_deg;      /* vertical */
     float near, far;
@@ -32,12 +41,15 @@ typedef struct sr_camera {
 /* Defaults: at -z looking at the origin, up +y, 60°, near 0.1, far 100. */
 sr_camera sr_camera_default(void);
 
-/* Points the camera from -z at the centre of [lo, hi], far enough back that
- * the bounding sphere fits the vertical and horizontal fov. */
+/* Points the camera from -z at the centre of [lo, hi] (relative to the
+ * camera's origin, as eye and target are), far enough back that the
+ * bounding sphere fits the vertical and horizontal fov. */
 void sr_camera_frame_bounds(sr_camera *cam, const vec3 lo, const vec3 hi, float aspect);
 
 bool sr_camera_check(const sr_camera *cam, sr_error *err);
 void sr_camera_view(const sr_camera *cam, mat4 out);
+/* look-at from eye to target, after a translation by -origin, in double. */
+void sr_camera_view_d(const sr_camera *cam, sr_dmat4 *out);
 void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out);
 
 /* The view-space distance along the view axis of a point stored with depth

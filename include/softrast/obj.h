@@ -19,6 +19,11 @@
  * colors exist iff some `v` has r g b; the other vertices are white.
  * texture_path is the first `map_Kd` of a material that a face is drawn
  * with, resolved against the .mtl's folder (the .mtl against the OBJ's).
+ * Coordinates are read in double. A mesh far from the world origin — the
+ * centre of its bounds more than SR_MESH_RECENTRE_RATIO (16) times their
+ * largest side away — is stored relative to that centre (computed in
+ * double), which becomes mesh->origin; any other mesh keeps its positions as
+ * written and origin zero (mesh.h, docs/precision.md).
  *
  * Errors: false with "FILE:LINE: what" in err (or "FILE: what" when the file
  * cannot be read); the mesh is left zeroed, never half-filled, whatever it

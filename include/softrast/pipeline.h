@@ -14,6 +14,12 @@
  * the mesh and the texture; sr_draw only writes pixels and adds to stats.
  * Triangle ids (for SR_SHADE_ID) are the mesh's triangle slots, from 0.
  *
+ * Large world coordinates (docs/precision.md): give the mesh an origin
+ * (mesh.h) and the world and view in double (world_d, view_d, e.g. from
+ * sr_camera_view_d); the draw composes P·V·W·T(mesh origin) in double and
+ * rounds it to float once, so a mesh and camera 1e7 from the world origin
+ * draw as they would at it.
+ *
  * With threads > 1 the screen is cut into SR_TILE_SIDE-pixel tiles: threads
  * transform vertices and set up triangles in ranges, bin the fan triangles
  * into per-tile lists that keep submission order, then each tile is drawn by
@@ -26,6 +32,7 @@
 #include <cglm/cglm.h>
 
 #include "clip.h"
+#include "dmat4.h"
 #include "error.h"
 #include "framebuffer.h"
 #include "mesh.h"
@@ -55,6 +62,7 @@ typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], 
 typedef struct sr_draw_desc {
     const sr_mesh *mesh;
     mat4 world, view, projection;
+    sr_dmat4 world_d, view_d;  /* in double; all zero: the float world / view above */
     sr_shade shade;
     sr_cull cull;
     sr_front front;
@@ -75,7 +83,8 @@ typedef struct sr_draw_desc {
 
 /* Draws the mesh into fb (which the caller clears). False, with a message,
  * for a desc that cannot be drawn: no mesh, an index out of range, a shading
- * mode whose inputs the mesh lacks (normals, uvs, colors, texture). Bad
+ * mode whose inputs the mesh lacks (normals, uvs, colors, texture), a
+ * non-finite mesh origin. Bad
  * geometry (NaN, inf, anything behind the eye) is not an error: it is dropped
  * or clipped and counted in stats. */
 bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);

@@ -23,6 +23,7 @@
 #include "camera.h"
 #include "clip.h"
 #include "cull.h"
+#include "dmat4.h"
 #include "error.h"
 #include "framebuffer.h"
 #include "image.h"

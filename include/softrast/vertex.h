@@ -1,7 +1,9 @@
 /* softrast/vertex.h — stage 1: the vertex stage.
  *
- * Transforms each unique vertex of a mesh once: clip = P·V·W·position (cglm,
- * column vectors), and writes only the varyings the shading mode reads, as
+ * Transforms each unique vertex of a mesh once: clip = P·V·W·T(origin)·position
+ * (column vectors; origin is the mesh's, docs/precision.md), the product
+ * composed in double and rounded to float once, and writes only the
+ * varyings the shading mode reads, as
  * sr_varying_layout lays them out (world-space unit normals through the
  * inverse transpose of W, as its cofactor matrix so a singular W is fine).
  */
@@ -11,11 +13,12 @@
 #include <stdint.h>
 #include <cglm/cglm.h>
 
+#include "dmat4.h"
 #include "mesh.h"
 #include "types.h"
 
 typedef struct sr_vertex_transform {
-    mat4 clip_from_object; /* P · V · W */
+    mat4 clip_from_object; /* P · V · W · T(origin), rounded from double once */
     mat3 normal_matrix;    /* cofactors of W's upper 3x3: a positive multiple of the inverse transpose */
 } sr_vertex_transform;
 
@@ -24,6 +27,13 @@ typedef struct sr_vertex_transform {
  * albedo source (uv if textured, else color if the mesh has colors). */
 sr_varying_layout sr_vertex_layout(sr_shade shade, const sr_mesh *mesh, bool textured);
 
+/* Composes in double, so the large translations of world·T(origin) and of
+ * view cancel before the one rounding; the normal matrix comes from world's
+ * upper 3x3. */
+void sr_vertex_make_transform_d(const sr_dmat4 *world, const sr_dmat4 *view, const sr_dmat4 *projection,
+                                const double origin[3], sr_vertex_transform *xf);
+
+/* The same for float matrices and a mesh whose origin is zero. */
 void sr_vertex_make_transform(const mat4 world, const mat4 view, const mat4 projection,
                               sr_vertex_transform *xf);
 

@@ -44,15 +44,22 @@ static int split(const char *text, char sep, char *buf, size_t cap, char **field
     return n + 1; /* too many fields */
 }
 
-static bool parse_vec3(const char *text, float *out)
+static bool parse_dvec3(const char *text, double *out)
 {
     char buf[256], *f[3];
-    double v[3];
     if (split(text, ',', buf, sizeof buf, f, 3) != 3)
         return false;
     for (int i = 0; i < 3; i++)
-        if (!parse_double(f[i], -HUGE_VAL, HUGE_VAL, &v[i]) || fabs(v[i]) > 3.0e38)
+        if (!parse_double(f[i], -HUGE_VAL, HUGE_VAL, &out[i]) || fabs(out[i]) > 3.0e38)
             return false;
+    return true;
+}
+
+static bool parse_vec3(const char *text, float *out)
+{
+    double v[3];
+    if (!parse_dvec3(text, v))
+        return false;
     for (int i = 0; i < 3; i++)
         out[i] = (float)v[i];
     return true;
@@ -83,7 +90,8 @@ static void describe_expected(const sr_option *o, char *buf, size_t cap)
         snprintf(buf, cap, "a finite number in [%g, %g]%s", o->lo, o->hi, o->allow_infinity ? ", or inf" : "");
         break;
     case SR_OPT_INT:   snprintf(buf, cap, "a whole number in [%g, %g]", o->lo, o->hi); break;
-    case SR_OPT_VEC3:  snprintf(buf, cap, "three finite numbers X,Y,Z"); break;
+    case SR_OPT_VEC3:
+    case SR_OPT_DVEC3: snprintf(buf, cap, "three finite numbers X,Y,Z"); break;
     case SR_OPT_SIZE:  snprintf(buf, cap, "WxH with each side in [%g, %g]", o->lo, o->hi); break;
     case SR_OPT_CHOICE: {
         size_t used = (size_t)snprintf(buf, cap, "one of");
@@ -110,6 +118,7 @@ static bool apply_value(const sr_option *o, const char *text)
         return true;
     case SR_OPT_INT:    return parse_long(text, o->lo, o->hi, o->target);
     case SR_OPT_VEC3:   return parse_vec3(text, o->target);
+    case SR_OPT_DVEC3:  return parse_dvec3(text, o->target);
     case SR_OPT_SIZE:   return parse_size(text, o->lo, o->hi, o->target);
     case SR_OPT_CHOICE: return parse_choice(text, o->choices, o->target);
     case SR_OPT_STRING:

@@ -18,6 +18,7 @@ typedef enum sr_option_kind {
     SR_OPT_FLOAT,  /* float *, within [lo, hi], or +inf if allow_infinity */
     SR_OPT_INT,    /* int *, within [lo, hi] */
     SR_OPT_VEC3,   /* float[3], "X,Y,Z" */
+    SR_OPT_DVEC3,  /* double[3], "X,Y,Z": a point kept to double precision */
     SR_OPT_SIZE,   /* int[2], "WxH", each within [lo, hi] */
     SR_OPT_STRING, /* const char ** */
     SR_OPT_FLAG,   /* bool *, takes no value */

@@ -1,3 +1,4 @@
+#include <string.h>
 #include <unistd.h>
 
 #include "scene_setup.h"
@@ -16,14 +17,18 @@ int sr_scene_default_threads(void)
 void sr_scene_setup_defaults(sr_scene_setup *s)
 {
     *s = (sr_scene_setup){ .size = { 1280, 720 }, .camera = sr_camera_default(), .threads = sr_scene_default_threads() };
+    for (int k = 0; k < 3; k++) {
+        s->eye[k] = s->camera.eye[k];
+        s->target[k] = s->camera.target[k];
+    }
 }
 
 void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
 {
     const sr_option entries[SR_SCENE_OPTION_COUNT] = {
         { "--size", SR_OPT_SIZE, s->size, "WxH", "framebuffer size (default 1280x720)", 1, SR_MAX_FRAMEBUFFER_SIDE },
-        { "--eye", SR_OPT_VEC3, s->camera.eye, "X,Y,Z", "camera position (default: framed on the mesh from -z)", .seen = &s->eye_set },
-        { "--target", SR_OPT_VEC3, s->camera.target, "X,Y,Z", "point looked at (default: the mesh's centre)", .seen = &s->target_set },
+        { "--eye", SR_OPT_DVEC3, s->eye, "X,Y,Z", "camera position (default: framed on the mesh from -z)", .seen = &s->eye_set },
+        { "--target", SR_OPT_DVEC3, s->target, "X,Y,Z", "point looked at (default: the mesh's centre)", .seen = &s->target_set },
         { "--up", SR_OPT_VEC3, s->camera.up, "X,Y,Z", "up direction (default 0,1,0)" },
         { "--fov", SR_OPT_FLOAT, &s->camera.fov_deg, "DEG", "vertical field of view in degrees (default 60)", 1e-3, 179.999 },
         { "--near", SR_OPT_FLOAT, &s->camera.near, "N", "near clip plane distance (default 0.1)", 1e-30, 3e38 },
@@ -82,12 +87,29 @@ void sr_scene_free(sr_scene *scene)
     scene->workspace = NULL;
 }
 
+static bool has_origin(const sr_mesh *mesh)
+{
+    return mesh->origin[0] != 0.0 || mesh->origin[1] != 0.0 || mesh->origin[2] != 0.0;
+}
+
 void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene)
 {
     vec3 lo, hi;
     float aspect = (float)s->size[0] / (float)s->size[1];
-    if (!s->eye_set && !s->target_set && sr_mesh_bounds(&scene->mesh, lo, hi))
+    if (!s->eye_set && !s->target_set && sr_mesh_bounds(&scene->mesh, lo, hi)) {
+        memcpy(s->camera.origin, scene->mesh.origin, sizeof s->camera.origin);
         sr_camera_frame_bounds(&s->camera, lo, hi, aspect);
+        return;
+    }
+    static const double world_origin[3];
+    const double *origin = !has_origin(&scene->mesh) ? world_origin
+                         : s->target_set && !s->eye_set  ? s->target
+                                                          : s->eye;
+    for (int k = 0; k < 3; k++) {
+        s->camera.origin[k] = origin[k];
+        s->camera.eye[k] = sr_double_to_float(s->eye[k] - origin[k]);
+        s->camera.target[k] = sr_double_to_float(s->target[k] - origin[k]);
+    }
 }
 
 bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc *desc, sr_error *err)
@@ -100,7 +122,7 @@ bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc 
                             .texture = scene->texture.texels ? &scene->texture : NULL,
                             .threads = s->threads, .workspace = scene->workspace };
     glm_rotate_make(desc->world, glm_rad(s->rotate_y), (vec3){ 0.0f, 1.0f, 0.0f });
-    sr_camera_view(&s->camera, desc->view);
+    sr_camera_view_d(&s->camera, &desc->view_d);
     sr_camera_projection(&s->camera, aspect, desc->projection);
     return true;
 }

@@ -13,6 +13,7 @@ typedef struct sr_scene_setup {
     const char *mesh_path;
     int size[2];
     sr_camera camera;
+    double eye[3], target[3]; /* world points of --eye and --target, kept in double */
     bool eye_set, target_set;
     float rotate_y;
     int shade, cull, front, filter; /* sr_shade, sr_cull, sr_front, sr_filter */
@@ -45,7 +46,12 @@ void sr_scene_setup_options(sr_scene_setup *s, sr_option *table);
 bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err);
 void sr_scene_free(sr_scene *scene);
 
-/* Frames the mesh when neither --eye nor --target was given. */
+/* Places the camera: framed on the mesh (from the mesh's origin) when
+ * neither --eye nor --target was given. Else, for a mesh with an origin (one
+ * far from the world origin), the camera's origin goes to the eye (to the
+ * target if only that was given) and eye and target are relative to it, so
+ * an eye 1e7 away keeps its digits (docs/precision.md); for any other mesh
+ * eye and target are floats as given, as the mesh's positions are. */
 void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene);
 
 /* The draw desc for s's camera and shading at the framebuffer's size. */

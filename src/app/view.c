@@ -71,8 +71,10 @@ static void use_default_scene(view_job *job)
         return;
     job->scene.mesh_path = DEFAULT_SCENE;
     if (!job->scene.eye_set && !job->scene.target_set) {
-        glm_vec3_copy((float *)ROOM_SPAWN.eye, job->scene.camera.eye);
-        glm_vec3_copy((float *)ROOM_SPAWN.target, job->scene.camera.target);
+        for (int k = 0; k < 3; k++) {
+            job->scene.eye[k] = ROOM_SPAWN.eye[k];
+            job->scene.target[k] = ROOM_SPAWN.target[k];
+        }
         job->scene.camera.fov_deg = ROOM_SPAWN.fov_deg;
         job->scene.eye_set = job->scene.target_set = true;
     }

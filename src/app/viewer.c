@@ -144,7 +144,10 @@ bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
 void sr_viewer_status(const sr_viewer *v, char *buf, size_t cap)
 {
     const sr_stats *s = &v->stats;
-    const float *eye = v->setup.camera.eye;
+    const sr_camera *cam = &v->setup.camera;
+    double eye[3]; /* in the world, not relative to the camera's origin */
+    for (int k = 0; k < 3; k++)
+        eye[k] = cam->origin[k] + cam->eye[k];
     snprintf(buf, cap,
              "%.1f ms  %.0f fps  %s%s  cull %s   F1 help\n"
              "triangles %llu  rejected %llu  clipped %llu  culled %llu  drawn %llu\n"

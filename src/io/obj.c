@@ -6,9 +6,12 @@
  * (v, vt, vn) triple to its mesh vertex keeps the whole load O(n). The
  * right-to-left-handed flip happens where triangles and vertices are written:
  * z is negated and each fan triangle (c0, ck, ck+1) is emitted as
- * (c0, ck+1, ck).
+ * (c0, ck+1, ck). Positions are read in double; a mesh far from the world
+ * origin (mesh.h: SR_MESH_RECENTRE_RATIO) is stored relative to the centre
+ * of its bounds, computed in double, with the centre as the mesh's origin.
  */
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,6 +24,8 @@
 #define MAX_ITEMS (UINT32_MAX - 1) /* so every index fits in uint32_t and NONE stays free */
 #define MAP_MIN_CAP 1024u
 
+typedef double dvec3[3];
+
 typedef struct corner {
     uint32_t v, vt, vn; /* 0-based into the attributes as read, or NONE */
 } corner;
@@ -28,7 +33,7 @@ typedef struct corner {
 typedef struct obj_reader {
     sr_line_reader in;
     sr_error *err;
-    sr_growable positions, colors, uvs, normals; /* vec3, vec3, vec2, vec3 as read */
+    sr_growable positions, colors, uvs, normals; /* dvec3, vec3, vec2, vec3 as read */
     sr_growable corners;                          /* corner per mesh vertex */
     sr_growable indices;                          /* uint32_t, three per triangle */
     uint32_t *map;                                /* open addressing: corner id + 1, 0 = free */
@@ -76,26 +81,37 @@ static bool push_color(obj_reader *o, const float *rgb)
     return true;
 }
 
+/* The line's numbers, narrowed to float. */
+static int parse_floats(obj_reader *o, char *cursor, float *out, int max)
+{
+    double d[6];
+    int n = sr_obj_parse_numbers(&o->in, cursor, d, max, o->err);
+    for (int i = 0; i < n; i++)
+        out[i] = (float)d[i];
+    return n;
+}
+
 static bool parse_vertex(obj_reader *o, char *cursor)
 {
-    float f[6];
-    int n = sr_obj_parse_floats(&o->in, cursor, f, 6, o->err);
+    double d[6];
+    int n = sr_obj_parse_numbers(&o->in, cursor, d, 6, o->err);
     if (n < 0)
         return false;
     if (n != 3 && n != 4 && n != 6)
         return sr_line_fail(&o->in, o->err,
                             "'v' needs x y z, x y z w or x y z r g b, got %d numbers", n);
-    vec3 *p = push_attribute(o, &o->positions, sizeof *p, "vertices");
+    dvec3 *p = push_attribute(o, &o->positions, sizeof *p, "vertices");
     if (!p)
         return false;
-    glm_vec3_copy(f, *p); /* a w (n == 4) only matters for rational curves */
-    return push_color(o, n == 6 ? f + 3 : NULL);
+    memcpy(*p, d, sizeof *p); /* a w (n == 4) only matters for rational curves */
+    vec3 rgb = { (float)d[3], (float)d[4], (float)d[5] };
+    return push_color(o, n == 6 ? rgb : NULL);
 }
 
 static bool parse_uv(obj_reader *o, char *cursor)
 {
     float f[3];
-    int n = sr_obj_parse_floats(&o->in, cursor, f, 3, o->err);
+    int n = parse_floats(o, cursor, f, 3);
     if (n < 0)
         return false;
     if (n < 2)
@@ -110,7 +126,7 @@ static bool parse_uv(obj_reader *o, char *cursor)
 static bool parse_normal(obj_reader *o, char *cursor)
 {
     float f[3];
-    int n = sr_obj_parse_floats(&o->in, cursor, f, 3, o->err);
+    int n = parse_floats(o, cursor, f, 3);
     if (n < 0)
         return false;
     if (n != 3)
@@ -339,14 +355,46 @@ static bool read_statements(obj_reader *o)
     }
 }
 
-/* Writes vertex i from its corner, flipping z into the left-handed world.
- * A corner without vt or vn gets (0, 0) or (0, 0, 0) when others have them. */
+/* Vertex i's position in the left-handed world (z flipped), in double. */
+static void world_position(const obj_reader *o, uint32_t i, double out[3])
+{
+    corner c = ((const corner *)o->corners.data)[i];
+    const dvec3 *p = o->positions.data;
+    out[0] = p[c.v][0];
+    out[1] = p[c.v][1];
+    out[2] = -p[c.v][2];
+}
+
+/* The mesh's origin by the rule of mesh.h, from the bounds of the vertices
+ * the faces use. */
+static void choose_origin(const obj_reader *o, sr_mesh *mesh)
+{
+    uint32_t count = (uint32_t)o->corners.len;
+    double lo[3], hi[3], p[3];
+    if (count == 0)
+        return;
+    world_position(o, 0, lo);
+    world_position(o, 0, hi);
+    for (uint32_t i = 1; i < count; i++) {
+        world_position(o, i, p);
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], p[k]);
+            hi[k] = fmax(hi[k], p[k]);
+        }
+    }
+    sr_mesh_origin_for_bounds(lo, hi, mesh->origin);
+}
+
+/* Writes vertex i from its corner: its position relative to the mesh's
+ * origin, rounded to float once. A corner without vt or vn gets (0, 0) or
+ * (0, 0, 0) when others have them. */
 static void write_vertex(const obj_reader *o, sr_mesh *mesh, uint32_t i)
 {
     corner c = ((const corner *)o->corners.data)[i];
-    const vec3 *p = o->positions.data;
-    glm_vec3_copy((float *)p[c.v], mesh->positions[i]);
-    mesh->positions[i][2] = -mesh->positions[i][2];
+    double p[3];
+    world_position(o, i, p);
+    for (int k = 0; k < 3; k++)
+        mesh->positions[i][k] = (float)(p[k] - mesh->origin[k]);
     if (mesh->colors)
         glm_vec3_copy(((vec3 *)o->colors.data)[c.v], mesh->colors[i]);
     if (mesh->uvs && c.vt != NONE)
@@ -362,6 +410,7 @@ static bool build_mesh(obj_reader *o, sr_mesh *mesh)
     uint32_t count = (uint32_t)o->corners.len;
     if (!sr_mesh_alloc(mesh, count, 0, o->any_normal, o->any_uv, o->colors.len > 0, o->err))
         return false;
+    choose_origin(o, mesh);
     for (uint32_t i = 0; i < count; i++)
         write_vertex(o, mesh, i); /* sr_mesh_alloc zeroed what a corner lacks */
     if (o->texture && !(mesh->texture_path = strdup(o->texture))) {

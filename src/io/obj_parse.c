@@ -134,8 +134,7 @@ char *sr_obj_rest(char *cursor)
     return cursor;
 }
 
-bool sr_obj_parse_float(const sr_line_reader *r, const char *tok, float *out,
-                        sr_error *err)
+bool sr_obj_parse_number(const sr_line_reader *r, const char *tok, double *out, sr_error *err)
 {
     char *end;
     double d = strtod(tok, &end);
@@ -143,15 +142,15 @@ bool sr_obj_parse_float(const sr_line_reader *r, const char *tok, float *out,
         return sr_line_fail(r, err, "'%.40s' is not a number", tok);
     if (!isfinite(d))
         return sr_line_fail(r, err, "number '%.40s' is not finite", tok);
-    /* Converting a double beyond FLT_MAX to float is undefined behaviour. */
+    /* Every number ends up in a float (a position relative to its mesh's
+     * origin, a uv, a normal, a color): keep them all within float range. */
     if (fabs(d) > FLT_MAX)
         return sr_line_fail(r, err, "number '%.40s' is out of float range", tok);
-    *out = (float)d;
+    *out = d;
     return true;
 }
 
-int sr_obj_parse_floats(const sr_line_reader *r, char *cursor, float *out, int max,
-                        sr_error *err)
+int sr_obj_parse_numbers(const sr_line_reader *r, char *cursor, double *out, int max, sr_error *err)
 {
     int n = 0;
     for (char *tok; (tok = sr_obj_next_token(&cursor)); n++) {
@@ -159,7 +158,7 @@ int sr_obj_parse_floats(const sr_line_reader *r, char *cursor, float *out, int m
             sr_line_fail(r, err, "too many numbers (at most %d)", max);
             return -1;
         }
-        if (!sr_obj_parse_float(r, tok, &out[n], err))
+        if (!sr_obj_parse_number(r, tok, &out[n], err))
             return -1;
     }
     return n;

@@ -45,13 +45,13 @@ char *sr_obj_next_token(char **cursor);
  * names may contain spaces); "" if nothing is left. */
 char *sr_obj_rest(char *cursor);
 
-/* A whole token as a finite float, else an error naming the token. */
-bool sr_obj_parse_float(const sr_line_reader *r, const char *tok, float *out,
-                        sr_error *err);
+/* A whole token as a finite number within float range (kept in double, so
+ * positions far from the origin keep their digits), else an error naming
+ * the token. */
+bool sr_obj_parse_number(const sr_line_reader *r, const char *tok, double *out, sr_error *err);
 /* The numbers left on the line into out[0 … max-1]: how many, or -1 (err
  * set) on a bad number or more than max of them. */
-int sr_obj_parse_floats(const sr_line_reader *r, char *cursor, float *out, int max,
-                        sr_error *err);
+int sr_obj_parse_numbers(const sr_line_reader *r, char *cursor, double *out, int max, sr_error *err);
 /* An optionally signed decimal integer at *s, stopping at '/' or the end;
  * advances *s. False if there are no digits. Overflow saturates to
  * LONG_MIN/LONG_MAX, which every later range check rejects. */

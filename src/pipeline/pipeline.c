@@ -22,6 +22,16 @@ static void matrix_or_identity(const mat4 m, mat4 out)
         glm_mat4_copy((vec4 *)m, out);
 }
 
+/* The double matrix when given, else the float one (zero: the identity). */
+static sr_dmat4 matrix_d(const sr_dmat4 *d, const mat4 f)
+{
+    if (!sr_dmat4_is_zero(d))
+        return *d;
+    mat4 m;
+    matrix_or_identity(f, m);
+    return sr_dmat4_from_mat4(m);
+}
+
 static int subpixel_bits(const sr_draw_desc *d)
 {
     return d->subpixel_bits ? d->subpixel_bits : SR_SUBPIXEL_BITS;
@@ -65,6 +75,9 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
         return sr_error_set(err, "draw with an unknown shading, culling, front or filter mode");
     if (!check_accuracy_knobs(fb, d, err))
         return false;
+    const double *o = d->mesh->origin;
+    if (!isfinite(o[0]) || !isfinite(o[1]) || !isfinite(o[2]))
+        return sr_error_set(err, "mesh origin (%g, %g, %g) is not finite", o[0], o[1], o[2]);
     if (!sr_assemble_indices_valid(d->mesh))
         return sr_error_set(err, "mesh has an index past its %u vertices", d->mesh->vertex_count);
     if (d->mesh->vertex_count == 0)
@@ -125,17 +138,16 @@ static void vertex_range(void *ctx, int t)
 static void make_transform(const sr_draw_state *st, sr_vertex_transform *xf)
 {
     const sr_draw_desc *d = st->desc;
-    mat4 world, view, projection;
-    matrix_or_identity(d->world, world);
-    matrix_or_identity(d->view, view);
-    matrix_or_identity(d->projection, projection);
-    sr_vertex_make_transform(world, view, projection, xf);
+    static const sr_dmat4 not_given;
+    sr_dmat4 world = matrix_d(&d->world_d, d->world), view = matrix_d(&d->view_d, d->view);
+    sr_dmat4 projection = matrix_d(&not_given, d->projection);
     /* A guard band clips x and y at ±G·w: squeeze x and y by 1/G here, clip
      * at ±w as always, and let the viewport scale them back. */
     for (int col = 0; col < 4; col++) {
-        xf->clip_from_object[col][0] /= st->vp.guard;
-        xf->clip_from_object[col][1] /= st->vp.guard;
+        projection.m[col][0] /= st->vp.guard;
+        projection.m[col][1] /= st->vp.guard;
     }
+    sr_vertex_make_transform_d(&world, &view, &projection, d->mesh->origin, xf);
 }
 
 static bool run_vertex_phase(const sr_draw_state *st, const vertex_phase *ph, sr_error *err)

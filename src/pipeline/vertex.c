@@ -52,13 +52,24 @@ static void normal_matrix(const mat4 world, mat3 out)
         glm_mat3_scale(out, -1.0f);
 }
 
+void sr_vertex_make_transform_d(const sr_dmat4 *world, const sr_dmat4 *view, const sr_dmat4 *projection,
+                                const double origin[3], sr_vertex_transform *xf)
+{
+    sr_dmat4 placed = sr_dmat4_translate(world, origin);
+    sr_dmat4 vw = sr_dmat4_mul(view, &placed);
+    sr_dmat4 clip = sr_dmat4_mul(projection, &vw);
+    sr_dmat4_to_mat4(&clip, xf->clip_from_object);
+    mat4 world_f;
+    sr_dmat4_to_mat4(world, world_f);
+    normal_matrix(world_f, xf->normal_matrix);
+}
+
 void sr_vertex_make_transform(const mat4 world, const mat4 view, const mat4 projection,
                               sr_vertex_transform *xf)
 {
-    mat4 vw;
-    glm_mat4_mul((vec4 *)view, (vec4 *)world, vw);
-    glm_mat4_mul((vec4 *)projection, vw, xf->clip_from_object);
-    normal_matrix(world, xf->normal_matrix);
+    static const double no_origin[3];
+    sr_dmat4 w = sr_dmat4_from_mat4(world), v = sr_dmat4_from_mat4(view), p = sr_dmat4_from_mat4(projection);
+    sr_vertex_make_transform_d(&w, &v, &p, no_origin, xf);
 }
 
 static void copy_varying(float *dst, int slot, const float *src, int size)

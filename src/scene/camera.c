@@ -2,7 +2,6 @@
 
 #include <cglm/clipspace/ortho_lh_zo.h>
 #include <cglm/clipspace/persp_lh_zo.h>
-#include <cglm/clipspace/view_lh.h>
 
 #include "softrast/camera.h"
 
@@ -43,6 +42,8 @@ bool sr_camera_check(const sr_camera *cam, sr_error *err)
 {
     if (!all_finite(cam->eye, 3) || !all_finite(cam->target, 3) || !all_finite(cam->up, 3))
         return sr_error_set(err, "camera eye, target and up must be finite");
+    if (!isfinite(cam->origin[0]) || !isfinite(cam->origin[1]) || !isfinite(cam->origin[2]))
+        return sr_error_set(err, "camera origin must be finite");
     vec3 dir, side;
     glm_vec3_sub((float *)cam->target, (float *)cam->eye, dir);
     if (glm_vec3_norm(dir) == 0.0f)
@@ -62,9 +63,68 @@ bool sr_camera_check(const sr_camera *cam, sr_error *err)
     return true;
 }
 
+static void dvec3_from(const float *v, double out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = v[k];
+}
+
+static double dvec3_dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void dvec3_cross(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void dvec3_normalize(double v[3])
+{
+    double len = sqrt(dvec3_dot(v, v));
+    for (int k = 0; k < 3; k++)
+        v[k] /= len;
+}
+
+/* glm_lookat_lh in double: rows right, up, forward; then T(-eye). */
+static sr_dmat4 lookat_lh_d(const double eye[3], const double target[3], const double up[3])
+{
+    double f[3] = { target[0] - eye[0], target[1] - eye[1], target[2] - eye[2] }, s[3], u[3];
+    dvec3_normalize(f);
+    dvec3_cross(up, f, s);
+    dvec3_normalize(s);
+    dvec3_cross(f, s, u);
+    sr_dmat4 v = sr_dmat4_identity();
+    for (int k = 0; k < 3; k++) {
+        v.m[k][0] = s[k];
+        v.m[k][1] = u[k];
+        v.m[k][2] = f[k];
+    }
+    v.m[3][0] = -dvec3_dot(s, eye);
+    v.m[3][1] = -dvec3_dot(u, eye);
+    v.m[3][2] = -dvec3_dot(f, eye);
+    return v;
+}
+
+void sr_camera_view_d(const sr_camera *cam, sr_dmat4 *out)
+{
+    double eye[3], target[3], up[3], back[3];
+    dvec3_from(cam->eye, eye);
+    dvec3_from(cam->target, target);
+    dvec3_from(cam->up, up);
+    sr_dmat4 look = lookat_lh_d(eye, target, up);
+    for (int k = 0; k < 3; k++)
+        back[k] = -cam->origin[k];
+    *out = sr_dmat4_translate(&look, back);
+}
+
 void sr_camera_view(const sr_camera *cam, mat4 out)
 {
-    glm_lookat_lh((float *)cam->eye, (float *)cam->target, (float *)cam->up, out);
+    sr_dmat4 view;
+    sr_camera_view_d(cam, &view);
+    sr_dmat4_to_mat4(&view, out);
 }
 
 /* z_clip = a·z_view + b (w is z_view for perspective, 1 for orthographic):

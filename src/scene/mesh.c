@@ -97,3 +97,26 @@ void sr_mesh_update_bounds(sr_mesh *mesh)
 {
     mesh->bounded = sr_mesh_bounds(mesh, mesh->bounds_lo, mesh->bounds_hi);
 }
+
+bool sr_mesh_set_origin(sr_mesh *mesh, const double origin[3], sr_error *err)
+{
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(origin[k]))
+            return sr_error_set(err, "mesh origin (%g, %g, %g) is not finite", origin[0], origin[1], origin[2]);
+    for (int k = 0; k < 3; k++)
+        mesh->origin[k] = origin[k];
+    return true;
+}
+
+void sr_mesh_origin_for_bounds(const double lo[3], const double hi[3], double origin[3])
+{
+    double centre[3], distance = 0.0, side = 0.0;
+    for (int k = 0; k < 3; k++) {
+        centre[k] = lo[k] + 0.5 * (hi[k] - lo[k]); /* no overflow for finite bounds */
+        distance = fmax(distance, fabs(centre[k]));
+        side = fmax(side, hi[k] - lo[k]);
+    }
+    bool far = distance > SR_MESH_RECENTRE_RATIO * side;
+    for (int k = 0; k < 3; k++)
+        origin[k] = far ? centre[k] : 0.0;
+}
