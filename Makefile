@@ -29,6 +29,10 @@ ifneq ($(filter x86_64 i%86,$(shell uname -m)),)
 AVX2_OBJ := $(patsubst %,%/src/pipeline/span_avx2.o,build build/san build/fuzz)
 $(AVX2_OBJ): ALL_CFLAGS += -mavx2
 $(AVX2_OBJ): FUZZ_CFLAGS += -mavx2
+AVX512_OBJ := $(patsubst %,%/src/pipeline/span_avx512.o,build build/san build/fuzz)
+AVX512_FLAGS := -mavx512f -mavx512dq -mavx512bw -mavx512vl
+$(AVX512_OBJ): ALL_CFLAGS += $(AVX512_FLAGS)
+$(AVX512_OBJ): FUZZ_CFLAGS += $(AVX512_FLAGS)
 endif
 
 .PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-assets test-install install assets docs-images bench report stability clean

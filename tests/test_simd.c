@@ -14,7 +14,7 @@
 #define SOUP_SEED 0x51D51D
 #define FB_SIDE 97 /* odd, so rows end in partial groups of lanes */
 
-static const sr_simd vector_loops[] = { SR_SIMD_SSE2, SR_SIMD_AVX2 };
+static const sr_simd vector_loops[] = { SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX512 };
 
 /* Random triangles in front of a perspective camera, many wider than the
  * span threshold, with random normals (some zero), uvs well outside [0, 1]
@@ -83,11 +83,22 @@ static void look(sr_draw_desc *desc, vec3 eye, vec3 target, float fov, bool reve
     sr_camera_projection(&cam, 1.0f, desc->projection);
 }
 
-Test(simd, every_instruction_set_has_a_kernel_for_every_mode)
+/* Every layout the vertex stage makes (each mode, lambert with a texture,
+ * vertex colors or neither) has a kernel, so no drawable scene silently
+ * falls back to the scalar loop. */
+Test(simd, every_mode_and_varying_layout_has_a_kernel)
 {
+    sr_mesh mesh = { .normals = (vec3[1]){ { 0 } }, .uvs = (vec2[1]){ { 0 } }, .colors = (vec3[1]){ { 0 } } };
     for (int mode = 0; mode < SR_SHADE_COUNT; mode++) {
-        cr_assert_not_null(sr_span_kernel_sse2((sr_shade)mode, false), "no 4-lane kernel for mode %d", mode);
-        cr_assert_not_null(sr_span_kernel_sse2((sr_shade)mode, true), "no 4-lane kernel for mode %d", mode);
+        for (int albedo = 0; albedo < 3; albedo++) {
+            sr_mesh m = mesh;
+            m.colors = albedo == 2 ? NULL : m.colors;
+            sr_varying_layout l = sr_vertex_layout((sr_shade)mode, &m, albedo == 0);
+            for (int greater = 0; greater < 2; greater++)
+                cr_assert_not_null(sr_span_kernel_sse2((sr_shade)mode, greater, &l),
+                                   "no 4-lane kernel for mode %d, albedo case %d (%d varyings)", mode, albedo,
+                                   l.count);
+        }
     }
     cr_assert_eq(sr_raster_simd_resolve(SR_SIMD_SCALAR), SR_SIMD_SCALAR);
     cr_assert_eq(sr_raster_simd_resolve(SR_SIMD_SSE2), SR_SIMD_SSE2);

@@ -6,7 +6,10 @@
  * Direct3D and OpenGL), so pixels on an edge shared by two triangles are drawn
  * exactly once. Depth is z_ndc interpolated linearly in screen space, tested
  * LESS (GREATER in a reversed_z framebuffer); varyings are interpolated perspective-correctly through 1/w, and the
- * loop is specialised per shading mode.
+ * loop is specialised per shading mode. Rows of triangles at least a few
+ * pixels wide go 4, 8 or 16 pixels at a time through SIMD kernels (SSE2,
+ * AVX2, AVX-512, chosen at run time; sr_shade_context.simd) that compute
+ * exactly what the scalar loop computes, bit for bit.
  */
 #ifndef SOFTRAST_RASTER_H
 #define SOFTRAST_RASTER_H

@@ -43,7 +43,14 @@ typedef enum sr_filter { SR_FILTER_BILINEAR = 0, SR_FILTER_NEAREST } sr_filter;
 /* The per-pixel loop's instruction set: AUTO picks the best the CPU has
  * (AVX2, else SSE2); the others force one, for tests and the report. Every
  * choice gives bit-identical pixels and depths. */
-typedef enum sr_simd { SR_SIMD_AUTO = 0, SR_SIMD_SCALAR, SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_COUNT } sr_simd;
+typedef enum sr_simd {
+    SR_SIMD_AUTO = 0,
+    SR_SIMD_SCALAR,
+    SR_SIMD_SSE2,
+    SR_SIMD_AVX2,
+    SR_SIMD_AVX512,
+    SR_SIMD_COUNT
+} sr_simd;
 
 /* Where each varying sits in sr_vertex_out.v (an offset from SR_VARYINGS_AT),
  * or -1 when the shading mode does not read it. */

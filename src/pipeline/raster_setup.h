@@ -38,9 +38,12 @@ typedef struct sr_tri_setup {
 typedef uint64_t (*sr_span_kernel)(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb,
                                    uint32_t id, size_t at, int count, const int64_t e[3]);
 
-/* The kernel for a shading mode and depth test, or NULL where the instruction
- * set is not built in (the AVX2 one off x86-64). */
-sr_span_kernel sr_span_kernel_sse2(sr_shade mode, bool greater);
-sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater);
+/* The kernel for a shading mode, depth test and varying layout (each kernel
+ * is compiled for one layout, so its varyings stay in registers), or NULL
+ * where the instruction set is not built in (AVX2 off x86-64) or the layout
+ * is not one sr_vertex_layout makes (the scalar loop draws those). */
+sr_span_kernel sr_span_kernel_sse2(sr_shade mode, bool greater, const sr_varying_layout *layout);
+sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater, const sr_varying_layout *layout);
+sr_span_kernel sr_span_kernel_avx512(sr_shade mode, bool greater, const sr_varying_layout *layout);
 
 #endif

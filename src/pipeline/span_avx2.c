@@ -9,14 +9,14 @@
 #define SPAN_MOVEMASK(mask) _mm256_movemask_ps((__m256)(mask))
 #define SPAN_GATHER(texels, index) ((vi)_mm256_i32gather_epi32((const int *)(texels), (__m256i)(index), 4))
 #define SPAN_LANE_INDICES 0, 1, 2, 3, 4, 5, 6, 7
+#define SPAN_FLOOR(x) ((vf)_mm256_floor_ps((__m256)(x)))
 #define SPAN_LANES 8
 #define SPAN_KERNEL_GETTER sr_span_kernel_avx2
 #include "span_kernel.h"
 #else
-sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater)
+sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater, const sr_varying_layout *layout)
 {
-    (void)mode;
-    (void)greater;
+    (void)mode, (void)greater, (void)layout;
     return NULL;
 }
 #endif

@@ -129,10 +129,27 @@ static inline __attribute__((always_inline)) vf depth_lanes(const sr_tri_setup *
     return select_f(z > zero, select_f(z < one, z, one), zero);
 }
 
-static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, lanes *p)
+/* The kernels know their varyings' layout at compile time, so the varyings
+ * stay in registers: the vertex stage puts the normal first, then the
+ * albedo's uv or color (vertex.c); a mode with one input has it at 0. */
+typedef enum albedo { ALBEDO_NONE, ALBEDO_GRAY, ALBEDO_COLOR, ALBEDO_TEXTURE } albedo;
+#define SECOND_VARYING 3 /* after the normal */
+
+static inline __attribute__((always_inline)) int varying_count(sr_shade mode, albedo a)
+{
+    switch (mode) {
+    case SR_SHADE_COLOR:
+    case SR_SHADE_NORMAL:  return 3;
+    case SR_SHADE_TEXTURE: return 2;
+    case SR_SHADE_LAMBERT: return a == ALBEDO_COLOR ? 6 : a == ALBEDO_TEXTURE ? 5 : 3;
+    default:               return 0;
+    }
+}
+
+static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, int count, lanes *p)
 {
     vf w = 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2);
-    for (int k = 0; k < s->varyings; k++)
+    for (int k = 0; k < count; k++)
         p->var[k] = (s->var0[k] + p->l1 * s->dvar1[k] + p->l2 * s->dvar2[k]) * w;
 }
 
@@ -150,11 +167,17 @@ static inline __attribute__((always_inline)) vi pack_lanes(vf r, vf g, vf b)
     return channel_lanes(r) << 16 | channel_lanes(g) << 8 | channel_lanes(b);
 }
 
-/* sr_shade_floor_int per lane: truncate, then step down where that rounded up. */
-static inline __attribute__((always_inline)) vi floor_lanes(vf x)
+/* floor per lane, as a float: roundps where the instruction set has it,
+ * else sr_shade_floor_int's truncate-then-step-down. Exact either way for
+ * |x| < 2^31, so both agree with the scalar path. */
+static inline __attribute__((always_inline)) vf floor_lanes(vf x)
 {
+#ifdef SPAN_FLOOR
+    return SPAN_FLOOR(x);
+#else
     vi i = __builtin_convertvector(x, vi);
-    return i + (x < __builtin_convertvector(i, vf));
+    return __builtin_convertvector(i + (x < __builtin_convertvector(i, vf)), vf);
+#endif
 }
 
 static inline __attribute__((always_inline)) vf wrap_unit_lanes(vf t)
@@ -162,7 +185,7 @@ static inline __attribute__((always_inline)) vf wrap_unit_lanes(vf t)
     vf zero = { 0 };
     vi finite = (vf)((vi)t & 0x7FFFFFFF) < SR_SHADE_NO_FRACTION;
     vf kept = select_f(finite, t, zero);
-    vf f = kept - __builtin_convertvector(floor_lanes(kept), vf);
+    vf f = kept - floor_lanes(kept);
     return select_f(f < 1.0f, f, zero);
 }
 
@@ -207,11 +230,12 @@ static inline __attribute__((always_inline)) vi sample_nearest_lanes(const sr_te
 /* sr_shade_bilinear_pair per lane. */
 static inline __attribute__((always_inline)) vi bilinear_pair_lanes(vf c, int n, vi *i0, vi *i1)
 {
-    vi lo = floor_lanes(c);
+    vf lo_f = floor_lanes(c);
+    vi lo = __builtin_convertvector(lo_f, vi);
     vi zero = { 0 };
     *i0 = select_i(lo < 0, zero + (n - 1), lo);
     *i1 = select_i(lo + 1 >= n, zero, lo + 1);
-    return __builtin_convertvector((c - __builtin_convertvector(lo, vf)) * (float)SR_SHADE_WEIGHT_ONE + 0.5f, vi);
+    return __builtin_convertvector((c - lo_f) * (float)SR_SHADE_WEIGHT_ONE + 0.5f, vi);
 }
 
 /* sr_shade_lerp_texels per lane: the products fit 16 bits, so 16-bit
@@ -256,38 +280,35 @@ static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_con
     return select_f(len2 > zero, lit, zero + SR_LAMBERT_AMBIENT);
 }
 
-static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(const sr_shade_context *c, const vf *var)
+static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(const sr_shade_context *c, albedo a,
+                                                                   const vf *var)
 {
-    if (c->layout.uv >= 0)
-        return unpack_lanes(sample_lanes(c, var[c->layout.uv], var[c->layout.uv + 1]));
+    if (a == ALBEDO_TEXTURE)
+        return unpack_lanes(sample_lanes(c, var[SECOND_VARYING], var[SECOND_VARYING + 1]));
     rgb_lanes o;
     for (int i = 0; i < 3; i++)
-        o.c[i] = c->layout.color >= 0 ? var[c->layout.color + i] : (vf){ 0 } + SR_LAMBERT_GRAY;
+        o.c[i] = a == ALBEDO_COLOR ? var[SECOND_VARYING + i] : (vf){ 0 } + SR_LAMBERT_GRAY;
     return o;
 }
 
 /* sr_shade_fragment per lane. */
-static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, const sr_shade_context *c,
+static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albedo a, const sr_shade_context *c,
                                                             const vf *var, uint32_t id)
 {
     vi zero = { 0 };
     switch (mode) {
     case SR_SHADE_ID:
         return zero + (int32_t)((id + 1u) & 0xFFFFFFu);
-    case SR_SHADE_COLOR: {
-        const vf *k = var + c->layout.color;
-        return pack_lanes(k[0], k[1], k[2]);
-    }
-    case SR_SHADE_NORMAL: {
-        const vf *n = var + c->layout.normal;
-        return pack_lanes(0.5f + 0.5f * n[0], 0.5f + 0.5f * n[1], 0.5f + 0.5f * n[2]);
-    }
+    case SR_SHADE_COLOR:
+        return pack_lanes(var[0], var[1], var[2]);
+    case SR_SHADE_NORMAL:
+        return pack_lanes(0.5f + 0.5f * var[0], 0.5f + 0.5f * var[1], 0.5f + 0.5f * var[2]);
     case SR_SHADE_TEXTURE:
-        return sample_lanes(c, var[c->layout.uv], var[c->layout.uv + 1]);
+        return sample_lanes(c, var[0], var[1]);
     case SR_SHADE_LAMBERT: {
-        vf k = lambert_lanes(c, var + c->layout.normal);
-        rgb_lanes a = albedo_lanes(c, var);
-        return pack_lanes(k * a.c[0], k * a.c[1], k * a.c[2]);
+        vf k = lambert_lanes(c, var);
+        rgb_lanes base = albedo_lanes(c, a, var);
+        return pack_lanes(k * base.c[0], k * base.c[1], k * base.c[2]);
     }
     default:
         return zero;
@@ -297,8 +318,8 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, const
 /* Depth test, depth write and shading of up to SPAN_LANES pixels at `at`:
  * `live` marks the lanes within the row. */
 static inline __attribute__((always_inline)) uint64_t
-fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, bool greater,
-           uint32_t id, size_t at, int n, vi live, const edge_lanes e[3])
+fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
+           bool greater, uint32_t id, size_t at, int n, vi live, const edge_lanes e[3])
 {
     lanes p;
     p.l1 = edge_to_float(e[1]) * s->inv_area2;
@@ -312,17 +333,16 @@ fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb,
     stored = select_f(pass, z, stored);
     store_f(fb->depth + at, stored, n);
     if (mode != SR_SHADE_DEPTH) {
-        if (mode != SR_SHADE_ID)
-            varyings_lanes(s, &p);
-        vi color = select_i(pass, shade_lanes(mode, c, p.var, id), load_i(fb->color + at, n));
+        varyings_lanes(s, varying_count(mode, a), &p);
+        vi color = select_i(pass, shade_lanes(mode, a, c, p.var, id), load_i(fb->color + at, n));
         store_i(fb->color + at, color, n);
     }
     return (uint64_t)__builtin_popcount(passed);
 }
 
 static inline __attribute__((always_inline)) uint64_t
-span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, bool greater,
-         uint32_t id, size_t at, int count, const int64_t e_first[3])
+span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
+         bool greater, uint32_t id, size_t at, int count, const int64_t e_first[3])
 {
     vi lane = lanes_index();
     vdh lane_lo, lane_hi;
@@ -340,7 +360,7 @@ span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, s
     uint64_t fragments = 0;
     for (int d = 0; d < count; d += SPAN_LANES) {
         int n = count - d < SPAN_LANES ? count - d : SPAN_LANES;
-        fragments += fill_group(s, c, fb, mode, greater, id, at + (size_t)d, n, lane < n, e);
+        fragments += fill_group(s, c, fb, mode, a, greater, id, at + (size_t)d, n, lane < n, e);
         for (int k = 1; k < 3; k++) {
             e[k].lo += step[k];
             e[k].hi += step[k];
@@ -349,31 +369,64 @@ span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, s
     return fragments;
 }
 
-#define SPAN_KERNEL(mode, greater, name)                                                                      \
+#define SPAN_KERNEL(mode, a, greater, name)                                                                   \
     static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id,  \
                          size_t at, int count, const int64_t e[3])                                            \
     {                                                                                                         \
-        return span_row(s, c, fb, mode, greater, id, at, count, e);                                           \
+        return span_row(s, c, fb, mode, a, greater, id, at, count, e);                                        \
     }
 
-#define SPAN_KERNELS(mode, name) SPAN_KERNEL(mode, false, name##_less) SPAN_KERNEL(mode, true, name##_greater)
+#define SPAN_KERNELS(mode, a, name) SPAN_KERNEL(mode, a, false, name##_less) SPAN_KERNEL(mode, a, true, name##_greater)
+#define KERNEL_PAIR(name) { name##_less, name##_greater }
 
-SPAN_KERNELS(SR_SHADE_LAMBERT, span_lambert)
-SPAN_KERNELS(SR_SHADE_ID, span_id)
-SPAN_KERNELS(SR_SHADE_COLOR, span_color)
-SPAN_KERNELS(SR_SHADE_NORMAL, span_normal)
-SPAN_KERNELS(SR_SHADE_TEXTURE, span_texture)
-SPAN_KERNELS(SR_SHADE_DEPTH, span_depth)
+SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)
+SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)
+SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, span_lambert_texture)
+SPAN_KERNELS(SR_SHADE_ID, ALBEDO_NONE, span_id)
+SPAN_KERNELS(SR_SHADE_COLOR, ALBEDO_NONE, span_color)
+SPAN_KERNELS(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)
+SPAN_KERNELS(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
+SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, span_depth)
 
-sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater)
+/* The layout each kernel was compiled for, as sr_vertex_layout makes it. */
+static bool layout_is(const sr_varying_layout *l, int count, int color, int uv, int normal)
 {
-    static const sr_span_kernel kernels[SR_SHADE_COUNT][2] = {
-        [SR_SHADE_LAMBERT] = { span_lambert_less, span_lambert_greater },
-        [SR_SHADE_ID] = { span_id_less, span_id_greater },
-        [SR_SHADE_COLOR] = { span_color_less, span_color_greater },
-        [SR_SHADE_NORMAL] = { span_normal_less, span_normal_greater },
-        [SR_SHADE_TEXTURE] = { span_texture_less, span_texture_greater },
-        [SR_SHADE_DEPTH] = { span_depth_less, span_depth_greater },
-    };
-    return (unsigned)mode < SR_SHADE_COUNT ? kernels[mode][greater] : NULL;
+    return l->count == count && l->color == color && l->uv == uv && l->normal == normal;
+}
+
+static albedo lambert_albedo(const sr_varying_layout *l)
+{
+    if (layout_is(l, 5, -1, SECOND_VARYING, 0))
+        return ALBEDO_TEXTURE;
+    if (layout_is(l, 6, SECOND_VARYING, -1, 0))
+        return ALBEDO_COLOR;
+    return layout_is(l, 3, -1, -1, 0) ? ALBEDO_GRAY : ALBEDO_NONE;
+}
+
+static const sr_span_kernel *kernel_pair(sr_shade mode, const sr_varying_layout *l)
+{
+    static const sr_span_kernel lambert[][2] = { [ALBEDO_GRAY] = KERNEL_PAIR(span_lambert_gray),
+                                                 [ALBEDO_COLOR] = KERNEL_PAIR(span_lambert_color),
+                                                 [ALBEDO_TEXTURE] = KERNEL_PAIR(span_lambert_texture) };
+    static const sr_span_kernel id[2] = KERNEL_PAIR(span_id), depth[2] = KERNEL_PAIR(span_depth),
+                                color[2] = KERNEL_PAIR(span_color), normal[2] = KERNEL_PAIR(span_normal),
+                                texture[2] = KERNEL_PAIR(span_texture);
+    switch (mode) {
+    case SR_SHADE_LAMBERT: {
+        albedo a = lambert_albedo(l);
+        return a == ALBEDO_NONE ? NULL : lambert[a];
+    }
+    case SR_SHADE_ID:      return id;
+    case SR_SHADE_DEPTH:   return depth;
+    case SR_SHADE_COLOR:   return layout_is(l, 3, 0, -1, -1) ? color : NULL;
+    case SR_SHADE_NORMAL:  return layout_is(l, 3, -1, -1, 0) ? normal : NULL;
+    case SR_SHADE_TEXTURE: return layout_is(l, 2, -1, 0, -1) ? texture : NULL;
+    default:               return NULL;
+    }
+}
+
+sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater, const sr_varying_layout *layout)
+{
+    const sr_span_kernel *pair = kernel_pair(mode, layout);
+    return pair ? pair[greater] : NULL;
 }

@@ -1,0 +1,22 @@
+/* The 16-lane span kernels, built with AVX-512 (F, BW, DQ, VL; the Makefile
+ * adds the flags for this file on x86-64) and chosen at run time only on a
+ * CPU that has them. No FMA, as in span_avx2.c. */
+#include "raster_setup.h"
+
+#if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512BW__)
+#include <immintrin.h>
+#define SPAN_SQRT(x) ((vf)_mm512_sqrt_ps((__m512)(x)))
+#define SPAN_MOVEMASK(mask) _mm512_movepi32_mask((__m512i)(mask))
+#define SPAN_GATHER(texels, index) ((vi)_mm512_i32gather_epi32((__m512i)(index), (const void *)(texels), 4))
+#define SPAN_FLOOR(x) ((vf)_mm512_roundscale_ps((__m512)(x), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC))
+#define SPAN_LANE_INDICES 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15
+#define SPAN_LANES 16
+#define SPAN_KERNEL_GETTER sr_span_kernel_avx512
+#include "span_kernel.h"
+#else
+sr_span_kernel sr_span_kernel_avx512(sr_shade mode, bool greater, const sr_varying_layout *layout)
+{
+    (void)mode, (void)greater, (void)layout;
+    return NULL;
+}
+#endif
