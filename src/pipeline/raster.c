@@ -14,11 +14,6 @@ static edge edge_make(const sr_screen_vertex *p, const sr_screen_vertex *q)
     return (edge){ .a = -dy, .b = dx, .c = dy * p->x - dx * p->y, .bias = (top || left) ? 0 : 1 };
 }
 
-static int64_t edge_at(const edge *e, int64_t px, int64_t py)
-{
-    return e->a * px + e->b * py + e->c;
-}
-
 /* Orders the vertices clockwise (area2 > 0) so one inside test fits both windings. */
 static void order_clockwise(const sr_screen_vertex in[3], int64_t area2, sr_screen_vertex out[3])
 {
@@ -33,12 +28,6 @@ static void edges_make(const sr_screen_vertex v[3], edge e[3])
     e[0] = edge_make(&v[1], &v[2]);
     e[1] = edge_make(&v[2], &v[0]);
     e[2] = edge_make(&v[0], &v[1]);
-}
-
-/* Pixel i's centre, i + 0.5, in subpixel units of `bits` fractional bits. */
-static int64_t subpixel_centre(int i, int bits)
-{
-    return ((int64_t)i << bits) + ((int64_t)1 << (bits - 1));
 }
 
 typedef sr_tri_setup setup;
@@ -146,52 +135,6 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, cons
  * by pixel. The SIMD kernels always take the span. */
 #define SPAN_MIN_WIDTH 16
 
-static int64_t floor_div_pos(int64_t a, int64_t b)
-{
-    return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
-
-/* The offsets d >= 0 with e + d·step >= bias, intersected into [*lo, *hi]:
- * the same integers the per-pixel test accepts. */
-static void edge_span(int64_t e, int64_t step, int64_t bias, int64_t *lo, int64_t *hi)
-{
-    if (step > 0) {
-        int64_t first = -floor_div_pos(e - bias, step); /* ceil((bias - e) / step) */
-        *lo = first > *lo ? first : *lo;
-    } else if (step < 0) {
-        int64_t last = floor_div_pos(e - bias, -step);
-        *hi = last < *hi ? last : *hi;
-    } else if (e < bias) {
-        *hi = -1;
-    }
-}
-
-/* Row j of the scan box: the pixel index and edge values where its
- * candidate pixels start, and how many there are (the whole row of a narrow
- * triangle; the exact covered span of a wide one). */
-typedef struct row_range {
-    size_t at;
-    int64_t e[3];
-    int count;
-} row_range;
-
-static inline row_range row_make(const setup *s, const sr_framebuffer *fb, bool spans, int j)
-{
-    int64_t px = subpixel_centre(s->box.x0, s->bits), py = subpixel_centre(j, s->bits);
-    int64_t lo = 0, hi = s->box.x1 - s->box.x0 - 1;
-    row_range r;
-    for (int k = 0; k < 3; k++) {
-        r.e[k] = edge_at(&s->e[k], px, py);
-        if (spans)
-            edge_span(r.e[k], s->step_x[k], s->e[k].bias, &lo, &hi);
-    }
-    r.count = lo <= hi ? (int)(hi - lo + 1) : 0;
-    for (int k = 0; k < 3; k++)
-        r.e[k] += lo * s->step_x[k];
-    r.at = (size_t)j * (size_t)fb->width + (size_t)s->box.x0 + (size_t)lo;
-    return r;
-}
-
 static inline bool wide(const setup *s)
 {
     return s->box.x1 - s->box.x0 >= SPAN_MIN_WIDTH;
@@ -207,24 +150,11 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, con
     const int64_t *step = s->step_x;
     bool spans = wide(s);
     for (int j = s->box.y0; j < s->box.y1; j++) {
-        row_range r = row_make(s, fb, spans, j);
+        sr_row_range r = sr_row_make(s, fb, spans, j);
         int64_t e0 = r.e[0], e1 = r.e[1], e2 = r.e[2];
         for (int d = 0; d < r.count; d++, e0 += step[0], e1 += step[1], e2 += step[2])
             if (spans || (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias))
                 fragments += fill_pixel(s, fb, mode, greater, shade, id, r.at + (size_t)d, e1, e2);
-    }
-    return fragments;
-}
-
-/* The SIMD loop: each row's covered span goes to the kernel. */
-static uint64_t raster_simd(const setup *s, sr_framebuffer *fb, sr_span_kernel kernel,
-                            const sr_shade_context *shade, uint32_t id)
-{
-    uint64_t fragments = 0;
-    for (int j = s->box.y0; j < s->box.y1; j++) {
-        row_range r = row_make(s, fb, true, j);
-        if (r.count > 0)
-            fragments += kernel(s, shade, fb, id, r.at, r.count, r.e);
     }
     return fragments;
 }
@@ -241,11 +171,11 @@ static uint64_t raster_simd(const setup *s, sr_framebuffer *fb, sr_span_kernel k
 
 static bool edges_fit_double(const setup *s)
 {
-    int64_t xs[2] = { subpixel_centre(s->box.x0, s->bits), subpixel_centre(s->box.x1 - 1 + SIMD_MAX_LANES, s->bits) };
-    int64_t ys[2] = { subpixel_centre(s->box.y0, s->bits), subpixel_centre(s->box.y1 - 1, s->bits) };
+    int64_t xs[2] = { sr_subpixel_centre(s->box.x0, s->bits), sr_subpixel_centre(s->box.x1 - 1 + SIMD_MAX_LANES, s->bits) };
+    int64_t ys[2] = { sr_subpixel_centre(s->box.y0, s->bits), sr_subpixel_centre(s->box.y1 - 1, s->bits) };
     for (int k = 0; k < 3; k++)
         for (int c = 0; c < 4; c++)
-            if (llabs(edge_at(&s->e[k], xs[c & 1], ys[c >> 1])) >= SIMD_EDGE_LIMIT)
+            if (llabs(sr_edge_at(&s->e[k], xs[c & 1], ys[c >> 1])) >= SIMD_EDGE_LIMIT)
                 return false;
     return true;
 }
@@ -310,7 +240,7 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
                subpixel_bits, &s);
     sr_span_kernel kernel = span_kernel(shade, mode, fb->reversed_z);
     if (kernel && s.box.x1 - s.box.x0 >= 8 && edges_fit_double(&s))
-        return raster_simd(&s, fb, kernel, shade, triangle_id);
+        return kernel(&s, shade, fb, triangle_id);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(&s, fb, SR_SHADE_ID, shade, triangle_id);
     case SR_SHADE_COLOR:   return raster_mode(&s, fb, SR_SHADE_COLOR, shade, triangle_id);

@@ -30,13 +30,71 @@ typedef struct sr_tri_setup {
     int bits; /* subpixel bits of the vertices */
 } sr_tri_setup;
 
-/* A row of a SIMD kernel: pixels at, at + 1, …, at + count − 1 of fb, all
- * inside the triangle, the first with edge values e[] (e[0] unused). The caller
- * guarantees every edge value of the scan box (and a few pixels past it)
- * is below 2^52 in magnitude, so doubles hold them exactly. Returns the
- * fragments that passed the depth test. */
+static inline int64_t sr_edge_at(const sr_edge *e, int64_t px, int64_t py)
+{
+    return e->a * px + e->b * py + e->c;
+}
+
+/* Pixel i's centre, i + 0.5, in subpixel units of `bits` fractional bits. */
+static inline int64_t sr_subpixel_centre(int i, int bits)
+{
+    return ((int64_t)i << bits) + ((int64_t)1 << (bits - 1));
+}
+
+static inline int64_t sr_floor_div_pos(int64_t a, int64_t b)
+{
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+/* The offsets d >= 0 with e + d·step >= bias, intersected into [*lo, *hi]:
+ * the same integers the per-pixel test accepts. */
+static inline void sr_edge_span(int64_t e, int64_t step, int64_t bias, int64_t *lo, int64_t *hi)
+{
+    if (step > 0) {
+        int64_t first = -sr_floor_div_pos(e - bias, step); /* ceil((bias - e) / step) */
+        *lo = first > *lo ? first : *lo;
+    } else if (step < 0) {
+        int64_t last = sr_floor_div_pos(e - bias, -step);
+        *hi = last < *hi ? last : *hi;
+    } else if (e < bias) {
+        *hi = -1;
+    }
+}
+
+/* Row j of the scan box: the pixel index and edge values where its
+ * candidate pixels start, and how many there are: the whole row, or with
+ * `spans` exactly the covered run, found by solving each edge's inequality
+ * (all of a row's pixels outside the triangle are rejected, all inside
+ * accepted, without a test per pixel). */
+typedef struct sr_row_range {
+    size_t at;
+    int64_t e[3];
+    int count;
+} sr_row_range;
+
+static inline sr_row_range sr_row_make(const sr_tri_setup *s, const sr_framebuffer *fb, bool spans, int j)
+{
+    int64_t px = sr_subpixel_centre(s->box.x0, s->bits), py = sr_subpixel_centre(j, s->bits);
+    int64_t lo = 0, hi = s->box.x1 - s->box.x0 - 1;
+    sr_row_range r;
+    for (int k = 0; k < 3; k++) {
+        r.e[k] = sr_edge_at(&s->e[k], px, py);
+        if (spans)
+            sr_edge_span(r.e[k], s->step_x[k], s->e[k].bias, &lo, &hi);
+    }
+    r.count = lo <= hi ? (int)(hi - lo + 1) : 0;
+    for (int k = 0; k < 3; k++)
+        r.e[k] += lo * s->step_x[k];
+    r.at = (size_t)j * (size_t)fb->width + (size_t)s->box.x0 + (size_t)lo;
+    return r;
+}
+
+/* A SIMD kernel draws a whole triangle, row span by row span, and returns
+ * the fragments that passed the depth test. The caller guarantees every
+ * edge value of the scan box (and a group of lanes past it) is below 2^52
+ * in magnitude, so doubles hold them exactly. */
 typedef uint64_t (*sr_span_kernel)(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb,
-                                   uint32_t id, size_t at, int count, const int64_t e[3]);
+                                   uint32_t id);
 
 /* The kernel for a shading mode, depth test and varying layout (each kernel
  * is compiled for one layout, so its varyings stay in registers), or NULL

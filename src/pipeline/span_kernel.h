@@ -383,11 +383,23 @@ span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, s
     return fragments;
 }
 
+static inline __attribute__((always_inline)) uint64_t
+span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
+              bool greater, uint32_t id)
+{
+    uint64_t fragments = 0;
+    for (int j = s->box.y0; j < s->box.y1; j++) {
+        sr_row_range r = sr_row_make(s, fb, true, j);
+        if (r.count > 0)
+            fragments += span_row(s, c, fb, mode, a, greater, id, r.at, r.count, r.e);
+    }
+    return fragments;
+}
+
 #define SPAN_KERNEL(mode, a, greater, name)                                                                   \
-    static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id,  \
-                         size_t at, int count, const int64_t e[3])                                            \
+    static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id)  \
     {                                                                                                         \
-        return span_row(s, c, fb, mode, a, greater, id, at, count, e);                                        \
+        return span_triangle(s, c, fb, mode, a, greater, id);                                                 \
     }
 
 #define SPAN_KERNELS(mode, a, name) SPAN_KERNEL(mode, a, false, name##_less) SPAN_KERNEL(mode, a, true, name##_greater)
