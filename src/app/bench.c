@@ -6,6 +6,7 @@
 
 #include "app.h"
 #include "bench_scenes.h"
+#include "bench_time.h"
 #include "options.h"
 #include "report.h"
 #include "scene_setup.h"
@@ -18,15 +19,12 @@ static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth
 enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_SCALING };
 
 typedef struct bench_job {
-    int scene, frames, threads;
+    int scene, frames, threads, simd;
     bool report, stability;
     const char *report_dir;
 } bench_job;
 
-typedef struct bench_result {
-    double median, min;
-    sr_stats stats;
-} bench_result;
+typedef sr_bench_result bench_result;
 
 static const char USAGE[] =
     "usage: softrast bench [options]\n"
@@ -40,6 +38,7 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
         { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|depth|scaling", "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
+        { "--simd", SR_OPT_CHOICE, &job->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = SR_SIMD_NAMES },
         { "--report", SR_OPT_FLAG, &job->report, NULL, "measure error against time for every accuracy knob instead" },
         { "--stability", SR_OPT_FLAG, &job->stability, NULL, "measure clipping error, cracks and depth precision under stiff cameras instead (docs/stability.md)" },
         { "--report-dir", SR_OPT_STRING, &job->report_dir, "DIR", "where --report and --stability write their .md and .svg (default docs)" },
@@ -51,39 +50,6 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
     if (*help)
         sr_options_print_help(stdout, USAGE, table);
     return true;
-}
-
-static bool time_scene(const sr_bench_scene *s, int frames, int threads, bench_result *r, sr_error *err)
-{
-    sr_framebuffer fb;
-    if (!sr_framebuffer_create(&fb, s->width, s->height, err))
-        return false;
-    sr_workspace *ws = sr_workspace_create();
-    double *ms = malloc((size_t)frames * sizeof *ms);
-    bool ok = ms && ws;
-    for (int f = -1; ok && f < frames; f++) { /* frame -1 is the warm-up */
-        sr_camera cam;
-        sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade,
-                              .texture = s->texture.texels ? &s->texture : NULL, .threads = threads,
-                              .workspace = ws };
-        sr_bench_scene_camera(s, f < 0 ? 0 : f, frames, &cam);
-        sr_camera_view(&cam, desc.view);
-        sr_camera_projection(&cam, (float)s->width / (float)s->height, desc.projection);
-        double start = sr_app_now_ms();
-        r->stats = (sr_stats){ 0 };
-        sr_framebuffer_clear(&fb, 0);
-        ok = sr_draw(&fb, &desc, &r->stats, err);
-        if (f >= 0)
-            ms[f] = sr_app_now_ms() - start;
-    }
-    if (ok)
-        sr_app_median_min(ms, frames, &r->median, &r->min);
-    if (!ms || !ws)
-        sr_error_set(err, "out of memory for the benchmark");
-    free(ms);
-    sr_workspace_destroy(ws);
-    sr_framebuffer_destroy(&fb);
-    return ok;
 }
 
 static void print_header(void)
@@ -103,7 +69,8 @@ static void print_row(const char *name, const sr_bench_scene *s, const bench_res
 
 static bool run_scene(sr_bench_scene *s, bool made, const bench_job *job, bench_result *r, sr_error *err)
 {
-    bool ok = made && time_scene(s, job->frames, job->threads, r, err);
+    sr_bench_run how = { .frames = job->frames, .threads = job->threads, .simd = (sr_simd)job->simd };
+    bool ok = made && sr_bench_time(s, &how, NULL, r, err);
     if (ok)
         print_row(s->name, s, r);
     sr_bench_scene_free(s);

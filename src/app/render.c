@@ -97,15 +97,16 @@ static bool write_outputs(const render_job *job, sr_scene *scene, sr_error *err)
     return !job->depth_png_path || sr_image_write_depth_png(job->depth_png_path, fb, err);
 }
 
-static void print_stats(int frames, const frame_times *t, const sr_stats *s)
+static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_simd simd)
 {
     printf("{\"frames\": %d, \"ms_median\": %.4f, \"ms_min\": %.4f, \"triangles\": %llu, \"rejected\": %llu, "
            "\"clipped\": %llu, \"culled\": %llu, \"fragments\": %llu, \"nonfinite\": %llu, \"drawn\": %llu, "
-           "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu}\n",
+           "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu, \"simd\": \"%s\"}\n",
            frames, t->median, t->min, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
            (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->fragments,
            (unsigned long long)s->nonfinite, (unsigned long long)s->drawn, (unsigned long long)s->cuts_float,
-           (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact);
+           (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact,
+           sr_simd_name(sr_raster_simd_resolve(simd)));
 }
 
 static bool render(render_job *job, sr_scene *scene, sr_error *err)
@@ -120,7 +121,7 @@ static bool render(render_job *job, sr_scene *scene, sr_error *err)
         !run_frames(job->frames, scene, &desc, &stats, &times, err) || !write_outputs(job, scene, err))
         return false;
     if (job->stats)
-        print_stats(job->frames, &times, &stats);
+        print_stats(job->frames, &times, &stats, desc.simd);
     return true;
 }
 

@@ -25,7 +25,8 @@ static void write_table(FILE *f, const sr_report_scene *s)
     }
 }
 
-static bool write_markdown(const char *path, const sr_report_scene *scenes, int frames, sr_error *err)
+static bool write_markdown(const char *path, const sr_report_scene *scenes, const sr_report_simd_scene *loops,
+                           int frames, sr_error *err)
 {
     FILE *f = fopen(path, "w");
     if (!f)
@@ -42,6 +43,7 @@ static bool write_markdown(const char *path, const sr_report_scene *scenes, int 
     for (int i = 0; i < SR_REPORT_SCENES; i++)
         write_table(f, &scenes[i]);
     fprintf(f, "\n![id error against time](report.svg)\n");
+    sr_report_simd_write(f, loops);
     return fclose(f) == 0 ? true : sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
 }
 
@@ -130,10 +132,11 @@ static bool write_svg(const char *path, const sr_report_scene *scenes, int frame
     return fclose(f) == 0 ? true : sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
 }
 
-bool sr_report_files(const char *dir, const sr_report_scene *scenes, int frames, sr_error *err)
+bool sr_report_files(const char *dir, const sr_report_scene *scenes, const sr_report_simd_scene *loops, int frames,
+                     sr_error *err)
 {
     char md[1024], svg[1024];
     snprintf(md, sizeof md, "%s/report.md", dir);
     snprintf(svg, sizeof svg, "%s/report.svg", dir);
-    return write_markdown(md, scenes, frames, err) && write_svg(svg, scenes, frames, err);
+    return write_markdown(md, scenes, loops, frames, err) && write_svg(svg, scenes, frames, err);
 }

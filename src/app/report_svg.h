@@ -5,6 +5,7 @@
 
 #include <stdbool.h>
 
+#include "report_simd.h"
 #include "softrast/error.h"
 
 #define SR_REPORT_KNOBS 9
@@ -23,6 +24,7 @@ typedef struct sr_report_scene {
     sr_report_point points[SR_REPORT_KNOBS];
 } sr_report_scene;
 
-bool sr_report_files(const char *dir, const sr_report_scene *scenes, int frames, sr_error *err);
+bool sr_report_files(const char *dir, const sr_report_scene *scenes, const sr_report_simd_scene *loops, int frames,
+                     sr_error *err);
 
 #endif

@@ -6,7 +6,7 @@
 #include "options.h"
 #include "softrast/softrast.h"
 
-#define SR_SCENE_OPTION_COUNT 16
+#define SR_SCENE_OPTION_COUNT 17
 #define SR_MAX_THREAD_OPTION 64
 
 typedef struct sr_scene_setup {
@@ -16,7 +16,7 @@ typedef struct sr_scene_setup {
     double eye[3], target[3]; /* world points of --eye and --target, kept in double */
     bool eye_set, target_set;
     float rotate_y;
-    int shade, cull, front, filter; /* sr_shade, sr_cull, sr_front, sr_filter */
+    int shade, cull, front, filter, simd; /* sr_shade, sr_cull, sr_front, sr_filter, sr_simd */
     const char *texture_path;
     int threads; /* threads in all for each draw */
 } sr_scene_setup;
@@ -30,6 +30,9 @@ typedef struct sr_scene {
 } sr_scene;
 
 extern const char *const SR_SHADE_NAMES[];
+extern const char *const SR_SIMD_NAMES[]; /* indexed by sr_simd */
+#define SR_SIMD_CHOICES "auto|scalar|sse2|avx2|avx512"
+#define SR_SIMD_HELP "per-pixel loop; every choice draws the same pixels (default auto: the best the CPU has)"
 extern const char *const SR_CULL_NAMES[];
 
 void sr_scene_setup_defaults(sr_scene_setup *s);

@@ -1,0 +1,45 @@
+#include <stdlib.h>
+
+#include "app.h"
+#include "bench_time.h"
+
+static bool time_frames(const sr_bench_scene *s, const sr_bench_run *run, sr_framebuffer *fb, sr_workspace *ws,
+                        double *ms, sr_bench_result *r, sr_error *err)
+{
+    bool ok = true;
+    for (int f = -1; ok && f < run->frames; f++) { /* frame -1 is the warm-up */
+        sr_camera cam;
+        sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade,
+                              .texture = s->texture.texels ? &s->texture : NULL, .threads = run->threads,
+                              .workspace = ws, .simd = run->simd };
+        sr_bench_scene_camera(s, f < 0 ? 0 : f, run->frames, &cam);
+        sr_camera_view(&cam, desc.view);
+        sr_camera_projection(&cam, (float)s->width / (float)s->height, desc.projection);
+        double start = sr_app_now_ms();
+        r->stats = (sr_stats){ 0 };
+        sr_framebuffer_clear(fb, 0);
+        ok = sr_draw(fb, &desc, &r->stats, err);
+        if (f >= 0)
+            ms[f] = sr_app_now_ms() - start;
+    }
+    if (ok)
+        sr_app_median_min(ms, run->frames, &r->median, &r->min);
+    return ok;
+}
+
+bool sr_bench_time(const sr_bench_scene *s, const sr_bench_run *run, sr_framebuffer *fb, sr_bench_result *r,
+                   sr_error *err)
+{
+    sr_framebuffer own = { 0 };
+    if (!fb && !sr_framebuffer_create(&own, s->width, s->height, err))
+        return false;
+    sr_workspace *ws = sr_workspace_create();
+    double *ms = malloc((size_t)run->frames * sizeof *ms);
+    bool ok = ms && ws ? time_frames(s, run, fb ? fb : &own, ws, ms, r, err)
+                       : sr_error_set(err, "out of memory for the benchmark");
+    free(ms);
+    sr_workspace_destroy(ws);
+    if (own.color)
+        sr_framebuffer_destroy(&own);
+    return ok;
+}
