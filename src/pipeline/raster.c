@@ -153,7 +153,7 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, con
         sr_row_range r = sr_row_make(s, fb, spans, j);
         int64_t e0 = r.e[0], e1 = r.e[1], e2 = r.e[2];
         for (int d = 0; d < r.count; d++, e0 += step[0], e1 += step[1], e2 += step[2])
-            if (spans || (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias))
+            if (spans || s->covered || (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias))
                 fragments += fill_pixel(s, fb, mode, greater, shade, id, r.at + (size_t)d, e1, e2);
     }
     return fragments;
@@ -218,6 +218,34 @@ static sr_span_kernel span_kernel(const sr_shade_context *shade, sr_shade mode, 
     }
 }
 
+/* The box's corner pixels against each edge: all four outside one edge, the
+ * box holds no pixel of the triangle (an edge function is linear, so no
+ * pixel between the corners is inside either); all four inside every edge,
+ * every pixel is. A tile of a large triangle is usually one or the other.
+ * Boxes smaller than this are not worth the twelve evaluations. */
+#define CLASSIFY_MIN_PIXELS 64
+
+typedef enum box_class { BOX_PARTIAL, BOX_OUTSIDE, BOX_COVERED } box_class;
+
+static box_class classify_box(const setup *s)
+{
+    sr_raster_rect b = s->box;
+    if ((int64_t)(b.x1 - b.x0) * (b.y1 - b.y0) < CLASSIFY_MIN_PIXELS)
+        return BOX_PARTIAL;
+    int64_t xs[2] = { sr_subpixel_centre(b.x0, s->bits), sr_subpixel_centre(b.x1 - 1, s->bits) };
+    int64_t ys[2] = { sr_subpixel_centre(b.y0, s->bits), sr_subpixel_centre(b.y1 - 1, s->bits) };
+    bool covered = true;
+    for (int k = 0; k < 3; k++) {
+        int inside = 0;
+        for (int c = 0; c < 4; c++)
+            inside += sr_edge_at(&s->e[k], xs[c & 1], ys[c >> 1]) >= s->e[k].bias;
+        if (inside == 0)
+            return BOX_OUTSIDE;
+        covered = covered && inside == 4;
+    }
+    return covered ? BOX_COVERED : BOX_PARTIAL;
+}
+
 static inline __attribute__((always_inline)) uint64_t
 raster_mode(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade, uint32_t id)
 {
@@ -238,8 +266,12 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
     order_clockwise(tri, area2, v);
     setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, box,
                subpixel_bits, &s);
+    box_class c = classify_box(&s);
+    if (c == BOX_OUTSIDE)
+        return 0;
+    s.covered = c == BOX_COVERED;
     sr_span_kernel kernel = span_kernel(shade, mode, fb->reversed_z);
-    if (kernel && s.box.x1 - s.box.x0 >= 8 && edges_fit_double(&s))
+    if (kernel && s.box.x1 - s.box.x0 >= SIMD_MIN_WIDTH && edges_fit_double(&s))
         return kernel(&s, shade, fb, triangle_id);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(&s, fb, SR_SHADE_ID, shade, triangle_id);

@@ -27,7 +27,8 @@ typedef struct sr_tri_setup {
     int varyings;
     float var0[SR_MAX_VARYINGS], dvar1[SR_MAX_VARYINGS], dvar2[SR_MAX_VARYINGS];
     sr_raster_rect box;
-    int bits; /* subpixel bits of the vertices */
+    int bits;     /* subpixel bits of the vertices */
+    bool covered; /* every pixel centre of the box is inside: rows need no solving or tests */
 } sr_tri_setup;
 
 static inline int64_t sr_edge_at(const sr_edge *e, int64_t px, int64_t py)
@@ -79,7 +80,7 @@ static inline sr_row_range sr_row_make(const sr_tri_setup *s, const sr_framebuff
     sr_row_range r;
     for (int k = 0; k < 3; k++) {
         r.e[k] = sr_edge_at(&s->e[k], px, py);
-        if (spans)
+        if (spans && !s->covered)
             sr_edge_span(r.e[k], s->step_x[k], s->e[k].bias, &lo, &hi);
     }
     r.count = lo <= hi ? (int)(hi - lo + 1) : 0;
