@@ -164,9 +164,9 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, con
  * function is linear, so its largest magnitude is at a corner. */
 #define SIMD_EDGE_LIMIT ((int64_t)1 << 52)
 /* Narrower triangles stay scalar: a kernel's per-row set-up costs more
- * than it saves on a pixel or two (measured: threshold 1 costs the dense
- * torus 10%; 8 costs the fly scene 10%). */
-#define SIMD_MIN_WIDTH 4
+ * than it saves on a few pixels (measured at 1 thread, thresholds 4 / 8 /
+ * 16: depth 77 / 72 / 72 ms, fly 20.1 / 20.5 / 22 ms, dense 100 ms). */
+#define SIMD_MIN_WIDTH 8
 #define SIMD_MAX_LANES 16
 
 static bool edges_fit_double(const setup *s)
