@@ -8,7 +8,7 @@
 #include "options.h"
 
 #define DEFAULT_FRAMES 10
-#define DEFAULT_FILL_FRAMES 3 /* softrast's fill scene takes seconds a frame */
+#define DEFAULT_FILL_FRAMES 3 /* fill takes llvmpipe 0.7 s a frame */
 #define DEFAULT_THREADS 2
 #define MAX_FRAMES 10000
 #define MAX_THREADS 64
@@ -16,8 +16,10 @@
 static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", NULL };
 enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_KINDS };
 
+static const char *const SIMD_NAMES[] = { "auto", "scalar", "sse2", "avx2", "avx512", NULL };
+
 typedef struct job {
-    int scene, frames, fill_frames, threads;
+    int scene, frames, fill_frames, threads, simd;
     bool lp_raster_all; /* LP_NUM_THREADS = threads, not threads - 1 */
     bool sequential;
 } job;
@@ -78,14 +80,14 @@ static bool run_scene(const job *j, int kind, sr_error *err)
     int frames = kind == SCENE_FILL && j->fill_frames < j->frames ? j->fill_frames : j->frames;
     printf("\n%s: %s; %u triangle slots, %dx%d, %d timed frames%s\n", s.name, s.what,
            sr_mesh_triangle_slots(&s.mesh), s.width, s.height, frames,
-           frames < j->frames ? " (capped by --fill-frames: softrast takes seconds a frame here)" : "");
+           frames < j->frames ? " (capped by --fill-frames)" : "");
     print_table_header();
     const int thread_counts[] = { 1, j->threads };
     bool ok = true;
     for (int i = 0; ok && i < (j->threads > 1 ? 2 : 1); i++) {
         int t = thread_counts[i];
         bench_gl_run run = { .frames = frames, .threads = t, .lp_threads = j->lp_raster_all ? t : t - 1,
-                             .sequential = j->sequential };
+                             .sequential = j->sequential, .simd = (sr_simd)j->simd };
         bench_gl_result r;
         ok = bench_gl_compare(&s, &run, &r, err);
         if (ok)
@@ -120,6 +122,8 @@ static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
           "LP_NUM_THREADS = N (N rasterizers + the calling thread), not N - 1" },
         { "--sequential", SR_OPT_FLAG, &j->sequential, NULL,
           "all softrast frames, then all llvmpipe frames (default: alternate frame by frame)" },
+        { "--simd", SR_OPT_CHOICE, &j->simd, "auto|scalar|sse2|avx2|avx512",
+          "softrast's per-pixel loop (default auto: the best the CPU has)", .choices = SIMD_NAMES },
         { 0 },
     };
     int positional = 0;
@@ -134,6 +138,7 @@ static bool run(const job *j, sr_error *err)
 {
     if (!print_renderer(err))
         return false;
+    printf("softrast per-pixel loop: %s\n", sr_simd_name(sr_raster_simd_resolve((sr_simd)j->simd)));
     printf(LEGEND, BENCH_GL_COLOR_TOLERANCE,
            j->sequential ? "all softrast frames, then all llvmpipe frames (--sequential)"
                          : "softrast and llvmpipe frames alternate, so a burst of load hits both");

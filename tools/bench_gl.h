@@ -41,6 +41,7 @@ typedef struct bench_gl_diff {
 /* One scene at one thread count. */
 typedef struct bench_gl_run {
     int frames, threads, lp_threads; /* threads in all for softrast; LP_NUM_THREADS */
+    sr_simd simd;                    /* softrast's per-pixel loop */
     bool sequential;                 /* all softrast frames, then all llvmpipe frames */
 } bench_gl_run;
 

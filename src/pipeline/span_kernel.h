@@ -242,14 +242,15 @@ static inline __attribute__((always_inline)) vi bilinear_pair_lanes(vf c, int n,
  * multiplies give the scalar path's 32-bit ones (the weight is in both
  * halves of its lane). */
 typedef uint16_t vu16 __attribute__((vector_size(SPAN_LANES * 4)));
+typedef uint32_t vu __attribute__((vector_size(SPAN_LANES * 4)));
 
 static inline __attribute__((always_inline)) vi lerp_texels_lanes(vi a, vi b, vi w)
 {
-    vi v = (int32_t)SR_SHADE_WEIGHT_ONE - w;
-    vu16 w2 = (vu16)(w | w << 16), v2 = (vu16)(v | v << 16);
-    vi rb = (vi)((vu16)(a & 0xFF00FF) * v2 + (vu16)(b & 0xFF00FF) * w2) + 0x800080;
-    vi g = (vi)((vu16)((a >> 8) & 0xFF) * v2 + (vu16)((b >> 8) & 0xFF) * w2) + 0x80;
-    return ((rb >> SR_SHADE_WEIGHT_BITS) & 0xFF00FF) | (g >> SR_SHADE_WEIGHT_BITS) << 8;
+    vu v = SR_SHADE_WEIGHT_ONE - (vu)w;
+    vu16 w2 = (vu16)((vu)w | (vu)w << 16), v2 = (vu16)(v | v << 16);
+    vu rb = (vu)((vu16)(a & 0xFF00FF) * v2 + (vu16)(b & 0xFF00FF) * w2) + 0x800080u;
+    vu g = (vu)((vu16)((a >> 8) & 0xFF) * v2 + (vu16)((b >> 8) & 0xFF) * w2) + 0x80u;
+    return (vi)(((rb >> SR_SHADE_WEIGHT_BITS) & 0xFF00FFu) | (g >> SR_SHADE_WEIGHT_BITS) << 8);
 }
 
 static inline __attribute__((always_inline)) vi sample_bilinear_lanes(const sr_texture *tex, vf fu, vf fv)
