@@ -4,7 +4,8 @@
  * defining SPAN_LANES, SPAN_KERNEL_GETTER and (optionally) SPAN_SQRT first.
  *
  * Every lane does exactly the float operations of the scalar loop and of
- * shade.h, in the same order and without fused multiply-adds, so the colors
+ * shade.h, in the same order and without fused multiply-adds (the Makefile
+ * passes -ffp-contract=off: clang would fuse where AVX-512 offers FMA), so the colors
  * and depths are bit-identical to the scalar path (tests/test_simd.c):
  * λ = (float)E · inv_area2 with E exact in double, depth and 1/w from λ,
  * the varyings divided by 1/w, then the mode's shading. Lanes past the row
