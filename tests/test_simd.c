@@ -72,15 +72,11 @@ static void assert_vector_loops_match_scalar(const sr_draw_desc *desc, bool reve
     sr_framebuffer_destroy(&scalar);
 }
 
-static void look(sr_draw_desc *desc, vec3 eye, vec3 target, float fov, bool reversed)
+static void look(sr_draw_desc *desc, const float e[6], float fov, bool reversed)
 {
-    sr_camera cam = sr_camera_default();
+    sr_camera cam = scene_camera(e[0], e[1], e[2], e[3], e[4], e[5], fov, SR_CAMERA_NEAR, SR_CAMERA_FAR);
     cam.reversed_z = reversed;
-    glm_vec3_copy(eye, cam.eye);
-    glm_vec3_copy(target, cam.target);
-    cam.fov_deg = fov;
-    sr_camera_view(&cam, desc->view);
-    sr_camera_projection(&cam, 1.0f, desc->projection);
+    scene_camera_desc(desc, &cam, FB_SIDE, FB_SIDE);
 }
 
 /* Every layout the vertex stage makes (each mode, lambert with a texture,
@@ -129,7 +125,7 @@ Test(simd, random_triangles_match_the_scalar_loop_in_every_mode)
         for (int reversed = 0; reversed < 2; reversed++) {
             sr_draw_desc desc = { .mesh = &soup, .shade = modes[m].shade, .filter = modes[m].filter,
                                   .texture = modes[m].textured ? &tex : NULL, .cull = SR_CULL_NONE };
-            look(&desc, (vec3){ 0, 0, 0 }, (vec3){ 0, 0, 1 }, 90.0f, reversed);
+            look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);
             char what[64];
             snprintf(what, sizeof what, "mode %d filter %d%s", modes[m].shade, modes[m].filter,
                      reversed ? " reversed" : "");
@@ -149,7 +145,7 @@ Test(simd, the_textured_room_through_its_walls_matches_the_scalar_loop)
     static float eyes[][6] = { { -8, 3, -8, 4, 1.5f, 6 }, { -10, 2, 0.3f, 10, 2, 0.3f }, { 2, 5.9f, 2, 2, 0, 2.001f } };
     for (size_t i = 0; i < sizeof eyes / sizeof *eyes; i++) {
         sr_draw_desc desc = { .mesh = &room, .shade = SR_SHADE_LAMBERT, .texture = &tex };
-        look(&desc, eyes[i], eyes[i] + 3, 75.0f, false);
+        look(&desc, eyes[i], 75.0f, false);
         assert_vector_loops_match_scalar(&desc, false, "room");
     }
     sr_texture_free(&tex);

@@ -102,6 +102,15 @@ typedef uint64_t (*sr_span_kernel)(const sr_tri_setup *s, const sr_shade_context
  * where the instruction set is not built in (AVX2 off x86-64) or the layout
  * is not one sr_vertex_layout makes (the scalar loop draws those). */
 sr_span_kernel sr_span_kernel_sse2(sr_shade mode, bool greater, const sr_varying_layout *layout);
+
+/* The getter of a kernel file built without its instruction set. */
+#define SR_SPAN_KERNEL_ABSENT(getter)                                                                         \
+    sr_span_kernel getter(sr_shade mode, bool greater, const sr_varying_layout *layout)                       \
+    {                                                                                                         \
+        (void)mode, (void)greater, (void)layout;                                                              \
+        return NULL;                                                                                          \
+    }
+
 sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater, const sr_varying_layout *layout);
 sr_span_kernel sr_span_kernel_avx512(sr_shade mode, bool greater, const sr_varying_layout *layout);
 

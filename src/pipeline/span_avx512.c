@@ -14,9 +14,5 @@
 #define SPAN_KERNEL_GETTER sr_span_kernel_avx512
 #include "span_kernel.h"
 #else
-sr_span_kernel sr_span_kernel_avx512(sr_shade mode, bool greater, const sr_varying_layout *layout)
-{
-    (void)mode, (void)greater, (void)layout;
-    return NULL;
-}
+SR_SPAN_KERNEL_ABSENT(sr_span_kernel_avx512)
 #endif
