@@ -8,10 +8,15 @@ PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-missing-field-initializers
 CFLAGS  ?= -O2 -g
 SAN     := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-# -ffp-contract=off: no fused multiply-adds anywhere (clang fuses by default
-# where the target has FMA, as AVX-512 does), so the scalar loop and every
-# SIMD kernel round alike and draw the same pixels.
-ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off $(WARN) -Iinclude $(PKG_CFLAGS) -MMD -MP
+ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude $(PKG_CFLAGS) -MMD -MP
+# After CFLAGS on every compile line, so a CFLAGS of the user's cannot undo
+# it: no fused multiply-adds (clang fuses by default where the target has
+# FMA, as AVX-512 does) and, on 32-bit x86, SSE arithmetic instead of x87's
+# extended precision, so the scalar loop and every SIMD kernel round alike.
+STRICT_FP := -ffp-contract=off
+ifneq ($(filter i%86,$(shell uname -m)),)
+STRICT_FP += -msse2 -mfpmath=sse
+endif
 LIBS    = $(PKG_LIBS) -lm -lpthread
 PREFIX  ?= /usr/local
 
@@ -28,7 +33,7 @@ SAN_TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
 
 # The 8-lane span kernels are built for AVX2 (chosen at run time when the
 # CPU has it); never -mfma, which would round differently from the scalar path.
-ifneq ($(filter x86_64 i%86,$(shell uname -m)),)
+ifeq ($(shell uname -m),x86_64)
 AVX2_OBJ := $(patsubst %,%/src/pipeline/span_avx2.o,build build/san build/fuzz)
 $(AVX2_OBJ): ALL_CFLAGS += -mavx2
 $(AVX2_OBJ): FUZZ_CFLAGS += -mavx2
@@ -49,12 +54,12 @@ deps:
 build/%.o: %.c
 	@mkdir -p $(@D)
 	@echo "  CC      $<"
-	@$(CC) $(ALL_CFLAGS) $(CFLAGS) -c $< -o $@
+	@$(CC) $(ALL_CFLAGS) $(CFLAGS) $(STRICT_FP) -c $< -o $@
 
 build/san/%.o: %.c
 	@mkdir -p $(@D)
 	@echo "  CC san  $<"
-	@$(CC) $(ALL_CFLAGS) $(SAN) -c $< -o $@
+	@$(CC) $(ALL_CFLAGS) $(SAN) $(STRICT_FP) -c $< -o $@
 
 build/libsoftrast.a: $(LIB_OBJ)
 	@rm -f $@

@@ -1,8 +1,10 @@
-/* The SIMD per-pixel loops (SSE2, AVX2 where the CPU has it) draw exactly
- * what the scalar loop draws: the same colors, depths and counts, bit for
- * bit, in every shading mode, filter and depth convention, on random
- * triangles large enough to take the SIMD path and on the room seen through
- * its walls. */
+/* The SIMD per-pixel loops (SSE2; AVX2 and AVX-512 where the CPU has them)
+ * draw exactly what the scalar loop draws: the same colors, depths and
+ * counts, bit for bit, in every shading mode, filter and depth convention,
+ * one thread or several, on random triangles large enough to take the SIMD
+ * path (uvs up to past 2^23, textures down to 1x1) and on the room seen
+ * through its walls; and the kernels really draw (the workspace counts
+ * their calls). */
 #include <criterion/criterion.h>
 #include <string.h>
 
@@ -13,6 +15,8 @@
 #define SOUP_TRIANGLES 60
 #define SOUP_SEED 0x51D51D
 #define FB_SIDE 97 /* odd, so rows end in partial groups of lanes */
+#define HUGE_UV 3e7f /* past 2^23, where a float has no fraction left to wrap */
+#define TILED_THREADS 3
 
 static const sr_simd vector_loops[] = { SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX512 };
 
@@ -34,40 +38,62 @@ static void soup_make(sr_mesh *mesh)
             mesh->normals[i][k] = i % 17 == 0 ? 0.0f : (float)rng_uniform(&rng, -1.0, 1.0);
             mesh->colors[i][k] = (float)rng_uniform(&rng, -0.3, 1.3);
         }
-        mesh->uvs[i][0] = (float)rng_uniform(&rng, -3.0, 3.0);
-        mesh->uvs[i][1] = (float)rng_uniform(&rng, -3.0, 3.0);
+        mesh->uvs[i][0] = i % 23 == 0 ? HUGE_UV : (float)rng_uniform(&rng, -3.0, 3.0);
+        mesh->uvs[i][1] = i % 29 == 0 ? -HUGE_UV : (float)rng_uniform(&rng, -3.0, 3.0);
         mesh->indices[i] = i;
     }
 }
 
-static void draw_with(const sr_draw_desc *base, sr_simd simd, bool reversed, sr_framebuffer *fb, sr_stats *stats)
+/* A draw with this loop and thread count; returns how many rasterizer calls
+ * a SIMD kernel made. */
+static uint64_t draw_with(const sr_draw_desc *base, sr_simd simd, int threads, bool reversed, sr_framebuffer *fb,
+                          sr_stats *stats)
 {
     sr_error err;
     scene_fb_make(fb, FB_SIDE, FB_SIDE);
     fb->reversed_z = reversed;
     sr_framebuffer_clear(fb, 0x123456);
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
     sr_draw_desc desc = *base;
     desc.simd = simd;
+    desc.threads = threads;
+    desc.workspace = ws;
     *stats = (sr_stats){ 0 };
     cr_assert(sr_draw(fb, &desc, stats, &err), "%s", err.message);
+    uint64_t draws = sr_workspace_simd_draws(ws);
+    sr_workspace_destroy(ws);
+    return draws;
 }
 
+static void assert_same_as(const sr_framebuffer *want, const sr_stats *want_stats, const sr_framebuffer *fb,
+                           const sr_stats *stats, const char *what, const char *how)
+{
+    size_t n = scene_pixel_count(want);
+    cr_assert_eq(memcmp(fb->color, want->color, n * sizeof *fb->color), 0, "%s: %s colors differ", what, how);
+    cr_assert_eq(memcmp(fb->depth, want->depth, n * sizeof *fb->depth), 0, "%s: %s depths differ", what, how);
+    cr_assert_eq(memcmp(stats, want_stats, sizeof *stats), 0, "%s: %s counts differ", what, how);
+}
+
+/* Each vector loop, on one thread and on tiles, against the scalar loop on
+ * one thread; the scalar draw must make no kernel call, the others some. */
 static void assert_vector_loops_match_scalar(const sr_draw_desc *desc, bool reversed, const char *what)
 {
     sr_framebuffer scalar;
     sr_stats scalar_stats;
-    draw_with(desc, SR_SIMD_SCALAR, reversed, &scalar, &scalar_stats);
+    cr_assert_eq(draw_with(desc, SR_SIMD_SCALAR, 1, reversed, &scalar, &scalar_stats), 0u,
+                 "%s: the scalar loop called a kernel", what);
     cr_assert_gt(scalar_stats.fragments, (uint64_t)FB_SIDE * FB_SIDE / 4, "%s: too little drawn to compare", what);
-    size_t n = scene_pixel_count(&scalar);
     for (size_t i = 0; i < sizeof vector_loops / sizeof *vector_loops; i++) {
-        sr_framebuffer fb;
-        sr_stats stats;
-        draw_with(desc, vector_loops[i], reversed, &fb, &stats);
         const char *name = sr_simd_name(sr_raster_simd_resolve(vector_loops[i]));
-        cr_assert_eq(memcmp(fb.color, scalar.color, n * sizeof *fb.color), 0, "%s: %s colors differ", what, name);
-        cr_assert_eq(memcmp(fb.depth, scalar.depth, n * sizeof *fb.depth), 0, "%s: %s depths differ", what, name);
-        cr_assert_eq(memcmp(&stats, &scalar_stats, sizeof stats), 0, "%s: %s counts differ", what, name);
-        sr_framebuffer_destroy(&fb);
+        for (int threads = 1; threads <= TILED_THREADS; threads += TILED_THREADS - 1) {
+            sr_framebuffer fb;
+            sr_stats stats;
+            uint64_t draws = draw_with(desc, vector_loops[i], threads, reversed, &fb, &stats);
+            cr_assert_gt(draws, 0u, "%s: the %s loop on %d threads never ran", what, name, threads);
+            assert_same_as(&scalar, &scalar_stats, &fb, &stats, what, name);
+            sr_framebuffer_destroy(&fb);
+        }
     }
     sr_framebuffer_destroy(&scalar);
 }
@@ -90,44 +116,68 @@ Test(simd, every_mode_and_varying_layout_has_a_kernel)
             sr_mesh m = mesh;
             m.colors = albedo == 2 ? NULL : m.colors;
             sr_varying_layout l = sr_vertex_layout((sr_shade)mode, &m, albedo == 0);
-            for (int greater = 0; greater < 2; greater++)
+            for (int greater = 0; greater < 2; greater++) {
                 cr_assert_not_null(sr_span_kernel_sse2((sr_shade)mode, greater, &l),
                                    "no 4-lane kernel for mode %d, albedo case %d (%d varyings)", mode, albedo,
                                    l.count);
+                cr_assert(sr_raster_simd_resolve(SR_SIMD_AVX2) != SR_SIMD_AVX2 ||
+                              sr_span_kernel_avx2((sr_shade)mode, greater, &l),
+                          "no AVX2 kernel for mode %d, albedo case %d", mode, albedo);
+                cr_assert(sr_raster_simd_resolve(SR_SIMD_AVX512) != SR_SIMD_AVX512 ||
+                              sr_span_kernel_avx512((sr_shade)mode, greater, &l),
+                          "no AVX-512 kernel for mode %d, albedo case %d", mode, albedo);
+            }
         }
     }
+}
+
+/* AUTO is the best loop the CPU has; one asked for that it lacks falls back
+ * to the best below it, never above. */
+Test(simd, auto_picks_the_best_loop_the_cpu_has)
+{
     cr_assert_eq(sr_raster_simd_resolve(SR_SIMD_SCALAR), SR_SIMD_SCALAR);
     cr_assert_eq(sr_raster_simd_resolve(SR_SIMD_SSE2), SR_SIMD_SSE2);
-    cr_assert_neq(sr_raster_simd_resolve(SR_SIMD_AUTO), SR_SIMD_SCALAR, "AUTO must pick a vector loop");
 #if defined(__x86_64__)
-    cr_assert_eq(sr_raster_simd_resolve(SR_SIMD_AVX2) == SR_SIMD_AVX2, __builtin_cpu_supports("avx2") != 0,
-                 "AVX2 chosen on a CPU without it, or not chosen on one with it");
+    bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+                  __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+    sr_simd best = avx512 ? SR_SIMD_AVX512 : __builtin_cpu_supports("avx2") ? SR_SIMD_AVX2 : SR_SIMD_SSE2;
+#else
+    sr_simd best = SR_SIMD_SSE2;
 #endif
+    cr_assert_eq(sr_raster_simd_resolve(SR_SIMD_AUTO), best, "AUTO gave %s, the CPU's best is %s",
+                 sr_simd_name(sr_raster_simd_resolve(SR_SIMD_AUTO)), sr_simd_name(best));
+    for (int s = SR_SIMD_SCALAR; s < SR_SIMD_COUNT; s++)
+        cr_assert_eq(sr_raster_simd_resolve((sr_simd)s), s <= (int)best ? (sr_simd)s : best, "%s",
+                     sr_simd_name((sr_simd)s));
 }
 
 Test(simd, random_triangles_match_the_scalar_loop_in_every_mode)
 {
     static const uint32_t texels[15] = { 0xFF0000, 0x00FF00, 0x0000FF, 0xFFFFFF, 0x000000, 0x808080, 0x123456, 0xABCDEF,
                                          0xFEDCBA, 0x010203, 0x7F7F7F, 0x80FF00, 0x00FF80, 0xFF0080, 0x3C3C3C };
+    static const uint32_t one_texel = 0xC0FFEE;
     sr_texture tex = { .width = 5, .height = 3, .texels = (uint32_t *)texels };
+    sr_texture tiny = { .width = 1, .height = 1, .texels = (uint32_t *)&one_texel };
     sr_mesh soup;
     soup_make(&soup);
-    static const struct {
+    const struct {
         sr_shade shade;
         sr_filter filter;
-        bool textured;
+        const sr_texture *texture;
     } modes[] = {
-        { SR_SHADE_ID, 0, false },      { SR_SHADE_DEPTH, 0, false },   { SR_SHADE_COLOR, 0, false },
-        { SR_SHADE_NORMAL, 0, false },  { SR_SHADE_LAMBERT, 0, false }, { SR_SHADE_LAMBERT, SR_FILTER_BILINEAR, true },
-        { SR_SHADE_TEXTURE, SR_FILTER_BILINEAR, true }, { SR_SHADE_TEXTURE, SR_FILTER_NEAREST, true },
+        { SR_SHADE_ID, 0, NULL },      { SR_SHADE_DEPTH, 0, NULL },   { SR_SHADE_COLOR, 0, NULL },
+        { SR_SHADE_NORMAL, 0, NULL },  { SR_SHADE_LAMBERT, 0, NULL }, { SR_SHADE_LAMBERT, SR_FILTER_BILINEAR, &tex },
+        { SR_SHADE_TEXTURE, SR_FILTER_BILINEAR, &tex }, { SR_SHADE_TEXTURE, SR_FILTER_NEAREST, &tex },
+        { SR_SHADE_TEXTURE, SR_FILTER_BILINEAR, &tiny }, { SR_SHADE_TEXTURE, SR_FILTER_NEAREST, &tiny },
     };
     for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {
         for (int reversed = 0; reversed < 2; reversed++) {
             sr_draw_desc desc = { .mesh = &soup, .shade = modes[m].shade, .filter = modes[m].filter,
-                                  .texture = modes[m].textured ? &tex : NULL, .cull = SR_CULL_NONE };
+                                  .texture = modes[m].texture, .cull = SR_CULL_NONE };
             look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);
             char what[64];
-            snprintf(what, sizeof what, "mode %d filter %d%s", modes[m].shade, modes[m].filter,
+            snprintf(what, sizeof what, "mode %d filter %d texture %dx%d%s", modes[m].shade, modes[m].filter,
+                     modes[m].texture ? modes[m].texture->width : 0, modes[m].texture ? modes[m].texture->height : 0,
                      reversed ? " reversed" : "");
             assert_vector_loops_match_scalar(&desc, reversed, what);
         }

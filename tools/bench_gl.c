@@ -6,6 +6,7 @@
 
 #include "bench_gl.h"
 #include "options.h"
+#include "scene_setup.h"
 
 #define DEFAULT_FRAMES 10
 #define DEFAULT_FILL_FRAMES 3 /* fill takes llvmpipe 0.7 s a frame */
@@ -15,8 +16,6 @@
 
 static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", NULL };
 enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_KINDS };
-
-static const char *const SIMD_NAMES[] = { "auto", "scalar", "sse2", "avx2", "avx512", NULL };
 
 typedef struct job {
     int scene, frames, fill_frames, threads, simd;
@@ -122,8 +121,8 @@ static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
           "LP_NUM_THREADS = N (N rasterizers + the calling thread), not N - 1" },
         { "--sequential", SR_OPT_FLAG, &j->sequential, NULL,
           "all softrast frames, then all llvmpipe frames (default: alternate frame by frame)" },
-        { "--simd", SR_OPT_CHOICE, &j->simd, "auto|scalar|sse2|avx2|avx512",
-          "softrast's per-pixel loop (default auto: the best the CPU has)", .choices = SIMD_NAMES },
+        { "--simd", SR_OPT_CHOICE, &j->simd, SR_SIMD_CHOICES,
+          "softrast's per-pixel loop (default auto: the best the CPU has)", .choices = sr_simd_names },
         { 0 },
     };
     int positional = 0;

@@ -55,6 +55,11 @@ typedef struct sr_workspace sr_workspace;
 sr_workspace *sr_workspace_create(void); /* NULL when out of memory */
 void sr_workspace_destroy(sr_workspace *ws);
 
+/* How many rasterizer calls of the last draw with this workspace a SIMD
+ * kernel made (a call is a fan triangle, or with threads its share of one
+ * tile; narrow ones take the scalar loop): tests check the kernels ran. */
+uint64_t sr_workspace_simd_draws(const sr_workspace *ws);
+
 /* Sees every fan triangle that survives culling, before it is rasterized
  * (the viewer's wireframe overlay, tests of the clipper's output). */
 typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id);

@@ -31,9 +31,12 @@ typedef struct sr_raster_rect {
 sr_raster_rect sr_raster_scan_box(const sr_screen_vertex tri[3], sr_raster_rect rect, int subpixel_bits);
 
 /* The per-pixel loop a request gets on this CPU: AUTO (or anything
- * unknown) is the best it has, AVX2 without AVX2 falls back to SSE2. */
+ * unknown) is the best it has; one it lacks falls back to the best below
+ * (AVX-512 to AVX2 to SSE2). Off x86-64 "sse2" is the compiler's 4-lane
+ * vectors. */
 sr_simd sr_raster_simd_resolve(sr_simd want);
-const char *sr_simd_name(sr_simd simd); /* "auto", "scalar", "sse2", "avx2" */
+const char *sr_simd_name(sr_simd simd); /* "auto", "scalar", "sse2", "avx2", "avx512" */
+extern const char *const sr_simd_names[SR_SIMD_COUNT + 1]; /* indexed by sr_simd, NULL-terminated */
 
 /* Draws one triangle of nonzero signed area2 (either winding) into fb within
  * rect, its vertices in units of 2^-subpixel_bits pixel (SR_SUBPIXEL_BITS

@@ -13,6 +13,11 @@
 
 #include "error.h"
 
+/* Sides up to this (the GPU-common limit) keep every texel index below 2^28,
+ * within the SIMD kernels' 32-bit lanes; the loader refuses larger images
+ * and a draw refuses a larger texture. */
+#define SR_MAX_TEXTURE_SIDE 16384
+
 typedef struct sr_texture {
     int width, height;
     uint32_t *texels; /* width * height, row-major, top row first */

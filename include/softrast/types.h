@@ -41,8 +41,8 @@ typedef enum sr_front { SR_FRONT_CW = 0, SR_FRONT_CCW } sr_front;
 typedef enum sr_filter { SR_FILTER_BILINEAR = 0, SR_FILTER_NEAREST } sr_filter;
 
 /* The per-pixel loop's instruction set: AUTO picks the best the CPU has
- * (AVX2, else SSE2); the others force one, for tests and the report. Every
- * choice gives bit-identical pixels and depths. */
+ * (AVX-512, else AVX2, else SSE2); the others force one, for tests and the
+ * report. Every choice gives bit-identical pixels and depths. */
 typedef enum sr_simd {
     SR_SIMD_AUTO = 0,
     SR_SIMD_SCALAR,

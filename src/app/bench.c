@@ -38,7 +38,7 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
         { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|depth|scaling", "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
-        { "--simd", SR_OPT_CHOICE, &job->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = SR_SIMD_NAMES },
+        { "--simd", SR_OPT_CHOICE, &job->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
         { "--report", SR_OPT_FLAG, &job->report, NULL, "measure error against time for every accuracy knob instead" },
         { "--stability", SR_OPT_FLAG, &job->stability, NULL, "measure clipping error, cracks and depth precision under stiff cameras instead (docs/stability.md)" },
         { "--report-dir", SR_OPT_STRING, &job->report_dir, "DIR", "where --report and --stability write their .md and .svg (default docs)" },

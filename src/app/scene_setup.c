@@ -7,7 +7,6 @@ const char *const SR_SHADE_NAMES[] = { "lambert", "id", "color", "normal", "text
 const char *const SR_CULL_NAMES[] = { "back", "front", "none", NULL };
 static const char *const FRONT_NAMES[] = { "cw", "ccw", NULL };
 static const char *const FILTER_NAMES[] = { "bilinear", "nearest", NULL };
-const char *const SR_SIMD_NAMES[] = { "auto", "scalar", "sse2", "avx2", "avx512", NULL };
 
 int sr_scene_default_threads(void)
 {
@@ -43,7 +42,7 @@ void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
         { "--reversed-z", SR_OPT_FLAG, &s->camera.reversed_z, NULL, "reversed depth: near maps to 1, far to 0, test GREATER, clear 0" },
         { "--filter", SR_OPT_CHOICE, &s->filter, "bilinear|nearest", "texture filter (default bilinear)", .choices = FILTER_NAMES },
         { "--threads", SR_OPT_INT, &s->threads, "N", "threads in all, the calling one included (default: all cores)", 1, SR_MAX_THREAD_OPTION },
-        { "--simd", SR_OPT_CHOICE, &s->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = SR_SIMD_NAMES },
+        { "--simd", SR_OPT_CHOICE, &s->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
     };
     for (int i = 0; i < SR_SCENE_OPTION_COUNT; i++)
         table[i] = entries[i];

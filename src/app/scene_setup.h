@@ -30,7 +30,6 @@ typedef struct sr_scene {
 } sr_scene;
 
 extern const char *const SR_SHADE_NAMES[];
-extern const char *const SR_SIMD_NAMES[]; /* indexed by sr_simd */
 #define SR_SIMD_CHOICES "auto|scalar|sse2|avx2|avx512"
 #define SR_SIMD_HELP "per-pixel loop; every choice draws the same pixels (default auto: the best the CPU has)"
 extern const char *const SR_CULL_NAMES[];

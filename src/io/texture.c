@@ -10,9 +10,6 @@
 
 #include "softrast/texture.h"
 
-/* Larger textures would not fit the sampler's int texel coordinates comfortably
- * and are almost certainly a mistake; 16384 is also the GPU-common limit. */
-#define SR_MAX_TEXTURE_SIDE 16384
 #define RGB_MASK 0x00FFFFFFu
 
 /* The extension as IMG_Load would pass it, so formats without a magic number

@@ -99,7 +99,7 @@ static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_threa
 
 /* Every binning thread's list for the tile, in thread order: thread t set up
  * the slots before thread t + 1's, so this is submission order. */
-static uint64_t raster_tile(const sr_draw_state *st, int tile)
+static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_draws)
 {
     int tx = tile % st->tiles_x, ty = tile / st->tiles_x;
     sr_raster_rect rect = { tx * SR_TILE_SIDE, ty * SR_TILE_SIDE, (tx + 1) * SR_TILE_SIDE, (ty + 1) * SR_TILE_SIDE };
@@ -113,8 +113,10 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile)
             const sr_record *rec = &((const sr_record *)w->records.data)[list[i]];
             sr_screen_vertex tri[3] = { *vertex_of(st, w, rec->ref[0]), *vertex_of(st, w, rec->ref[1]),
                                         *vertex_of(st, w, rec->ref[2]) };
-            fragments += sr_raster_triangle(st->fb, rect, st->vp.subpixel_bits, st->desc->shade, &st->shade, tri,
-                                            rec->area2, rec->id);
+            bool simd = false;
+            fragments += sr_raster_triangle_on(st->fb, rect, st->vp.subpixel_bits, st->desc->shade, &st->shade,
+                                               tri, rec->area2, rec->id, &simd);
+            *simd_draws += simd;
         }
     }
     return fragments;
@@ -125,8 +127,9 @@ static void raster_tiles(void *ctx, int t)
     raster_phase *ph = ctx;
     const sr_draw_state *st = ph->st;
     int tiles = st->tiles_x * st->tiles_y;
+    sr_thread_work *w = &st->ws->threads[t];
     for (int tile = atomic_fetch_add(&ph->next_tile, 1); tile < tiles; tile = atomic_fetch_add(&ph->next_tile, 1))
-        st->ws->threads[t].stats.fragments += raster_tile(st, tile);
+        w->stats.fragments += raster_tile(st, tile, &w->simd_draws);
 }
 
 bool sr_draw_binned(sr_draw_state *st)

@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "softrast/pipeline.h"
+#include "raster_setup.h"
 #include "softrast/raster.h"
 #include "softrast/viewport.h"
 
@@ -39,6 +40,7 @@ typedef struct sr_record {
 typedef struct sr_thread_work {
     _Alignas(SR_CACHE_LINE) sr_stats stats;
     sr_clip_counts cuts;
+    uint64_t simd_draws; /* rasterizer calls a SIMD kernel made */
     sr_array clip_verts; /* sr_screen_vertex */
     sr_array records;    /* sr_record */
     sr_array *bins;      /* one sr_array of uint32_t per tile */

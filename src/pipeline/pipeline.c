@@ -88,8 +88,11 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
         return sr_error_set(err, "color shading needs vertex colors and the mesh has none");
     if (d->shade == SR_SHADE_TEXTURE && (!d->mesh->uvs || !d->texture || !d->texture->texels))
         return sr_error_set(err, "texture shading needs texture coordinates and a texture");
-    if (d->texture && d->texture->texels && (d->texture->width < 1 || d->texture->height < 1))
-        return sr_error_set(err, "texture of size %dx%d cannot be sampled", d->texture->width, d->texture->height);
+    if (d->texture && d->texture->texels &&
+        (d->texture->width < 1 || d->texture->height < 1 || d->texture->width > SR_MAX_TEXTURE_SIDE ||
+         d->texture->height > SR_MAX_TEXTURE_SIDE))
+        return sr_error_set(err, "texture of size %dx%d cannot be sampled (each side 1..%d)", d->texture->width,
+                            d->texture->height, SR_MAX_TEXTURE_SIDE);
     return true;
 }
 
@@ -190,8 +193,10 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex tri[3], const u
     if (d->observer)
         d->observer(d->observer_user, tri, clipped, id);
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
+    bool simd = false;
     sink->work->stats.fragments +=
-        sr_raster_triangle(st->fb, all, st->vp.subpixel_bits, d->shade, &st->shade, tri, area2, id);
+        sr_raster_triangle_on(st->fb, all, st->vp.subpixel_bits, d->shade, &st->shade, tri, area2, id, &simd);
+    sink->work->simd_draws += simd;
 }
 
 static void draw_direct(sr_draw_state *st)
@@ -218,6 +223,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
 {
     for (int t = 0; t < st->threads; t++) {
         st->ws->threads[t].stats = (sr_stats){ 0 };
+        st->ws->threads[t].simd_draws = 0;
         st->ws->threads[t].cuts = (sr_clip_counts){ { 0 } };
     }
     vertex_phase ph = { .st = st };

@@ -1,3 +1,4 @@
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -167,11 +168,10 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, con
  * than it saves on a few pixels (measured at 1 thread, thresholds 4 / 8 /
  * 16: depth 77 / 72 / 72 ms, fly 20.1 / 20.5 / 22 ms, dense 100 ms). */
 #define SIMD_MIN_WIDTH 8
-#define SIMD_MAX_LANES 16
 
 static bool edges_fit_double(const setup *s)
 {
-    int64_t xs[2] = { sr_subpixel_centre(s->box.x0, s->bits), sr_subpixel_centre(s->box.x1 - 1 + SIMD_MAX_LANES, s->bits) };
+    int64_t xs[2] = { sr_subpixel_centre(s->box.x0, s->bits), sr_subpixel_centre(s->box.x1 - 1 + SR_SIMD_MAX_LANES, s->bits) };
     int64_t ys[2] = { sr_subpixel_centre(s->box.y0, s->bits), sr_subpixel_centre(s->box.y1 - 1, s->bits) };
     for (int k = 0; k < 3; k++)
         for (int c = 0; c < 4; c++)
@@ -181,7 +181,7 @@ static bool edges_fit_double(const setup *s)
 }
 
 /* The best loop this build and this CPU have. */
-static sr_simd simd_best(void)
+static sr_simd simd_probe(void)
 {
     static const sr_varying_layout none = { .count = 0, .color = -1, .uv = -1, .normal = -1 };
     bool avx512 = sr_span_kernel_avx512(SR_SHADE_ID, false, &none) != NULL;
@@ -194,6 +194,18 @@ static sr_simd simd_best(void)
     return avx512 ? SR_SIMD_AVX512 : avx2 ? SR_SIMD_AVX2 : SR_SIMD_SSE2;
 }
 
+/* Probed once; threads racing on the first draw all store the same value. */
+static sr_simd simd_best(void)
+{
+    static _Atomic int best = SR_SIMD_AUTO;
+    int b = atomic_load_explicit(&best, memory_order_relaxed);
+    if (b == SR_SIMD_AUTO) {
+        b = simd_probe();
+        atomic_store_explicit(&best, b, memory_order_relaxed);
+    }
+    return (sr_simd)b;
+}
+
 sr_simd sr_raster_simd_resolve(sr_simd want)
 {
     sr_simd best = simd_best();
@@ -202,10 +214,11 @@ sr_simd sr_raster_simd_resolve(sr_simd want)
     return want > best ? best : want;
 }
 
+const char *const sr_simd_names[SR_SIMD_COUNT + 1] = { "auto", "scalar", "sse2", "avx2", "avx512", NULL };
+
 const char *sr_simd_name(sr_simd simd)
 {
-    static const char *const names[SR_SIMD_COUNT] = { "auto", "scalar", "sse2", "avx2", "avx512" };
-    return (unsigned)simd < SR_SIMD_COUNT ? names[simd] : "unknown";
+    return (unsigned)simd < SR_SIMD_COUNT ? sr_simd_names[simd] : "unknown";
 }
 
 static sr_span_kernel span_kernel(const sr_shade_context *shade, sr_shade mode, bool greater)
@@ -256,6 +269,15 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
                             const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
                             uint32_t triangle_id)
 {
+    bool simd;
+    return sr_raster_triangle_on(fb, rect, subpixel_bits, mode, shade, tri, area2, triangle_id, &simd);
+}
+
+uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
+                               const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
+                               uint32_t triangle_id, bool *simd)
+{
+    *simd = false;
     /* Most triangles of a dense mesh cover no pixel centre: find that out
      * before any setup. */
     sr_raster_rect box = sr_raster_scan_box(tri, rect, subpixel_bits);
@@ -271,7 +293,8 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
         return 0;
     s.covered = c == BOX_COVERED;
     sr_span_kernel kernel = span_kernel(shade, mode, fb->reversed_z);
-    if (kernel && s.box.x1 - s.box.x0 >= SIMD_MIN_WIDTH && edges_fit_double(&s))
+    *simd = kernel && s.box.x1 - s.box.x0 >= SIMD_MIN_WIDTH && edges_fit_double(&s);
+    if (*simd)
         return kernel(&s, shade, fb, triangle_id);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(&s, fb, SR_SHADE_ID, shade, triangle_id);

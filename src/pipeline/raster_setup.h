@@ -77,18 +77,24 @@ static inline sr_row_range sr_row_make(const sr_tri_setup *s, const sr_framebuff
 {
     int64_t px = sr_subpixel_centre(s->box.x0, s->bits), py = sr_subpixel_centre(j, s->bits);
     int64_t lo = 0, hi = s->box.x1 - s->box.x0 - 1;
-    sr_row_range r;
+    sr_row_range r = { 0 };
     for (int k = 0; k < 3; k++) {
         r.e[k] = sr_edge_at(&s->e[k], px, py);
         if (spans && !s->covered)
             sr_edge_span(r.e[k], s->step_x[k], s->e[k].bias, &lo, &hi);
     }
     r.count = lo <= hi ? (int)(hi - lo + 1) : 0;
+    if (r.count == 0)
+        return r;
     for (int k = 0; k < 3; k++)
         r.e[k] += lo * s->step_x[k];
     r.at = (size_t)j * (size_t)fb->width + (size_t)s->box.x0 + (size_t)lo;
     return r;
 }
+
+/* The widest kernel's lanes: edge values are checked exact this far past a
+ * scan box's right side. */
+#define SR_SIMD_MAX_LANES 16
 
 /* A SIMD kernel draws a whole triangle, row span by row span, and returns
  * the fragments that passed the depth test. The caller guarantees every
@@ -97,10 +103,16 @@ static inline sr_row_range sr_row_make(const sr_tri_setup *s, const sr_framebuff
 typedef uint64_t (*sr_span_kernel)(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb,
                                    uint32_t id);
 
+/* sr_raster_triangle, also telling whether a SIMD kernel drew it. */
+uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
+                               const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
+                               uint32_t triangle_id, bool *simd);
+
 /* The kernel for a shading mode, depth test and varying layout (each kernel
  * is compiled for one layout, so its varyings stay in registers), or NULL
- * where the instruction set is not built in (AVX2 off x86-64) or the layout
- * is not one sr_vertex_layout makes (the scalar loop draws those). */
+ * where the instruction set is not built in (AVX2 and AVX-512 off x86-64)
+ * or the layout is not one sr_vertex_layout makes (the scalar loop draws
+ * those). */
 sr_span_kernel sr_span_kernel_sse2(sr_shade mode, bool greater, const sr_varying_layout *layout);
 
 /* The getter of a kernel file built without its instruction set. */

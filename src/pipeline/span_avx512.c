@@ -3,7 +3,7 @@
  * CPU that has them. No FMA, as in span_avx2.c. */
 #include "raster_setup.h"
 
-#if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512BW__)
+#if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512BW__) && defined(__AVX512VL__)
 #include <immintrin.h>
 #define SPAN_SQRT(x) ((vf)_mm512_sqrt_ps((__m512)(x)))
 #define SPAN_MOVEMASK(mask) _mm512_movepi32_mask((__m512i)(mask))

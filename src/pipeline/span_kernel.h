@@ -1,7 +1,11 @@
 /* span_kernel.h — the per-pixel work of raster.c, SPAN_LANES pixels at a
- * time, in GCC/Clang vector extensions. Included once per instruction set
- * (span_sse2.c: 4 lanes; span_avx2.c: 8 lanes, built with -mavx2), each
- * defining SPAN_LANES, SPAN_KERNEL_GETTER and (optionally) SPAN_SQRT first.
+ * time, in GCC/Clang vector extensions. Included once per instruction set:
+ * span_sse2.c (4 lanes), span_avx2.c (8, built with -mavx2) and
+ * span_avx512.c (16, built with -mavx512f/dq/bw/vl). Each defines
+ * SPAN_LANES, SPAN_LANE_INDICES (0, 1, … SPAN_LANES − 1) and
+ * SPAN_KERNEL_GETTER first, and may define SPAN_SQRT, SPAN_MOVEMASK,
+ * SPAN_GATHER and SPAN_FLOOR with the instruction set's intrinsics (else
+ * generic lane loops stand in).
  *
  * Every lane does exactly the float operations of the scalar loop and of
  * shade.h, in the same order and without fused multiply-adds (the Makefile
@@ -15,6 +19,8 @@
 #include <string.h>
 
 #include "raster_setup.h"
+
+_Static_assert(SPAN_LANES <= SR_SIMD_MAX_LANES, "raster.c checks edge values exact only SR_SIMD_MAX_LANES past a box");
 
 typedef float vf __attribute__((vector_size(SPAN_LANES * 4)));
 typedef int32_t vi __attribute__((vector_size(SPAN_LANES * 4)));
@@ -91,8 +97,15 @@ static inline __attribute__((always_inline)) void store_i(uint32_t *p, vi v, int
 
 static inline __attribute__((always_inline)) vf edge_to_float(edge_lanes e)
 {
-    return __builtin_shufflevector(__builtin_convertvector(e.lo, vfh), __builtin_convertvector(e.hi, vfh),
-                                   SPAN_LANE_INDICES);
+    vfh lo = __builtin_convertvector(e.lo, vfh), hi = __builtin_convertvector(e.hi, vfh);
+#if defined(__has_builtin) && __has_builtin(__builtin_shufflevector)
+    return __builtin_shufflevector(lo, hi, SPAN_LANE_INDICES);
+#else /* GCC before 12: slower (through memory), same values */
+    vf f;
+    memcpy(&f, &lo, sizeof lo);
+    memcpy((char *)&f + sizeof lo, &hi, sizeof hi);
+    return f;
+#endif
 }
 
 static inline __attribute__((always_inline)) vi lanes_index(void)
@@ -365,8 +378,8 @@ span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, s
         lane_lo[l] = l;
         lane_hi[l] = l + SPAN_LANES / 2;
     }
-    edge_lanes e[3];
-    vdh step[3];
+    edge_lanes e[3] = { { { 0 } } }; /* e[0] unused: λ needs edges 1 and 2 only */
+    vdh step[3] = { { 0 } };
     for (int k = 1; k < 3; k++) {
         double first = (double)e_first[k], per_pixel = (double)s->step_x[k];
         e[k] = (edge_lanes){ first + lane_lo * per_pixel, first + lane_hi * per_pixel };

@@ -45,6 +45,14 @@ sr_workspace *sr_workspace_create(void)
     return ws;
 }
 
+uint64_t sr_workspace_simd_draws(const sr_workspace *ws)
+{
+    uint64_t draws = 0;
+    for (int t = 0; t < SR_MAX_THREADS; t++)
+        draws += ws->threads[t].simd_draws;
+    return draws;
+}
+
 static void thread_work_free(sr_thread_work *w)
 {
     sr_array_free(&w->clip_verts);
