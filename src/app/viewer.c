@@ -149,13 +149,14 @@ void sr_viewer_status(const sr_viewer *v, char *buf, size_t cap)
     for (int k = 0; k < 3; k++)
         eye[k] = cam->origin[k] + cam->eye[k];
     snprintf(buf, cap,
-             "%.1f ms  %.0f fps  %s%s  cull %s   F1 help\n"
+             "%.1f ms  %.0f fps  %s%s  cull %s  %s   F1 help\n"
              "triangles %llu  rejected %llu  clipped %llu  culled %llu  drawn %llu\n"
              "cut vertices: float %llu  double %llu  exact %llu\n"
              "eye %.3g %.3g %.3g  near %.3g  far %.3g%s  speed %.3g",
              v->frame_ms, v->frame_ms > 0.0 ? 1000.0 / v->frame_ms : 0.0, SR_SHADE_NAMES[v->setup.shade],
              v->show_depth ? (v->depth_linear ? " (depth view, linear)" : " (depth view)") : "",
-             SR_CULL_NAMES[v->setup.cull], (unsigned long long)s->triangles, (unsigned long long)s->rejected,
+             SR_CULL_NAMES[v->setup.cull], sr_simd_name(sr_raster_simd_resolve((sr_simd)v->setup.simd)),
+             (unsigned long long)s->triangles, (unsigned long long)s->rejected,
              (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->drawn, (unsigned long long)s->cuts_float,
              (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact, eye[0], eye[1], eye[2],
              v->setup.camera.near, v->setup.camera.far, v->setup.camera.reversed_z ? " (reversed z)" : "", v->speed);
