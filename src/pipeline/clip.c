@@ -47,15 +47,30 @@ double sr_clip_distance_with(sr_clip_plane plane, const float *c, const sr_clip_
     return expansion_signed_value(d, n);
 }
 
+/* The near and far bits under the model, for the vertex stage: a·w + b
+ * rounds once, so its sign is exact; (w − a·w) − b rounds twice, by at most
+ * 2^-53 of |w − a·w| and of the result, so a result past 4ε|w − a·w| has
+ * the exact sign and only one closer to the plane pays for the expansion. */
+static unsigned depth_outcode(const float *c, const sr_clip_depth *depth)
+{
+    double w = c[SR_W], aw = (double)depth->a * w, rest = w - aw;
+    double near = aw + depth->b, far = rest - depth->b;
+    if (!(fabs(far) > 4.0 * DBL_EPSILON * fabs(rest)))
+        far = sr_clip_distance_with(SR_PLANE_FAR, c, depth);
+    return (unsigned)(near < 0.0) << SR_PLANE_NEAR | (unsigned)(far < 0.0) << SR_PLANE_FAR;
+}
+
 unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth *depth)
 {
     if (!isfinite(c[SR_X]) || !isfinite(c[SR_Y]) || !isfinite(c[SR_Z]) || !isfinite(c[SR_W]))
         return SR_OUT_NONFINITE;
-    unsigned code = 0;
-    for (int p = 0; p < SR_CLIP_PLANES; p++)
-        if (sr_clip_distance_with((sr_clip_plane)p, c, depth) < 0.0)
-            code |= 1u << p;
-    return code;
+    double x = c[SR_X], y = c[SR_Y], w = c[SR_W];
+    unsigned code = (unsigned)(w + x < 0.0) << SR_PLANE_LEFT | (unsigned)(w - x < 0.0) << SR_PLANE_RIGHT |
+                    (unsigned)(w + y < 0.0) << SR_PLANE_BOTTOM | (unsigned)(w - y < 0.0) << SR_PLANE_TOP;
+    if (depth && depth->on)
+        return code | depth_outcode(c, depth);
+    double z = c[SR_Z];
+    return code | (unsigned)(z < 0.0) << SR_PLANE_NEAR | (unsigned)(w - z < 0.0) << SR_PLANE_FAR;
 }
 
 unsigned sr_clip_outcode(const float *c)
