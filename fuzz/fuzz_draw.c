@@ -421,17 +421,14 @@ static bool draw_should_succeed(const scene *sc, sr_shade shade)
 
 static void print_polygon(const char *name, const sr_polygon *p, int floats);
 
-/* Stage 6 as the draw runs it by default: 1/256 pixel, no guard band.
- * (Written for both forms of sr_viewport_map while the tree moves to the
- * sr_viewport one, which comes with SR_MIN_SUBPIXEL_BITS.) */
-static bool map_vertex(const sr_vertex_out *v, int varyings, int width, int height, sr_screen_vertex *out)
+/* Stage 6 as the draw runs it by default: 1/256 pixel, no guard band, z
+ * from the projection's depth model (NULL: none). */
+static bool map_vertex(const sr_vertex_out *v, int varyings, int width, int height, const sr_clip_depth *depth,
+                       sr_screen_vertex *out)
 {
-#ifdef SR_MIN_SUBPIXEL_BITS
-    sr_viewport vp = { .width = width, .height = height, .subpixel_bits = SR_SUBPIXEL_BITS, .guard = 1.0f };
+    sr_viewport vp = { .width = width, .height = height, .subpixel_bits = SR_SUBPIXEL_BITS, .guard = 1.0f,
+                       .depth = depth ? *depth : (sr_clip_depth){ .on = false } };
     return sr_viewport_map(v, varyings, &vp, out);
-#else
-    return sr_viewport_map(v, varyings, width, height, out);
-#endif
 }
 
 /* ---- one draw and its invariants --------------------------------------- */
@@ -748,14 +745,14 @@ static double ndc_area(const sr_polygon *p)
  * float quantisation of the input alone decides. Near the eye a triangle
  * can be so ill-conditioned that this is large, and no float clipper can do
  * better; elsewhere it is tiny. */
-static double exact_area(const sr_polygon *tri, unsigned planes)
+static double exact_area(const sr_polygon *tri, unsigned planes, const sr_clip_depth *depth)
 {
     sr_polygon ref = *tri;
-    sr_clip_polygon(&ref, planes, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_EXACT });
+    sr_clip_polygon(&ref, planes, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_EXACT, .depth = *depth });
     return ref.count >= 3 ? ndc_area(&ref) : 0.0;
 }
 
-static double area_sensitivity(const sr_polygon *tri, unsigned planes, double area)
+static double area_sensitivity(const sr_polygon *tri, unsigned planes, const sr_clip_depth *depth, double area)
 {
     double worst = 0.0;
     for (int pattern = 0; pattern < 3; pattern++) {
@@ -768,7 +765,7 @@ static double area_sensitivity(const sr_polygon *tri, unsigned planes, double ar
                 if (!isfinite(*c))
                     return INFINITY;
             }
-        double a = exact_area(&moved, planes);
+        double a = exact_area(&moved, planes, depth);
         worst = isnan(a) ? INFINITY : fmax(worst, fabs(a - area));
     }
     return worst;
@@ -795,26 +792,26 @@ static double ndc_perimeter(const sr_polygon *p)
  * (the adaptive mode's tolerance; 0 for exact), which moves the area by at
  * most twice the perimeter times it. */
 static void check_clip_area(const sr_polygon *tri, unsigned planes, const sr_polygon *got, double vertex_tolerance,
-                            const char *what)
+                            const sr_clip_depth *depth, const char *what)
 {
-    double want = exact_area(tri, planes);
+    double want = exact_area(tri, planes, depth);
     if (isnan(want))
         return;
     bool drawn = got->count >= 3;
     for (int i = 0; i < got->count && drawn; i++) {
         sr_screen_vertex sv;
-        drawn = map_vertex(&got->vert[i], 0, MAX_SIDE, MAX_SIDE, &sv);
+        drawn = map_vertex(&got->vert[i], 0, MAX_SIDE, MAX_SIDE, depth, &sv);
     }
     double have = drawn ? ndc_area(got) : 0.0;
     double promised = drawn ? 2.0 * ndc_perimeter(got) * vertex_tolerance : 0.0;
     double tolerance = AREA_ABS_TOL + AREA_REL_TOL * want + (isfinite(promised) ? promised : 0.0);
     if (fabs(have - want) <= tolerance)
         return;
-    double sensitivity = area_sensitivity(tri, planes, want);
+    double sensitivity = area_sensitivity(tri, planes, depth, want);
     bool close = fabs(have - want) <= tolerance + 4.0 * sensitivity;
     if (!close && !tolerated("clip_precision")) {
         sr_polygon ref = *tri;
-        sr_clip_polygon(&ref, planes, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_EXACT });
+        sr_clip_polygon(&ref, planes, SR_VARYINGS_AT, &(sr_clip_config){ .precision = SR_CLIP_EXACT, .depth = *depth });
         print_polygon("triangle in clip space", tri, SR_VARYINGS_AT);
         print_polygon(drawn ? "clipped" : "clipped (dropped: refused or empty)", got, SR_VARYINGS_AT);
         print_polygon("exact clip", &ref, SR_VARYINGS_AT);
@@ -855,16 +852,18 @@ static void check_stages(const scene *sc, const sr_stats *stats)
      * refuses drops every triangle that uses it (pipeline.c counts those as
      * non-finite). */
     unsigned codes[MAX_VERTS];
+    sr_clip_depth depth = sr_clip_depth_of((const float(*)[4])projection);
     for (uint32_t i = 0; i < m->vertex_count; i++) {
         sr_screen_vertex sv;
-        codes[i] = sr_clip_outcode(verts[i].v);
-        if (codes[i] == 0 && !map_vertex(&verts[i], 0, sc->width, sc->height, &sv))
+        codes[i] = sr_clip_outcode_with(verts[i].v, &depth);
+        if (codes[i] == 0 && !map_vertex(&verts[i], 0, sc->width, sc->height, &depth, &sv))
             codes[i] = SR_OUT_NONFINITE;
     }
     /* The draw's default clip: adaptive, within half a subpixel step in NDC
      * of the framebuffer's longer side (pipeline.c). */
     int side = sc->width > sc->height ? sc->width : sc->height;
-    sr_clip_config cfg = { .precision = SR_CLIP_ADAPTIVE, .ndc_tolerance = 1.0 / ((double)SR_SUBPIXEL_ONE * side) };
+    sr_clip_config cfg = { .precision = SR_CLIP_ADAPTIVE, .ndc_tolerance = 1.0 / ((double)SR_SUBPIXEL_ONE * side),
+                           .depth = depth };
     uint64_t rejected = 0;
     for (uint32_t k = 0; k < slot_count(m); k++) {
         uint32_t t[3];
@@ -882,7 +881,7 @@ static void check_stages(const scene *sc, const sr_stats *stats)
         bool refused = false;
         for (int i = 0; i < poly.count; i++) {
             sr_screen_vertex sv;
-            if (!map_vertex(&poly.vert[i], 0, sc->width, sc->height, &sv)) {
+            if (!map_vertex(&poly.vert[i], 0, sc->width, sc->height, &depth, &sv)) {
                 refused = true;
                 if (viewport_may_refuse(poly.vert[i].v, 0))
                     continue;
@@ -897,7 +896,7 @@ static void check_stages(const scene *sc, const sr_stats *stats)
         }
         char what[32];
         snprintf(what, sizeof what, "triangle %u", k);
-        check_clip_area(&in, c0 | c1 | c2, &poly, cfg.ndc_tolerance, what);
+        check_clip_area(&in, c0 | c1 | c2, &poly, cfg.ndc_tolerance, &depth, what);
         rejected += refused;
     }
     CHECK(stats->rejected == rejected || tolerated("clip_precision"),
@@ -1159,7 +1158,7 @@ static void fuzz_clip(reader *r)
          * (DESIGN.md). */
         if (as_pipeline && exact && !viewport_may_refuse(v, varyings)) {
             sr_screen_vertex sv;
-            bool mapped = map_vertex(&out.vert[i], varyings, MAX_SIDE, MAX_SIDE, &sv);
+            bool mapped = map_vertex(&out.vert[i], varyings, MAX_SIDE, MAX_SIDE, &cfg.depth, &sv);
             if (!mapped && !tolerated("clip_precision")) {
                 print_polygon("input", &in, floats);
                 print_polygon("clipped", &out, floats);
@@ -1173,7 +1172,8 @@ static void fuzz_clip(reader *r)
         }
     }
     if (as_pipeline && exact)
-        check_clip_area(&in, planes, &out, precision == SR_CLIP_ADAPTIVE ? SR_CLIP_DEFAULT_TOLERANCE : 0.0, "clip");
+        check_clip_area(&in, planes, &out, precision == SR_CLIP_ADAPTIVE ? SR_CLIP_DEFAULT_TOLERANCE : 0.0, &cfg.depth,
+                        "clip");
 }
 
 /* ---- entry point -------------------------------------------------------- */

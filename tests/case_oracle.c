@@ -64,10 +64,14 @@ static void check_polygon(const sr_polygon *poly, int returned, uint32_t k, doub
 void case_clip_run(const sr_mesh *mesh, const mat4 world, const mat4 view, const mat4 projection, sr_shade shade,
                    int width, int height, double tolerance, case_clip_report *r)
 {
-    const sr_viewport vp = { .width = width, .height = height, .subpixel_bits = SR_SUBPIXEL_BITS, .guard = 1.0f };
     /* As sr_draw configures the clipper by default: the default precision,
-     * cut vertices within half a subpixel step in NDC. */
-    const sr_clip_config cfg = { .ndc_tolerance = 1.0 / ((double)SR_SUBPIXEL_ONE * (width > height ? width : height)) };
+     * cut vertices within half a subpixel step in NDC, the projection's depth
+     * model for near, far and z_ndc. */
+    const sr_clip_depth depth = sr_clip_depth_of((const float(*)[4])projection);
+    const sr_viewport vp = { .width = width, .height = height, .subpixel_bits = SR_SUBPIXEL_BITS, .guard = 1.0f,
+                             .depth = depth };
+    const sr_clip_config cfg = { .ndc_tolerance = 1.0 / ((double)SR_SUBPIXEL_ONE * (width > height ? width : height)),
+                                 .depth = depth };
     *r = (case_clip_report){ 0 };
     sr_varying_layout layout = sr_vertex_layout(shade, mesh, false);
     sr_vertex_transform xf;
@@ -78,7 +82,7 @@ void case_clip_run(const sr_mesh *mesh, const mat4 world, const mat4 view, const
     cr_assert(verts && codes);
     sr_vertex_run(mesh, &xf, &layout, 0, n, verts);
     for (uint32_t i = 0; i < n; i++) {
-        codes[i] = sr_clip_outcode(verts[i].v);
+        codes[i] = sr_clip_outcode_with(verts[i].v, &depth);
         /* The contract (DESIGN.md, the issue): NaN or inf in a position or in
          * a varying the mode reads is non-finite input, dropped before
          * clipping whether the vertex is inside or not; and an inside vertex

@@ -23,6 +23,11 @@
  * framebuffer, the depth test hides nothing, and a pixel drawn by two
  * triangles (a crack's opposite, an overlap) counts 2. Call
  * scene_hit_counter_finish after the draw. */
+/* A near-cut vertex's z_ndc: a + b/w of its float w (the depth model), within
+ * a·2^-24 of 0 rather than exactly 0; nothing off the near plane gets this
+ * close at the scenes' depth ranges. */
+#define SCENE_NEAR_CUT_Z 1e-6f
+
 typedef struct scene_hit_counter {
     sr_framebuffer *fb;
     uint16_t *counts; /* width * height */
@@ -30,7 +35,7 @@ typedef struct scene_hit_counter {
     int x0, y0, x1, y1; /* bounding box of the pending triangle, in pixels */
     uint64_t triangles;  /* fan triangles seen */
     uint64_t clipped;    /* of those, from a clipped triangle */
-    uint64_t near_cut_vertices; /* vertices of clipped fan triangles on the near plane (z_ndc = 0) */
+    uint64_t near_cut_vertices; /* vertices of clipped fan triangles on the near plane (z_ndc <= SCENE_NEAR_CUT_Z) */
     uint64_t side_cut_vertices; /* vertices on the left or right edge of the viewport */
 } scene_hit_counter;
 
@@ -76,7 +81,7 @@ static inline void scene_hit_counter_observe(void *user, const sr_screen_vertex 
         hi_x = tri[k].x > hi_x ? tri[k].x : hi_x;
         lo_y = tri[k].y < lo_y ? tri[k].y : lo_y;
         hi_y = tri[k].y > hi_y ? tri[k].y : hi_y;
-        if (clipped && tri[k].z == 0.0f)
+        if (clipped && tri[k].z <= SCENE_NEAR_CUT_Z)
             c->near_cut_vertices++;
         if (clipped && (tri[k].x == 0 || tri[k].x == right))
             c->side_cut_vertices++;

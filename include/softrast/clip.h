@@ -11,7 +11,8 @@
  * The watertight rule (DESIGN.md): every cut vertex is interpolated from the
  * inside end point toward the outside one, t = d_in / (d_in - d_out), in
  * the precision sr_clip_config asks for, and its coordinate for the plane is then set exactly on
- * the plane (x = -w for left, z = 0 for near, ...). Two triangles sharing an
+ * the plane (x = -w for left, z = 0 for near, ...; under a depth model a near
+ * or far cut gets z = a·w + b of its w, rounded once). Two triangles sharing an
  * edge therefore get bit-identical cut vertices whichever way they walk it.
  */
 #ifndef SOFTRAST_CLIP_H
@@ -60,6 +61,7 @@ typedef struct sr_clip_config {
     sr_clip_precision precision;
     double ndc_tolerance;  /* adaptive: allowed error in NDC; 0: SR_CLIP_DEFAULT_TOLERANCE */
     sr_clip_counts *counts; /* optional: incremented per cut vertex */
+    sr_clip_depth depth;    /* the projection's depth model (sr_clip_depth_of); zero: off */
 } sr_clip_config;
 
 #define SR_OUT_PLANES ((1u << SR_CLIP_PLANES) - 1u)
@@ -70,6 +72,19 @@ typedef struct sr_clip_config {
 double sr_clip_distance(sr_clip_plane plane, const float *clip);
 
 unsigned sr_clip_outcode(const float *clip);
+
+/* The depth model of a projection (column-major, m[col][row]; types.h): on
+ * when its w row is (0, 0, ±1, 0) and its z row (0, 0, A, B), A and B
+ * finite (every perspective camera, standard or reversed, finite or
+ * infinite far); off for orthographic and any other projection. */
+sr_clip_depth sr_clip_depth_of(const float projection[4][4]);
+
+/* The same under a depth model (NULL or off: the functions above): near
+ * and far distances come from w, a·w + b and w − a·w − b. The sign is exact
+ * for float input and the value within about one double rounding of the
+ * exact distance. */
+double sr_clip_distance_with(sr_clip_plane plane, const float *clip, const sr_clip_depth *depth);
+unsigned sr_clip_outcode_with(const float *clip, const sr_clip_depth *depth);
 
 /* Where an object-space box lies against the clip volume under a transform:
  * every point inside every plane (the draw can skip classification and

@@ -59,6 +59,18 @@ typedef struct sr_varying_layout {
     int color, uv, normal;
 } sr_varying_layout;
 
+/* The depth model of a perspective projection (docs/precision.md): when the
+ * projection's w row is (0, 0, s, 0), s = ±1, and its z row (0, 0, A, B),
+ * every clip-space vertex has z = a·w + b exactly (a = A/s, b = B), whatever
+ * the world and view matrices. With `on`, the clipper takes the near and far
+ * distances from w (near a·w + b, far w − a·w − b) and the viewport takes
+ * z_ndc = a + b/w, instead of trusting a float z that cannot hold b next to a
+ * large w. a and b are floats, so a·w is exact in double. Zero: off, z as is. */
+typedef struct sr_clip_depth {
+    bool on;
+    float a, b;
+} sr_clip_depth;
+
 typedef struct sr_vertex_out {
     float v[SR_VERTEX_FLOATS];
 } sr_vertex_out;

@@ -26,6 +26,7 @@ typedef struct sr_viewport {
     int width, height;
     int subpixel_bits; /* SR_SUBPIXEL_BITS */
     float guard;       /* 1: no guard band */
+    sr_clip_depth depth; /* on: z_ndc = a + b/w (types.h); zero: z/w */
 } sr_viewport;
 
 /* False when w <= 0, when 1/w or a varying/w is not finite (NaN or inf in a

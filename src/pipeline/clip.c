@@ -1,7 +1,9 @@
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 
 #include "clip_exact.h"
+#include "expansion.h"
 #include "softrast/clip.h"
 
 /* The rounding error of a + t(b − a) with t = d_in / (d_in − d_out) is at
@@ -26,15 +28,54 @@ double sr_clip_distance(sr_clip_plane plane, const float *c)
     return 0.0;
 }
 
-unsigned sr_clip_outcode(const float *c)
+sr_clip_depth sr_clip_depth_of(const float m[4][4])
+{
+    float s = m[2][3], a = m[2][2] / s, b = m[3][2];
+    bool perspective = m[0][3] == 0.0f && m[1][3] == 0.0f && m[3][3] == 0.0f && (s == 1.0f || s == -1.0f);
+    bool affine_z = m[0][2] == 0.0f && m[1][2] == 0.0f && isfinite(a) && isfinite(b);
+    if (!perspective || !affine_z)
+        return (sr_clip_depth){ .on = false };
+    return (sr_clip_depth){ .on = true, .a = a, .b = b };
+}
+
+double sr_clip_distance_with(sr_clip_plane plane, const float *c, const sr_clip_depth *depth)
+{
+    if (!depth || !depth->on || plane > SR_PLANE_FAR)
+        return sr_clip_distance(plane, c);
+    double d[SR_CLIP_DISTANCE_TERMS];
+    int n = sr_clip_distance_exact(plane, c, depth, d);
+    return expansion_signed_value(d, n);
+}
+
+/* The near and far bits under the model, for the vertex stage: a·w + b
+ * rounds once, so its sign is exact; (w − a·w) − b rounds twice, by at most
+ * 2^-53 of |w − a·w| and of the result, so a result past 4ε|w − a·w| has
+ * the exact sign and only one closer to the plane pays for the expansion. */
+static unsigned depth_outcode(const float *c, const sr_clip_depth *depth)
+{
+    double w = c[SR_W], aw = (double)depth->a * w, rest = w - aw;
+    double near = aw + depth->b, far = rest - depth->b;
+    if (!(fabs(far) > 4.0 * DBL_EPSILON * fabs(rest)))
+        far = sr_clip_distance_with(SR_PLANE_FAR, c, depth);
+    return (unsigned)(near < 0.0) << SR_PLANE_NEAR | (unsigned)(far < 0.0) << SR_PLANE_FAR;
+}
+
+unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth *depth)
 {
     if (!isfinite(c[SR_X]) || !isfinite(c[SR_Y]) || !isfinite(c[SR_Z]) || !isfinite(c[SR_W]))
         return SR_OUT_NONFINITE;
-    unsigned code = 0;
-    for (int p = 0; p < SR_CLIP_PLANES; p++)
-        if (sr_clip_distance((sr_clip_plane)p, c) < 0.0)
-            code |= 1u << p;
-    return code;
+    double x = c[SR_X], y = c[SR_Y], w = c[SR_W];
+    unsigned code = (unsigned)(w + x < 0.0) << SR_PLANE_LEFT | (unsigned)(w - x < 0.0) << SR_PLANE_RIGHT |
+                    (unsigned)(w + y < 0.0) << SR_PLANE_BOTTOM | (unsigned)(w - y < 0.0) << SR_PLANE_TOP;
+    if (depth && depth->on)
+        return code | depth_outcode(c, depth);
+    double z = c[SR_Z];
+    return code | (unsigned)(z < 0.0) << SR_PLANE_NEAR | (unsigned)(w - z < 0.0) << SR_PLANE_FAR;
+}
+
+unsigned sr_clip_outcode(const float *c)
+{
+    return sr_clip_outcode_with(c, NULL);
 }
 
 /* Corner k of the box, through the transform (column-major, column vectors);
@@ -74,9 +115,16 @@ sr_clip_box sr_clip_classify_box(const float clip_from_object[4][4], const float
 }
 
 /* Puts the cut vertex exactly on the plane, so its distance is 0 and later
- * planes, the divide and the viewport see a point that is inside. */
-static void place_on_plane(sr_clip_plane plane, float *c)
+ * planes, the divide and the viewport see a point that is inside. Under the
+ * depth model near and far are planes in w alone: the interpolated w is the
+ * cut, and z follows it, a·w + b rounded once (the viewport's z_ndc comes
+ * from w too, so this z is for the record). */
+static void place_on_plane(sr_clip_plane plane, const sr_clip_depth *depth, float *c)
 {
+    if (depth && depth->on && plane <= SR_PLANE_FAR) {
+        c[SR_Z] = (float)((double)depth->a * c[SR_W] + depth->b);
+        return;
+    }
     switch (plane) {
     case SR_PLANE_NEAR:   c[SR_Z] = 0.0f; break;
     case SR_PLANE_FAR:    c[SR_Z] = c[SR_W]; break;
@@ -88,10 +136,10 @@ static void place_on_plane(sr_clip_plane plane, float *c)
 }
 
 static void intersect_double(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
-                             int floats, sr_vertex_out *cut)
+                             int floats, const sr_clip_depth *depth, sr_vertex_out *cut)
 {
-    double d_in = sr_clip_distance(plane, inside->v);
-    double d_out = sr_clip_distance(plane, outside->v);
+    double d_in = sr_clip_distance_with(plane, inside->v, depth);
+    double d_out = sr_clip_distance_with(plane, outside->v, depth);
     double t = d_in / (d_in - d_out);
     for (int i = 0; i < floats; i++) {
         double a = inside->v[i], b = outside->v[i];
@@ -100,10 +148,10 @@ static void intersect_double(sr_clip_plane plane, const sr_vertex_out *inside, c
 }
 
 static void intersect_float(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
-                            int floats, sr_vertex_out *cut)
+                            int floats, const sr_clip_depth *depth, sr_vertex_out *cut)
 {
-    float d_in = (float)sr_clip_distance(plane, inside->v);
-    float d_out = (float)sr_clip_distance(plane, outside->v);
+    float d_in = (float)sr_clip_distance_with(plane, inside->v, depth);
+    float d_out = (float)sr_clip_distance_with(plane, outside->v, depth);
     float t = d_in / (d_in - d_out);
     for (int i = 0; i < floats; i++)
         cut->v[i] = inside->v[i] + t * (outside->v[i] - inside->v[i]);
@@ -114,9 +162,11 @@ static void intersect_float(sr_clip_plane plane, const sr_vertex_out *inside, co
  * |t|(|a| + |b|), w the cut vertex's w (NDC error = clip error / w), taken
  * at its smallest. A cut that may be at w <= 0, or any overflow, goes exact. */
 static sr_clip_precision choose_precision(sr_clip_plane plane, const sr_vertex_out *inside,
-                                          const sr_vertex_out *outside, double tolerance)
+                                          const sr_vertex_out *outside, const sr_clip_depth *depth,
+                                          double tolerance)
 {
-    float d_in = (float)sr_clip_distance(plane, inside->v), d_out = (float)sr_clip_distance(plane, outside->v);
+    float d_in = (float)sr_clip_distance_with(plane, inside->v, depth);
+    float d_out = (float)sr_clip_distance_with(plane, outside->v, depth);
     float t = d_in / (d_in - d_out), m = 0.0f;
     bool overflowed = !isfinite(t); /* float ran out of range: the estimate says nothing */
     for (int i = 0; i < SR_VARYINGS_AT; i++) {
@@ -144,17 +194,18 @@ sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *in
                                     int floats, const sr_clip_config *cfg, sr_vertex_out *cut)
 {
     sr_clip_precision p = cfg ? cfg->precision : SR_CLIP_ADAPTIVE;
+    const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
     if (p == SR_CLIP_ADAPTIVE) {
         double tolerance = cfg && cfg->ndc_tolerance > 0.0 ? cfg->ndc_tolerance : SR_CLIP_DEFAULT_TOLERANCE;
-        p = choose_precision(plane, inside, outside, tolerance);
+        p = choose_precision(plane, inside, outside, depth, tolerance);
     }
     if (p == SR_CLIP_FLOAT)
-        intersect_float(plane, inside, outside, floats, cut);
+        intersect_float(plane, inside, outside, floats, depth, cut);
     else if (p == SR_CLIP_DOUBLE)
-        intersect_double(plane, inside, outside, floats, cut);
+        intersect_double(plane, inside, outside, floats, depth, cut);
     else
-        sr_clip_intersect_exact(plane, inside, outside, floats, cut);
-    place_on_plane(plane, cut->v);
+        sr_clip_intersect_exact(plane, inside, outside, floats, depth, cut);
+    place_on_plane(plane, depth, cut->v);
     if (cfg && cfg->counts)
         cfg->counts->cuts[p]++;
     return p;
@@ -169,8 +220,9 @@ static int clip_against_plane(const sr_vertex_out *in, int n, sr_clip_plane plan
     int m = 0;
     for (int i = 0; i < n; i++) {
         const sr_vertex_out *a = &in[i], *b = &in[i + 1 < n ? i + 1 : 0];
-        bool a_in = sr_clip_distance(plane, a->v) >= 0.0;
-        bool b_in = sr_clip_distance(plane, b->v) >= 0.0;
+        const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
+        bool a_in = sr_clip_distance_with(plane, a->v, depth) >= 0.0;
+        bool b_in = sr_clip_distance_with(plane, b->v, depth) >= 0.0;
         if (m + (a_in) + (a_in != b_in) > SR_MAX_CLIP_VERTS)
             return -1;
         if (a_in)

@@ -1,66 +1,51 @@
 #include <math.h>
 
 #include "clip_exact.h"
+#include "expansion.h"
 
-#define MAX_TERMS 8 /* two double-double distances times one float: 2 × 2 × 2 products */
+/* Two distances of SR_CLIP_DISTANCE_TERMS parts, each part times a float
+ * coordinate as an exact product pair. */
+#define MAX_TERMS (2 * SR_CLIP_DISTANCE_TERMS * 2)
 
-/* s + e = a + b exactly (Knuth). */
-static void two_sum(double a, double b, double *s, double *e)
+static bool depth_applies(sr_clip_plane plane, const sr_clip_depth *depth)
 {
-    *s = a + b;
-    double bv = *s - a;
-    *e = (a - (*s - bv)) + (b - bv);
+    return depth && depth->on && (plane == SR_PLANE_NEAR || plane == SR_PLANE_FAR);
 }
 
-/* p + e = a · b exactly (the fused multiply-add gives the rounding error). */
-static void two_product(double a, double b, double *p, double *e)
+/* Near a·w + b and far w − a·w − b: a·w of two floats is exact in double,
+ * so one two-sum or two make them exact. */
+static int depth_distance(sr_clip_plane plane, double w, const sr_clip_depth *depth, double d[])
 {
-    *p = a * b;
-    *e = fma(a, b, -*p);
-}
-
-/* Adds b to the nonoverlapping expansion e[0..n) (smallest first), exactly:
- * Shewchuk's Grow-Expansion, in place. Returns the new length. */
-static int grow(double *e, int n, double b)
-{
-    double q = b;
-    for (int i = 0; i < n; i++) {
-        double s, err;
-        two_sum(q, e[i], &s, &err);
-        e[i] = err;
-        q = s;
+    double aw = (double)depth->a * w;
+    if (plane == SR_PLANE_NEAR) {
+        two_sum(aw, depth->b, &d[1], &d[0]);
+        return 2;
     }
-    e[n] = q;
-    return n + 1;
+    two_sum(w, -aw, &d[1], &d[0]);
+    return grow(d, 2, -(double)depth->b);
 }
 
-/* The expansion's value to about one rounding: smallest parts first. */
-static double value(const double *e, int n)
-{
-    double s = 0.0;
-    for (int i = 0; i < n; i++)
-        s += e[i];
-    return s;
-}
-
-/* The plane distance of two floats, as an exact pair hi + lo. */
-static void distance_exact(sr_clip_plane plane, const float *c, double d[2])
+int sr_clip_distance_exact(sr_clip_plane plane, const float *c, const sr_clip_depth *depth,
+                           double d[SR_CLIP_DISTANCE_TERMS])
 {
     double w = c[SR_W];
+    if (depth_applies(plane, depth))
+        return depth_distance(plane, w, depth, d);
     switch (plane) {
-    case SR_PLANE_NEAR:   d[0] = c[SR_Z], d[1] = 0.0; return;
-    case SR_PLANE_FAR:    two_sum(w, -(double)c[SR_Z], &d[0], &d[1]); return;
-    case SR_PLANE_LEFT:   two_sum(w, c[SR_X], &d[0], &d[1]); return;
-    case SR_PLANE_RIGHT:  two_sum(w, -(double)c[SR_X], &d[0], &d[1]); return;
-    case SR_PLANE_BOTTOM: two_sum(w, c[SR_Y], &d[0], &d[1]); return;
-    case SR_PLANE_TOP:    two_sum(w, -(double)c[SR_Y], &d[0], &d[1]); return;
+    case SR_PLANE_NEAR:   d[0] = c[SR_Z]; return 1;
+    case SR_PLANE_FAR:    two_sum(w, -(double)c[SR_Z], &d[1], &d[0]); return 2;
+    case SR_PLANE_LEFT:   two_sum(w, c[SR_X], &d[1], &d[0]); return 2;
+    case SR_PLANE_RIGHT:  two_sum(w, -(double)c[SR_X], &d[1], &d[0]); return 2;
+    case SR_PLANE_BOTTOM: two_sum(w, c[SR_Y], &d[1], &d[0]); return 2;
+    case SR_PLANE_TOP:    two_sum(w, -(double)c[SR_Y], &d[1], &d[0]); return 2;
     }
+    return 0;
 }
 
 /* Adds d · x to the expansion, exactly. */
-static int add_product(double *e, int n, const double d[2], double x)
+static int add_product(double *e, int n, const double *d, int dn, double x)
 {
-    for (int k = 0; k < 2; k++) {
+    for (int k = 0; k < dn; k++) {
         double p, err;
         two_product(d[k], x, &p, &err);
         n = grow(e, n, err);
@@ -73,23 +58,23 @@ static int add_product(double *e, int n, const double d[2], double x)
  * written so that both sums are exact and only the quotient rounds. The
  * denominator is a sum of two non-negative parts and never cancels. */
 void sr_clip_intersect_exact(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
-                             int floats, sr_vertex_out *cut)
+                             int floats, const sr_clip_depth *depth, sr_vertex_out *cut)
 {
-    double d_in[2], d_out[2], neg_out[2], den[4];
-    distance_exact(plane, inside->v, d_in);
-    distance_exact(plane, outside->v, d_out);
-    neg_out[0] = -d_out[0];
-    neg_out[1] = -d_out[1];
+    double d_in[SR_CLIP_DISTANCE_TERMS], neg_out[SR_CLIP_DISTANCE_TERMS], den[2 * SR_CLIP_DISTANCE_TERMS];
+    int in_n = sr_clip_distance_exact(plane, inside->v, depth, d_in);
+    int out_n = sr_clip_distance_exact(plane, outside->v, depth, neg_out);
     int dn = 0;
-    dn = grow(den, dn, d_in[1]);
-    dn = grow(den, dn, d_in[0]);
-    dn = grow(den, dn, neg_out[1]);
-    dn = grow(den, dn, neg_out[0]);
-    double denominator = value(den, dn);
+    for (int k = 0; k < in_n; k++)
+        dn = grow(den, dn, d_in[k]);
+    for (int k = 0; k < out_n; k++) {
+        neg_out[k] = -neg_out[k];
+        dn = grow(den, dn, neg_out[k]);
+    }
+    double denominator = expansion_value(den, dn);
     for (int i = 0; i < floats; i++) {
         double num[MAX_TERMS];
-        int n = add_product(num, 0, d_in, outside->v[i]);
-        n = add_product(num, n, neg_out, inside->v[i]);
-        cut->v[i] = (float)(value(num, n) / denominator);
+        int n = add_product(num, 0, d_in, in_n, outside->v[i]);
+        n = add_product(num, n, neg_out, out_n, inside->v[i]);
+        cut->v[i] = (float)(expansion_value(num, n) / denominator);
     }
 }

@@ -128,7 +128,7 @@ static void vertex_range(void *ctx, int t)
     sr_screen_vertex *screen = st->ws->screen.data;
     sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, first, end - first, verts + first);
     for (uint32_t i = first; i < end; i++) {
-        unsigned code = ph->inside ? 0 : sr_clip_outcode(verts[i].v);
+        unsigned code = ph->inside ? 0 : sr_clip_outcode_with(verts[i].v, &st->vp.depth);
         for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
             if (!isfinite(verts[i].v[SR_VARYINGS_AT + k]))
                 code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
@@ -277,7 +277,8 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
                          .vertex_count = desc->mesh->vertex_count, .slots = sr_mesh_triangle_slots(desc->mesh),
                          .tiles_x = (fb->width + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
                          .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
-                         .vp = { fb->width, fb->height, subpixel_bits(desc), guard_band(desc) },
+                         .vp = { fb->width, fb->height, subpixel_bits(desc), guard_band(desc),
+                                 sr_clip_depth_of((const float(*)[4])desc->projection) },
                          .precision = desc->clip_precision };
     /* Half a subpixel step, in NDC of the squeezed clip space of a guard band. */
     int side = fb->width > fb->height ? fb->width : fb->height;

@@ -76,7 +76,7 @@ static void emit_slot(sr_fan_sink *sink, uint32_t k)
     sr_polygon poly = { .count = 3, .vert = { verts[idx[0]], verts[idx[1]], verts[idx[2]] } };
     stats->clipped++;
     sr_clip_config cfg = { .precision = st->precision, .ndc_tolerance = st->clip_tolerance,
-                           .counts = &sink->work->cuts };
+                           .counts = &sink->work->cuts, .depth = st->vp.depth };
     sr_clip_polygon(&poly, any, SR_VARYINGS_AT + st->shade.layout.count, &cfg);
     emit_polygon(sink, &poly, k);
 }

@@ -13,7 +13,10 @@ bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp
     if (!(w > 0.0) || !isfinite(w))
         return false;
     double inv_w = 1.0 / w;
-    double x = v->v[SR_X] * inv_w, y = v->v[SR_Y] * inv_w, z = v->v[SR_Z] * inv_w;
+    double x = v->v[SR_X] * inv_w, y = v->v[SR_Y] * inv_w;
+    /* Under the depth model z_ndc follows from w (a·w + b over w), exact
+     * but for this one division and sum, whatever z could hold. */
+    double z = vp->depth.on ? vp->depth.a + vp->depth.b / w : v->v[SR_Z] * inv_w;
     if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(z, 0.0))
         return false;
     double scale = (double)((int64_t)1 << vp->subpixel_bits), guard = vp->guard;

@@ -1,0 +1,61 @@
+/* expansion.h — exact floating-point sums and products for the clipper
+ * (Shewchuk, "Adaptive Precision Floating-Point Arithmetic"): a value is an
+ * expansion, an array of doubles whose exact sum it is, smallest first and
+ * nonoverlapping. Not public API. */
+#ifndef SOFTRAST_EXPANSION_H
+#define SOFTRAST_EXPANSION_H
+
+#include <math.h>
+
+/* s + e = a + b exactly (Knuth). */
+static inline void two_sum(double a, double b, double *s, double *e)
+{
+    *s = a + b;
+    double bv = *s - a;
+    *e = (a - (*s - bv)) + (b - bv);
+}
+
+/* p + e = a · b exactly (the fused multiply-add gives the rounding error). */
+static inline void two_product(double a, double b, double *p, double *e)
+{
+    *p = a * b;
+    *e = fma(a, b, -*p);
+}
+
+/* Adds b to the expansion e[0..n), exactly: Grow-Expansion, in place.
+ * Returns the new length. */
+static inline int grow(double *e, int n, double b)
+{
+    double q = b;
+    for (int i = 0; i < n; i++) {
+        double s, err;
+        two_sum(q, e[i], &s, &err);
+        e[i] = err;
+        q = s;
+    }
+    e[n] = q;
+    return n + 1;
+}
+
+/* The expansion's value to about one rounding: smallest parts first. */
+static inline double expansion_value(const double *e, int n)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; i++)
+        s += e[i];
+    return s;
+}
+
+/* The same with its sign exact: the parts below the largest nonzero one sum
+ * to less than it, so the sum smallest first has its sign or, when the
+ * rounding of those parts reaches it exactly, is 0; then the largest part
+ * stands in. */
+static inline double expansion_signed_value(const double *e, int n)
+{
+    double v = expansion_value(e, n), top = 0.0;
+    for (int i = 0; i < n; i++)
+        top = e[i] != 0.0 ? e[i] : top;
+    return v != 0.0 ? v : top;
+}
+
+#endif
