@@ -233,4 +233,28 @@ static inline bool convex_in_triangle_plane(const sr_polygon *p, const sr_vertex
     return convex2(x, y, p->count, 1e-6, 1e-4);
 }
 
+/* The edge in -> out walked both ways: clips (in, out, third_a) and
+ * (out, in, third_b) against the plane; true if both hold, bit for bit, the
+ * cut vertex sr_clip_intersect makes (a polygon dropped whole, as one with a
+ * vertex at w <= 0 is, holds it trivially). *standing: both polygons were
+ * left standing. */
+static inline bool clip_same_cut_both_ways(sr_clip_plane plane, const sr_vertex_out *in, const sr_vertex_out *out,
+                                           const sr_vertex_out *third_a, const sr_vertex_out *third_b,
+                                           const sr_clip_config *cfg, bool *standing)
+{
+    sr_polygon a = { .count = 3, .vert = { *in, *out, *third_a } };
+    sr_polygon b = { .count = 3, .vert = { *out, *in, *third_b } };
+    sr_clip_polygon(&a, 1u << plane, 4, cfg);
+    sr_clip_polygon(&b, 1u << plane, 4, cfg);
+    sr_vertex_out cut;
+    sr_clip_intersect(plane, in, out, 4, cfg, &cut);
+    bool in_a = a.count == 0, in_b = b.count == 0;
+    for (int i = 0; i < a.count; i++)
+        in_a = in_a || memcmp(a.vert[i].v, cut.v, 4 * sizeof(float)) == 0;
+    for (int i = 0; i < b.count; i++)
+        in_b = in_b || memcmp(b.vert[i].v, cut.v, 4 * sizeof(float)) == 0;
+    *standing = a.count > 0 && b.count > 0;
+    return in_a && in_b;
+}
+
 #endif

@@ -11,18 +11,19 @@
 #include <string.h>
 
 #include "softrast/camera.h"
+#include "clip_helpers.h"
+#include "exact_cut.h"
 #include "softrast/clip.h"
 #include "softrast/viewport.h"
 
 #define EDGES 3000
 #define MODELS 5
 
-static uint64_t rng_state = 0x2545F4914F6CDD1Dull;
+static test_rng rng = { 0x2545F4914F6CDD1Dull };
 
 static double uniform(void)
 {
-    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(rng_state >> 11) / 9007199254740992.0;
+    return rng_unit(&rng);
 }
 
 /* 10^e, e uniform in [lo, hi]. */
@@ -193,19 +194,12 @@ static void random_edge(sr_clip_plane plane, const sr_clip_depth *m, sr_vertex_o
 static double exact_cut(sr_clip_plane plane, const sr_clip_depth *m, const sr_vertex_out *a,
                         const sr_vertex_out *b, int i)
 {
-    mpq_t da, db, t, v, ai;
-    mpq_inits(da, db, t, v, ai, NULL);
+    mpq_t da, db;
+    mpq_inits(da, db, NULL);
     exact_distance(plane, m, a->v[SR_W], da);
     exact_distance(plane, m, b->v[SR_W], db);
-    mpq_sub(t, da, db);
-    mpq_div(t, da, t);
-    mpq_set_d(ai, a->v[i]);
-    mpq_set_d(v, b->v[i]);
-    mpq_sub(v, v, ai);
-    mpq_mul(v, v, t);
-    mpq_add(v, v, ai);
-    double r = mpq_get_d(v);
-    mpq_clears(da, db, t, v, ai, NULL);
+    double r = exact_cut_coordinate(da, db, a->v[i], b->v[i]);
+    mpq_clears(da, db, NULL);
     return r;
 }
 
@@ -272,19 +266,10 @@ Test(clip_depth, near_and_far_cuts_are_bit_identical_both_ways_in_every_precisio
         third.v[SR_Z] = (float)((double)m.a + m.b);
         for (int p = SR_CLIP_ADAPTIVE; p < SR_CLIP_PRECISIONS; p++) {
             sr_clip_config cfg = { .precision = (sr_clip_precision)p, .depth = m };
-            sr_polygon a = { .count = 3, .vert = { in, out, third } };
-            sr_polygon b = { .count = 3, .vert = { out, in, third } };
-            sr_clip_polygon(&a, 1u << plane, 4, &cfg);
-            sr_clip_polygon(&b, 1u << plane, 4, &cfg);
-            sr_vertex_out cut;
-            sr_clip_intersect(plane, &in, &out, 4, &cfg, &cut);
-            bool in_a = a.count == 0, in_b = b.count == 0;
-            for (int i = 0; i < a.count; i++)
-                in_a = in_a || memcmp(a.vert[i].v, cut.v, 4 * sizeof(float)) == 0;
-            for (int i = 0; i < b.count; i++)
-                in_b = in_b || memcmp(b.vert[i].v, cut.v, 4 * sizeof(float)) == 0;
-            checked += a.count > 0 && b.count > 0;
-            cr_assert(in_a && in_b, "edge %d, precision %d: the cut vertex differs between the two walks", e, p);
+            bool standing;
+            cr_assert(clip_same_cut_both_ways(plane, &in, &out, &third, &third, &cfg, &standing),
+                      "edge %d, precision %d: the cut vertex differs between the two walks", e, p);
+            checked += standing;
         }
     }
     cr_assert_gt(checked, EDGES / 3, "too few edges left both polygons standing");

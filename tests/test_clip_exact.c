@@ -6,16 +6,17 @@
 #include <gmp.h>
 #include <math.h>
 
+#include "clip_helpers.h"
+#include "exact_cut.h"
 #include "softrast/clip.h"
 
 #define EDGES 4000
 
-static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
+static test_rng rng = { 0x9E3779B97F4A7C15ull };
 
 static double uniform(void)
 {
-    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(rng_state >> 11) / 9007199254740992.0;
+    return rng_unit(&rng);
 }
 
 /* A float of random sign with magnitude 10^e, e uniform in [lo, hi]. */
@@ -44,19 +45,12 @@ static void exact_distance(sr_clip_plane plane, const float *c, mpq_t d)
 /* Coordinate i of the exact cut point a + t(b − a), t = d_a / (d_a − d_b). */
 static double exact_cut(sr_clip_plane plane, const sr_vertex_out *a, const sr_vertex_out *b, int i)
 {
-    mpq_t da, db, t, ai, bi, v;
-    mpq_inits(da, db, t, ai, bi, v, NULL);
+    mpq_t da, db;
+    mpq_inits(da, db, NULL);
     exact_distance(plane, a->v, da);
     exact_distance(plane, b->v, db);
-    mpq_sub(t, da, db);
-    mpq_div(t, da, t);
-    mpq_set_d(ai, a->v[i]);
-    mpq_set_d(bi, b->v[i]);
-    mpq_sub(v, bi, ai);
-    mpq_mul(v, v, t);
-    mpq_add(v, v, ai);
-    double r = mpq_get_d(v);
-    mpq_clears(da, db, t, ai, bi, v, NULL);
+    double r = exact_cut_coordinate(da, db, a->v[i], b->v[i]);
+    mpq_clears(da, db, NULL);
     return r;
 }
 
@@ -172,22 +166,12 @@ Test(clip_exact, shared_edges_stay_bit_identical_on_every_path)
         sr_vertex_out in, out;
         random_edge(plane, &in, &out);
         for (int p = SR_CLIP_ADAPTIVE; p < SR_CLIP_PRECISIONS; p++) {
-            sr_polygon a = { .count = 3, .vert = { in, out, { .v = { 0, 0, 0.5f, 1 } } } };
-            sr_polygon b = { .count = 3, .vert = { out, in, { .v = { 0.1f, -0.1f, 0.5f, 1 } } } };
+            const sr_vertex_out third_a = { .v = { 0, 0, 0.5f, 1 } }, third_b = { .v = { 0.1f, -0.1f, 0.5f, 1 } };
             sr_clip_config cfg = { .precision = (sr_clip_precision)p };
-            sr_clip_polygon(&a, 1u << plane, 4, &cfg);
-            sr_clip_polygon(&b, 1u << plane, 4, &cfg);
-            sr_vertex_out cut;
-            sr_clip_intersect(plane, &in, &out, 4, &cfg, &cut);
-            /* A polygon with a vertex at w <= 0 is dropped whole (it lies in a
-             * plane through the eye); the others must hold the cut vertex. */
-            bool in_a = a.count == 0, in_b = b.count == 0;
-            for (int i = 0; i < a.count; i++)
-                in_a = in_a || memcmp(a.vert[i].v, cut.v, 4 * sizeof(float)) == 0;
-            for (int i = 0; i < b.count; i++)
-                in_b = in_b || memcmp(b.vert[i].v, cut.v, 4 * sizeof(float)) == 0;
-            checked += a.count > 0 && b.count > 0;
-            cr_assert(in_a && in_b, "edge %d, precision %d: cut vertex differs between the two walks", e, p);
+            bool standing;
+            cr_assert(clip_same_cut_both_ways(plane, &in, &out, &third_a, &third_b, &cfg, &standing),
+                      "edge %d, precision %d: the cut vertex differs between the two walks", e, p);
+            checked += standing;
         }
     }
     cr_assert_gt(checked, EDGES / 4, "too few edges left both polygons standing");
