@@ -38,10 +38,15 @@ $(FUZZ_LIB_OBJ): build/fuzz/%.o: %.c
 	@echo "  CC fuzz $<"
 	@$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
 
-$(FUZZ_BINS:%=%.o): build/fuzz/%.o: fuzz/%.c
+# fuzz_draw's parts besides its entry point (fuzz/draw_*.c).
+FUZZ_DRAW_PARTS := $(patsubst fuzz/%.c,build/fuzz/%.o,$(wildcard fuzz/draw_*.c))
+
+$(FUZZ_BINS:%=%.o) $(FUZZ_DRAW_PARTS): build/fuzz/%.o: fuzz/%.c
 	@mkdir -p $(@D)
 	@echo "  CC fuzz $<"
 	@$(FUZZ_CC) $(FUZZ_CFLAGS) $(FUZZ_WARN) -fsanitize=fuzzer-no-link -c $< -o $@
+
+build/fuzz/fuzz_draw: $(FUZZ_DRAW_PARTS)
 
 $(FUZZ_BINS): build/fuzz/%: build/fuzz/%.o $(FUZZ_LIB_OBJ)
 	@echo "  LINK    $@"
@@ -95,4 +100,4 @@ fuzz-regressions: fuzz-build
 fuzz-clean:
 	rm -rf build/fuzz
 
--include $(FUZZ_LIB_OBJ:.o=.d) $(FUZZ_TARGETS:%=build/fuzz/fuzz_%.d)
+-include $(FUZZ_LIB_OBJ:.o=.d) $(FUZZ_TARGETS:%=build/fuzz/fuzz_%.d) $(FUZZ_DRAW_PARTS:.o=.d)
