@@ -166,8 +166,8 @@ static inline void sr_shade_albedo(const sr_shade_context *c, const float *var, 
 }
 
 /* The color of one fragment; `var` holds the perspective-correct varyings. */
-static inline uint32_t sr_shade_fragment(sr_shade mode, const sr_shade_context *c, const float *var,
-                                         uint32_t triangle_id)
+static SR_ALWAYS_INLINE uint32_t sr_shade_fragment(sr_shade mode, const sr_shade_context *c, const float *var,
+                                                    uint32_t triangle_id)
 {
     float rgb[3];
     switch (mode) {

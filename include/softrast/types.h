@@ -13,6 +13,15 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+/* Inlined into every caller even where the compiler would outline it (the
+ * per-pixel loops' shading); a plain inline on compilers without the
+ * attribute. */
+#if defined(__GNUC__)
+#define SR_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SR_ALWAYS_INLINE inline
+#endif
+
 /* Clip-space position (x, y, z, w) then the varyings, in one float array so
  * the clipper interpolates "position and every varying" in one loop. */
 enum { SR_X = 0, SR_Y, SR_Z, SR_W, SR_VARYINGS_AT };

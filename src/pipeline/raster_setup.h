@@ -73,7 +73,7 @@ typedef struct sr_row_range {
     int count;
 } sr_row_range;
 
-static inline sr_row_range sr_row_make(const sr_tri_setup *s, const sr_framebuffer *fb, bool spans, int j)
+static SR_ALWAYS_INLINE sr_row_range sr_row_make(const sr_tri_setup *s, const sr_framebuffer *fb, bool spans, int j)
 {
     int64_t px = sr_subpixel_centre(s->box.x0, s->bits), py = sr_subpixel_centre(j, s->bits);
     int64_t lo = 0, hi = s->box.x1 - s->box.x0 - 1;
