@@ -153,16 +153,22 @@ static inline float sr_shade_lambert_intensity(const sr_shade_context *c, const 
     return SR_LAMBERT_AMBIENT + (1.0f - SR_LAMBERT_AMBIENT) * (d > 0.0f ? d : 0.0f);
 }
 
+/* The albedo without a texture: the vertex colors, else gray. */
 static inline void sr_shade_albedo(const sr_shade_context *c, const float *var, float rgb[3])
 {
-    if (c->layout.uv >= 0) {
-        sr_shade_sample(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1], rgb);
-    } else if (c->layout.color >= 0) {
-        for (int i = 0; i < 3; i++)
-            rgb[i] = var[c->layout.color + i];
-    } else {
-        rgb[0] = rgb[1] = rgb[2] = SR_LAMBERT_GRAY;
-    }
+    for (int i = 0; i < 3; i++)
+        rgb[i] = c->layout.color >= 0 ? var[c->layout.color + i] : SR_LAMBERT_GRAY;
+}
+
+/* A packed texel lit by intensity k, each channel k·t rounded to nearest:
+ * k is in [0.2, 1] up to a rounding and never NaN, so k·t + 0.5 stays below
+ * 256 and no clamp is needed (the SIMD kernels do the same operations). */
+static inline uint32_t sr_shade_lit_texel(uint32_t t, float k)
+{
+    uint32_t out = 0;
+    for (int shift = 16; shift >= 0; shift -= 8)
+        out |= (uint32_t)(k * (float)((t >> shift) & 0xFF) + 0.5f) << shift;
+    return out;
 }
 
 /* The color of one fragment; `var` holds the perspective-correct varyings. */
@@ -183,6 +189,9 @@ static SR_ALWAYS_INLINE uint32_t sr_shade_fragment(sr_shade mode, const sr_shade
         return sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]);
     case SR_SHADE_LAMBERT: {
         float k = sr_shade_lambert_intensity(c, var + c->layout.normal);
+        if (c->layout.uv >= 0)
+            return sr_shade_lit_texel(
+                sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]), k);
         sr_shade_albedo(c, var, rgb);
         return sr_shade_pack(k * rgb[0], k * rgb[1], k * rgb[2]);
     }

@@ -225,15 +225,6 @@ typedef struct rgb_lanes {
     vf c[3];
 } rgb_lanes;
 
-/* sr_shade_unpack per lane. */
-static inline __attribute__((always_inline)) rgb_lanes unpack_lanes(vi t)
-{
-    rgb_lanes o;
-    for (int i = 0; i < 3; i++)
-        o.c[i] = __builtin_convertvector((t >> (16 - 8 * i)) & 0xFF, vf) * SR_SHADE_CHANNEL_SCALE;
-    return o;
-}
-
 static inline __attribute__((always_inline)) vi sample_nearest_lanes(const sr_texture *tex, vf fu, vf fv)
 {
     vi x = texel_index_lanes(fu, tex->width);
@@ -295,11 +286,18 @@ static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_con
     return select_f(len2 > zero, lit, zero + SR_LAMBERT_AMBIENT);
 }
 
-static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(const sr_shade_context *c, albedo a,
-                                                                   const vf *var)
+/* sr_shade_lit_texel per lane. */
+static inline __attribute__((always_inline)) vi lit_texel_lanes(vi t, vf k)
 {
-    if (a == ALBEDO_TEXTURE)
-        return unpack_lanes(sample_lanes(c, var[SECOND_VARYING], var[SECOND_VARYING + 1]));
+    vi out = { 0 };
+    for (int shift = 16; shift >= 0; shift -= 8)
+        out |= __builtin_convertvector(k * __builtin_convertvector((t >> shift) & 0xFF, vf) + 0.5f, vi) << shift;
+    return out;
+}
+
+/* sr_shade_albedo per lane: vertex colors or gray. */
+static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(albedo a, const vf *var)
+{
     rgb_lanes o;
     for (int i = 0; i < 3; i++)
         o.c[i] = a == ALBEDO_COLOR ? var[SECOND_VARYING + i] : (vf){ 0 } + SR_LAMBERT_GRAY;
@@ -322,7 +320,9 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
         return sample_lanes(c, var[0], var[1]);
     case SR_SHADE_LAMBERT: {
         vf k = lambert_lanes(c, var);
-        rgb_lanes base = albedo_lanes(c, a, var);
+        if (a == ALBEDO_TEXTURE)
+            return lit_texel_lanes(sample_lanes(c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
+        rgb_lanes base = albedo_lanes(a, var);
         return pack_lanes(k * base.c[0], k * base.c[1], k * base.c[2]);
     }
     default:
