@@ -26,8 +26,8 @@ static uint32_t store_clip_verts(sr_fan_sink *sink, const sr_screen_vertex *v, i
 }
 
 /* The tiles the triangle's scan box touches get its record index. */
-static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex tri[3], const uint32_t ref[3], int64_t area2,
-                         uint32_t id, bool clipped)
+static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
+                         int64_t area2, uint32_t id, bool clipped)
 {
     (void)clipped;
     sr_thread_work *w = sink->work;
@@ -40,7 +40,7 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex tri[3], const
     *rec = (sr_record){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .area2 = area2 };
     uint32_t index = (uint32_t)(w->records.count - 1);
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
-    sr_raster_rect box = sr_raster_scan_box(tri, all, st->vp.subpixel_bits);
+    sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return; /* covers no pixel centre */
     int tx0 = box.x0 / SR_TILE_SIDE, tx1 = (box.x1 - 1) / SR_TILE_SIDE;
@@ -111,8 +111,8 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
         const uint32_t *list = w->bins[tile].data;
         for (size_t i = 0; i < w->bins[tile].count; i++) {
             const sr_record *rec = &((const sr_record *)w->records.data)[list[i]];
-            sr_screen_vertex tri[3] = { *vertex_of(st, w, rec->ref[0]), *vertex_of(st, w, rec->ref[1]),
-                                        *vertex_of(st, w, rec->ref[2]) };
+            const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
+                                                     vertex_of(st, w, rec->ref[2]) };
             bool simd = false;
             fragments += sr_raster_triangle_on(st->fb, rect, st->vp.subpixel_bits, st->desc->shade, &st->shade,
                                                tri, rec->area2, rec->id, &simd);

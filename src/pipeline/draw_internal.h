@@ -75,7 +75,7 @@ typedef struct sr_draw_state {
 typedef struct sr_fan_sink sr_fan_sink;
 struct sr_fan_sink {
     uint32_t (*store)(sr_fan_sink *sink, const sr_screen_vertex *v, int n);
-    void (*triangle)(sr_fan_sink *sink, const sr_screen_vertex tri[3], const uint32_t ref[3], int64_t area2,
+    void (*triangle)(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3], int64_t area2,
                      uint32_t id, bool clipped);
     const sr_draw_state *st;
     sr_thread_work *work;

@@ -184,14 +184,14 @@ static uint32_t store_in_place(sr_fan_sink *sink, const sr_screen_vertex *v, int
     return 0; /* the rasterizer gets the vertices themselves, no references */
 }
 
-static void raster_now(sr_fan_sink *sink, const sr_screen_vertex tri[3], const uint32_t ref[3], int64_t area2,
-                       uint32_t id, bool clipped)
+static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
+                       int64_t area2, uint32_t id, bool clipped)
 {
     (void)ref;
     const sr_draw_state *st = sink->st;
     const sr_draw_desc *d = st->desc;
     if (d->observer)
-        d->observer(d->observer_user, tri, clipped, id);
+        d->observer(d->observer_user, (const sr_screen_vertex[3]){ *tri[0], *tri[1], *tri[2] }, clipped, id);
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
     bool simd = false;
     sink->work->stats.fragments +=

@@ -6,13 +6,13 @@
 #include "softrast/cull.h"
 #include "softrast/viewport.h"
 
-/* Stage 7 for one fan triangle whose vertices are tri[] (refs name them for
- * the sink). */
-static void cull_and_emit(sr_fan_sink *sink, const sr_screen_vertex tri[3], const uint32_t ref[3], uint32_t id,
-                          bool clipped)
+/* Stage 7 for one fan triangle whose vertices are *tri[] (refs name them
+ * for the sink). */
+static void cull_and_emit(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
+                          uint32_t id, bool clipped)
 {
     const sr_draw_desc *d = sink->st->desc;
-    int64_t area2 = sr_cull_area2(&tri[0], &tri[1], &tri[2]);
+    int64_t area2 = sr_cull_area2(tri[0], tri[1], tri[2]);
     if (!sr_cull_keeps(area2, d->cull, d->front)) {
         sink->work->stats.culled++;
         return;
@@ -41,7 +41,8 @@ static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, uint32_t id)
     uint32_t base = sink->store(sink, screen, poly->count);
     for (int i = 1; i + 1 < poly->count; i++) {
         const uint32_t ref[3] = { base, base + (uint32_t)i, base + (uint32_t)i + 1 };
-        cull_and_emit(sink, (sr_screen_vertex[3]){ screen[0], screen[i], screen[i + 1] }, ref, id, true);
+        cull_and_emit(sink, (const sr_screen_vertex *const[3]){ &screen[0], &screen[i], &screen[i + 1] }, ref, id,
+                      true);
     }
 }
 
@@ -49,7 +50,8 @@ static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, uint32_t id)
 static void emit_inside(sr_fan_sink *sink, const uint32_t idx[3], uint32_t id)
 {
     const sr_screen_vertex *screen = sink->st->ws->screen.data;
-    cull_and_emit(sink, (sr_screen_vertex[3]){ screen[idx[0]], screen[idx[1]], screen[idx[2]] }, idx, id, false);
+    cull_and_emit(sink, (const sr_screen_vertex *const[3]){ &screen[idx[0]], &screen[idx[1]], &screen[idx[2]] }, idx,
+                  id, false);
 }
 
 /* Stages 2 to 4 for triangle slot k. */

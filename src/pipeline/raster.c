@@ -16,7 +16,7 @@ static edge edge_make(const sr_screen_vertex *p, const sr_screen_vertex *q)
 }
 
 /* Orders the vertices clockwise (area2 > 0) so one inside test fits both windings. */
-static void order_clockwise(const sr_screen_vertex in[3], int64_t area2, sr_screen_vertex out[3])
+static void order_clockwise(const sr_screen_vertex *const in[3], int64_t area2, const sr_screen_vertex *out[3])
 {
     out[0] = in[0];
     out[1] = in[area2 > 0 ? 1 : 2];
@@ -24,11 +24,11 @@ static void order_clockwise(const sr_screen_vertex in[3], int64_t area2, sr_scre
 }
 
 /* Edge k is the one opposite vertex k, so E_k / area2 is barycentric λ_k. */
-static void edges_make(const sr_screen_vertex v[3], edge e[3])
+static void edges_make(const sr_screen_vertex *const v[3], edge e[3])
 {
-    e[0] = edge_make(&v[1], &v[2]);
-    e[1] = edge_make(&v[2], &v[0]);
-    e[2] = edge_make(&v[0], &v[1]);
+    e[0] = edge_make(v[1], v[2]);
+    e[1] = edge_make(v[2], v[0]);
+    e[2] = edge_make(v[0], v[1]);
 }
 
 typedef sr_tri_setup setup;
@@ -45,15 +45,21 @@ static int clamp_int(int64_t v, int lo, int hi)
     return (int)(v < lo ? lo : v > hi ? hi : v);
 }
 
-sr_raster_rect sr_raster_scan_box(const sr_screen_vertex v[3], sr_raster_rect rect, int bits)
+sr_raster_rect sr_raster_scan_box(const sr_screen_vertex tri[3], sr_raster_rect rect, int subpixel_bits)
+{
+    return sr_raster_scan_box_of((const sr_screen_vertex *const[3]){ &tri[0], &tri[1], &tri[2] }, rect,
+                                 subpixel_bits);
+}
+
+sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_raster_rect rect, int bits)
 {
     int64_t one = (int64_t)1 << bits, half = one / 2;
-    int64_t lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
+    int64_t lo_x = v[0]->x, hi_x = v[0]->x, lo_y = v[0]->y, hi_y = v[0]->y;
     for (int k = 1; k < 3; k++) {
-        lo_x = v[k].x < lo_x ? v[k].x : lo_x;
-        hi_x = v[k].x > hi_x ? v[k].x : hi_x;
-        lo_y = v[k].y < lo_y ? v[k].y : lo_y;
-        hi_y = v[k].y > hi_y ? v[k].y : hi_y;
+        lo_x = v[k]->x < lo_x ? v[k]->x : lo_x;
+        hi_x = v[k]->x > hi_x ? v[k]->x : hi_x;
+        lo_y = v[k]->y < lo_y ? v[k]->y : lo_y;
+        hi_y = v[k]->y > hi_y ? v[k]->y : hi_y;
     }
     return (sr_raster_rect){
         .x0 = clamp_int(floor_shift(lo_x - half + one - 1, bits), rect.x0, rect.x1),
@@ -63,8 +69,8 @@ sr_raster_rect sr_raster_scan_box(const sr_screen_vertex v[3], sr_raster_rect re
     };
 }
 
-static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings, sr_raster_rect box, int bits,
-                       setup *s)
+static void setup_make(const sr_screen_vertex *const v[3], int64_t area2, int varyings, sr_raster_rect box,
+                       int bits, setup *s)
 {
     s->bits = bits;
     s->box = box;
@@ -72,17 +78,17 @@ static void setup_make(const sr_screen_vertex v[3], int64_t area2, int varyings,
     for (int k = 0; k < 3; k++)
         s->step_x[k] = s->e[k].a * ((int64_t)1 << bits); /* a multiply: a may be negative */
     s->inv_area2 = (float)(1.0 / (double)area2);
-    s->z0 = v[0].z;
-    s->dz1 = v[1].z - v[0].z;
-    s->dz2 = v[2].z - v[0].z;
-    s->iw0 = v[0].inv_w;
-    s->diw1 = v[1].inv_w - v[0].inv_w;
-    s->diw2 = v[2].inv_w - v[0].inv_w;
+    s->z0 = v[0]->z;
+    s->dz1 = v[1]->z - v[0]->z;
+    s->dz2 = v[2]->z - v[0]->z;
+    s->iw0 = v[0]->inv_w;
+    s->diw1 = v[1]->inv_w - v[0]->inv_w;
+    s->diw2 = v[2]->inv_w - v[0]->inv_w;
     s->varyings = varyings;
     for (int k = 0; k < varyings; k++) {
-        s->var0[k] = v[0].var_w[k];
-        s->dvar1[k] = v[1].var_w[k] - v[0].var_w[k];
-        s->dvar2[k] = v[2].var_w[k] - v[0].var_w[k];
+        s->var0[k] = v[0]->var_w[k];
+        s->dvar1[k] = v[1]->var_w[k] - v[0]->var_w[k];
+        s->dvar2[k] = v[2]->var_w[k] - v[0]->var_w[k];
     }
 }
 
@@ -270,20 +276,22 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
                             uint32_t triangle_id)
 {
     bool simd;
-    return sr_raster_triangle_on(fb, rect, subpixel_bits, mode, shade, tri, area2, triangle_id, &simd);
+    return sr_raster_triangle_on(fb, rect, subpixel_bits, mode, shade,
+                                 (const sr_screen_vertex *const[3]){ &tri[0], &tri[1], &tri[2] }, area2,
+                                 triangle_id, &simd);
 }
 
 uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
-                               const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
+                               const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                                uint32_t triangle_id, bool *simd)
 {
     *simd = false;
     /* Most triangles of a dense mesh cover no pixel centre: find that out
      * before any setup. */
-    sr_raster_rect box = sr_raster_scan_box(tri, rect, subpixel_bits);
+    sr_raster_rect box = sr_raster_scan_box_of(tri, rect, subpixel_bits);
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return 0;
-    sr_screen_vertex v[3];
+    const sr_screen_vertex *v[3];
     setup s;
     order_clockwise(tri, area2, v);
     setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, box,
@@ -292,8 +300,8 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
     if (c == BOX_OUTSIDE)
         return 0;
     s.covered = c == BOX_COVERED;
-    sr_span_kernel kernel = span_kernel(shade, mode, fb->reversed_z);
-    *simd = kernel && s.box.x1 - s.box.x0 >= SIMD_MIN_WIDTH && edges_fit_double(&s);
+    sr_span_kernel kernel = s.box.x1 - s.box.x0 >= SIMD_MIN_WIDTH ? span_kernel(shade, mode, fb->reversed_z) : NULL;
+    *simd = kernel && edges_fit_double(&s);
     if (*simd)
         return kernel(&s, shade, fb, triangle_id);
     switch (mode) {

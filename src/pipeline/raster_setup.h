@@ -103,10 +103,12 @@ static SR_ALWAYS_INLINE sr_row_range sr_row_make(const sr_tri_setup *s, const sr
 typedef uint64_t (*sr_span_kernel)(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb,
                                    uint32_t id);
 
-/* sr_raster_triangle, also telling whether a SIMD kernel drew it. */
+/* sr_raster_triangle and sr_raster_scan_box on vertices the caller holds
+ * elsewhere (no copies); the first also tells whether a SIMD kernel drew. */
 uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
-                               const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
+                               const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                                uint32_t triangle_id, bool *simd);
+sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const tri[3], sr_raster_rect rect, int subpixel_bits);
 
 /* The kernel for a shading mode, depth test and varying layout (each kernel
  * is compiled for one layout, so its varyings stay in registers), or NULL
