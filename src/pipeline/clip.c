@@ -15,17 +15,23 @@
  * precision the bound assumes: such edges go exact. */
 #define TINY_SCALE 1e-30f
 
-double sr_clip_distance(sr_clip_plane plane, const float *c)
+/* The plane table of clip.h on a point in double. */
+static double distance_d(sr_clip_plane plane, const double c[4])
 {
     switch (plane) {
-    case SR_PLANE_NEAR:   return (double)c[SR_Z];
-    case SR_PLANE_FAR:    return (double)c[SR_W] - c[SR_Z];
-    case SR_PLANE_LEFT:   return (double)c[SR_W] + c[SR_X];
-    case SR_PLANE_RIGHT:  return (double)c[SR_W] - c[SR_X];
-    case SR_PLANE_BOTTOM: return (double)c[SR_W] + c[SR_Y];
-    case SR_PLANE_TOP:    return (double)c[SR_W] - c[SR_Y];
+    case SR_PLANE_NEAR:   return c[SR_Z];
+    case SR_PLANE_FAR:    return c[SR_W] - c[SR_Z];
+    case SR_PLANE_LEFT:   return c[SR_W] + c[SR_X];
+    case SR_PLANE_RIGHT:  return c[SR_W] - c[SR_X];
+    case SR_PLANE_BOTTOM: return c[SR_W] + c[SR_Y];
+    case SR_PLANE_TOP:    return c[SR_W] - c[SR_Y];
     }
     return 0.0;
+}
+
+double sr_clip_distance(sr_clip_plane plane, const float *c)
+{
+    return distance_d(plane, (const double[4]){ c[SR_X], c[SR_Y], c[SR_Z], c[SR_W] });
 }
 
 sr_clip_depth sr_clip_depth_of(const float m[4][4])
@@ -100,12 +106,11 @@ sr_clip_box sr_clip_classify_box(const float clip_from_object[4][4], const float
         double margin = SR_CLIP_BOX_MARGIN * box_corner(clip_from_object, lo, hi, k, c);
         if (!isfinite(c[0]) || !isfinite(c[1]) || !isfinite(c[2]) || !isfinite(c[3]) || !isfinite(margin))
             return SR_BOX_CROSSES;
-        double d[SR_CLIP_PLANES] = { c[SR_Z], c[SR_W] - c[SR_Z], c[SR_W] + c[SR_X],
-                                     c[SR_W] - c[SR_X], c[SR_W] + c[SR_Y], c[SR_W] - c[SR_Y] };
         unsigned out = 0;
         for (int p = 0; p < SR_CLIP_PLANES; p++) {
-            out |= (unsigned)(d[p] < -margin) << p;
-            any_near |= (unsigned)(d[p] < margin) << p;
+            double d = distance_d((sr_clip_plane)p, c);
+            out |= (unsigned)(d < -margin) << p;
+            any_near |= (unsigned)(d < margin) << p;
         }
         all_out &= out;
     }
