@@ -17,6 +17,17 @@ double sr_app_now_ms(void)
     return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
 }
 
+bool sr_app_draw_frame(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err)
+{
+    double start = sr_app_now_ms();
+    if (stats)
+        *stats = (sr_stats){ 0 };
+    sr_framebuffer_clear(fb, 0);
+    bool ok = sr_draw(fb, desc, stats, err);
+    *ms = sr_app_now_ms() - start;
+    return ok;
+}
+
 static int compare_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;

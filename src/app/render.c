@@ -59,26 +59,15 @@ static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_err
     return true;
 }
 
-/* A timed frame is what a viewer pays: clear color and depth, then the draw. */
-static bool draw_frame(sr_scene *scene, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err)
-{
-    double start = sr_app_now_ms();
-    *stats = (sr_stats){ 0 };
-    sr_framebuffer_clear(&scene->fb, 0x000000);
-    bool ok = sr_draw(&scene->fb, desc, stats, err);
-    *ms = sr_app_now_ms() - start;
-    return ok;
-}
-
 static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr_stats *stats,
                        frame_times *times, sr_error *err)
 {
     double *ms = malloc((size_t)frames * sizeof *ms), warm;
     if (!ms)
         return sr_error_set(err, "out of memory for %d frame times", frames);
-    bool ok = frames == 1 || draw_frame(scene, desc, stats, &warm, err);
+    bool ok = frames == 1 || sr_app_draw_frame(&scene->fb, desc, stats, &warm, err);
     for (int f = 0; ok && f < frames; f++)
-        ok = draw_frame(scene, desc, stats, &ms[f], err);
+        ok = sr_app_draw_frame(&scene->fb, desc, stats, &ms[f], err);
     if (ok)
         sr_app_median_min(ms, frames, &times->median, &times->min);
     free(ms);
