@@ -7,7 +7,6 @@
 #include "scene_setup.h"
 
 #define MAX_FRAMES 100000
-#define RENDER_OPTION_COUNT (SR_SCENE_OPTION_COUNT + 6) /* own options and the terminator */
 
 typedef struct render_job {
     sr_scene_setup scene;
@@ -31,9 +30,8 @@ static void job_defaults(render_job *job)
     sr_scene_setup_defaults(&job->scene);
 }
 
-static void render_options(render_job *job, sr_option *table)
+static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
-    sr_scene_setup_options(&job->scene, table);
     const sr_option own[] = {
         { "--out", SR_OPT_STRING, &job->out_path, "FILE.png", "write the color image (8-bit RGB)" },
         { "--depth", SR_OPT_STRING, &job->depth_path, "FILE.pfm", "write the raw float32 depth buffer (PFM)" },
@@ -42,13 +40,9 @@ static void render_options(render_job *job, sr_option *table)
         { "--stats", SR_OPT_FLAG, &job->stats, NULL, "print one JSON line of per-frame statistics" },
         { 0 },
     };
+    sr_option table[SR_SCENE_OPTION_COUNT + sizeof own / sizeof *own];
+    sr_scene_setup_options(&job->scene, table);
     memcpy(&table[SR_SCENE_OPTION_COUNT], own, sizeof own);
-}
-
-static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_error *err)
-{
-    sr_option table[RENDER_OPTION_COUNT];
-    render_options(job, table);
     int positional = 0;
     if (!sr_options_parse(table, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
         return false;
