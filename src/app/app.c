@@ -34,9 +34,14 @@ static int compare_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+void sr_app_sort_doubles(double *v, size_t n)
+{
+    qsort(v, n, sizeof *v, compare_double);
+}
+
 void sr_app_median_min(double *ms, int n, double *median, double *min)
 {
-    qsort(ms, (size_t)n, sizeof *ms, compare_double);
+    sr_app_sort_doubles(ms, (size_t)n);
     *min = ms[0];
     *median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
 }
