@@ -44,11 +44,9 @@ static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_err
     sr_scene_setup_options(&job->scene, table);
     memcpy(&table[SR_SCENE_OPTION_COUNT], own, sizeof own);
     int positional = 0;
-    if (!sr_options_parse(table, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
+    if (!sr_options_parse(table, USAGE, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
         return false;
-    if (*help)
-        sr_options_print_help(stdout, USAGE, table);
-    else if (positional != 1)
+    if (!*help && positional != 1)
         return sr_error_set(err, "render needs one MESH.obj (see softrast render --help)");
     return true;
 }

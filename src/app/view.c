@@ -53,10 +53,8 @@ static bool parse_job(view_job *job, int argc, char **argv, bool *help, sr_error
     sr_scene_setup_options(&job->scene, table);
     memcpy(&table[SR_SCENE_OPTION_COUNT], own, sizeof own);
     int positional = 0;
-    if (!sr_options_parse(table, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
+    if (!sr_options_parse(table, USAGE, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
         return false;
-    if (*help)
-        sr_options_print_help(stdout, USAGE, table);
     if (!job->script_path && (job->shots_dir || job->grab_dir || job->frames || job->no_window || job->overlays))
         return sr_error_set(err, "--frames, --shots, --grab, --no-window and --overlays go with --script");
     if (job->grab_dir && job->no_window)
