@@ -8,7 +8,8 @@ GL_CFLAGS       = $(shell pkg-config --cflags $(GL_PKGS) 2>/dev/null)
 GL_LIBS         = $(shell pkg-config --libs $(GL_PKGS) 2>/dev/null || echo -lEGL -lOpenGL)
 BENCH_GL_OBJ   := $(patsubst %.c,build/%.o,$(wildcard tools/bench_gl*.c))
 # The scenes come from the same code `softrast bench` runs.
-BENCH_GL_APP   := build/src/app/bench_scenes.o build/src/app/view_script.o build/src/app/options.o
+BENCH_GL_APP   := build/src/app/bench_scenes.o build/src/app/view_script.o build/src/app/options.o \
+                  build/src/app/app.o
 BENCH_COMPARE_ARGS ?=
 
 .PHONY: bench-compare deps-gl

@@ -126,11 +126,7 @@ static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
         { 0 },
     };
     int positional = 0;
-    if (!sr_options_parse(table, argc, argv, 1, NULL, 0, &positional, help, err))
-        return false;
-    if (*help)
-        sr_options_print_help(stdout, USAGE, table);
-    return true;
+    return sr_options_parse(table, USAGE, argc, argv, 1, NULL, 0, &positional, help, err);
 }
 
 static bool run(const job *j, sr_error *err)

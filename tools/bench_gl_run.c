@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "app.h"
 #include "bench_gl.h"
 
 #define WARM_UP (-1) /* frame index of the untimed first frame */
@@ -53,17 +54,9 @@ static void clock_record(frame_clock *c, int f, clock_mark start)
     c->cpu += end.cpu - start.cpu;
 }
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static void clock_summary(frame_clock *c, int n, bench_gl_timing *t)
 {
-    qsort(c->ms, (size_t)n, sizeof *c->ms, compare_double);
-    t->min = c->ms[0];
-    t->median = n % 2 ? c->ms[n / 2] : 0.5 * (c->ms[n / 2 - 1] + c->ms[n / 2]);
+    sr_app_median_min(c->ms, n, &t->median, &t->min);
     t->cpu_per_wall = c->wall > 0 ? c->cpu / c->wall : 0;
 }
 

@@ -117,22 +117,32 @@ static void paint_floor(int x, int y, vec3 rgb)
     shade((tx + ty) % 2 ? slate : cream, tile * grain, rgb);
 }
 
+/* A wall of w × h blocks laid in running bond: every other course shifted
+ * by half a block. Gives the block's column and course under (x, y); true
+ * when (x, y) lies in the joint, the first joint_px rows or columns of a block. */
+static bool running_bond(int x, int y, int w, int h, int joint_px, uint32_t *column, uint32_t *course)
+{
+    int row = y / h;
+    int sx = (x + (row % 2) * (w / 2)) % TEXTURE_SIZE;
+    *column = (uint32_t)(sx / w);
+    *course = (uint32_t)row;
+    return y % h < joint_px || sx % w < joint_px;
+}
+
 #define BRICK_W 64
 #define BRICK_H 32
 #define BRICK_MORTAR_PX 3
 
-/* Running bond: every other course shifted by half a brick. */
 static void paint_brick(int x, int y, vec3 rgb)
 {
-    int course = y / BRICK_H;
-    int sx = (x + (course % 2) * (BRICK_W / 2)) % TEXTURE_SIZE;
-    if (y % BRICK_H < BRICK_MORTAR_PX || sx % BRICK_W < BRICK_MORTAR_PX) {
+    uint32_t column, course;
+    if (running_bond(x, y, BRICK_W, BRICK_H, BRICK_MORTAR_PX, &column, &course)) {
         float grain = 0.9f + 0.1f * value_noise(x, y, 4, 3);
         shade((vec3){0.70f, 0.67f, 0.62f}, grain, rgb);
         return;
     }
     vec3 clay = {0.62f, 0.28f, 0.19f};
-    float brick = 0.80f + 0.35f * hash_unit((uint32_t)(sx / BRICK_W), (uint32_t)course, 4);
+    float brick = 0.80f + 0.35f * hash_unit(column, course, 4);
     float grain = 0.88f + 0.16f * value_noise(x, y, 8, 5);
     shade(clay, brick * grain, rgb);
 }
@@ -143,14 +153,13 @@ static void paint_brick(int x, int y, vec3 rgb)
 
 static void paint_stone(int x, int y, vec3 rgb)
 {
-    int course = y / STONE_H;
-    int sx = (x + (course % 2) * (STONE_W / 2)) % TEXTURE_SIZE;
-    if (y % STONE_H < STONE_JOINT_PX || sx % STONE_W < STONE_JOINT_PX) {
+    uint32_t column, course;
+    if (running_bond(x, y, STONE_W, STONE_H, STONE_JOINT_PX, &column, &course)) {
         glm_vec3_copy((vec3){0.24f, 0.25f, 0.27f}, rgb);
         return;
     }
     vec3 granite = {0.58f, 0.60f, 0.64f};
-    float block = 0.88f + 0.16f * hash_unit((uint32_t)(sx / STONE_W), (uint32_t)course, 6);
+    float block = 0.88f + 0.16f * hash_unit(column, course, 6);
     float grain = 0.80f + 0.14f * value_noise(x, y, 32, 7)
                   + 0.10f * value_noise(x, y, 4, 8); /* two octaves */
     shade(granite, block * grain, rgb);

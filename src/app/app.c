@@ -17,15 +17,31 @@ double sr_app_now_ms(void)
     return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
 }
 
+bool sr_app_draw_frame(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err)
+{
+    double start = sr_app_now_ms();
+    if (stats)
+        *stats = (sr_stats){ 0 };
+    sr_framebuffer_clear(fb, 0);
+    bool ok = sr_draw(fb, desc, stats, err);
+    *ms = sr_app_now_ms() - start;
+    return ok;
+}
+
 static int compare_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
 }
 
+void sr_app_sort_doubles(double *v, size_t n)
+{
+    qsort(v, n, sizeof *v, compare_double);
+}
+
 void sr_app_median_min(double *ms, int n, double *median, double *min)
 {
-    qsort(ms, (size_t)n, sizeof *ms, compare_double);
+    sr_app_sort_doubles(ms, (size_t)n);
     *min = ms[0];
     *median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
 }

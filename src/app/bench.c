@@ -45,11 +45,7 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
         { 0 },
     };
     int positional = 0;
-    if (!sr_options_parse(table, argc, argv, 2, NULL, 0, &positional, help, err))
-        return false;
-    if (*help)
-        sr_options_print_help(stdout, USAGE, table);
-    return true;
+    return sr_options_parse(table, USAGE, argc, argv, 2, NULL, 0, &positional, help, err);
 }
 
 static void print_header(void)

@@ -15,12 +15,8 @@ static bool time_frames(const sr_bench_scene *s, const sr_bench_run *run, sr_fra
         sr_bench_scene_camera(s, f < 0 ? 0 : f, run->frames, &cam);
         sr_camera_view(&cam, desc.view);
         sr_camera_projection(&cam, (float)s->width / (float)s->height, desc.projection);
-        double start = sr_app_now_ms();
-        r->stats = (sr_stats){ 0 };
-        sr_framebuffer_clear(fb, 0);
-        ok = sr_draw(fb, &desc, &r->stats, err);
-        if (f >= 0)
-            ms[f] = sr_app_now_ms() - start;
+        double warm_up;
+        ok = sr_app_draw_frame(fb, &desc, &r->stats, f < 0 ? &warm_up : &ms[f], err);
     }
     if (ok)
         sr_app_median_min(ms, run->frames, &r->median, &r->min);

@@ -164,8 +164,19 @@ static bool parse_one(const sr_option *table, int argc, char **argv, int *i, sr_
     return true;
 }
 
-bool sr_options_parse(const sr_option *table, int argc, char **argv, int first, const char **positional,
-                      int max_positional, int *positional_count, bool *help, sr_error *err)
+static void print_help(FILE *out, const char *usage, const sr_option *table)
+{
+    fprintf(out, "%s\n\noptions:\n", usage);
+    for (const sr_option *o = table; o->name; o++) {
+        char left[64];
+        snprintf(left, sizeof left, "%s%s%s", o->name, o->value_name ? " " : "", o->value_name ? o->value_name : "");
+        fprintf(out, "  %-24s %s\n", left, o->help);
+    }
+    fprintf(out, "  %-24s %s\n", "--help", "this text");
+}
+
+bool sr_options_parse(const sr_option *table, const char *usage, int argc, char **argv, int first,
+                      const char **positional, int max_positional, int *positional_count, bool *help, sr_error *err)
 {
     *positional_count = 0;
     *help = false;
@@ -183,16 +194,7 @@ bool sr_options_parse(const sr_option *table, int argc, char **argv, int first, 
             return sr_error_set(err, "unexpected argument '%s'", argv[i]);
         }
     }
+    if (*help)
+        print_help(stdout, usage, table);
     return true;
-}
-
-void sr_options_print_help(FILE *out, const char *usage, const sr_option *table)
-{
-    fprintf(out, "%s\n\noptions:\n", usage);
-    for (const sr_option *o = table; o->name; o++) {
-        char left[64];
-        snprintf(left, sizeof left, "%s%s%s", o->name, o->value_name ? " " : "", o->value_name ? o->value_name : "");
-        fprintf(out, "  %-24s %s\n", left, o->help);
-    }
-    fprintf(out, "  %-24s %s\n", "--help", "this text");
 }

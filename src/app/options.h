@@ -38,10 +38,9 @@ typedef struct sr_option {
 } sr_option;
 
 /* Parses argv[first..argc). Non-option words go to positional (at most
- * max_positional). Sets *help when --help or -h is given. */
-bool sr_options_parse(const sr_option *table, int argc, char **argv, int first, const char **positional,
-                      int max_positional, int *positional_count, bool *help, sr_error *err);
-
-void sr_options_print_help(FILE *out, const char *usage, const sr_option *table);
+ * max_positional). When --help or -h is given, sets *help and prints usage
+ * and the table's help on stdout (once all of argv has parsed). */
+bool sr_options_parse(const sr_option *table, const char *usage, int argc, char **argv, int first,
+                      const char **positional, int max_positional, int *positional_count, bool *help, sr_error *err);
 
 #endif

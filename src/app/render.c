@@ -7,7 +7,6 @@
 #include "scene_setup.h"
 
 #define MAX_FRAMES 100000
-#define RENDER_OPTION_COUNT (SR_SCENE_OPTION_COUNT + 6) /* own options and the terminator */
 
 typedef struct render_job {
     sr_scene_setup scene;
@@ -31,9 +30,8 @@ static void job_defaults(render_job *job)
     sr_scene_setup_defaults(&job->scene);
 }
 
-static void render_options(render_job *job, sr_option *table)
+static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
-    sr_scene_setup_options(&job->scene, table);
     const sr_option own[] = {
         { "--out", SR_OPT_STRING, &job->out_path, "FILE.png", "write the color image (8-bit RGB)" },
         { "--depth", SR_OPT_STRING, &job->depth_path, "FILE.pfm", "write the raw float32 depth buffer (PFM)" },
@@ -42,32 +40,15 @@ static void render_options(render_job *job, sr_option *table)
         { "--stats", SR_OPT_FLAG, &job->stats, NULL, "print one JSON line of per-frame statistics" },
         { 0 },
     };
+    sr_option table[SR_SCENE_OPTION_COUNT + sizeof own / sizeof *own];
+    sr_scene_setup_options(&job->scene, table);
     memcpy(&table[SR_SCENE_OPTION_COUNT], own, sizeof own);
-}
-
-static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_error *err)
-{
-    sr_option table[RENDER_OPTION_COUNT];
-    render_options(job, table);
     int positional = 0;
-    if (!sr_options_parse(table, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
+    if (!sr_options_parse(table, USAGE, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
         return false;
-    if (*help)
-        sr_options_print_help(stdout, USAGE, table);
-    else if (positional != 1)
+    if (!*help && positional != 1)
         return sr_error_set(err, "render needs one MESH.obj (see softrast render --help)");
     return true;
-}
-
-/* A timed frame is what a viewer pays: clear color and depth, then the draw. */
-static bool draw_frame(sr_scene *scene, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err)
-{
-    double start = sr_app_now_ms();
-    *stats = (sr_stats){ 0 };
-    sr_framebuffer_clear(&scene->fb, 0x000000);
-    bool ok = sr_draw(&scene->fb, desc, stats, err);
-    *ms = sr_app_now_ms() - start;
-    return ok;
 }
 
 static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr_stats *stats,
@@ -76,9 +57,9 @@ static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr
     double *ms = malloc((size_t)frames * sizeof *ms), warm;
     if (!ms)
         return sr_error_set(err, "out of memory for %d frame times", frames);
-    bool ok = frames == 1 || draw_frame(scene, desc, stats, &warm, err);
+    bool ok = frames == 1 || sr_app_draw_frame(&scene->fb, desc, stats, &warm, err);
     for (int f = 0; ok && f < frames; f++)
-        ok = draw_frame(scene, desc, stats, &ms[f], err);
+        ok = sr_app_draw_frame(&scene->fb, desc, stats, &ms[f], err);
     if (ok)
         sr_app_median_min(ms, frames, &times->median, &times->min);
     free(ms);

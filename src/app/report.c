@@ -56,11 +56,7 @@ static bool draw_ids(const sr_bench_scene *s, const knob *k, int f, sr_framebuff
                           .subpixel_bits = k->subpixel_bits, .clip_precision = k->clip, .guard_band = k->guard };
     sr_camera_view(&cam, desc.view);
     sr_camera_projection(&cam, (float)fb->width / (float)fb->height, desc.projection);
-    double start = sr_app_now_ms();
-    sr_framebuffer_clear(fb, 0);
-    bool ok = sr_draw(fb, &desc, NULL, err);
-    *ms = sr_app_now_ms() - start;
-    return ok;
+    return sr_app_draw_frame(fb, &desc, NULL, ms, err);
 }
 
 static double standard_depth(const sr_framebuffer *fb, size_t i)

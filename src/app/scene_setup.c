@@ -25,7 +25,7 @@ void sr_scene_setup_defaults(sr_scene_setup *s)
 
 void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
 {
-    const sr_option entries[SR_SCENE_OPTION_COUNT] = {
+    const sr_option entries[] = {
         { "--size", SR_OPT_SIZE, s->size, "WxH", "framebuffer size (default 1280x720)", 1, SR_MAX_FRAMEBUFFER_SIDE },
         { "--eye", SR_OPT_DVEC3, s->eye, "X,Y,Z", "camera position (default: framed on the mesh from -z)", .seen = &s->eye_set },
         { "--target", SR_OPT_DVEC3, s->target, "X,Y,Z", "point looked at (default: the mesh's centre)", .seen = &s->target_set },
@@ -44,8 +44,8 @@ void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
         { "--threads", SR_OPT_INT, &s->threads, "N", "threads in all, the calling one included (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--simd", SR_OPT_CHOICE, &s->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
     };
-    for (int i = 0; i < SR_SCENE_OPTION_COUNT; i++)
-        table[i] = entries[i];
+    _Static_assert(sizeof entries / sizeof *entries == SR_SCENE_OPTION_COUNT, "SR_SCENE_OPTION_COUNT is the entries' count");
+    memcpy(table, entries, sizeof entries);
 }
 
 static bool shade_uses_texture(sr_shade shade)

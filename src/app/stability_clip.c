@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app.h"
 #include "stability.h"
 
 #define CLIPPED_TRIANGLES 100000 /* clipped triangles measured per case */
@@ -231,12 +232,6 @@ static int exact_clipper(void)
     return 0;
 }
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 bool sr_stability_clip_errors(const sr_stability_case *c, sr_stability_clip_stats out[SR_STABILITY_CLIPPERS],
                               sr_error *err)
 {
@@ -265,7 +260,7 @@ bool sr_stability_clip_errors(const sr_stability_case *c, sr_stability_clip_stat
     }
     for (int i = 0; i < SR_STABILITY_CLIPPERS; i++) {
         if (ok && out[i].triangles) {
-            qsort(errors[i], out[i].triangles, sizeof(double), compare_double);
+            sr_app_sort_doubles(errors[i], (size_t)out[i].triangles);
             out[i].p99 = errors[i][(size_t)(PERCENTILE * (double)(out[i].triangles - 1))];
         }
         free(errors[i]);

@@ -2,9 +2,9 @@
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
+#include "app.h"
 #include "stability.h"
 
 #define LARGE_CLIP_ERROR 1e-3 /* NDC: half a pixel on a 1000-pixel screen */
@@ -276,12 +276,6 @@ typedef struct depth_findings {
     int unordered;            /* standard cells with no ordered separation */
 } depth_findings;
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Standard z_ndc = (1 − near/d)·far/(far − near) moves near/d² per unit
  * of d, so one float step of depth spans s/d ≈ FLOAT_STEP·d/near. */
 static depth_findings depth_summary(const sr_stability_depth *d)
@@ -303,7 +297,7 @@ static depth_findings depth_summary(const sr_stability_depth *d)
                 gains[n++] = std / rev;
         }
     }
-    qsort(gains, (size_t)n, sizeof gains[0], compare_double);
+    sr_app_sort_doubles(gains, (size_t)n);
     out.median_gain = n ? gains[n / 2] : NAN;
     return out;
 }

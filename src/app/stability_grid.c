@@ -25,35 +25,14 @@ static void scratch_reset(sr_framebuffer *fb, size_t i)
     fb->depth[i] = INFINITY;
 }
 
-static int clamp_int(int64_t v, int lo, int hi)
-{
-    return (int)(v < lo ? lo : v > hi ? hi : v);
-}
-
-/* Pixels [x0, x1) × [y0, y1) that can hold the triangle, a pixel generous. */
-static sr_raster_rect triangle_box(const sr_screen_vertex tri[3], int width, int height)
-{
-    int64_t lo_x = tri[0].x, hi_x = tri[0].x, lo_y = tri[0].y, hi_y = tri[0].y;
-    for (int k = 1; k < 3; k++) {
-        lo_x = tri[k].x < lo_x ? tri[k].x : lo_x;
-        hi_x = tri[k].x > hi_x ? tri[k].x : hi_x;
-        lo_y = tri[k].y < lo_y ? tri[k].y : lo_y;
-        hi_y = tri[k].y > hi_y ? tri[k].y : hi_y;
-    }
-    return (sr_raster_rect){ clamp_int((lo_x >> SR_SUBPIXEL_BITS) - 1, 0, width),
-                             clamp_int((lo_y >> SR_SUBPIXEL_BITS) - 1, 0, height),
-                             clamp_int((hi_x >> SR_SUBPIXEL_BITS) + 2, 0, width),
-                             clamp_int((hi_y >> SR_SUBPIXEL_BITS) + 2, 0, height) };
-}
-
 /* The draw's observer: the fan triangle alone into the scratch buffer, then
- * its pixels into the counts. */
+ * its pixels (all within the box the rasterizer scans) into the counts. */
 static void count_triangle(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id)
 {
     (void)clipped;
     hit_counter *c = user;
     sr_framebuffer *fb = &c->scratch;
-    sr_raster_rect all = { 0, 0, fb->width, fb->height }, box = triangle_box(tri, fb->width, fb->height);
+    sr_raster_rect all = { 0, 0, fb->width, fb->height }, box = sr_raster_scan_box(tri, all, SR_SUBPIXEL_BITS);
     sr_shade_context none = { .layout = { .color = -1, .uv = -1, .normal = -1 } };
     int64_t area2 = sr_cull_area2(&tri[0], &tri[1], &tri[2]);
     sr_raster_triangle(fb, all, SR_SUBPIXEL_BITS, SR_SHADE_ID, &none, tri, area2, id);

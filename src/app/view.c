@@ -8,7 +8,6 @@
 
 #define DEFAULT_SCENE "assets/room.obj"
 #define MAX_FRAMES 100000
-#define VIEW_OPTION_COUNT (SR_SCENE_OPTION_COUNT + 8) /* own options and the terminator */
 #define MAX_KEYS_TEXT 256
 #define TITLE_EVERY_MS 250.0
 
@@ -40,8 +39,6 @@ static const char USAGE[] =
 
 static bool parse_job(view_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
-    sr_option table[VIEW_OPTION_COUNT];
-    sr_scene_setup_options(&job->scene, table);
     const sr_option own[] = {
         { "--script", SR_OPT_STRING, &job->script_path, "FILE", "fly the key frames in FILE (one line each: eye target up fov near far)" },
         { "--frames", SR_OPT_INT, &job->frames, "N", "frames of the scripted flight (default: one per key frame)", 1, MAX_FRAMES },
@@ -52,12 +49,12 @@ static bool parse_job(view_job *job, int argc, char **argv, bool *help, sr_error
         { "--overlays", SR_OPT_FLAG, &job->overlays, NULL, "draw the status line, help and wireframe on scripted frames too" },
         { 0 },
     };
+    sr_option table[SR_SCENE_OPTION_COUNT + sizeof own / sizeof *own];
+    sr_scene_setup_options(&job->scene, table);
     memcpy(&table[SR_SCENE_OPTION_COUNT], own, sizeof own);
     int positional = 0;
-    if (!sr_options_parse(table, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
+    if (!sr_options_parse(table, USAGE, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
         return false;
-    if (*help)
-        sr_options_print_help(stdout, USAGE, table);
     if (!job->script_path && (job->shots_dir || job->grab_dir || job->frames || job->no_window || job->overlays))
         return sr_error_set(err, "--frames, --shots, --grab, --no-window and --overlays go with --script");
     if (job->grab_dir && job->no_window)

@@ -130,11 +130,7 @@ bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
         desc.observer = collect_wire;
         desc.observer_user = v;
     }
-    double start = sr_app_now_ms();
-    v->stats = (sr_stats){ 0 };
-    sr_framebuffer_clear(&v->scene.fb, 0x000000);
-    bool ok = sr_draw(&v->scene.fb, &desc, &v->stats, err);
-    v->frame_ms = sr_app_now_ms() - start;
+    bool ok = sr_app_draw_frame(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
     show_image(v);
     if (ok && overlays)
         draw_overlays(v);
