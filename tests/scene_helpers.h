@@ -79,6 +79,14 @@ static inline void scene_mesh_make(sr_mesh *mesh, const scene_mesh_arrays *a)
     mesh->topology = a->topology;
 }
 
+/* One triangle (0, 1, 2) of positions only. */
+static inline void scene_triangle_make(sr_mesh *mesh, const float pos[3][3])
+{
+    const uint32_t idx[3] = { 0, 1, 2 };
+    scene_mesh_make(mesh, &(scene_mesh_arrays){ .vertex_count = 3, .positions = pos, .index_count = 3,
+                                                .indices = idx });
+}
+
 /* A triangle list of `triangles` slots and `vertices` positions, zeroed, for
  * tests that fill positions and indices themselves. */
 static inline void scene_mesh_alloc(sr_mesh *mesh, uint32_t vertices, uint32_t triangles, bool colors)

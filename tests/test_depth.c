@@ -332,10 +332,8 @@ Test(depth, depth_of_a_triangle_cut_by_near_and_far_stays_in_unit_range)
 {
     sr_camera cam = scene_camera(0, 0, 0, 0, 0, 1, 60.0f, 0.5f, 20.0f);
     const float pos[3][3] = { { -0.6f, -0.3f, -5.0f }, { 0.0f, 0.4f, 60.0f }, { 0.7f, -0.35f, -4.0f } };
-    const uint32_t idx[3] = { 0, 1, 2 };
     sr_mesh mesh;
-    scene_mesh_make(&mesh, &(scene_mesh_arrays){ .vertex_count = 3, .positions = pos, .index_count = 3,
-                                                 .indices = idx });
+    scene_triangle_make(&mesh, pos);
     sr_framebuffer fb;
     scene_fb_make(&fb, VIEW_W, VIEW_H);
     sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_DEPTH, .cull = SR_CULL_NONE };

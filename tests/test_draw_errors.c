@@ -87,8 +87,7 @@ Test(draw, fails_on_texture_shading_without_a_texture_or_uvs)
     const uint32_t idx[3] = { 0, 1, 2 };
     scene_mesh_make(&with_uvs, &(scene_mesh_arrays){ .vertex_count = 3, .positions = pos, .uvs = uv,
                                                      .index_count = 3, .indices = idx });
-    scene_mesh_make(&without_uvs, &(scene_mesh_arrays){ .vertex_count = 3, .positions = pos, .index_count = 3,
-                                                        .indices = idx });
+    scene_triangle_make(&without_uvs, pos);
     expect_draw_fails(&(sr_draw_desc){ .mesh = &with_uvs, .shade = SR_SHADE_TEXTURE }, "texture");
     expect_draw_fails(&(sr_draw_desc){ .mesh = &with_uvs, .shade = SR_SHADE_TEXTURE, .texture = &(sr_texture){ 0 } },
                       "texture");
@@ -158,10 +157,8 @@ Test(draw, fails_on_an_unknown_mode)
 Test(draw, fails_on_color_shading_without_colors)
 {
     const float pos[3][3] = { { 2, 2, 0.5f }, { 30, 2, 0.5f }, { 2, 30, 0.5f } };
-    const uint32_t idx[3] = { 0, 1, 2 };
     sr_mesh mesh;
-    scene_mesh_make(&mesh, &(scene_mesh_arrays){ .vertex_count = 3, .positions = pos, .index_count = 3,
-                                                 .indices = idx });
+    scene_triangle_make(&mesh, pos);
     expect_draw_fails(&(sr_draw_desc){ .mesh = &mesh, .shade = SR_SHADE_COLOR }, "color");
     sr_mesh_free(&mesh);
 }

@@ -111,41 +111,36 @@ Test(framebuffer, depth_range_is_false_when_nothing_was_written)
     sr_framebuffer_destroy(&fb);
 }
 
+/* The gray image of a 2x2 depth plane, pixel by pixel against expected. */
+static void expect_depth_gray_2x2(const float depth[4], const uint32_t expected[4])
+{
+    float plane[4];
+    memcpy(plane, depth, sizeof plane);
+    uint32_t color[4] = { 0 };
+    sr_framebuffer fb = { .width = 2, .height = 2, .color = color, .depth = plane };
+    uint32_t gray[4];
+    sr_framebuffer_depth_to_gray(&fb, gray);
+    for (int i = 0; i < 4; i++)
+        cr_expect_eq(gray[i], expected[i], "gray[%d] = %#08x, want %#08x", i, gray[i], expected[i]);
+}
+
 /* 2x2: near 0.25 → 255, far 0.75 → 48, 0.375 → 255 - 0.25 * 207 = 203.25 → 203,
  * cleared → black. All values are exact binary fractions. */
 Test(framebuffer, depth_to_gray_maps_near_white_far_48_background_black)
 {
-    float depth[4] = { 0.25f, SR_DEPTH_CLEAR, 0.75f, 0.375f };
-    uint32_t color[4] = { 0 };
-    sr_framebuffer fb = { .width = 2, .height = 2, .color = color, .depth = depth };
-    uint32_t gray[4];
-    sr_framebuffer_depth_to_gray(&fb, gray);
-    cr_expect_eq(gray[0], WHITE, "near: %#08x", gray[0]);
-    cr_expect_eq(gray[1], BACKGROUND, "background: %#08x", gray[1]);
-    cr_expect_eq(gray[2], GRAY_FAR, "far: %#08x", gray[2]);
-    cr_expect_eq(gray[3], 0xCBCBCBu, "quarter: %#08x", gray[3]);
+    /* near, cleared, far, a quarter of the way */
+    expect_depth_gray_2x2((const float[4]){ 0.25f, SR_DEPTH_CLEAR, 0.75f, 0.375f },
+                          (const uint32_t[4]){ WHITE, BACKGROUND, GRAY_FAR, 0xCBCBCBu });
 }
 
 Test(framebuffer, depth_to_gray_equal_range_is_white)
 {
-    float depth[4] = { 0.5f, 0.5f, SR_DEPTH_CLEAR, 0.5f };
-    uint32_t color[4] = { 0 };
-    sr_framebuffer fb = { .width = 2, .height = 2, .color = color, .depth = depth };
-    uint32_t gray[4];
-    sr_framebuffer_depth_to_gray(&fb, gray);
-    uint32_t expected[4] = { WHITE, WHITE, BACKGROUND, WHITE };
-    for (int i = 0; i < 4; i++)
-        cr_expect_eq(gray[i], expected[i], "gray[%d] = %#08x", i, gray[i]);
+    expect_depth_gray_2x2((const float[4]){ 0.5f, 0.5f, SR_DEPTH_CLEAR, 0.5f },
+                          (const uint32_t[4]){ WHITE, WHITE, BACKGROUND, WHITE });
 }
 
 Test(framebuffer, depth_to_gray_non_finite_is_background)
 {
-    float depth[4] = { NAN, 0.25f, INFINITY, 0.75f };
-    uint32_t color[4] = { 0 };
-    sr_framebuffer fb = { .width = 2, .height = 2, .color = color, .depth = depth };
-    uint32_t gray[4];
-    sr_framebuffer_depth_to_gray(&fb, gray);
-    uint32_t expected[4] = { BACKGROUND, WHITE, BACKGROUND, GRAY_FAR };
-    for (int i = 0; i < 4; i++)
-        cr_expect_eq(gray[i], expected[i], "gray[%d] = %#08x", i, gray[i]);
+    expect_depth_gray_2x2((const float[4]){ NAN, 0.25f, INFINITY, 0.75f },
+                          (const uint32_t[4]){ BACKGROUND, WHITE, BACKGROUND, GRAY_FAR });
 }

@@ -60,29 +60,33 @@ static uint32_t le32(const unsigned char *p)
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
-Test(image, pfm_header_is_exact)
+static const char pfm_header[] = "Pf\n3 2\n-1\n";
+#define PFM_HEADER_LEN (sizeof pfm_header - 1)
+
+/* Writes pfm_depth (3 x 2) as d.pfm and returns the file, checked to be the
+ * header and six floats long. The caller frees. */
+static unsigned char *write_and_read_pfm(void)
 {
     char path[512];
     fill_pfm_depth();
     cr_assert(sr_image_write_pfm(temp_path(path, sizeof path, "d.pfm"), pfm_depth, 3, 2, NULL));
     size_t size;
     unsigned char *data = read_file(path, &size);
-    const char header[] = "Pf\n3 2\n-1\n";
-    size_t header_len = sizeof header - 1;
-    cr_assert_eq(size, header_len + 6 * 4, "file is %zu bytes", size);
-    cr_expect_eq(memcmp(data, header, header_len), 0, "header is '%.*s'", (int)header_len, data);
+    cr_assert_eq(size, PFM_HEADER_LEN + 6 * 4, "file is %zu bytes", size);
+    return data;
+}
+
+Test(image, pfm_header_is_exact)
+{
+    unsigned char *data = write_and_read_pfm();
+    cr_expect_eq(memcmp(data, pfm_header, PFM_HEADER_LEN), 0, "header is '%.*s'", (int)PFM_HEADER_LEN, data);
     free(data);
 }
 
 Test(image, pfm_rows_are_stored_bottom_first_bit_exact)
 {
-    char path[512];
-    fill_pfm_depth();
-    cr_assert(sr_image_write_pfm(temp_path(path, sizeof path, "d.pfm"), pfm_depth, 3, 2, NULL));
-    size_t size;
-    unsigned char *data = read_file(path, &size);
-    const size_t header_len = strlen("Pf\n3 2\n-1\n");
-    cr_assert_eq(size, header_len + 6 * 4);
+    unsigned char *data = write_and_read_pfm();
+    const size_t header_len = PFM_HEADER_LEN;
     const int stored_row_to_image_row[2] = { 1, 0 };
     for (int r = 0; r < 2; r++) {
         for (int x = 0; x < 3; x++) {

@@ -64,6 +64,8 @@ Test(knobs, explicit_defaults_draw_exactly_the_default_image)
                                    .guard_band = 1.0f },
                    ids1, depth1, &err),
               "%s", err.message);
+    static const uint32_t blank[W * H];
+    cr_assert_gt(differing(ids0, blank), 0, "the default draw drew nothing to compare");
     cr_assert_eq(memcmp(ids0, ids1, sizeof ids0), 0);
     cr_assert_eq(memcmp(depth0, depth1, sizeof depth0), 0);
 }

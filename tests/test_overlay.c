@@ -60,9 +60,11 @@ static void print_canvas(const sr_canvas *c)
     }
 }
 
-/* Compares the whole canvas with a picture: '#' is INK, '.' untouched. */
+/* Compares the whole guarded canvas with a picture: '#' is INK, '.'
+ * untouched, and nothing written around it. */
 static void assert_picture(const sr_canvas *c, const char *const *rows)
 {
+    assert_guard_intact(c);
     for (int y = 0; y < c->height; y++) {
         cr_assert_eq((int)strlen(rows[y]), c->width, "picture row %d has the wrong width", y);
         for (int x = 0; x < c->width; x++) {
@@ -125,7 +127,6 @@ Test(overlay, glyph_A_draws_its_exact_pixels_at_the_position)
                           ".........",
                           ".........",
                       });
-    assert_guard_intact(c);
 }
 
 Test(overlay, glyph_1_draws_its_exact_pixels_at_the_position)

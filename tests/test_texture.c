@@ -42,6 +42,17 @@ static void expect_load_fails(const char *path, sr_error *err)
     cr_expect_eq(strncmp(err->message, path, strlen(path)), 0, "message: %s", err->message);
 }
 
+/* Writes bytes as name in the temp dir: loading it fails, naming the path and
+ * saying it is not a readable image. */
+static void expect_unreadable_image(const char *name, const void *bytes, size_t size)
+{
+    char path[512];
+    sr_error err = { "" };
+    write_bytes(temp_path(path, sizeof path, name), bytes, size);
+    expect_load_fails(path, &err);
+    cr_expect_not_null(strstr(err.message, "not a readable image"), "%s: message: %s", name, err.message);
+}
+
 Test(texture, load_returns_written_texels_top_row_first)
 {
     char path[512];
@@ -85,35 +96,25 @@ Test(texture, load_missing_file_fails_with_message_starting_with_path)
 
 Test(texture, load_non_image_fails_with_message)
 {
-    char path[512];
-    sr_error err = { "" };
     const char garbage[] = "this is not a PNG file at all \x01\x02\x03\xff";
-    write_bytes(temp_path(path, sizeof path, "garbage.png"), garbage, sizeof garbage);
-    expect_load_fails(path, &err);
-    cr_expect_not_null(strstr(err.message, "not a readable image"), "message: %s", err.message);
+    expect_unreadable_image("garbage.png", garbage, sizeof garbage);
 }
 
 Test(texture, load_truncated_png_fails_without_crash)
 {
     char path[512];
-    sr_error err = { "" };
     cr_assert(sr_image_write_png(temp_path(path, sizeof path, "full.png"), pixels, 4, 3, NULL));
     unsigned char head[TRUNCATED_PNG_BYTES];
     FILE *f = fopen(path, "rb");
     cr_assert_not_null(f);
     cr_assert_eq(fread(head, 1, sizeof head, f), sizeof head);
     fclose(f);
-    write_bytes(temp_path(path, sizeof path, "cut.png"), head, sizeof head);
-    expect_load_fails(path, &err);
-    cr_expect_not_null(strstr(err.message, "not a readable image"), "message: %s", err.message);
+    expect_unreadable_image("cut.png", head, sizeof head);
 }
 
 Test(texture, load_empty_file_fails_with_message)
 {
-    char path[512];
-    sr_error err = { "" };
-    write_bytes(temp_path(path, sizeof path, "empty.png"), "", 0);
-    expect_load_fails(path, &err);
+    expect_unreadable_image("empty.png", "", 0);
 }
 
 Test(texture, free_zeroes_struct)

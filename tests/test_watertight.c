@@ -129,6 +129,7 @@ Test(watertight, fan_of_random_spokes_covers_each_pixel_once)
 {
     enum { N = 29 };
     test_rng rng = { SEED };
+    int fans = 0;
     for (int round = 0; round < 8; round++) {
         pt c = { 64 * ONE + rng_range(&rng, -4 * ONE, 4 * ONE),
                  64 * ONE + rng_range(&rng, -4 * ONE, 4 * ONE) };
@@ -152,7 +153,9 @@ Test(watertight, fan_of_random_spokes_covers_each_pixel_once)
         char name[96];
         snprintf(name, sizeof name, "watertight_fan_of_random_spokes_%d", round);
         check_fan(name, c, spokes, N);
+        fans++;
     }
+    cr_assert_geq(fans, 4, "only %d of 8 random fans were star-shaped and checked", fans);
 }
 
 /* An n x n grid of cells over [lo, hi]^2 (subpixels), each cell split along
