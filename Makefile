@@ -8,7 +8,7 @@ PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-missing-field-initializers
 CFLAGS  ?= -O2 -g
 SAN     := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude $(PKG_CFLAGS) -MMD -MP
+ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) -Iinclude -Isrc $(PKG_CFLAGS) -MMD -MP
 # After CFLAGS on every compile line, so a CFLAGS of the user's cannot undo
 # it: no fused multiply-adds (clang fuses by default where the target has
 # FMA, as AVX-512 does) and, on 32-bit x86, SSE arithmetic instead of x87's
@@ -20,16 +20,19 @@ endif
 LIBS    = $(PKG_LIBS) -lm -lpthread
 PREFIX  ?= /usr/local
 
-LIB_SRC  := $(wildcard src/core/*.c src/pipeline/*.c src/target/*.c src/io/*.c src/scene/*.c)
-APP_SRC  := $(wildcard src/app/*.c)
-TEST_SRC := $(wildcard tests/*.c)
+# The rooms: the library (core and files), the studies (bench, report,
+# stability) as a library of their own, the program (src/app, the viewer in
+# src/app/view) and the tests. Each room is an archive; binaries link rooms,
+# never objects picked by hand.
+LIB_SRC     := $(wildcard src/core/*.c src/pipeline/*.c src/target/*.c src/io/*.c src/scene/*.c)
+STUDIES_SRC := $(wildcard src/studies/*.c)
+APP_SRC     := $(filter-out src/app/main.c,$(wildcard src/app/*.c src/app/view/*.c))
+TEST_SRC    := $(wildcard tests/*.c)
+ALL_SRC     := $(LIB_SRC) $(STUDIES_SRC) $(APP_SRC) src/app/main.c $(TEST_SRC)
 
-LIB_OBJ      := $(LIB_SRC:%.c=build/%.o)
-APP_OBJ      := $(APP_SRC:%.c=build/%.o)
-TEST_OBJ     := $(TEST_SRC:%.c=build/%.o)
-SAN_LIB_OBJ  := $(LIB_SRC:%.c=build/san/%.o)
-SAN_APP_OBJ  := $(APP_SRC:%.c=build/san/%.o)
-SAN_TEST_OBJ := $(TEST_SRC:%.c=build/san/%.o)
+# The archives each build (optimised in build/, sanitised in build/san/) makes.
+ARCHIVES = $(1)/libsoftrast.a $(1)/libsoftrast-studies.a
+APP_LIBS = $(1)/libsoftrast-app.a $(1)/libsoftrast-studies.a $(1)/libsoftrast.a
 
 # The 8-lane span kernels are built for AVX2 (chosen at run time when the
 # CPU has it); never -mfma, which would round differently from the scalar path.
@@ -51,41 +54,43 @@ all: deps build/softrast
 deps:
 	@sh tools/deps.sh
 
-build/%.o: %.c
+# Every compile waits for the packages (order-only: it never forces a rebuild).
+build/%.o: %.c | deps
 	@mkdir -p $(@D)
 	@echo "  CC      $<"
 	@$(CC) $(ALL_CFLAGS) $(CFLAGS) $(STRICT_FP) -c $< -o $@
 
-build/san/%.o: %.c
+build/san/%.o: %.c | deps
 	@mkdir -p $(@D)
 	@echo "  CC san  $<"
 	@$(CC) $(ALL_CFLAGS) $(SAN) $(STRICT_FP) -c $< -o $@
 
-build/libsoftrast.a: $(LIB_OBJ)
-	@rm -f $@
-	@echo "  AR      $@"
-	@ar rcs $@ $^
+# One archive per room, in both builds: $(1) is build or build/san.
+define room_archive
+$(1)/$(2): $(patsubst %.c,$(1)/%.o,$(3))
+	@rm -f $$@
+	@echo "  AR      $$@"
+	@ar rcs $$@ $$^
+endef
+$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast.a,$(LIB_SRC))))
+$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-studies.a,$(STUDIES_SRC))))
+$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-app.a,$(APP_SRC))))
 
-build/san/libsoftrast.a: $(SAN_LIB_OBJ)
-	@rm -f $@
-	@echo "  AR      $@"
-	@ar rcs $@ $^
-
-build/softrast: $(APP_OBJ) build/libsoftrast.a
+build/softrast: build/src/app/main.o $(call APP_LIBS,build)
 	@echo "  LINK    $@"
 	@$(CC) $(CFLAGS) $^ $(LIBS) -o $@
 
-build/san/softrast: $(SAN_APP_OBJ) build/san/libsoftrast.a
+build/san/softrast: build/san/src/app/main.o $(call APP_LIBS,build/san)
 	@echo "  LINK    $@"
 	@$(CC) $(SAN) $^ $(LIBS) -o $@
 
-# Tests link the program's modules too (all but main), to drive the viewer's
-# event handling and option parsing directly.
-build/softrast-tests: $(TEST_OBJ) $(filter-out %/main.o,$(APP_OBJ)) build/libsoftrast.a
+# Tests link the program's room too, to drive the viewer's event handling and
+# option parsing directly.
+build/softrast-tests: $(TEST_SRC:%.c=build/%.o) $(call APP_LIBS,build)
 	@echo "  LINK    $@"
 	@$(CC) $(CFLAGS) $^ $(LIBS) -lcriterion -lgmp -o $@
 
-build/san/softrast-tests: $(SAN_TEST_OBJ) $(filter-out %/main.o,$(SAN_APP_OBJ)) build/san/libsoftrast.a
+build/san/softrast-tests: $(TEST_SRC:%.c=build/san/%.o) $(call APP_LIBS,build/san)
 	@echo "  LINK    $@"
 	@$(CC) $(SAN) $^ $(LIBS) -lcriterion -lgmp -o $@
 
@@ -98,7 +103,9 @@ run: all
 # (tolerating the open clip_precision finding of fuzz/known/, see fuzz/README.md).
 test: deps test-fast test-san test-assets test-install fuzz-regressions fuzz-smoke-ci
 
-fuzz-smoke-ci:
+# After the regressions: both build the fuzzers, and two makes linking one
+# binary at once under -j leave it half-written.
+fuzz-smoke-ci: fuzz-regressions
 	@$(MAKE) --no-print-directory fuzz-smoke FUZZ_TOLERATE=clip_precision
 
 # Tests read data relative to the project root; the binaries find it via SOFTRAST_ROOT.
@@ -187,4 +194,4 @@ clean:
 include tools/bench-compare.mk
 include fuzz/fuzz.mk
 
--include $(LIB_OBJ:.o=.d) $(APP_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(SAN_LIB_OBJ:.o=.d) $(SAN_APP_OBJ:.o=.d) $(SAN_TEST_OBJ:.o=.d)
+-include $(ALL_SRC:%.c=build/%.d) $(ALL_SRC:%.c=build/san/%.d)

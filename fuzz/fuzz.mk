@@ -24,10 +24,10 @@ FUZZ_MAX_LEN_obj  := 8192
 FUZZ_PKG_CFLAGS = $(shell pkg-config --cflags cglm sdl2 SDL2_image 2>/dev/null)
 FUZZ_PKG_LIBS   = $(shell pkg-config --libs cglm sdl2 SDL2_image 2>/dev/null)
 FUZZ_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -g -O1 -fsanitize=address,undefined \
-              -fno-sanitize-recover=all -fno-omit-frame-pointer -Iinclude $(FUZZ_PKG_CFLAGS) -MMD -MP
+              -fno-sanitize-recover=all -fno-omit-frame-pointer -Iinclude -Isrc $(FUZZ_PKG_CFLAGS) -MMD -MP
 FUZZ_WARN   = -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-missing-field-initializers
 
-FUZZ_LIB_SRC := $(wildcard src/core/*.c src/pipeline/*.c src/target/*.c src/io/*.c src/scene/*.c)
+FUZZ_LIB_SRC := $(LIB_SRC)
 FUZZ_LIB_OBJ := $(FUZZ_LIB_SRC:%.c=build/fuzz/%.o)
 FUZZ_BINS    := $(FUZZ_TARGETS:%=build/fuzz/fuzz_%)
 

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../src/app/overlay.h"
+#include "app/view/overlay.h"
 
 #define BG 0x00405060u
 #define INK 0x00ffffffu

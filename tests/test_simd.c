@@ -8,7 +8,7 @@
 #include <criterion/criterion.h>
 #include <string.h>
 
-#include "../src/pipeline/raster_setup.h"
+#include "pipeline/raster_setup.h"
 #include "scene_helpers.h"
 #include "softrast/softrast.h"
 

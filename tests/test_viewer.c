@@ -4,7 +4,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "../src/app/viewer.h"
+#include "app/view/viewer.h"
 
 static sr_viewer viewer;
 

@@ -7,9 +7,7 @@ GL_PKGS        := egl opengl
 GL_CFLAGS       = $(shell pkg-config --cflags $(GL_PKGS) 2>/dev/null)
 GL_LIBS         = $(shell pkg-config --libs $(GL_PKGS) 2>/dev/null || echo -lEGL -lOpenGL)
 BENCH_GL_OBJ   := $(patsubst %.c,build/%.o,$(wildcard tools/bench_gl*.c))
-# The scenes come from the same code `softrast bench` runs.
-BENCH_GL_APP   := build/src/app/bench_scenes.o build/src/app/view_script.o build/src/app/options.o \
-                  build/src/app/app.o
+# The scenes come from the same studies library `softrast bench` runs.
 BENCH_COMPARE_ARGS ?=
 
 .PHONY: bench-compare deps-gl
@@ -22,10 +20,10 @@ deps-gl:
 	@sh tools/deps.sh $(GL_DEBS)
 
 # The GL headers come with deps-gl; order-only, so they do not force a rebuild.
-$(BENCH_GL_OBJ): ALL_CFLAGS += -Isrc/app $(GL_CFLAGS)
+$(BENCH_GL_OBJ): ALL_CFLAGS += $(GL_CFLAGS)
 $(BENCH_GL_OBJ): | deps-gl
 
-build/bench-gl: $(BENCH_GL_OBJ) $(BENCH_GL_APP) build/libsoftrast.a
+build/bench-gl: $(BENCH_GL_OBJ) $(call APP_LIBS,build)
 	@echo "  LINK    $@"
 	@$(CC) $(CFLAGS) $^ $(LIBS) $(GL_LIBS) -o $@
 

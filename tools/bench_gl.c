@@ -5,8 +5,8 @@
 #include <stdlib.h>
 
 #include "bench_gl.h"
-#include "options.h"
-#include "scene_setup.h"
+#include "app/options.h"
+#include "app/scene_setup.h"
 
 #define DEFAULT_FRAMES 10
 #define DEFAULT_FILL_FRAMES 3 /* fill takes llvmpipe 0.7 s a frame */

@@ -19,7 +19,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "bench_scenes.h"
+#include "studies/bench_scenes.h"
 #include "softrast/softrast.h"
 
 /* One renderer's result over the timed frames of one scene. */

@@ -5,12 +5,12 @@
 #include <string.h>
 
 #include "app.h"
-#include "bench_scenes.h"
-#include "bench_time.h"
+#include "studies/bench_scenes.h"
+#include "studies/bench_time.h"
 #include "options.h"
-#include "report.h"
+#include "studies/report.h"
 #include "scene_setup.h"
-#include "stability.h"
+#include "studies/stability.h"
 
 #define MAX_FRAMES 10000
 #define SCALING_POINTS 4

@@ -1,30 +1,25 @@
+/* timing.c — the clock, one timed frame, medians. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
 
-#include "app.h"
+#include "timing.h"
 
-int sr_app_fail(const char *message)
-{
-    fprintf(stderr, "softrast: error: %s\n", message);
-    return 1;
-}
-
-double sr_app_now_ms(void)
+double sr_study_now_ms(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
 }
 
-bool sr_app_draw_frame(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err)
+bool sr_study_draw_frame(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err)
 {
-    double start = sr_app_now_ms();
+    double start = sr_study_now_ms();
     if (stats)
         *stats = (sr_stats){ 0 };
     sr_framebuffer_clear(fb, 0);
     bool ok = sr_draw(fb, desc, stats, err);
-    *ms = sr_app_now_ms() - start;
+    *ms = sr_study_now_ms() - start;
     return ok;
 }
 
@@ -34,14 +29,14 @@ static int compare_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-void sr_app_sort_doubles(double *v, size_t n)
+void sr_study_sort_doubles(double *v, size_t n)
 {
     qsort(v, n, sizeof *v, compare_double);
 }
 
-void sr_app_median_min(double *ms, int n, double *median, double *min)
+void sr_study_median_min(double *ms, int n, double *median, double *min)
 {
-    sr_app_sort_doubles(ms, (size_t)n);
+    sr_study_sort_doubles(ms, (size_t)n);
     *min = ms[0];
     *median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
 }

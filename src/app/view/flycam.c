@@ -1,6 +1,6 @@
 #include <math.h>
 
-#include "softrast/flycam.h"
+#include "flycam.h"
 
 sr_flycam sr_flycam_from_camera(const sr_camera *cam)
 {

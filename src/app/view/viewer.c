@@ -2,7 +2,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
+#include "app/app.h"
+#include "studies/timing.h"
 #include "overlay.h"
 #include "viewer.h"
 
@@ -130,7 +131,7 @@ bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
         desc.observer = collect_wire;
         desc.observer_user = v;
     }
-    bool ok = sr_app_draw_frame(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
+    bool ok = sr_study_draw_frame(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
     show_image(v);
     if (ok && overlays)
         draw_overlays(v);

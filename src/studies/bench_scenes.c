@@ -9,7 +9,7 @@
 
 /* Key frames through the room (eye, target, up, fov, near, far): through the
  * west pillar and wall, back in at a slant, up through the ceiling. */
-static float FLY_KEYS[][SR_SCRIPT_NUMBERS] = {
+static float FLY_KEYS[][SR_FLIGHT_NUMBERS] = {
     { -8.0f, 3.0f, -8.0f, 4.0f, 1.5f, 6.0f, 0, 1, 0, 75, 0.1f, 100 },
     { 0.0f, 2.0f, 0.0f, -20.0f, 2.0f, 0.0f, 0, 1, 0, 75, 0.1f, 100 },
     { -5.0f, 2.0f, 0.0f, -25.0f, 2.0f, 0.0f, 0, 1, 0, 75, 0.1f, 100 },
@@ -20,7 +20,7 @@ static float FLY_KEYS[][SR_SCRIPT_NUMBERS] = {
 
 /* The room again with stiff planes (near 1e-6, far 1e9): along the west wall,
  * on its plane, a hair above the floor. */
-static float STIFF_KEYS[][SR_SCRIPT_NUMBERS] = {
+static float STIFF_KEYS[][SR_FLIGHT_NUMBERS] = {
     { -8.0f, 3.0f, -8.0f, 4.0f, 1.5f, 6.0f, 0, 1, 0, 75, 1e-6f, 1e9f },
     { -10.0f, 2.0f, 0.0f, 10.0f, 2.0f, 0.0f, 0, 1, 0, 75, 1e-6f, 1e9f },
     { 0.0f, 1e-6f, 0.0f, 5.0f, 0.0f, 5.0f, 0, 1, 0, 120, 1e-6f, 1e9f },
@@ -52,7 +52,7 @@ bool sr_bench_fly(sr_bench_scene *s, sr_error *err)
 {
     scene_init(s, "fly", "the room on a path through walls and pillars, lambert + texture", SR_SHADE_LAMBERT,
                1920, 1080);
-    s->path = (sr_script){ .count = sizeof FLY_KEYS / sizeof FLY_KEYS[0], .keys = FLY_KEYS };
+    s->path = (sr_flight){ .count = sizeof FLY_KEYS / sizeof FLY_KEYS[0], .keys = FLY_KEYS };
     return sr_obj_load(&s->mesh, "assets/room.obj", err) && sr_texture_load(&s->texture, "assets/room.png", err);
 }
 
@@ -60,7 +60,7 @@ bool sr_bench_stiff(sr_bench_scene *s, sr_error *err)
 {
     scene_init(s, "stiff", "the room with near 1e-6 and far 1e9, on and beside its walls and floor",
                SR_SHADE_LAMBERT, 1920, 1080);
-    s->path = (sr_script){ .count = sizeof STIFF_KEYS / sizeof STIFF_KEYS[0], .keys = STIFF_KEYS };
+    s->path = (sr_flight){ .count = sizeof STIFF_KEYS / sizeof STIFF_KEYS[0], .keys = STIFF_KEYS };
     return sr_obj_load(&s->mesh, "assets/room.obj", err) && sr_texture_load(&s->texture, "assets/room.png", err);
 }
 
@@ -97,7 +97,7 @@ void sr_bench_scene_free(sr_bench_scene *s)
 void sr_bench_scene_camera(const sr_bench_scene *s, int f, int n, sr_camera *cam)
 {
     if (s->path.count)
-        sr_script_camera(&s->path, f, n, cam);
+        sr_flight_camera(&s->path, f, n, cam);
     else
         *cam = s->camera;
 }

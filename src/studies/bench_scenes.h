@@ -5,7 +5,7 @@
 #define SOFTRAST_APP_BENCH_SCENES_H
 
 #include "softrast/softrast.h"
-#include "view_script.h"
+#include "scene/flight.h"
 
 #define SR_BENCH_DENSE_TRIANGLES 1048576u
 
@@ -16,7 +16,7 @@ typedef struct sr_bench_scene {
     sr_shade shade;
     int width, height;
     sr_camera camera;  /* the fixed camera, when path.count is 0 */
-    sr_script path;    /* a camera path over the timed frames */
+    sr_flight path;    /* a camera path over the timed frames */
 } sr_bench_scene;
 
 /* A torus of about `triangles` triangles filling most of the frame. */

@@ -1,6 +1,6 @@
 #include <stdlib.h>
 
-#include "app.h"
+#include "timing.h"
 #include "bench_time.h"
 
 static bool time_frames(const sr_bench_scene *s, const sr_bench_run *run, sr_framebuffer *fb, sr_workspace *ws,
@@ -16,10 +16,10 @@ static bool time_frames(const sr_bench_scene *s, const sr_bench_run *run, sr_fra
         sr_camera_view(&cam, desc.view);
         sr_camera_projection(&cam, (float)s->width / (float)s->height, desc.projection);
         double warm_up;
-        ok = sr_app_draw_frame(fb, &desc, &r->stats, f < 0 ? &warm_up : &ms[f], err);
+        ok = sr_study_draw_frame(fb, &desc, &r->stats, f < 0 ? &warm_up : &ms[f], err);
     }
     if (ok)
-        sr_app_median_min(ms, run->frames, &r->median, &r->min);
+        sr_study_median_min(ms, run->frames, &r->median, &r->min);
     return ok;
 }
 

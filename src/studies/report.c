@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app.h"
+#include "timing.h"
 #include "bench_scenes.h"
 #include "report.h"
 #include "report_svg.h"
@@ -56,7 +56,7 @@ static bool draw_ids(const sr_bench_scene *s, const knob *k, int f, sr_framebuff
                           .subpixel_bits = k->subpixel_bits, .clip_precision = k->clip, .guard_band = k->guard };
     sr_camera_view(&cam, desc.view);
     sr_camera_projection(&cam, (float)fb->width / (float)fb->height, desc.projection);
-    return sr_app_draw_frame(fb, &desc, NULL, ms, err);
+    return sr_study_draw_frame(fb, &desc, NULL, ms, err);
 }
 
 static double standard_depth(const sr_framebuffer *fb, size_t i)
@@ -98,7 +98,7 @@ static bool measure_knob(const sr_bench_scene *s, const sr_framebuffer *refs, co
     }
     if (ok) {
         double min;
-        sr_app_median_min(ms, timed, &out->ms, &min);
+        sr_study_median_min(ms, timed, &out->ms, &min);
         out->id_error = (double)differ / ((double)scene_n * s->width * s->height);
     }
     if (!ws || !ms)

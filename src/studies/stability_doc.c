@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "app.h"
+#include "timing.h"
 #include "stability.h"
 
 #define LARGE_CLIP_ERROR 1e-3 /* NDC: half a pixel on a 1000-pixel screen */
@@ -297,7 +297,7 @@ static depth_findings depth_summary(const sr_stability_depth *d)
                 gains[n++] = std / rev;
         }
     }
-    sr_app_sort_doubles(gains, (size_t)n);
+    sr_study_sort_doubles(gains, (size_t)n);
     out.median_gain = n ? gains[n / 2] : NAN;
     return out;
 }

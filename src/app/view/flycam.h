@@ -10,7 +10,7 @@
 
 #include <cglm/cglm.h>
 
-#include "camera.h"
+#include "softrast/camera.h"
 
 #define SR_FLYCAM_MAX_PITCH 89.9f /* degrees */
 

@@ -2,8 +2,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "app.h"
-#include "view_script.h"
+#include "app/app.h"
+#include "scene/flight.h"
 #include "viewer.h"
 
 #define DEFAULT_SCENE "assets/room.obj"
@@ -178,8 +178,8 @@ static bool press_keys(const char *names, sr_viewer *v, sr_error *err)
 
 static bool fly_script(const view_job *job, sr_viewer *v, window *w, sr_error *err)
 {
-    sr_script script;
-    if (!sr_script_load(&script, job->script_path, err))
+    sr_flight script;
+    if (!sr_flight_load(&script, job->script_path, err))
         return false;
     int frames = job->frames ? job->frames : script.count;
     bool ok = true;
@@ -188,7 +188,7 @@ static bool fly_script(const view_job *job, sr_viewer *v, window *w, sr_error *e
         SDL_Event e;
         while (w->window && SDL_PollEvent(&e))
             sr_viewer_handle_event(v, &e);
-        sr_script_camera(&script, f, frames, &v->setup.camera);
+        sr_flight_camera(&script, f, frames, &v->setup.camera);
         print_frame_camera(f, &v->setup.camera);
         ok = sr_viewer_draw(v, job->overlays, err) && (!job->shots_dir || save_frame(job->shots_dir, "frame", f, v, err));
         if (ok && w->window)
@@ -196,7 +196,7 @@ static bool fly_script(const view_job *job, sr_viewer *v, window *w, sr_error *e
         snprintf(grab, sizeof grab, "%s/window-%04d.png", job->grab_dir ? job->grab_dir : ".", f);
         ok = ok && (!job->grab_dir || window_grab(w, v, grab, err));
     }
-    sr_script_free(&script);
+    sr_flight_free(&script);
     return ok;
 }
 

@@ -4,25 +4,25 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "view_script.h"
+#include "scene/flight.h"
 
 #define LINE_MAX_CHARS 4096
 
 /* Reads exactly twelve finite numbers from one line; false if it has more,
  * fewer, or anything that is not a number. */
-static bool parse_key(char *line, float key[SR_SCRIPT_NUMBERS])
+static bool parse_key(char *line, float key[SR_FLIGHT_NUMBERS])
 {
     int n = 0;
     for (char *tok = strtok(line, " \t,\r\n"); tok; tok = strtok(NULL, " \t,\r\n")) {
         char *end;
         errno = 0;
         double v = strtod(tok, &end);
-        if (n == SR_SCRIPT_NUMBERS || *end != '\0' || end == tok || errno == ERANGE || !isfinite(v) ||
+        if (n == SR_FLIGHT_NUMBERS || *end != '\0' || end == tok || errno == ERANGE || !isfinite(v) ||
             fabs(v) > 3.0e38)
             return false;
         key[n++] = (float)v;
     }
-    return n == SR_SCRIPT_NUMBERS;
+    return n == SR_FLIGHT_NUMBERS;
 }
 
 static bool is_blank(const char *line)
@@ -30,11 +30,11 @@ static bool is_blank(const char *line)
     return line[strspn(line, " \t\r\n")] == '\0';
 }
 
-static bool add_key(sr_script *s, const char *path, int line_no, char *line, sr_error *err)
+static bool add_key(sr_flight *s, const char *path, int line_no, char *line, sr_error *err)
 {
-    if (s->count == SR_SCRIPT_MAX_KEYS)
-        return sr_error_set(err, "%s:%d: more than %d key frames", path, line_no, SR_SCRIPT_MAX_KEYS);
-    float (*grown)[SR_SCRIPT_NUMBERS] = realloc(s->keys, (size_t)(s->count + 1) * sizeof *s->keys);
+    if (s->count == SR_FLIGHT_MAX_KEYS)
+        return sr_error_set(err, "%s:%d: more than %d key frames", path, line_no, SR_FLIGHT_MAX_KEYS);
+    float (*grown)[SR_FLIGHT_NUMBERS] = realloc(s->keys, (size_t)(s->count + 1) * sizeof *s->keys);
     if (!grown)
         return sr_error_set(err, "%s:%d: out of memory", path, line_no);
     s->keys = grown;
@@ -45,7 +45,7 @@ static bool add_key(sr_script *s, const char *path, int line_no, char *line, sr_
     return true;
 }
 
-static bool read_keys(sr_script *s, FILE *f, const char *path, sr_error *err)
+static bool read_keys(sr_flight *s, FILE *f, const char *path, sr_error *err)
 {
     char line[LINE_MAX_CHARS];
     for (int line_no = 1; fgets(line, sizeof line, f); line_no++) {
@@ -60,33 +60,33 @@ static bool read_keys(sr_script *s, FILE *f, const char *path, sr_error *err)
     return s->count > 0 ? true : sr_error_set(err, "%s: no key frames", path);
 }
 
-bool sr_script_load(sr_script *s, const char *path, sr_error *err)
+bool sr_flight_load(sr_flight *s, const char *path, sr_error *err)
 {
-    *s = (sr_script){ 0 };
+    *s = (sr_flight){ 0 };
     FILE *f = fopen(path, "r");
     if (!f)
         return sr_error_set(err, "%s: cannot open: %s", path, strerror(errno));
     bool ok = read_keys(s, f, path, err);
     fclose(f);
     if (!ok)
-        sr_script_free(s);
+        sr_flight_free(s);
     return ok;
 }
 
-void sr_script_free(sr_script *s)
+void sr_flight_free(sr_flight *s)
 {
     free(s->keys);
-    *s = (sr_script){ 0 };
+    *s = (sr_flight){ 0 };
 }
 
-void sr_script_camera(const sr_script *s, int frame, int frames, sr_camera *cam)
+void sr_flight_camera(const sr_flight *s, int frame, int frames, sr_camera *cam)
 {
     double pos = frames > 1 ? (double)frame * (s->count - 1) / (frames - 1) : 0.0;
     int k = (int)pos < s->count - 1 ? (int)pos : s->count - 1;
     float t = (float)(pos - k);
     const float *a = s->keys[k], *b = s->keys[k + 1 < s->count ? k + 1 : k];
-    float v[SR_SCRIPT_NUMBERS];
-    for (int i = 0; i < SR_SCRIPT_NUMBERS; i++)
+    float v[SR_FLIGHT_NUMBERS];
+    for (int i = 0; i < SR_FLIGHT_NUMBERS; i++)
         v[i] = t == 0.0f ? a[i] : a[i] + t * (b[i] - a[i]);
     *cam = (sr_camera){ .eye = { v[0], v[1], v[2] }, .target = { v[3], v[4], v[5] }, .up = { v[6], v[7], v[8] },
                         .fov_deg = v[9], .near = v[10], .far = v[11] };

@@ -1,4 +1,4 @@
-/* view_script.h — scripted camera flights for `softrast view --script`.
+/* flight.h — scripted camera flights for `softrast view --script`.
  *
  * A script is text, one key frame per line: twelve numbers
  *     eye_x eye_y eye_z  target_x target_y target_z  up_x up_y up_z  fov near far
@@ -6,26 +6,26 @@
  * skipped. Frame i of N sits at key position i·(K−1)/(N−1) and interpolates
  * every number linearly between the two keys around it.
  */
-#ifndef SOFTRAST_APP_VIEW_SCRIPT_H
-#define SOFTRAST_APP_VIEW_SCRIPT_H
+#ifndef SOFTRAST_SCENE_FLIGHT_H
+#define SOFTRAST_SCENE_FLIGHT_H
 
 #include <stdbool.h>
 
 #include "softrast/camera.h"
 #include "softrast/error.h"
 
-#define SR_SCRIPT_NUMBERS 12
-#define SR_SCRIPT_MAX_KEYS 100000
+#define SR_FLIGHT_NUMBERS 12
+#define SR_FLIGHT_MAX_KEYS 100000
 
-typedef struct sr_script {
+typedef struct sr_flight {
     int count;
-    float (*keys)[SR_SCRIPT_NUMBERS];
-} sr_script;
+    float (*keys)[SR_FLIGHT_NUMBERS];
+} sr_flight;
 
-bool sr_script_load(sr_script *s, const char *path, sr_error *err);
-void sr_script_free(sr_script *s);
+bool sr_flight_load(sr_flight *s, const char *path, sr_error *err);
+void sr_flight_free(sr_flight *s);
 
 /* The camera of frame `frame` of `frames` (perspective). */
-void sr_script_camera(const sr_script *s, int frame, int frames, sr_camera *cam);
+void sr_flight_camera(const sr_flight *s, int frame, int frames, sr_camera *cam);
 
 #endif

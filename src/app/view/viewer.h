@@ -10,8 +10,8 @@
 
 #include <SDL.h>
 
-#include "scene_setup.h"
-#include "softrast/flycam.h"
+#include "app/scene_setup.h"
+#include "flycam.h"
 
 #define SR_VIEWER_MIN_NEAR 1e-6f
 #define SR_VIEWER_MAX_FAR 1e30f
