@@ -24,15 +24,17 @@ PREFIX  ?= /usr/local
 # stability) as a library of their own, the program (src/app, the viewer in
 # src/app/view) and the tests. Each room is an archive; binaries link rooms,
 # never objects picked by hand.
-LIB_SRC     := $(wildcard src/core/*.c src/pipeline/*.c src/target/*.c src/io/*.c src/scene/*.c)
+CORE_SRC    := $(wildcard src/core/*.c src/pipeline/*.c src/target/*.c src/scene/*.c)
+FILES_SRC   := $(wildcard src/io/*.c)
+LIB_SRC     := $(CORE_SRC) $(FILES_SRC)
 STUDIES_SRC := $(wildcard src/studies/*.c)
 APP_SRC     := $(filter-out src/app/main.c,$(wildcard src/app/*.c src/app/view/*.c))
 TEST_SRC    := $(wildcard tests/*.c)
 ALL_SRC     := $(LIB_SRC) $(STUDIES_SRC) $(APP_SRC) src/app/main.c $(TEST_SRC)
 
-# The archives each build (optimised in build/, sanitised in build/san/) makes.
-ARCHIVES = $(1)/libsoftrast.a $(1)/libsoftrast-studies.a
-APP_LIBS = $(1)/libsoftrast-app.a $(1)/libsoftrast-studies.a $(1)/libsoftrast.a
+# What the program, the tests and the tools link, in build $(1) (build/ or
+# build/san/): every room, internal symbols included.
+APP_LIBS = $(1)/libsoftrast-app.a $(1)/libsoftrast-studies.a $(1)/libsoftrast-files.a $(1)/libsoftrast-core.a
 
 # The 8-lane span kernels are built for AVX2 (chosen at run time when the
 # CPU has it); never -mfma, which would round differently from the scalar path.
@@ -65,6 +67,23 @@ build/san/%.o: %.c | deps
 	@echo "  CC san  $<"
 	@$(CC) $(ALL_CFLAGS) $(SAN) $(STRICT_FP) -c $< -o $@
 
+# The library's objects export only what the public headers mark SR_API.
+$(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden
+
+# The installed libraries: the room's objects linked into one and every
+# hidden symbol made local, so an embedder sees the public API alone. The
+# files library carries its own local copy of the core's error formatting.
+define public_archive
+build/public/$(1): $(patsubst %.c,build/%.o,$(2))
+	@mkdir -p $$(@D)
+	@echo "  PUBLIC  $$@"
+	@ld -r $$^ -o $$(@:.a=.o)
+	@objcopy --localize-hidden $$(@:.a=.o)
+	@rm -f $$@ && ar rcs $$@ $$(@:.a=.o) && rm $$(@:.a=.o)
+endef
+$(eval $(call public_archive,libsoftrast.a,$(CORE_SRC)))
+$(eval $(call public_archive,libsoftrast-files.a,$(FILES_SRC) src/core/error.c))
+
 # One archive per room, in both builds: $(1) is build or build/san.
 define room_archive
 $(1)/$(2): $(patsubst %.c,$(1)/%.o,$(3))
@@ -72,7 +91,8 @@ $(1)/$(2): $(patsubst %.c,$(1)/%.o,$(3))
 	@echo "  AR      $$@"
 	@ar rcs $$@ $$^
 endef
-$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast.a,$(LIB_SRC))))
+$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-core.a,$(CORE_SRC))))
+$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-files.a,$(FILES_SRC))))
 $(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-studies.a,$(STUDIES_SRC))))
 $(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-app.a,$(APP_SRC))))
 
@@ -158,25 +178,38 @@ build/gen-assets: $(GEN_SRC) tools/gen_assets.h
 
 VERSION := 0.1.0
 
-# The library, its headers, the program and a pkg-config file under PREFIX.
-install: build/softrast build/libsoftrast.a
+# The libraries (core, and files on SDL2_image), their three headers, the
+# program with its data, and a pkg-config file per library, under PREFIX.
+PUBLIC_LIBS := build/public/libsoftrast.a build/public/libsoftrast-files.a
+install: build/softrast $(PUBLIC_LIBS)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/softrast
 	install -m 755 build/softrast $(DESTDIR)$(PREFIX)/bin/softrast
-	install -m 644 build/libsoftrast.a $(DESTDIR)$(PREFIX)/lib/libsoftrast.a
+	install -m 644 $(PUBLIC_LIBS) $(DESTDIR)$(PREFIX)/lib/
 	install -m 644 include/softrast/*.h $(DESTDIR)$(PREFIX)/include/softrast/
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' tools/softrast.pc.in \
-		> $(DESTDIR)$(PREFIX)/lib/pkgconfig/softrast.pc
+	for pc in softrast softrast-files; do \
+	  sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' tools/$$pc.pc.in \
+	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/$$pc.pc; done
 
-# Installs into a scratch prefix and builds the embedding example against the
-# installed copy, the way a user of the library would.
+# Installs into a scratch prefix and builds the examples against the
+# installed copy, the way a user of the library would: the one that only
+# draws links the core alone (no SDL anywhere on its link line or in the
+# binary), the one that reads an OBJ and writes a PNG links the files
+# library too. Every exported symbol must be declared in the headers.
 INSTALL_CHECK := $(CURDIR)/build/install-check
+INSTALL_PC     = PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig pkg-config
 test-install:
 	@rm -rf $(INSTALL_CHECK)
 	@$(MAKE) --no-print-directory install PREFIX=$(INSTALL_CHECK) >/dev/null
-	PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig $(CC) -std=c11 -Wall -Wextra -Werror \
-		examples/draw_into_buffer.c $$(PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig pkg-config --cflags --libs softrast) \
-		-o $(INSTALL_CHECK)/example
-	$(INSTALL_CHECK)/example $(INSTALL_CHECK)/example.png
+	sh tools/check-exports.sh $(INSTALL_CHECK)
+	@if $(INSTALL_PC) --libs --cflags softrast | grep -qi sdl; then \
+	   echo "softrast.pc names SDL: $$($(INSTALL_PC) --libs softrast)"; exit 1; fi
+	$(CC) -std=c11 -Wall -Wextra -Werror examples/draw_into_buffer.c \
+		$$($(INSTALL_PC) --cflags --libs softrast) -o $(INSTALL_CHECK)/draw_into_buffer
+	@if ldd $(INSTALL_CHECK)/draw_into_buffer | grep -qi sdl; then echo "draw_into_buffer links SDL"; exit 1; fi
+	$(INSTALL_CHECK)/draw_into_buffer $(INSTALL_CHECK)/draw_into_buffer.ppm
+	$(CC) -std=c11 -Wall -Wextra -Werror examples/render_obj.c \
+		$$($(INSTALL_PC) --cflags --libs softrast-files) -o $(INSTALL_CHECK)/render_obj
+	$(INSTALL_CHECK)/render_obj assets/cube.obj $(INSTALL_CHECK)/render_obj.png
 
 # Speed: the benchmark scenes, and error against time for every accuracy knob.
 bench: all

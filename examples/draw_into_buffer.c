@@ -2,10 +2,11 @@
  *
  * Build (after `make install`, or in the tree as the test suite does):
  *     cc -std=c11 draw_into_buffer.c $(pkg-config --cflags --libs softrast) -o draw
- * Run:  ./draw out.png
+ * Run:  ./draw out.ppm
  * It draws a lambert-shaded tetrahedron into a 320×240 framebuffer whose color
- * and depth arrays live on this program's stack, writes out.png, and exits
- * non-zero if nothing was drawn.
+ * and depth arrays are this program's own, writes them as a binary PPM with
+ * stdio (the core library reads and writes no files and needs no SDL), and
+ * exits non-zero if nothing was drawn.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +14,19 @@
 #include "softrast/softrast.h"
 
 enum { WIDTH = 320, HEIGHT = 240 };
+
+static bool write_ppm(const char *path, const uint32_t *pixels)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return false;
+    fprintf(f, "P6\n%d %d\n255\n", WIDTH, HEIGHT);
+    for (int i = 0; i < WIDTH * HEIGHT; i++) {
+        unsigned char rgb[3] = { pixels[i] >> 16 & 0xFF, pixels[i] >> 8 & 0xFF, pixels[i] & 0xFF };
+        fwrite(rgb, 1, 3, f);
+    }
+    return fclose(f) == 0;
+}
 
 static uint32_t color[WIDTH * HEIGHT];
 static float depth[WIDTH * HEIGHT];
@@ -40,11 +54,14 @@ int main(int argc, char **argv)
     sr_camera_projection(&cam, (float)WIDTH / HEIGHT, desc.projection);
 
     sr_stats stats = { 0 };
-    bool ok = sr_draw(&fb, &desc, &stats, &err) &&
-              (argc < 2 || sr_image_write_png(argv[1], fb.color, WIDTH, HEIGHT, &err));
+    bool ok = sr_draw(&fb, &desc, &stats, &err);
     free(mesh.normals); /* the only array softrast allocated for us */
     if (!ok) {
         fprintf(stderr, "%s\n", err.message);
+        return 1;
+    }
+    if (argc > 1 && !write_ppm(argv[1], fb.color)) {
+        perror(argv[1]);
         return 1;
     }
     printf("%llu triangles, %llu fragments\n", (unsigned long long)stats.triangles,

@@ -135,7 +135,8 @@ static void draw_and_check(const scene *sc, sr_shade shade, sr_cull cull, draw_r
 
     sr_draw_desc desc = {
         .mesh = &sc->mesh, .shade = shade, .cull = cull, .front = sc->front, .filter = sc->filter,
-        .texture = sc->has_texture ? &sc->texture : NULL, .observer = observe, .observer_user = run,
+        .texture = sc->has_texture ? &sc->texture : NULL,
+        .study = &(sr_draw_study){ .observer = observe, .observer_user = run },
     };
     glm_mat4_copy((vec4 *)sc->world, desc.world);
     glm_mat4_copy((vec4 *)sc->view, desc.view);

@@ -18,14 +18,7 @@
 #include <cglm/clipspace/persp_lh_zo.h>
 #include <cglm/clipspace/view_lh.h>
 
-#include "softrast/camera.h"
-#include "softrast/clip.h"
-#include "softrast/framebuffer.h"
-#include "softrast/mesh.h"
-#include "softrast/pipeline.h"
-#include "softrast/texture.h"
-#include "softrast/vertex.h"
-#include "softrast/viewport.h"
+#include "softrast_private.h"
 
 #include "fuzz_common.h" /* fail(), CHECK() */
 

@@ -29,10 +29,7 @@
 #include <cglm/clipspace/persp_lh_zo.h>
 #include <cglm/clipspace/view_lh.h>
 
-#include "softrast/framebuffer.h"
-#include "softrast/mesh.h"
-#include "softrast/obj.h"
-#include "softrast/pipeline.h"
+#include "softrast_private.h"
 
 #include "fuzz_common.h" /* fail(), CHECK() */
 

@@ -6,9 +6,7 @@
 #include <string.h>
 
 #include "case_format.h"
-#include "softrast/clip.h"
-#include "softrast/obj.h"
-#include "softrast/shapes.h"
+#include "softrast_private.h"
 
 #define CASE_LINE_MAX 4096
 #define CASE_TOKENS_MAX 64

@@ -15,10 +15,7 @@
 
 #include <cglm/cglm.h>
 
-#include "softrast/camera.h"
-#include "softrast/error.h"
-#include "softrast/mesh.h"
-#include "softrast/types.h"
+#include "softrast_private.h"
 
 #define CASE_PATH_MAX 512
 #define CASE_TEXT_MAX 256

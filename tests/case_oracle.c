@@ -8,9 +8,7 @@
 #include "case_oracle.h"
 #include "clip_helpers.h"
 #include "scene_helpers.h"
-#include "softrast/assemble.h"
-#include "softrast/clip.h"
-#include "softrast/vertex.h"
+#include "softrast_private.h"
 
 /* ---- stages 1 to 4, as pipeline.c runs them ---- */
 

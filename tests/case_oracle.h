@@ -22,9 +22,7 @@
 
 #include <cglm/cglm.h>
 
-#include "softrast/camera.h"
-#include "softrast/mesh.h"
-#include "softrast/types.h"
+#include "softrast_private.h"
 
 #define CASE_RAY_OFFSET (1.0 / 32.0) /* pixels between the centre and the other samples */
 

@@ -12,8 +12,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "softrast/clip.h"
-#include "softrast/viewport.h"
+#include "softrast_private.h"
 #include "test_rng.h"
 
 /* ---- random numbers (test_rng.h) -------------------------------------- */

@@ -177,8 +177,7 @@ static inline void scene_count_hits(sr_framebuffer *fb, sr_draw_desc *desc, scen
 {
     scene_hit_counter_init(c, fb);
     desc->shade = SR_SHADE_ID;
-    desc->observer = scene_hit_counter_observe;
-    desc->observer_user = c;
+    desc->study = &(sr_draw_study){ .observer = scene_hit_counter_observe, .observer_user = c };
     sr_error err = { "" };
     cr_assert(sr_draw(fb, desc, stats, &err), "sr_draw: %s", err.message);
     size_t stray = scene_hit_counter_finish(c);

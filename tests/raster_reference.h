@@ -19,7 +19,7 @@
 
 #include <criterion/criterion.h>
 
-#include "softrast/raster.h"
+#include "softrast_private.h"
 #include "scene_helpers.h"
 
 #define FB_W 64 /* powers of two: the pixel-space orthographic setup is exact */

@@ -28,12 +28,7 @@
 #include <cglm/clipspace/persp_lh_zo.h>
 #include <cglm/clipspace/view_lh.h>
 
-#include "softrast/camera.h"
-#include "softrast/framebuffer.h"
-#include "softrast/image.h"
-#include "softrast/mesh.h"
-#include "softrast/pipeline.h"
-#include "softrast/types.h"
+#include "softrast_private.h"
 #include "test_rng.h" /* deterministic random numbers */
 
 #define SCENE_BACKGROUND 0x000000u

@@ -148,8 +148,7 @@ static bool draw_observed(case_run *r)
     r->fans = (fan_report){ .width = c->width, .height = c->height, .z_slack = c->clip_tolerance,
                             .slack = 1 + (int64_t)ceil(c->clip_tolerance * side * SR_SUBPIXEL_ONE) };
     sr_draw_desc d = case_draw_desc(r);
-    d.observer = fan_observe;
-    d.observer_user = &r->fans;
+    d.study = &(sr_draw_study){ .observer = fan_observe, .observer_user = &r->fans };
     sr_error err = { "" };
     case_require(r, sr_draw(&r->fb, &d, &r->stats, &err), "%s: sr_draw failed: %s", c->path, err.message);
     return true;
@@ -198,8 +197,7 @@ static bool draw_counted(case_run *r)
     scene_hit_counter counter;
     scene_hit_counter_init(&counter, &r->fb);
     d.shade = SR_SHADE_ID;
-    d.observer = scene_hit_counter_observe;
-    d.observer_user = &counter;
+    d.study = &(sr_draw_study){ .observer = scene_hit_counter_observe, .observer_user = &counter };
     sr_error err = { "" };
     r->hits = counter.counts; /* freed by the run */
     case_require(r, sr_draw(&r->fb, &d, NULL, &err), "%s: counting sr_draw failed: %s", r->c->path, err.message);

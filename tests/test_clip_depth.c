@@ -10,11 +10,9 @@
 #include <math.h>
 #include <string.h>
 
-#include "softrast/camera.h"
+#include "softrast_private.h"
 #include "clip_helpers.h"
 #include "exact_cut.h"
-#include "softrast/clip.h"
-#include "softrast/viewport.h"
 
 #define EDGES 3000
 #define MODELS 5

@@ -8,7 +8,7 @@
 
 #include "clip_helpers.h"
 #include "exact_cut.h"
-#include "softrast/clip.h"
+#include "softrast_private.h"
 
 #define EDGES 4000
 

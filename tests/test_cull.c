@@ -117,8 +117,8 @@ Test(cull, every_fan_triangle_of_a_clipped_back_face_is_culled_and_counted)
     sr_framebuffer fb;
     scene_fb_make(&fb, FLAT, FLAT);
     int fans = 0;
-    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .observer = count_fan,
-                          .observer_user = &fans };
+    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE,
+                          .study = &(sr_draw_study){ .observer = count_fan, .observer_user = &fans } };
     scene_pixel_ortho(&desc, FLAT, FLAT);
     sr_stats stats = { 0 };
     cr_assert(sr_draw(&fb, &desc, &stats, NULL));

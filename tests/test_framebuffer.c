@@ -3,7 +3,7 @@
 
 #include <criterion/criterion.h>
 
-#include "softrast/framebuffer.h"
+#include "softrast_private.h"
 
 #define BACKGROUND 0x000000u
 #define WHITE 0xFFFFFFu

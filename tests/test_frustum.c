@@ -4,7 +4,7 @@
 #include <criterion/criterion.h>
 #include <string.h>
 
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 #define W 96
 #define H 64

@@ -7,7 +7,7 @@
 #include <SDL.h>
 #include <SDL_image.h>
 
-#include "softrast/image.h"
+#include "softrast_private.h"
 #include "temp_dir.h"
 
 /* PNG layout: 8-byte signature, then the IHDR chunk (length, "IHDR", width,

@@ -8,9 +8,7 @@
 
 #include "run_helpers.h"
 #include "scene_helpers.h"
-#include "softrast/obj.h"
-#include "softrast/shapes.h"
-#include "softrast/texture.h"
+#include "softrast_private.h"
 #include "temp_dir.h"
 
 #define WIDTH 320

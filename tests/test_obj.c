@@ -11,7 +11,7 @@
 
 #include <criterion/criterion.h>
 
-#include "softrast/obj.h"
+#include "softrast_private.h"
 
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)

@@ -13,7 +13,7 @@
 
 #include <criterion/criterion.h>
 
-#include "softrast/shade.h"
+#include "softrast_private.h"
 #include "scene_helpers.h"
 
 #define VIEW_W 96

@@ -1,7 +1,7 @@
 /* The generated shapes: closed, and wound so outward faces are front faces. */
 #include <criterion/criterion.h>
 
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 /* (b − a) × (c − a) must point along the outward normal at a: clockwise
  * seen from outside, left-handed. */

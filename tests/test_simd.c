@@ -9,8 +9,8 @@
 #include <string.h>
 
 #include "pipeline/raster_setup.h"
+#include "softrast_private.h"
 #include "scene_helpers.h"
-#include "softrast/softrast.h"
 
 #define SOUP_TRIANGLES 60
 #define SOUP_SEED 0x51D51D
@@ -56,7 +56,7 @@ static uint64_t draw_with(const sr_draw_desc *base, sr_simd simd, int threads, b
     sr_workspace *ws = sr_workspace_create();
     cr_assert_not_null(ws);
     sr_draw_desc desc = *base;
-    desc.simd = simd;
+    desc.study = &(sr_draw_study){ .simd = simd };
     desc.threads = threads;
     desc.workspace = ws;
     *stats = (sr_stats){ 0 };

@@ -7,9 +7,8 @@
 #include <SDL.h>
 #include <SDL_image.h>
 
-#include "softrast/image.h"
+#include "softrast_private.h"
 #include "temp_dir.h"
-#include "softrast/texture.h"
 
 /* Signature (8) + IHDR chunk (25) + a few bytes of the next chunk: a PNG cut
  * off before any pixel data. */

@@ -4,7 +4,7 @@
 #include <criterion/criterion.h>
 #include <string.h>
 
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 typedef struct drawn {
     sr_framebuffer fb;
@@ -136,7 +136,8 @@ Test(threads, observer_sees_every_drawn_triangle_once_in_order)
     sr_error err;
     cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 24, 12, &err), "%s", err.message);
     observed seen = { .in_order = true };
-    sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_ID, .observer = observe, .observer_user = &seen };
+    sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_ID,
+                          .study = &(sr_draw_study){ .observer = observe, .observer_user = &seen } };
     look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 1.0f);
     drawn out;
     draw_with_threads(&desc, 64, 64, false, 4, &out);

@@ -3,7 +3,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 static void transform_normal(const mat4 world, vec3 n, vec3 out)
 {

@@ -20,7 +20,7 @@
 #include <stdint.h>
 
 #include "studies/bench_scenes.h"
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 /* One renderer's result over the timed frames of one scene. */
 typedef struct bench_gl_timing {

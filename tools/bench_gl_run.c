@@ -73,7 +73,8 @@ static bool softrast_frame(softrast_side *sr, const sr_bench_scene *s, const ben
                            sr_error *err)
 {
     sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade, .threads = run->threads, .workspace = sr->ws,
-                          .texture = s->texture.texels ? &s->texture : NULL, .simd = run->simd };
+                          .texture = s->texture.texels ? &s->texture : NULL,
+                          .study = &(sr_draw_study){ .simd = run->simd } };
     bench_gl_frame_camera(s, f, run->frames, desc.view, desc.projection);
     clock_mark start = clock_now();
     sr->stats = (sr_stats){ 0 };

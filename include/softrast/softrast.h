@@ -1,41 +1,300 @@
-/* softrast.h — a software rasterizer that never breaks.
+/* softrast.h — a software rasterizer that never breaks: draw a triangle mesh
+ * into color and depth buffers you own, on the CPU.
  *
- * softrast draws indexed triangle meshes into a caller-owned framebuffer on
- * the CPU. Every triangle is clipped in homogeneous clip space against the six
- * planes -w <= x, y <= w, 0 <= z <= w (Sutherland–Hodgman, watertight cut
+ *     #include "softrast/softrast.h"     // cc … $(pkg-config --cflags --libs softrast)
+ *
+ *     uint32_t color[640 * 480]; float depth[640 * 480];
+ *     sr_framebuffer fb = { .width = 640, .height = 480, .color = color, .depth = depth };
+ *     sr_framebuffer_clear(&fb, 0x000000);
+ *
+ *     sr_camera cam = sr_camera_default();          // at -z, looking at the origin
+ *     sr_draw_desc desc = { .mesh = &mesh };        // every zero field is a default
+ *     sr_camera_view(&cam, desc.view);
+ *     sr_camera_projection(&cam, 640.0f / 480.0f, desc.projection);
+ *
+ *     sr_stats stats = { 0 };
+ *     sr_error err;
+ *     if (!sr_draw(&fb, &desc, &stats, &err))
+ *         fprintf(stderr, "%s\n", err.message);
+ *
+ * What happens inside: every triangle is clipped in homogeneous clip space
+ * against -w <= x, y <= w, 0 <= z <= w (Sutherland–Hodgman, watertight cut
  * vertices), fanned before the divide, snapped to 1/256 pixel, culled on its
  * exact area, rasterized with 64-bit edge functions and the top-left rule,
  * depth-tested on z_ndc (LESS, cleared to 1) and shaded with perspective-
- * correct varyings. Conventions (left-handed, Direct3D style) are in
- * docs/conventions.md; the stages are one header each:
+ * correct varyings. Conventions (left-handed, Direct3D style; column-vector
+ * cglm matrices, clip = P·V·W·p) are in docs/conventions.md.
  *
- *   vertex.h → assemble.h → clip.h → viewport.h → cull.h → raster.h → shade.h
- *
- * and pipeline.h ties them into one call, sr_draw. The caller owns every
- * buffer; functions that can fail on input return false with a one-line
- * sr_error. Non-finite or degenerate geometry is dropped and counted in
- * sr_stats, never drawn and never a crash.
+ * This header is the core library: it needs libc, libm, pthreads and cglm,
+ * nothing else. Files (OBJ meshes, PNG textures, PNG and PFM output) are in
+ * softrast/files.h (library softrast-files, on SDL2_image); measuring the
+ * pipeline itself (accuracy knobs, a per-triangle trace) in softrast/study.h.
+ * The caller owns every buffer; a function that can fail on input returns
+ * false with one line in an sr_error. Non-finite or degenerate geometry is
+ * dropped and counted in sr_stats, never drawn and never a crash.
  */
 #ifndef SOFTRAST_H
 #define SOFTRAST_H
 
-#include "assemble.h"
-#include "camera.h"
-#include "clip.h"
-#include "cull.h"
-#include "dmat4.h"
-#include "error.h"
-#include "framebuffer.h"
-#include "image.h"
-#include "mesh.h"
-#include "obj.h"
-#include "pipeline.h"
-#include "raster.h"
-#include "shade.h"
-#include "shapes.h"
-#include "texture.h"
-#include "types.h"
-#include "vertex.h"
-#include "viewport.h"
+#include <stdbool.h>
+#include <stdint.h>
+#include <cglm/cglm.h>
+
+#if defined(__GNUC__)
+#define SR_API __attribute__((visibility("default")))
+#else
+#define SR_API
+#endif
+
+/* ---- errors ------------------------------------------------------------ */
+
+/* One line, without the "softrast: error: " prefix a program adds; parse
+ * errors start with "FILE:LINE: ". Every function taking an sr_error * also
+ * takes NULL, which discards the message. */
+#define SR_ERROR_MAX 512
+typedef struct sr_error {
+    char message[SR_ERROR_MAX];
+} sr_error;
+
+/* ---- meshes ------------------------------------------------------------ */
+
+typedef enum sr_topology {
+    SR_TRIANGLE_LIST = 0, /* triangle k = (i[3k], i[3k+1], i[3k+2]) */
+    SR_TRIANGLE_STRIP     /* triangle k = (i[k], i[k+1], i[k+2]); odd k swaps its last two */
+} sr_topology;
+
+/* An indexed triangle mesh in plain arrays, positions in softrast's
+ * left-handed world. A triangle with a repeated index is degenerate and
+ * skipped (a strip's way of restarting); triangle ids count the slots of the
+ * topology from 0, degenerate ones included.
+ *
+ * Positions are float and relative to the double `origin` (world position =
+ * origin + position; zero makes them absolute): a mesh 1e7 from the world
+ * origin keeps its float precision that way, and the draw adds the origin in
+ * double (docs/precision.md). Bounds are relative to the origin too.
+ *
+ * A mesh built in code may point at arrays of its own (sr_mesh_free is then
+ * not for it); sr_mesh_alloc and the loaders make meshes that own theirs. */
+typedef struct sr_mesh {
+    uint32_t vertex_count;
+    vec3 *positions;
+    vec3 *normals; /* optional (NULL) */
+    vec2 *uvs;     /* optional; v = 0 is the bottom row of the texture */
+    vec3 *colors;  /* optional; linear 0..1 RGB */
+    uint32_t index_count;
+    uint32_t *indices;
+    sr_topology topology;
+    double origin[3];   /* world position = origin + position; zero: positions are absolute */
+    bool bounded;       /* bounds_lo/hi hold the positions' bounds (sr_mesh_update_bounds) */
+    vec3 bounds_lo, bounds_hi;
+    char *texture_path; /* a loader's: the used material's map_Kd, or NULL */
+} sr_mesh;
+
+/* Allocates zeroed arrays for the attributes asked for. False on overflow or
+ * out of memory (mesh left empty). */
+SR_API bool sr_mesh_alloc(sr_mesh *mesh, uint32_t vertex_count, uint32_t index_count, bool normals, bool uvs,
+                          bool colors, sr_error *err);
+SR_API void sr_mesh_free(sr_mesh *mesh);
+
+/* Axis-aligned bounds of the positions; false for a mesh with no vertices or
+ * with a non-finite position. */
+SR_API bool sr_mesh_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi);
+
+/* Stores the bounds in the mesh so a draw can skip clipping for a mesh
+ * inside the view and skip a mesh outside it. Call it again after moving
+ * positions (a mesh with stale bounds draws wrongly, one without bounds just
+ * draws without the shortcut). */
+SR_API void sr_mesh_update_bounds(sr_mesh *mesh);
+
+/* Sets where positions are measured from. False, with one line in err, if
+ * origin is not finite; the mesh is then unchanged. */
+SR_API bool sr_mesh_set_origin(sr_mesh *mesh, const double origin[3], sr_error *err);
+
+/* Fills in smooth vertex normals (area-weighted face normals, front faces
+ * clockwise as seen from outside) when the mesh has none. False if out of
+ * memory. The normals array is then the caller's to free. */
+SR_API bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err);
+
+/* Number of triangle slots the topology defines (ids run over these). */
+SR_API uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh);
+
+/* ---- textures ---------------------------------------------------------- */
+
+/* Sides up to this keep every texel index below 2^28 (the SIMD kernels'
+ * 32-bit lanes); loaders refuse larger images and a draw a larger texture. */
+#define SR_MAX_TEXTURE_SIDE 16384
+
+/* Texels 0x00RRGGBB, row 0 at the top of the image; wrap = repeat, uv (0, 0)
+ * is the bottom-left. Fill one with memory of your own, or load one
+ * (softrast/files.h). */
+typedef struct sr_texture {
+    int width, height;
+    uint32_t *texels; /* width * height, row-major, top row first */
+} sr_texture;
+
+/* ---- the framebuffer --------------------------------------------------- */
+
+/* Color is 0x00RRGGBB per pixel, row 0 at the top; depth is float32 z_ndc in
+ * [0, 1]. The framebuffer owns the depth convention: standard (the default)
+ * clears to 1.0 and keeps the nearer fragment with LESS; reversed_z clears to
+ * 0.0 and tests GREATER, for a camera with reversed_z, which spreads float
+ * precision evenly over distance. The caller owns the memory: either
+ * sr_framebuffer_create/destroy, or fill the struct with buffers of its own. */
+#define SR_MAX_FRAMEBUFFER_SIDE 16384
+#define SR_DEPTH_CLEAR 1.0f          /* standard: nothing drawn */
+#define SR_DEPTH_CLEAR_REVERSED 0.0f /* reversed_z: nothing drawn */
+
+typedef struct sr_framebuffer {
+    int width, height;
+    uint32_t *color; /* width * height */
+    float *depth;    /* width * height */
+    bool reversed_z; /* clear to 0, test GREATER */
+} sr_framebuffer;
+
+/* False (with a message) for a side < 1 or > SR_MAX_FRAMEBUFFER_SIDE, or out of memory. */
+SR_API bool sr_framebuffer_create(sr_framebuffer *fb, int width, int height, sr_error *err);
+SR_API void sr_framebuffer_destroy(sr_framebuffer *fb);
+/* Color to `color`, depth to the clear value of fb's convention. */
+SR_API void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color);
+
+/* The clear value of fb's depth convention. */
+SR_API float sr_framebuffer_depth_clear(const sr_framebuffer *fb);
+
+/* The range of depths actually written (finite and not the clear value); false if none. */
+SR_API bool sr_framebuffer_depth_range(const sr_framebuffer *fb, float *lo, float *hi);
+
+/* Depth as gray into out (width * height, 0x00RRGGBB): the written range
+ * maps from white (near) to dark gray (far), whichever the convention;
+ * background is black. */
+SR_API void sr_framebuffer_depth_to_gray(const sr_framebuffer *fb, uint32_t *out);
+
+/* The same view of a function of depth that increases with distance, such as
+ * the linear view distance (sr_camera_view_distance): the written range of
+ * map(depth) goes from white (smallest) to dark gray. */
+typedef double (*sr_depth_map)(float depth, const void *ctx);
+SR_API void sr_framebuffer_depth_to_gray_mapped(const sr_framebuffer *fb, sr_depth_map map, const void *ctx,
+                                                uint32_t *out);
+
+/* ---- the camera -------------------------------------------------------- */
+
+/* A 4x4 matrix in double, laid out as cglm's mat4 (m[column][row], column
+ * vectors), for large world coordinates; all zero in a desc: "not given". */
+typedef struct sr_dmat4 {
+    double m[4][4];
+} sr_dmat4;
+
+/* A look-at camera and its projection. Left-handed (+x right, +y up, +z
+ * forward): view = glm_lookat_lh, projection = glm_perspective_lh_zo
+ * (vertical fov) or glm_ortho_lh_zo, mapping view depth near → z_ndc 0 and
+ * far → 1. reversed_z maps near → 1 and far → 0 (draw into a reversed_z
+ * framebuffer); far = +inf (perspective only) puts the far plane at infinity.
+ *
+ * eye and target are float and relative to the double `origin` (world point
+ * = origin + eye; zero makes them absolute), so a camera 1e7 from the world
+ * origin still moves in small steps: put the origin at or near the eye, and
+ * give the draw sr_camera_view_d as view_d. */
+#define SR_CAMERA_FOV 60.0f
+#define SR_CAMERA_NEAR 0.1f
+#define SR_CAMERA_FAR 100.0f
+
+typedef struct sr_camera {
+    double origin[3];   /* eye and target are relative to it */
+    vec3 eye, target, up;
+    float fov_deg;      /* vertical */
+    float near, far;
+    float ortho_height; /* > 0: orthographic with this view height */
+    bool reversed_z;    /* near → z_ndc 1, far → 0 */
+} sr_camera;
+
+/* At -z looking at the origin, up +y, 60°, near 0.1, far 100. */
+SR_API sr_camera sr_camera_default(void);
+
+/* Points the camera from -z at the centre of [lo, hi] (relative to the
+ * camera's origin, as eye and target are), far enough back that the
+ * bounding sphere fits the vertical and horizontal fov. */
+SR_API void sr_camera_frame_bounds(sr_camera *cam, const vec3 lo, const vec3 hi, float aspect);
+
+/* False, with one line in err, for a camera no matrix can be built from. */
+SR_API bool sr_camera_check(const sr_camera *cam, sr_error *err);
+SR_API void sr_camera_view(const sr_camera *cam, mat4 out);
+/* look-at from eye to target, after a translation by -origin, in double. */
+SR_API void sr_camera_view_d(const sr_camera *cam, sr_dmat4 *out);
+SR_API void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out);
+
+/* The view-space distance along the view axis of a point stored with depth
+ * z_ndc (inverts the projection); camera is the sr_camera. Fits sr_depth_map. */
+SR_API double sr_camera_view_distance(float z_ndc, const void *camera);
+
+/* ---- the draw ---------------------------------------------------------- */
+
+typedef enum sr_shade {
+    SR_SHADE_LAMBERT = 0, /* one directional light on the albedo (texture, vertex color or gray) */
+    SR_SHADE_ID,          /* triangle id + 1 as 0xRRGGBB */
+    SR_SHADE_COLOR,       /* vertex colors */
+    SR_SHADE_NORMAL,      /* world normal mapped to 0.5 + 0.5 n */
+    SR_SHADE_TEXTURE,     /* texture at the interpolated uv */
+    SR_SHADE_DEPTH,       /* depth only; color is left as it was */
+    SR_SHADE_COUNT
+} sr_shade;
+
+typedef enum sr_cull { SR_CULL_BACK = 0, SR_CULL_FRONT, SR_CULL_NONE } sr_cull;
+typedef enum sr_front { SR_FRONT_CW = 0, SR_FRONT_CCW } sr_front;
+typedef enum sr_filter { SR_FILTER_BILINEAR = 0, SR_FILTER_NEAREST } sr_filter;
+
+/* Toward the light: from above, a little left and in front of a camera at -z. */
+#define SR_DEFAULT_LIGHT { -0.35f, 0.8f, -0.5f }
+
+/* What one draw did; sr_draw adds to it, so zero it first. */
+typedef struct sr_stats {
+    uint64_t triangles; /* assembled (non-degenerate) */
+    uint64_t rejected;  /* dropped whole: outside one plane, or non-finite */
+    uint64_t nonfinite; /* of those, dropped for NaN or inf in a position or a read varying,
+                           or a divide past float range */
+    uint64_t clipped;   /* crossed at least one plane */
+    uint64_t culled;    /* fan triangles dropped as facing away or zero area */
+    uint64_t drawn;     /* fan triangles rasterized */
+    uint64_t fragments; /* pixels that passed the depth test */
+    uint64_t cuts_float, cuts_double, cuts_exact; /* cut vertices by the precision the clipper used */
+} sr_stats;
+
+/* Scratch memory a draw reuses from frame to frame (transformed vertices,
+ * tile bins). Optional: a draw without one makes and frees its own. One
+ * workspace serves one draw at a time. */
+typedef struct sr_workspace sr_workspace;
+SR_API sr_workspace *sr_workspace_create(void); /* NULL when out of memory */
+SR_API void sr_workspace_destroy(sr_workspace *ws);
+
+/* softrast/study.h */
+typedef struct sr_draw_study sr_draw_study;
+
+/* Every zero field is a default: an all-zero matrix is the identity, shade 0
+ * is lambert, cull 0 is back, front 0 is clockwise, filter 0 is bilinear, a
+ * zero light direction is SR_DEFAULT_LIGHT, threads 0 is one. */
+typedef struct sr_draw_desc {
+    const sr_mesh *mesh;
+    mat4 world, view, projection;
+    /* Large worlds (docs/precision.md): the world and view in double (all
+     * zero: the float ones above), composed with the mesh's origin as
+     * P·V·W·T(origin) in double and rounded to float once. */
+    sr_dmat4 world_d, view_d;
+    sr_shade shade;
+    sr_cull cull;
+    sr_front front;
+    sr_filter filter;
+    const sr_texture *texture; /* required by texture shading; lambert uses it when given */
+    vec3 light_dir;            /* toward the light, world space */
+    int threads;               /* threads in all, the caller's included; 0 or 1: one */
+    sr_workspace *workspace;   /* optional */
+    const sr_draw_study *study; /* optional measurement knobs (softrast/study.h); NULL: the defaults */
+} sr_draw_desc;
+
+/* Draws the mesh into fb (which the caller clears). False, with a message,
+ * for a desc that cannot be drawn: no mesh, an index out of range, a shading
+ * mode whose inputs the mesh lacks (normals, uvs, colors, texture), a
+ * non-finite mesh origin. Bad geometry (NaN, inf, anything behind the eye)
+ * is not an error: it is dropped or clipped and counted in stats. With
+ * threads > 1 the screen is cut into 64-pixel tiles drawn in parallel; the
+ * image and depth are bit-identical for every thread count. */
+SR_API bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
 
 #endif

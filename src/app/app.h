@@ -2,7 +2,7 @@
 #ifndef SOFTRAST_APP_H
 #define SOFTRAST_APP_H
 
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 int sr_app_render(int argc, char **argv);
 int sr_app_view(int argc, char **argv);

@@ -12,7 +12,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
-#include "softrast/error.h"
+#include "softrast_private.h"
 
 typedef enum sr_option_kind {
     SR_OPT_FLOAT,  /* float *, within [lo, hi], or +inf if allow_infinity */

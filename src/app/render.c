@@ -94,16 +94,17 @@ static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_
 static bool render(render_job *job, sr_scene *scene, sr_error *err)
 {
     sr_draw_desc desc;
+    sr_draw_study study;
     sr_stats stats = { 0 };
     frame_times times = { 0 };
     if (!sr_scene_load(&job->scene, false, scene, err))
         return false;
     sr_scene_frame_camera(&job->scene, scene);
-    if (!sr_scene_desc(&job->scene, scene, &desc, err) ||
+    if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) ||
         !run_frames(job->frames, scene, &desc, &stats, &times, err) || !write_outputs(job, scene, err))
         return false;
     if (job->stats)
-        print_stats(job->frames, &times, &stats, desc.simd);
+        print_stats(job->frames, &times, &stats, study.simd);
     return true;
 }
 

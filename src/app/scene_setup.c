@@ -113,7 +113,8 @@ void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene)
     }
 }
 
-bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc *desc, sr_error *err)
+bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc *desc, sr_draw_study *study,
+                   sr_error *err)
 {
     if (!sr_camera_check(&s->camera, err))
         return false;
@@ -121,7 +122,8 @@ bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc 
     *desc = (sr_draw_desc){ .mesh = &scene->mesh, .shade = (sr_shade)s->shade, .cull = (sr_cull)s->cull,
                             .front = (sr_front)s->front, .filter = (sr_filter)s->filter,
                             .texture = scene->texture.texels ? &scene->texture : NULL,
-                            .threads = s->threads, .workspace = scene->workspace, .simd = (sr_simd)s->simd };
+                            .threads = s->threads, .workspace = scene->workspace, .study = study };
+    *study = (sr_draw_study){ .simd = (sr_simd)s->simd };
     glm_rotate_make(desc->world, glm_rad(s->rotate_y), (vec3){ 0.0f, 1.0f, 0.0f });
     sr_camera_view_d(&s->camera, &desc->view_d);
     sr_camera_projection(&s->camera, aspect, desc->projection);

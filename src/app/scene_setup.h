@@ -4,7 +4,7 @@
 #define SOFTRAST_APP_SCENE_SETUP_H
 
 #include "options.h"
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 #define SR_SCENE_OPTION_COUNT 17
 #define SR_MAX_THREAD_OPTION 64
@@ -57,7 +57,8 @@ void sr_scene_free(sr_scene *scene);
 void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene);
 
 /* The draw desc for s's camera and shading at the framebuffer's size. */
-bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc *desc, sr_error *err);
+bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc *desc, sr_draw_study *study,
+                   sr_error *err);
 
 /* True if the scene has what `shade` reads (normals, uvs + texture, colors). */
 bool sr_scene_supports(const sr_scene *scene, sr_shade shade);

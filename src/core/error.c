@@ -1,7 +1,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 
-#include "softrast/error.h"
+#include "error.h"
 
 bool sr_error_set(sr_error *err, const char *fmt, ...)
 {

@@ -6,7 +6,8 @@
 #include <SDL.h>
 #include <SDL_image.h>
 
-#include "softrast/image.h"
+#include "softrast/files.h"
+#include "core/error.h"
 
 #define RGB24_BYTES 3
 #define FLOAT32_BYTES 4

@@ -15,10 +15,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "softrast/obj.h"
+#include "softrast/files.h"
 
 #include "mtl.h"
 #include "obj_parse.h"
+#include "core/error.h"
+#include "mesh_origin.h"
 
 #define NONE UINT32_MAX            /* a corner without vt or vn */
 #define MAX_ITEMS (UINT32_MAX - 1) /* so every index fits in uint32_t and NONE stays free */

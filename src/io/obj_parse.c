@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "obj_parse.h"
+#include "core/error.h"
 
 /* Room for a few maximal lines per read, so compacting the unread tail to
  * the front costs little next to reading. */

@@ -12,7 +12,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "softrast/error.h"
+#include "core/error.h"
 
 #define SR_OBJ_MAX_LINE (64 * 1024) /* bytes, line end excluded */
 

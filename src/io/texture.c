@@ -8,7 +8,8 @@
 #include <SDL.h>
 #include <SDL_image.h>
 
-#include "softrast/texture.h"
+#include "softrast/files.h"
+#include "core/error.h"
 
 #define RGB_MASK 0x00FFFFFFu
 

@@ -1,6 +1,6 @@
 #include <string.h>
 
-#include "softrast/assemble.h"
+#include "assemble.h"
 
 bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3])
 {

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "draw_internal.h"
+#include "raster.h"
 
 typedef struct raster_phase {
     sr_draw_state *st;

@@ -4,7 +4,7 @@
 
 #include "clip_exact.h"
 #include "expansion.h"
-#include "softrast/clip.h"
+#include "clip.h"
 
 /* The rounding error of a + t(b − a) with t = d_in / (d_in − d_out) is at
  * most this many units in the last place of |a| + |t|(|a| + |b|): one each

@@ -2,6 +2,7 @@
 
 #include "clip_exact.h"
 #include "expansion.h"
+#include "clip.h"
 
 /* Two distances of SR_CLIP_DISTANCE_TERMS parts, each part times a float
  * coordinate as an exact product pair. */

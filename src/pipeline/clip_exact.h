@@ -7,7 +7,7 @@
 #ifndef SOFTRAST_CLIP_EXACT_H
 #define SOFTRAST_CLIP_EXACT_H
 
-#include "softrast/clip.h"
+#include "clip.h"
 
 /* The longest distance expansion: far under the depth model, w − a·w − b. */
 #define SR_CLIP_DISTANCE_TERMS 3

@@ -1,4 +1,4 @@
-#include "softrast/cull.h"
+#include "cull.h"
 
 int64_t sr_cull_area2(const sr_screen_vertex *a, const sr_screen_vertex *b, const sr_screen_vertex *c)
 {

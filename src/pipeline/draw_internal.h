@@ -7,12 +7,17 @@
 
 #include <stddef.h>
 
-#include "softrast/pipeline.h"
+#include "clip.h"
+#include "raster.h"
 #include "raster_setup.h"
-#include "softrast/raster.h"
-#include "softrast/viewport.h"
+#include "softrast/softrast.h"
+#include "softrast/study.h"
+#include "viewport.h"
 
 #define SR_MAX_THREADS 64
+/* Snapped coordinates stay below 2^SR_FIXED_POINT_BITS so the 64-bit edge
+ * functions cannot overflow whatever the precision asked for. */
+#define SR_FIXED_POINT_BITS 30
 
 /* A growable array of fixed-size elements. */
 typedef struct sr_array {
@@ -59,6 +64,7 @@ struct sr_workspace {
 typedef struct sr_draw_state {
     sr_framebuffer *fb;
     const sr_draw_desc *desc;
+    sr_draw_study study; /* desc's, or the defaults */
     sr_shade_context shade;
     sr_viewport vp;
     sr_clip_precision precision;

@@ -3,10 +3,13 @@
 #include <string.h>
 
 #include "draw_internal.h"
-#include "softrast/assemble.h"
-#include "softrast/clip.h"
-#include "softrast/vertex.h"
-#include "softrast/viewport.h"
+#include "assemble.h"
+#include "clip.h"
+#include "vertex.h"
+#include "viewport.h"
+#include "core/error.h"
+#include "core/dmat4.h"
+#include "raster.h"
 
 static bool matrix_is_zero(const mat4 m)
 {
@@ -32,18 +35,18 @@ static sr_dmat4 matrix_d(const sr_dmat4 *d, const mat4 f)
     return sr_dmat4_from_mat4(m);
 }
 
-static int subpixel_bits(const sr_draw_desc *d)
+static int subpixel_bits(const sr_draw_study *d)
 {
     return d->subpixel_bits ? d->subpixel_bits : SR_SUBPIXEL_BITS;
 }
 
-static float guard_band(const sr_draw_desc *d)
+static float guard_band(const sr_draw_study *d)
 {
     return d->guard_band > 1.0f ? d->guard_band : 1.0f;
 }
 
 /* The knobs must keep every snapped coordinate below 2^SR_FIXED_POINT_BITS. */
-static bool check_accuracy_knobs(const sr_framebuffer *fb, const sr_draw_desc *d, sr_error *err)
+static bool check_accuracy_knobs(const sr_framebuffer *fb, const sr_draw_study *d, sr_error *err)
 {
     int bits = subpixel_bits(d);
     if (bits < SR_MIN_SUBPIXEL_BITS || bits > SR_MAX_SUBPIXEL_BITS)
@@ -62,8 +65,8 @@ static bool check_accuracy_knobs(const sr_framebuffer *fb, const sr_draw_desc *d
     return true;
 }
 
-static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const sr_varying_layout *l,
-                         sr_error *err)
+static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const sr_draw_study *study,
+                         const sr_varying_layout *l, sr_error *err)
 {
     if (!fb || !fb->color || !fb->depth || fb->width < 1 || fb->height < 1 ||
         fb->width > SR_MAX_FRAMEBUFFER_SIDE || fb->height > SR_MAX_FRAMEBUFFER_SIDE)
@@ -73,7 +76,7 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
     if ((unsigned)d->shade >= SR_SHADE_COUNT || (unsigned)d->cull > SR_CULL_NONE ||
         (unsigned)d->front > SR_FRONT_CCW || (unsigned)d->filter > SR_FILTER_NEAREST)
         return sr_error_set(err, "draw with an unknown shading, culling, front or filter mode");
-    if (!check_accuracy_knobs(fb, d, err))
+    if (!check_accuracy_knobs(fb, study, err))
         return false;
     const double *o = d->mesh->origin;
     if (!isfinite(o[0]) || !isfinite(o[1]) || !isfinite(o[2]))
@@ -96,14 +99,15 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
     return true;
 }
 
-static void shade_context_make(const sr_draw_desc *d, const sr_varying_layout *l, sr_shade_context *c)
+static void shade_context_make(const sr_draw_desc *d, sr_simd simd, const sr_varying_layout *l,
+                               sr_shade_context *c)
 {
     vec3 light = SR_DEFAULT_LIGHT;
     if (!glm_vec3_eq(((float *)d->light_dir), 0.0f))
         glm_vec3_copy((float *)d->light_dir, light);
     glm_vec3_normalize(light);
     *c = (sr_shade_context){ .layout = *l, .texture = d->texture, .filter = d->filter,
-                             .simd = sr_raster_simd_resolve(d->simd) };
+                             .simd = sr_raster_simd_resolve(simd) };
     glm_vec3_copy(light, c->light_dir);
 }
 
@@ -189,13 +193,13 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], 
 {
     (void)ref;
     const sr_draw_state *st = sink->st;
-    const sr_draw_desc *d = st->desc;
-    if (d->observer)
-        d->observer(d->observer_user, (const sr_screen_vertex[3]){ *tri[0], *tri[1], *tri[2] }, clipped, id);
+    const sr_draw_study *s = &st->study;
+    if (s->observer)
+        s->observer(s->observer_user, (const sr_screen_vertex[3]){ *tri[0], *tri[1], *tri[2] }, clipped, id);
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
     bool simd = false;
     sink->work->stats.fragments +=
-        sr_raster_triangle_on(st->fb, all, st->vp.subpixel_bits, d->shade, &st->shade, tri, area2, id, &simd);
+        sr_raster_triangle_on(st->fb, all, st->vp.subpixel_bits, st->desc->shade, &st->shade, tri, area2, id, &simd);
     sink->work->simd_draws += simd;
 }
 
@@ -254,9 +258,9 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
 
 /* Several threads need the observer called in order from one thread, so a
  * draw with an observer runs on one. */
-static int thread_count(const sr_draw_desc *d)
+static int thread_count(const sr_draw_desc *d, const sr_draw_study *s)
 {
-    if (d->observer || d->threads <= 1)
+    if (s->observer || d->threads <= 1)
         return 1;
     return d->threads < SR_MAX_THREADS ? d->threads : SR_MAX_THREADS;
 }
@@ -268,22 +272,23 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     sr_varying_layout layout = { .color = -1, .uv = -1, .normal = -1 };
     if (desc->mesh)
         layout = sr_vertex_layout(desc->shade, desc->mesh, desc->texture && desc->texture->texels);
-    if (!check_inputs(fb, desc, &layout, err))
+    const sr_draw_study study = desc->study ? *desc->study : (sr_draw_study){ 0 };
+    if (!check_inputs(fb, desc, &study, &layout, err))
         return false;
     sr_workspace *ws = desc->workspace ? desc->workspace : sr_workspace_create();
     if (!ws)
         return sr_error_set(err, "out of memory for a workspace");
-    sr_draw_state st = { .fb = fb, .desc = desc, .ws = ws, .threads = thread_count(desc),
+    sr_draw_state st = { .fb = fb, .desc = desc, .study = study, .ws = ws, .threads = thread_count(desc, &study),
                          .vertex_count = desc->mesh->vertex_count, .slots = sr_mesh_triangle_slots(desc->mesh),
                          .tiles_x = (fb->width + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
                          .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
-                         .vp = { fb->width, fb->height, subpixel_bits(desc), guard_band(desc),
+                         .vp = { fb->width, fb->height, subpixel_bits(&study), guard_band(&study),
                                  sr_clip_depth_of((const float(*)[4])desc->projection) },
-                         .precision = desc->clip_precision };
+                         .precision = study.clip_precision };
     /* Half a subpixel step, in NDC of the squeezed clip space of a guard band. */
     int side = fb->width > fb->height ? fb->width : fb->height;
     st.clip_tolerance = 1.0 / ((double)((int64_t)1 << st.vp.subpixel_bits) * side * st.vp.guard);
-    shade_context_make(desc, &layout, &st.shade);
+    shade_context_make(desc, study.simd, &layout, &st.shade);
     sr_stats scratch = { 0 };
     bool ok = draw_with(&st, stats ? stats : &scratch, err);
     if (!desc->workspace)

@@ -1,10 +1,10 @@
 /* Stages 2 to 7 for a range of triangle slots, shared by the one-thread and
  * the binned paths so both see exactly the same fan triangles. */
 #include "draw_internal.h"
-#include "softrast/assemble.h"
-#include "softrast/clip.h"
-#include "softrast/cull.h"
-#include "softrast/viewport.h"
+#include "assemble.h"
+#include "clip.h"
+#include "cull.h"
+#include "viewport.h"
 
 /* Stage 7 for one fan triangle whose vertices are *tri[] (refs name them
  * for the sink). */

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "raster_setup.h"
+#include "raster.h"
 
 
 typedef sr_edge edge;

@@ -8,7 +8,7 @@
 #ifndef SOFTRAST_RASTER_SETUP_H
 #define SOFTRAST_RASTER_SETUP_H
 
-#include "softrast/raster.h"
+#include "raster.h"
 
 /* E(P) = a·Px + b·Py + c, the edge function of a → b in subpixel units: >= 0
  * on the inside of a clockwise (area2 > 0) triangle. `bias` is 0 on a top or

@@ -1,6 +1,7 @@
 #include <string.h>
 
-#include "softrast/vertex.h"
+#include "vertex.h"
+#include "core/dmat4.h"
 
 static void add_varying(sr_varying_layout *l, int *slot, int size)
 {

@@ -1,6 +1,6 @@
 #include <math.h>
 
-#include "softrast/viewport.h"
+#include "viewport.h"
 
 static bool within_slack(double ndc, double lo)
 {

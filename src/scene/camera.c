@@ -3,7 +3,9 @@
 #include <cglm/clipspace/ortho_lh_zo.h>
 #include <cglm/clipspace/persp_lh_zo.h>
 
-#include "softrast/camera.h"
+#include "softrast/softrast.h"
+#include "core/error.h"
+#include "core/dmat4.h"
 
 #define FRAME_MARGIN 1.05f /* a little room around the framed bounds */
 

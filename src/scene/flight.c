@@ -4,7 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/flight.h"
+#include "flight.h"
+#include "core/error.h"
 
 #define LINE_MAX_CHARS 4096
 

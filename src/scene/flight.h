@@ -11,8 +11,8 @@
 
 #include <stdbool.h>
 
-#include "softrast/camera.h"
-#include "softrast/error.h"
+#include "softrast/softrast.h"
+#include "softrast/softrast.h"
 
 #define SR_FLIGHT_NUMBERS 12
 #define SR_FLIGHT_MAX_KEYS 100000

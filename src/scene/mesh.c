@@ -1,8 +1,9 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "softrast/assemble.h"
-#include "softrast/mesh.h"
+#include "pipeline/assemble.h"
+#include "softrast/softrast.h"
+#include "core/error.h"
 
 static void *alloc_array(bool wanted, uint32_t count, size_t elem, bool *ok)
 {
@@ -106,17 +107,4 @@ bool sr_mesh_set_origin(sr_mesh *mesh, const double origin[3], sr_error *err)
     for (int k = 0; k < 3; k++)
         mesh->origin[k] = origin[k];
     return true;
-}
-
-void sr_mesh_origin_for_bounds(const double lo[3], const double hi[3], double origin[3])
-{
-    double centre[3], distance = 0.0, side = 0.0;
-    for (int k = 0; k < 3; k++) {
-        centre[k] = lo[k] + 0.5 * (hi[k] - lo[k]); /* no overflow for finite bounds */
-        distance = fmax(distance, fabs(centre[k]));
-        side = fmax(side, hi[k] - lo[k]);
-    }
-    bool far = distance > SR_MESH_RECENTRE_RATIO * side;
-    for (int k = 0; k < 3; k++)
-        origin[k] = far ? centre[k] : 0.0;
 }

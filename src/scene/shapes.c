@@ -1,6 +1,7 @@
 #include <math.h>
 
-#include "softrast/shapes.h"
+#include "shapes.h"
+#include "core/error.h"
 
 #define TWO_PI 6.283185307179586
 

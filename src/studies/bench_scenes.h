@@ -4,8 +4,8 @@
 #ifndef SOFTRAST_APP_BENCH_SCENES_H
 #define SOFTRAST_APP_BENCH_SCENES_H
 
-#include "softrast/softrast.h"
 #include "scene/flight.h"
+#include "softrast_private.h"
 
 #define SR_BENCH_DENSE_TRIANGLES 1048576u
 

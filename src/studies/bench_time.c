@@ -11,7 +11,7 @@ static bool time_frames(const sr_bench_scene *s, const sr_bench_run *run, sr_fra
         sr_camera cam;
         sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade,
                               .texture = s->texture.texels ? &s->texture : NULL, .threads = run->threads,
-                              .workspace = ws, .simd = run->simd };
+                              .workspace = ws, .study = &(sr_draw_study){ .simd = run->simd } };
         sr_bench_scene_camera(s, f < 0 ? 0 : f, run->frames, &cam);
         sr_camera_view(&cam, desc.view);
         sr_camera_projection(&cam, (float)s->width / (float)s->height, desc.projection);

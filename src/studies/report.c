@@ -53,7 +53,8 @@ static bool draw_ids(const sr_bench_scene *s, const knob *k, int f, sr_framebuff
     cam.reversed_z = k->reversed;
     fb->reversed_z = k->reversed;
     sr_draw_desc desc = { .mesh = &s->mesh, .shade = SR_SHADE_ID, .threads = k->threads, .workspace = ws,
-                          .subpixel_bits = k->subpixel_bits, .clip_precision = k->clip, .guard_band = k->guard };
+                          .study = &(sr_draw_study){ .subpixel_bits = k->subpixel_bits, .clip_precision = k->clip,
+                                                            .guard_band = k->guard } };
     sr_camera_view(&cam, desc.view);
     sr_camera_projection(&cam, (float)fb->width / (float)fb->height, desc.projection);
     return sr_study_draw_frame(fb, &desc, NULL, ms, err);

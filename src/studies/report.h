@@ -5,7 +5,7 @@
 
 #include <stdbool.h>
 
-#include "softrast/error.h"
+#include "softrast_private.h"
 
 /* Measures each knob on the dense, fly and stiff scenes against a reference
  * render (double clipping, 16 subpixel bits) and writes the report files

@@ -8,7 +8,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 #define SR_REPORT_SIMD_SCENES 2
 #define SR_REPORT_SIMD_LOOPS (SR_SIMD_COUNT - 1) /* all but AUTO */

@@ -6,7 +6,7 @@
 #include <stdbool.h>
 
 #include "report_simd.h"
-#include "softrast/error.h"
+#include "softrast_private.h"
 
 #define SR_REPORT_KNOBS 9
 #define SR_REPORT_SCENES 3

@@ -19,7 +19,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 /* Runs every measurement and writes stability.md and stability.svg into dir. */
 bool sr_stability_write(const char *dir, sr_error *err);

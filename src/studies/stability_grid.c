@@ -177,8 +177,8 @@ static bool draw_counting(const sr_stability_case *c, const sr_mesh *grid, sr_cl
     sr_framebuffer fb;
     if (!sr_framebuffer_create(&fb, SR_STABILITY_WIDTH, SR_STABILITY_HEIGHT, err))
         return false;
-    sr_draw_desc desc = { .mesh = grid, .shade = SR_SHADE_ID, .clip_precision = precision,
-                          .observer = count_triangle, .observer_user = counter };
+    sr_draw_study study = { .clip_precision = precision, .observer = count_triangle, .observer_user = counter };
+    sr_draw_desc desc = { .mesh = grid, .shade = SR_SHADE_ID, .study = &study };
     sr_camera_view(&c->camera, desc.view);
     sr_camera_projection(&c->camera, (float)SR_STABILITY_WIDTH / SR_STABILITY_HEIGHT, desc.projection);
     sr_framebuffer_clear(&fb, 0);

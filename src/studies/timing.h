@@ -6,7 +6,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "softrast/softrast.h"
+#include "softrast_private.h"
 
 /* A monotonic clock in milliseconds. */
 double sr_study_now_ms(void);

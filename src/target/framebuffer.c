@@ -5,7 +5,8 @@
 #include <string.h>
 #include <sys/mman.h>
 
-#include "softrast/framebuffer.h"
+#include "softrast/softrast.h"
+#include "core/error.h"
 
 /* The depth view: the nearest written depth is white, the farthest a dark gray
  * that still stands apart from the black background. */

@@ -10,7 +10,7 @@
 
 #include <cglm/cglm.h>
 
-#include "softrast/camera.h"
+#include "softrast_private.h"
 
 #define SR_FLYCAM_MAX_PITCH 89.9f /* degrees */
 

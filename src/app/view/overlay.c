@@ -9,7 +9,7 @@
 
 #include <stdbool.h>
 
-#include "softrast/types.h"
+#include "softrast_private.h"
 
 #define PANEL_SHIFT 2                /* panel keeps 1/4 brightness: each channel >> 2 */
 #define PANEL_MASK 0x003f3f3fu       /* drops the bits shifted in from the next channel */

@@ -4,6 +4,7 @@
 
 #include "app/app.h"
 #include "scene/flight.h"
+#include "softrast_private.h"
 #include "viewer.h"
 
 #define DEFAULT_SCENE "assets/room.obj"

@@ -124,12 +124,13 @@ static void draw_overlays(sr_viewer *v)
 bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
 {
     sr_draw_desc desc;
-    if (!sr_scene_desc(&v->setup, &v->scene, &desc, err))
+    sr_draw_study study;
+    if (!sr_scene_desc(&v->setup, &v->scene, &desc, &study, err))
         return false;
     v->wire_count = 0;
     if (overlays && v->wireframe) {
-        desc.observer = collect_wire;
-        desc.observer_user = v;
+        study.observer = collect_wire;
+        study.observer_user = v;
     }
     bool ok = sr_study_draw_frame(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
     show_image(v);

@@ -1,4 +1,4 @@
-/* softrast/shade.h — stage 10: shading a fragment from its varyings.
+/* shade.h — stage 10: shading a fragment from its varyings.
  *
  * sr_shade_fragment is inline so the rasterizer's per-pixel loop, specialised
  * per mode with a constant `mode`, compiles to straight-line code with no
@@ -7,15 +7,15 @@
  * gets here: the vertex phase drops it and counts it non-finite.)
  * Textures wrap (repeat); uv (0, 0) is the bottom-left of the image.
  */
-#ifndef SOFTRAST_SHADE_H
-#define SOFTRAST_SHADE_H
+#ifndef SOFTRAST_PIPELINE_SHADE_H
+#define SOFTRAST_PIPELINE_SHADE_H
 
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
-#include "texture.h"
-#include "types.h"
+#include "softrast/softrast.h"
+#include "stages.h"
 
 #define SR_LAMBERT_AMBIENT 0.2f
 #define SR_LAMBERT_GRAY 0.8f

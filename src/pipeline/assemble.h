@@ -1,4 +1,4 @@
-/* softrast/assemble.h — stage 2: primitive assembly.
+/* assemble.h — stage 2: primitive assembly.
  *
  * Turns a mesh's index array into triangles. TriangleList: triangle k is
  * (i[3k], i[3k+1], i[3k+2]). TriangleStrip: triangle k is (i[k], i[k+1],
@@ -6,13 +6,13 @@
  * triangle with a repeated index is degenerate and is skipped (the strip's
  * way of restarting).
  */
-#ifndef SOFTRAST_ASSEMBLE_H
-#define SOFTRAST_ASSEMBLE_H
+#ifndef SOFTRAST_PIPELINE_ASSEMBLE_H
+#define SOFTRAST_PIPELINE_ASSEMBLE_H
 
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "mesh.h"
+#include "softrast/softrast.h"
 
 /* Writes triangle k's three vertex indices; false if it is degenerate.
  * k must be below sr_mesh_triangle_slots(mesh). */

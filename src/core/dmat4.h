@@ -1,22 +1,19 @@
-/* softrast/dmat4.h — double-precision 4x4 matrices for large world coordinates.
+/* dmat4.h — double-precision 4x4 matrices for large world coordinates.
  *
  * A float matrix that moves a point by 1e7 holds that translation to about a
  * unit. The draw therefore composes clip_from_object = P·V·W·T(origin) in
  * double, where the huge translations of the world (and a mesh's origin)
  * and of the view cancel, and rounds the product to float once
  * (docs/precision.md). sr_dmat4 is laid out as cglm's mat4 (m[column][row],
- * column vectors); a struct, so const pointers to it need no casts. An
- * all-zero sr_dmat4 in a desc means "not given".
+ * column vectors; softrast/softrast.h).
  */
-#ifndef SOFTRAST_DMAT4_H
-#define SOFTRAST_DMAT4_H
+#ifndef SOFTRAST_CORE_DMAT4_H
+#define SOFTRAST_CORE_DMAT4_H
 
 #include <stdbool.h>
 #include <cglm/cglm.h>
 
-typedef struct sr_dmat4 {
-    double m[4][4]; /* m[column][row] */
-} sr_dmat4;
+#include "softrast/softrast.h"
 
 sr_dmat4 sr_dmat4_identity(void);
 bool sr_dmat4_is_zero(const sr_dmat4 *a);

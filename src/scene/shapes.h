@@ -1,18 +1,17 @@
-/* softrast/shapes.h — meshes made in memory: the benchmark's scenes and the
+/* shapes.h — meshes made in memory: the benchmark's scenes and the
  * tests' closed surfaces, at any size.
  *
  * Every shape is an indexed TriangleList with normals and uvs, closed where
  * the shape is, its outward faces front faces (clockwise on screen seen from
  * outside, softrast's left-handed convention).
  */
-#ifndef SOFTRAST_SHAPES_H
-#define SOFTRAST_SHAPES_H
+#ifndef SOFTRAST_SCENE_SHAPES_H
+#define SOFTRAST_SCENE_SHAPES_H
 
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "error.h"
-#include "mesh.h"
+#include "softrast/softrast.h"
 
 /* A torus around +y: `segments` around the axis × `sides` around the tube,
  * 2·segments·sides triangles. */

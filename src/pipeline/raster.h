@@ -1,4 +1,4 @@
-/* softrast/raster.h — stages 8 and 9: triangle setup, coverage, depth test.
+/* raster.h — stages 8 and 9: triangle setup, coverage, depth test.
  *
  * Edge functions are evaluated exactly in 64-bit integers on vertices snapped
  * to 1/256 pixel (or another SR_MIN..SR_MAX_SUBPIXEL_BITS precision), at pixel centres (i + 0.5, j + 0.5). A centre on an edge is
@@ -11,14 +11,14 @@
  * AVX2, AVX-512, chosen at run time; sr_shade_context.simd) that compute
  * exactly what the scalar loop computes, bit for bit.
  */
-#ifndef SOFTRAST_RASTER_H
-#define SOFTRAST_RASTER_H
+#ifndef SOFTRAST_PIPELINE_RASTER_H
+#define SOFTRAST_PIPELINE_RASTER_H
 
 #include <stdint.h>
 
-#include "framebuffer.h"
+#include "softrast/softrast.h"
 #include "shade.h"
-#include "types.h"
+#include "stages.h"
 
 /* The pixels [x0, x1) × [y0, y1) a call may touch (the framebuffer, or a tile). */
 typedef struct sr_raster_rect {

@@ -1,4 +1,4 @@
-/* softrast/viewport.h — stage 6: perspective divide and viewport mapping.
+/* viewport.h — stage 6: perspective divide and viewport mapping.
  *
  * NDC (x, y in [-1, 1], z in [0, 1]) to pixels: px = (x + 1)·W/2,
  * py = (1 - y)·H/2 (top-left origin, y down), snapped to 1/256 pixel (or
@@ -10,12 +10,12 @@
  * divide scales x and y back by G, and vertices land up to (G − 1)·W/2 pixels
  * outside the framebuffer, still bounded for the fixed-point conversion.
  */
-#ifndef SOFTRAST_VIEWPORT_H
-#define SOFTRAST_VIEWPORT_H
+#ifndef SOFTRAST_PIPELINE_VIEWPORT_H
+#define SOFTRAST_PIPELINE_VIEWPORT_H
 
 #include <stdbool.h>
 
-#include "types.h"
+#include "stages.h"
 
 /* How far past [-1, 1] a clipped vertex may land from rounding before it is
  * treated as broken input rather than a hair outside (DESIGN.md: the scan

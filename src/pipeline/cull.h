@@ -1,17 +1,17 @@
-/* softrast/cull.h — stage 7: back-face culling on the snapped triangle.
+/* cull.h — stage 7: back-face culling on the snapped triangle.
  *
  * The signed area is computed exactly in 64-bit integers from the snapped
  * fixed-point vertices, after clipping, so facing is never decided from a
  * vertex with w <= 0. With y down, area2 > 0 means clockwise on screen, the
  * front face by default (Direct3D).
  */
-#ifndef SOFTRAST_CULL_H
-#define SOFTRAST_CULL_H
+#ifndef SOFTRAST_PIPELINE_CULL_H
+#define SOFTRAST_PIPELINE_CULL_H
 
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "types.h"
+#include "stages.h"
 
 /* Twice the signed area in (1/256 px)^2; > 0 for clockwise on screen. */
 int64_t sr_cull_area2(const sr_screen_vertex *a, const sr_screen_vertex *b, const sr_screen_vertex *c);

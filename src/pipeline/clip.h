@@ -1,4 +1,4 @@
-/* softrast/clip.h — stages 3 to 5: classify, clip, fan.
+/* clip.h — stages 3 to 5: classify, clip, fan.
  *
  * Classification gives each clip-space vertex a 6-bit outcode, one bit per
  * plane it is outside of (distance < 0), plus SR_OUT_NONFINITE for NaN or inf.
@@ -15,12 +15,12 @@
  * or far cut gets z = a·w + b of its w, rounded once). Two triangles sharing an
  * edge therefore get bit-identical cut vertices whichever way they walk it.
  */
-#ifndef SOFTRAST_CLIP_H
-#define SOFTRAST_CLIP_H
+#ifndef SOFTRAST_PIPELINE_CLIP_H
+#define SOFTRAST_PIPELINE_CLIP_H
 
 #include <stdint.h>
 
-#include "types.h"
+#include "stages.h"
 
 /* Planes in processing order; the outcode bit of plane p is 1 << p. */
 typedef enum sr_clip_plane {
@@ -31,22 +31,6 @@ typedef enum sr_clip_plane {
     SR_PLANE_BOTTOM,   /* y >= -w */
     SR_PLANE_TOP       /* y <= w */
 } sr_clip_plane;
-
-/* How cut vertices are computed. The sign tests are exact in every mode.
- * ADAPTIVE (the default) picks per edge the cheapest of float, double and
- * exact whose a-priori error bound keeps the cut vertex within the
- * configured tolerance (docs/precision.md); the others force one. EXACT
- * carries the plane distances and the numerator as exact expansions and
- * rounds once, right even for end points of 1e30 around a visible piece of
- * size 1. The choice depends only on the unordered edge, never on the walk
- * direction, so shared edges stay bit-identical. */
-typedef enum sr_clip_precision {
-    SR_CLIP_ADAPTIVE = 0,
-    SR_CLIP_FLOAT,
-    SR_CLIP_DOUBLE,
-    SR_CLIP_EXACT,
-    SR_CLIP_PRECISIONS
-} sr_clip_precision;
 
 /* How many cut vertices each precision made (index: sr_clip_precision). */
 typedef struct sr_clip_counts {

@@ -1,4 +1,4 @@
-/* softrast/vertex.h — stage 1: the vertex stage.
+/* vertex.h — stage 1: the vertex stage.
  *
  * Transforms each unique vertex of a mesh once: clip = P·V·W·T(origin)·position
  * (column vectors; origin is the mesh's, docs/precision.md), the product
@@ -7,15 +7,15 @@
  * sr_varying_layout lays them out (world-space unit normals through the
  * inverse transpose of W, as its cofactor matrix so a singular W is fine).
  */
-#ifndef SOFTRAST_VERTEX_H
-#define SOFTRAST_VERTEX_H
+#ifndef SOFTRAST_PIPELINE_VERTEX_H
+#define SOFTRAST_PIPELINE_VERTEX_H
 
 #include <stdint.h>
 #include <cglm/cglm.h>
 
-#include "dmat4.h"
-#include "mesh.h"
-#include "types.h"
+#include "core/dmat4.h"
+#include "softrast/softrast.h"
+#include "stages.h"
 
 typedef struct sr_vertex_transform {
     mat4 clip_from_object; /* P · V · W · T(origin), rounded from double once */

@@ -1,0 +1,80 @@
+/* softrast/files.h — meshes and textures from files, images to files.
+ *
+ *     #include "softrast/files.h"   // cc … $(pkg-config --cflags --libs softrast-files)
+ *
+ *     sr_mesh mesh = { 0 };
+ *     sr_error err;
+ *     if (!sr_obj_load(&mesh, "model.obj", &err))
+ *         fprintf(stderr, "softrast: error: %s\n", err.message);
+ *     …draw (softrast/softrast.h)…
+ *     sr_image_write_png("out.png", fb.color, fb.width, fb.height, &err);
+ *     sr_mesh_free(&mesh);
+ *
+ * The library softrast-files, on the core and SDL2_image (PNG read and
+ * write). Every function returns false with one line in err ("FILE: what",
+ * or "FILE:LINE: what" for a parse error) and never crashes on bad input.
+ */
+#ifndef SOFTRAST_FILES_H
+#define SOFTRAST_FILES_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "softrast.h"
+
+/* ---- Wavefront OBJ ---------------------------------------------------------
+ *
+ * Reads `v` (optionally with r g b, or with a w that is ignored), `vt` (u v,
+ * an optional w ignored), `vn`, `f` in the forms v, v/vt, v//vn and v/vt/vn
+ * (mixed freely) with positive or negative (relative) indices, polygons,
+ * comments (whole-line and trailing), blank lines and CRLF line ends;
+ * `mtllib` + `usemtl` give the texture path from the material's `map_Kd`.
+ * Other statements (o, g, s, l, p, …) are ignored. OBJ is right-handed: the
+ * loader negates z (of positions and normals) and reverses each face's
+ * winding, so outward faces are front faces (clockwise on screen) in
+ * softrast's left-handed convention. A face c0 … c(n-1) becomes triangles
+ * (c0, ck, c(k+1)), k = 1 … n-2, written as (c0, c(k+1), ck); triangle ids
+ * count them in file order.
+ *
+ * The mesh: a TriangleList in which each distinct v/vt/vn combination used by
+ * a face becomes one vertex, numbered in order of first use (a file without
+ * faces gives an empty mesh, which is not an error). normals / uvs exist iff
+ * some face corner gives vn / vt; corners without one get (0,0,0) / (0,0).
+ * colors exist iff some `v` has r g b; the other vertices are white.
+ * texture_path is the first `map_Kd` of a material that a face is drawn
+ * with, resolved against the .mtl's folder (the .mtl against the OBJ's).
+ * Coordinates are read in double. A mesh far from the world origin — the
+ * centre of its bounds more than 16 times their largest side away — is
+ * stored relative to that centre (computed in double), which becomes
+ * mesh->origin; any other mesh keeps its positions as written and origin
+ * zero (docs/precision.md).
+ *
+ * Errors: false with "FILE:LINE: what" in err (or "FILE: what" when the file
+ * cannot be read); the mesh is left zeroed, never half-filled, whatever it
+ * held before (it is not freed: pass an empty or freed mesh). Errors include
+ * a malformed or non-finite number, a wrong count of numbers, an index that
+ * is 0 or outside the elements read so far, a malformed face corner, a face
+ * of fewer than 3 vertices, a line over 64 KiB or with a NUL byte, a missing
+ * material library and, once a library is loaded, a `usemtl` of a material it
+ * does not define. Loading is one pass, O(file size). */
+SR_API bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err);
+
+/* ---- textures ----------------------------------------------------------- */
+
+/* Any image SDL2_image reads, as 0x00RRGGBB texels, row 0 at the top; false
+ * for a missing file, anything that is not a readable image, or a side over
+ * SR_MAX_TEXTURE_SIDE. Free with sr_texture_free. */
+SR_API bool sr_texture_load(sr_texture *tex, const char *path, sr_error *err);
+SR_API void sr_texture_free(sr_texture *tex);
+
+/* ---- images ------------------------------------------------------------- */
+
+/* 8-bit RGB PNG of 0x00RRGGBB pixels, row 0 at the top. */
+SR_API bool sr_image_write_png(const char *path, const uint32_t *pixels, int width, int height, sr_error *err);
+/* The raw depth buffer as PFM: header "Pf\n<W> <H>\n-1\n", then float32
+ * little-endian rows from the bottom row up, as the PFM format says. */
+SR_API bool sr_image_write_pfm(const char *path, const float *depth, int width, int height, sr_error *err);
+/* The depth buffer visualised as by sr_framebuffer_depth_to_gray. */
+SR_API bool sr_image_write_depth_png(const char *path, const sr_framebuffer *fb, sr_error *err);
+
+#endif

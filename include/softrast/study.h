@@ -1,0 +1,84 @@
+/* softrast/study.h — measuring the pipeline: accuracy knobs and a trace.
+ *
+ *     sr_draw_study study = { .subpixel_bits = 4, .simd = SR_SIMD_SCALAR };
+ *     desc.study = &study;               // softrast/softrast.h's sr_draw_desc
+ *
+ * Nothing here is needed to draw. The knobs change how a draw computes, so
+ * their cost and their error can be measured (docs/report.md); every zero
+ * field is the default that the conventions pin, so a zeroed study draws
+ * exactly what no study draws. The trace sees the fan triangles the
+ * rasterizer gets.
+ */
+#ifndef SOFTRAST_STUDY_H
+#define SOFTRAST_STUDY_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "softrast.h"
+
+/* How cut vertices are computed; the sign tests are exact in every mode.
+ * ADAPTIVE (the default) picks per edge the cheapest of float, double and
+ * exact whose a-priori error bound keeps the cut vertex within half a
+ * subpixel step (docs/precision.md); the others force one. EXACT carries the
+ * plane distances and the numerator as exact expansions and rounds once. The
+ * choice depends only on the unordered edge, never on the walk direction, so
+ * shared edges stay bit-identical. */
+typedef enum sr_clip_precision {
+    SR_CLIP_ADAPTIVE = 0,
+    SR_CLIP_FLOAT,
+    SR_CLIP_DOUBLE,
+    SR_CLIP_EXACT,
+    SR_CLIP_PRECISIONS
+} sr_clip_precision;
+
+/* The per-pixel loop's instruction set: AUTO picks the best the CPU has
+ * (AVX-512, else AVX2, else SSE2); the others force one (a missing one falls
+ * back to the best below). Every choice gives bit-identical pixels and
+ * depths. */
+typedef enum sr_simd {
+    SR_SIMD_AUTO = 0,
+    SR_SIMD_SCALAR,
+    SR_SIMD_SSE2,
+    SR_SIMD_AVX2,
+    SR_SIMD_AVX512,
+    SR_SIMD_COUNT
+} sr_simd;
+
+#define SR_SUBPIXEL_BITS 8     /* 1/256 px, as Direct3D 11 requires */
+#define SR_MIN_SUBPIXEL_BITS 2 /* the range a study may ask for */
+#define SR_MAX_SUBPIXEL_BITS 16
+#define SR_MAX_GUARD_BAND 64.0f
+#define SR_TILE_SIDE 64 /* pixels on a side of a tile of the threaded path */
+#define SR_MAX_VARYINGS 8 /* lambert: normal 3 + color 3 (or uv 2) */
+
+/* A fan-triangle vertex after divide, viewport and snapping: position in
+ * units of 2^-subpixel_bits pixel (top-left origin, y down), z_ndc, 1/w and
+ * the varyings divided by w. */
+typedef struct sr_screen_vertex {
+    int64_t x, y;
+    float z;
+    float inv_w;
+    float var_w[SR_MAX_VARYINGS];
+} sr_screen_vertex;
+
+/* Sees every fan triangle that survives culling, before it is rasterized;
+ * clipped: the triangle crossed a plane; id: its triangle slot. A draw with
+ * one runs on one thread and calls it in submission order. */
+typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id);
+
+typedef struct sr_draw_study {
+    int subpixel_bits;                /* 0: SR_SUBPIXEL_BITS; else SR_MIN..SR_MAX_SUBPIXEL_BITS */
+    sr_clip_precision clip_precision; /* SR_CLIP_ADAPTIVE: per edge, within half a subpixel step */
+    float guard_band;                 /* 0 or 1: clip x, y at the viewport; G > 1: at ±G·w */
+    sr_simd simd;                     /* SR_SIMD_AUTO: the best per-pixel loop the CPU has */
+    sr_triangle_observer observer;    /* optional */
+    void *observer_user;
+} sr_draw_study;
+
+/* How many rasterizer calls of the last draw with this workspace a SIMD
+ * kernel made (a call is a fan triangle, or with threads its share of one
+ * tile; narrow ones take the scalar loop): tests check the kernels ran. */
+SR_API uint64_t sr_workspace_simd_draws(const sr_workspace *ws);
+
+#endif
