@@ -2,6 +2,8 @@
 #ifndef SOFTRAST_APP_H
 #define SOFTRAST_APP_H
 
+#include <stdio.h>
+
 #include "softrast_private.h"
 
 int sr_app_render(int argc, char **argv);
@@ -9,7 +11,10 @@ int sr_app_view(int argc, char **argv);
 int sr_app_bench(int argc, char **argv);
 
 /* Prints "softrast: error: <message>" on stderr and returns the exit status 1. */
-int sr_app_fail(const char *message);
-
+static inline int sr_app_fail(const char *message)
+{
+    fprintf(stderr, "softrast: error: %s\n", message);
+    return 1;
+}
 
 #endif

@@ -15,12 +15,6 @@ static const char USAGE[] =
     "softrast is a software rasterizer: every triangle is clipped in homogeneous clip space,\n"
     "rasterized with exact fixed-point edge functions and depth-tested. See docs/cli.md.";
 
-int sr_app_fail(const char *message)
-{
-    fprintf(stderr, "softrast: error: %s\n", message);
-    return 1;
-}
-
 int main(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
