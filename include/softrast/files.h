@@ -10,8 +10,8 @@
  *     sr_image_write_png("out.png", fb.color, fb.width, fb.height, &err);
  *     sr_mesh_free(&mesh);
  *
- * The library softrast-files, on the core and SDL2_image (PNG read and
- * write). Every function returns false with one line in err ("FILE: what",
+ * The library softrast-files, on the core, SDL2_image (PNG read and write)
+ * and Assimp (mesh formats other than OBJ). Every function returns false with one line in err ("FILE: what",
  * or "FILE:LINE: what" for a parse error) and never crashes on bad input.
  */
 #ifndef SOFTRAST_FILES_H
@@ -21,6 +21,25 @@
 #include <stdint.h>
 
 #include "softrast.h"
+
+/* ---- meshes --------------------------------------------------------------
+ *
+ * sr_mesh_load opens any mesh file: `.obj` through softrast's own loader
+ * (below), every other format Assimp reads (glTF 2.0 .gltf/.glb, PLY, STL,
+ * FBX, COLLADA, 3DS, …) through Assimp. The scene is flattened into world
+ * space (node transforms applied, instanced meshes repeated), triangulated,
+ * and given smooth normals where it has none; it is right-handed y-up like
+ * OBJ and flipped the same way (z negated, winding reversed). Triangle ids
+ * count the meshes in file order, then their faces in order. Points, lines,
+ * skinning, animation, lights and cameras are ignored; texture_path is the
+ * first base-colour or diffuse texture file a drawn mesh uses (embedded
+ * textures are not read yet). A file over SR_MAX_MESH_VERTICES vertices or
+ * SR_MAX_MESH_TRIANGLES triangles is refused before anything is allocated
+ * for it. Errors: false with "FILE: reason" (Assimp's reason for its
+ * formats); the mesh is left zeroed. */
+#define SR_MAX_MESH_VERTICES (1u << 28)
+#define SR_MAX_MESH_TRIANGLES (1u << 28)
+SR_API bool sr_mesh_load(sr_mesh *mesh, const char *path, sr_error *err);
 
 /* ---- Wavefront OBJ ---------------------------------------------------------
  *

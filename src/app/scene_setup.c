@@ -61,7 +61,7 @@ static bool shade_uses_normals(sr_shade shade)
 bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err)
 {
     *scene = (sr_scene){ 0 };
-    if (!sr_obj_load(&scene->mesh, s->mesh_path, err))
+    if (!sr_mesh_load(&scene->mesh, s->mesh_path, err))
         return false;
     const char *tex = s->texture_path ? s->texture_path : scene->mesh.texture_path;
     bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);

@@ -1,0 +1,179 @@
+/* Every mesh format Assimp reads (glTF 2.0, PLY, STL, FBX, COLLADA, 3DS, …)
+ * -> sr_mesh, through its C API.
+ *
+ * Assimp flattens the scene (aiProcess_PreTransformVertices: node transforms
+ * applied, instanced meshes repeated), triangulates, merges identical
+ * vertices and makes smooth normals where a mesh has none. Its world is
+ * right-handed y-up like OBJ's, so the same flip applies: z negated (of
+ * positions and normals) and each triangle (a, b, c) written as (a, c, b).
+ * Meshes follow in Assimp's mesh order, faces in face order: triangle ids
+ * count them so. Points and lines are left out. Positions are gathered in
+ * double and stored relative to a far mesh's centre, as OBJ's are.
+ */
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "mesh_loaders.h"
+#include "mesh_origin.h"
+#include "obj_parse.h"
+
+#define IMPORT_STEPS                                                                                      \
+    (aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |         \
+     aiProcess_GenSmoothNormals | aiProcess_SortByPType | aiProcess_FindInvalidData)
+
+/* After aiProcess_SortByPType a mesh holds one kind of primitive (the
+ * n-gon flag aside); triangles are the ones drawn. */
+static bool is_triangles(const struct aiMesh *m)
+{
+    return (m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) && m->mNumVertices > 0;
+}
+
+static bool is_triangle(const struct aiFace *f)
+{
+    return f->mNumIndices == 3;
+}
+
+/* What the scene needs, counted before anything is allocated for it. */
+typedef struct scene_counts {
+    uint64_t vertices, indices;
+    bool normals, uvs, colors;
+} scene_counts;
+
+static bool count_scene(const struct aiScene *sc, const char *path, scene_counts *n, sr_error *err)
+{
+    *n = (scene_counts){ 0 };
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *m = sc->mMeshes[i];
+        if (!is_triangles(m))
+            continue;
+        n->vertices += m->mNumVertices;
+        for (unsigned f = 0; f < m->mNumFaces; f++)
+            n->indices += is_triangle(&m->mFaces[f]) ? 3u : 0u;
+        n->normals |= m->mNormals != NULL;
+        n->uvs |= m->mTextureCoords[0] != NULL;
+        n->colors |= m->mColors[0] != NULL;
+    }
+    if (n->vertices > SR_MAX_MESH_VERTICES || n->indices / 3 > SR_MAX_MESH_TRIANGLES)
+        return sr_error_set(err, "%s: %llu vertices and %llu triangles exceed the limits (%u, %u)", path,
+                            (unsigned long long)n->vertices, (unsigned long long)(n->indices / 3),
+                            SR_MAX_MESH_VERTICES, SR_MAX_MESH_TRIANGLES);
+    return true;
+}
+
+/* The diffuse texture of the first material that has one and is used by a
+ * drawn mesh (glTF's base colour first), resolved beside the model; an
+ * embedded texture ("*N") is not read yet. */
+static bool texture_beside(const struct aiScene *sc, const char *path, char **out, sr_error *err)
+{
+    *out = NULL;
+    static const enum aiTextureType kinds[] = { aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE };
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        if (!is_triangles(sc->mMeshes[i]) || sc->mMeshes[i]->mMaterialIndex >= sc->mNumMaterials)
+            continue;
+        const struct aiMaterial *mat = sc->mMaterials[sc->mMeshes[i]->mMaterialIndex];
+        for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+            struct aiString name;
+            if (aiGetMaterialTexture(mat, kinds[k], 0, &name, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS ||
+                name.length == 0 || name.data[0] == '*')
+                continue;
+            *out = sr_obj_path_beside(path, name.data);
+            return *out || sr_error_set(err, "%s: out of memory", path);
+        }
+    }
+    return true;
+}
+
+static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double origin[3])
+{
+    uint32_t v = 0, x = 0;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *m = sc->mMeshes[i];
+        if (!is_triangles(m))
+            continue;
+        for (unsigned j = 0; j < m->mNumVertices; j++, v++) {
+            const struct aiVector3D p = m->mVertices[j];
+            const double world[3] = { p.x, p.y, -(double)p.z };
+            for (int k = 0; k < 3; k++)
+                mesh->positions[v][k] = (float)(world[k] - origin[k]);
+            if (mesh->normals && m->mNormals)
+                glm_vec3_copy((vec3){ m->mNormals[j].x, m->mNormals[j].y, -m->mNormals[j].z }, mesh->normals[v]);
+            if (mesh->uvs && m->mTextureCoords[0])
+                glm_vec2_copy((vec2){ m->mTextureCoords[0][j].x, m->mTextureCoords[0][j].y }, mesh->uvs[v]);
+            if (mesh->colors)
+                glm_vec3_copy(m->mColors[0] ? (vec3){ m->mColors[0][j].r, m->mColors[0][j].g, m->mColors[0][j].b }
+                                            : (vec3){ 1.0f, 1.0f, 1.0f },
+                              mesh->colors[v]);
+        }
+        for (unsigned f = 0; f < m->mNumFaces; f++) {
+            if (!is_triangle(&m->mFaces[f]))
+                continue;
+            const unsigned *c = m->mFaces[f].mIndices;
+            uint32_t base = v - m->mNumVertices;
+            mesh->indices[x++] = base + c[0];
+            mesh->indices[x++] = base + c[2];
+            mesh->indices[x++] = base + c[1];
+        }
+    }
+}
+
+/* The bounds in double of the flipped positions, and the origin they give. */
+static bool scene_origin(const struct aiScene *sc, const char *path, double origin[3], sr_error *err)
+{
+    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *m = sc->mMeshes[i];
+        for (unsigned j = 0; is_triangles(m) && j < m->mNumVertices; j++) {
+            const double p[3] = { m->mVertices[j].x, m->mVertices[j].y, -(double)m->mVertices[j].z };
+            for (int k = 0; k < 3; k++) {
+                if (!isfinite(p[k]))
+                    return sr_error_set(err, "%s: mesh %u has a non-finite position", path, i);
+                lo[k] = fmin(lo[k], p[k]);
+                hi[k] = fmax(hi[k], p[k]);
+            }
+        }
+    }
+    if (lo[0] > hi[0])
+        memset(origin, 0, 3 * sizeof *origin);
+    else
+        sr_mesh_origin_for_bounds(lo, hi, origin);
+    return true;
+}
+
+static bool build_mesh(const struct aiScene *sc, const char *path, sr_mesh *mesh, sr_error *err)
+{
+    scene_counts n;
+    double origin[3];
+    char *texture = NULL;
+    if (!count_scene(sc, path, &n, err) || !scene_origin(sc, path, origin, err) ||
+        !texture_beside(sc, path, &texture, err))
+        return false;
+    if (!sr_mesh_alloc(mesh, (uint32_t)n.vertices, (uint32_t)n.indices, n.normals, n.uvs, n.colors, err)) {
+        free(texture);
+        return false;
+    }
+    copy_vertices(sc, mesh, origin);
+    memcpy(mesh->origin, origin, sizeof mesh->origin);
+    mesh->texture_path = texture;
+    return true;
+}
+
+bool sr_assimp_load(sr_mesh *mesh, const char *path, sr_error *err)
+{
+    *mesh = (sr_mesh){ 0 };
+    const struct aiScene *sc = aiImportFile(path, IMPORT_STEPS);
+    if (!sc)
+        return sr_error_set(err, "%s: %s", path, aiGetErrorString());
+    bool ok = build_mesh(sc, path, mesh, err);
+    aiReleaseImport(sc);
+    if (ok)
+        sr_mesh_update_bounds(mesh);
+    else
+        sr_mesh_free(mesh);
+    return ok;
+}

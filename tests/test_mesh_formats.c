@@ -1,0 +1,132 @@
+/* sr_mesh_load on the formats Assimp reads, with real files from Debian's
+ * assimp-testmodels: the counts, bounds and textures a person would check,
+ * the same box as OBJ (own loader) and as glTF and GLB (Assimp) drawing
+ * the same coverage and depth, and a broken file getting one error line. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "run_helpers.h"
+#include "scene_helpers.h"
+#include "softrast_private.h"
+#include "temp_dir.h"
+
+#define MODELS "/usr/share/assimp/models/"
+#define SIDE 96
+
+static sr_mesh load(const char *path)
+{
+    sr_mesh m;
+    sr_error err = { "" };
+    cr_assert(sr_mesh_load(&m, path, &err), "%s: %s", path, err.message);
+    return m;
+}
+
+static void expect_bounds(const sr_mesh *m, const float lo[3], const float hi[3], float tol)
+{
+    vec3 a, b;
+    cr_assert(sr_mesh_bounds(m, a, b));
+    for (int k = 0; k < 3; k++) {
+        cr_expect_float_eq(a[k], lo[k], tol, "lo[%d] = %g, want %g", k, a[k], lo[k]);
+        cr_expect_float_eq(b[k], hi[k], tol, "hi[%d] = %g, want %g", k, b[k], hi[k]);
+    }
+}
+
+Test(mesh_formats, each_format_gives_the_expected_triangles_and_attributes)
+{
+    static const struct {
+        const char *path;
+        uint32_t triangles;
+        bool uvs, texture;
+    } files[] = {
+        { MODELS "PLY/cube.ply", 12, false, false },
+        { MODELS "PLY/cube_binary.ply", 12, false, false },
+        { MODELS "STL/Spider_ascii.stl", 1368, false, false },
+        { MODELS "STL/Spider_binary.stl", 1368, false, false },
+        { MODELS "glTF2/BoxTextured-glTF/BoxTextured.gltf", 12, true, true },
+        { MODELS "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb", 12, true, false }, /* embedded: not read yet */
+        { MODELS "FBX/box.fbx", 12, false, false },
+        { MODELS "Collada/duck.dae", 4212, true, true },
+    };
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        sr_mesh m = load(files[i].path);
+        cr_expect_eq(sr_mesh_triangle_slots(&m), files[i].triangles, "%s: %u triangles", files[i].path,
+                     sr_mesh_triangle_slots(&m));
+        cr_expect_not_null(m.normals, "%s: normals are generated when absent", files[i].path);
+        cr_expect_eq(m.uvs != NULL, files[i].uvs, "%s: uvs", files[i].path);
+        cr_expect_eq(m.texture_path != NULL, files[i].texture, "%s: texture %s", files[i].path,
+                     m.texture_path ? m.texture_path : "(none)");
+        cr_expect(m.bounded, "%s: bounds stored", files[i].path);
+        sr_mesh_free(&m);
+    }
+}
+
+/* The STL spider in both encodings is the same mesh; the glTF box is the
+ * unit cube around the origin. */
+Test(mesh_formats, bounds_are_the_models_and_agree_across_encodings)
+{
+    sr_mesh ascii = load(MODELS "STL/Spider_ascii.stl"), binary = load(MODELS "STL/Spider_binary.stl");
+    vec3 lo, hi;
+    cr_assert(sr_mesh_bounds(&ascii, lo, hi));
+    expect_bounds(&binary, lo, hi, 1e-4f);
+    sr_mesh box = load(MODELS "glTF2/BoxTextured-glTF/BoxTextured.gltf");
+    expect_bounds(&box, (float[3]){ -0.5f, -0.5f, -0.5f }, (float[3]){ 0.5f, 0.5f, 0.5f }, 1e-6f);
+    sr_mesh_free(&ascii);
+    sr_mesh_free(&binary);
+    sr_mesh_free(&box);
+}
+
+static void draw_depth(const sr_mesh *m, sr_framebuffer *fb)
+{
+    scene_fb_make(fb, SIDE, SIDE);
+    sr_camera cam = scene_camera(1.3f, 1.1f, -1.9f, 0.0f, 0.0f, 0.0f, 50.0f, 0.1f, 10.0f);
+    sr_draw_desc desc = { .mesh = m, .shade = SR_SHADE_DEPTH };
+    scene_camera_desc(&desc, &cam, SIDE, SIDE);
+    sr_error err = { "" };
+    sr_framebuffer_clear(fb, 0);
+    cr_assert(sr_draw(fb, &desc, NULL, &err), "%s", err.message);
+}
+
+/* Triangle order and the diagonal each face is split on may differ, so
+ * coverage must match exactly and depth to a few float steps. */
+Test(mesh_formats, the_same_box_as_obj_gltf_and_glb_draws_the_same_pixels)
+{
+    sr_mesh obj = load(MODELS "OBJ/box.obj");
+    sr_framebuffer ref;
+    draw_depth(&obj, &ref);
+    cr_assert_gt(scene_count_depth_written(&ref), SIDE * SIDE / 10, "the box covers a good part of the frame");
+    static const char *const others[] = { MODELS "glTF2/BoxTextured-glTF/BoxTextured.gltf",
+                                          MODELS "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb" };
+    for (size_t i = 0; i < sizeof others / sizeof *others; i++) {
+        sr_mesh m = load(others[i]);
+        sr_framebuffer fb;
+        draw_depth(&m, &fb);
+        for (int p = 0; p < SIDE * SIDE; p++) {
+            bool a = ref.depth[p] < SR_DEPTH_CLEAR, b = fb.depth[p] < SR_DEPTH_CLEAR;
+            cr_assert_eq(a, b, "%s: pixel %d covered %d, the OBJ's %d", others[i], p, b, a);
+            cr_assert_float_eq(fb.depth[p], ref.depth[p], 1e-6f, "%s: pixel %d depth %.9g, the OBJ's %.9g",
+                               others[i], p, fb.depth[p], ref.depth[p]);
+        }
+        sr_framebuffer_destroy(&fb);
+        sr_mesh_free(&m);
+    }
+    sr_framebuffer_destroy(&ref);
+    sr_mesh_free(&obj);
+}
+
+Test(mesh_formats, a_broken_file_is_one_error_line_without_assimps_log, .init = temp_dir_make,
+     .fini = temp_dir_remove)
+{
+    write_text(temp_dir, "broken.glb", "glTF\x02\x00\x00\x00 not a real binary glTF");
+    write_text(temp_dir, "broken.ply", "ply\nformat ascii 1.0\nelement vertex 99\nend_header\n1 2\n");
+    static const char *const names[] = { "broken.glb", "broken.ply", "missing.stl" };
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+        char args[600];
+        snprintf(args, sizeof args, "render %s/%s --size 8x8", temp_dir, names[i]);
+        run_result r = run_softrast(temp_dir, args);
+        cr_assert(r.status != 0 && r.status < 128, "%s: exit %d", names[i], r.status);
+        cr_assert_eq(count_lines(r.err), 1, "%s: want one line, stderr was: %s", names[i], r.err);
+        cr_assert_eq(strncmp(r.err, "softrast: error: ", 17), 0, "%s: %s", names[i], r.err);
+        cr_assert_not_null(strstr(r.err, names[i]), "%s: the path is named: %s", names[i], r.err);
+    }
+}
