@@ -17,9 +17,10 @@ FUZZ_CC       ?= clang
 FUZZ_SECONDS  ?= 600
 FUZZ_TIMEOUT  ?= 10
 FUZZ_TOLERATE ?=
-FUZZ_TARGETS  := draw obj
+FUZZ_TARGETS  := draw obj mesh
 FUZZ_MAX_LEN_draw := 4096
 FUZZ_MAX_LEN_obj  := 8192
+FUZZ_MAX_LEN_mesh := 20000
 
 FUZZ_PKG_CFLAGS = $(shell pkg-config --cflags cglm sdl2 SDL2_image assimp 2>/dev/null)
 FUZZ_PKG_LIBS   = $(shell pkg-config --libs cglm sdl2 SDL2_image assimp 2>/dev/null)
@@ -61,7 +62,7 @@ FUZZ_RUN ?= $(FUZZ_TARGETS)
 
 fuzz: fuzz-build
 	@for t in $(FUZZ_RUN); do \
-	   case $$t in draw) max=$(FUZZ_MAX_LEN_draw);; obj) max=$(FUZZ_MAX_LEN_obj);; *) echo "no fuzz target $$t"; exit 1;; esac; \
+	   case $$t in draw) max=$(FUZZ_MAX_LEN_draw);; obj) max=$(FUZZ_MAX_LEN_obj);; mesh) max=$(FUZZ_MAX_LEN_mesh);; *) echo "no fuzz target $$t"; exit 1;; esac; \
 	   rm -rf build/fuzz/artifacts/$$t && mkdir -p build/fuzz/corpus/$$t build/fuzz/artifacts/$$t; \
 	   cp fuzz/corpus/$$t/* build/fuzz/corpus/$$t/; \
 	   echo "  FUZZ    $$t for $(FUZZ_SECONDS) s (log: build/fuzz/$$t.log)"; \

@@ -8,7 +8,9 @@
  * positions and normals) and each triangle (a, b, c) written as (a, c, b).
  * Meshes follow in Assimp's mesh order, faces in face order: triangle ids
  * count them so. Points and lines are left out. Positions are gathered in
- * double and stored relative to a far mesh's centre, as OBJ's are.
+ * double and stored relative to a far mesh's centre, as OBJ's are. The
+ * import runs in a child process (isolated_load.h): Assimp is not ours to
+ * make crash- and hang-free.
  */
 #include <assimp/cimport.h>
 #include <assimp/material.h>
@@ -19,6 +21,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "isolated_load.h"
 #include "mesh_loaders.h"
 #include "mesh_origin.h"
 #include "obj_parse.h"
@@ -163,7 +166,8 @@ static bool build_mesh(const struct aiScene *sc, const char *path, sr_mesh *mesh
     return true;
 }
 
-bool sr_assimp_load(sr_mesh *mesh, const char *path, sr_error *err)
+/* In the child process: Assimp's import, converted. */
+static bool import_here(sr_mesh *mesh, const char *path, sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
     const struct aiScene *sc = aiImportFile(path, IMPORT_STEPS);
@@ -175,5 +179,13 @@ bool sr_assimp_load(sr_mesh *mesh, const char *path, sr_error *err)
         sr_mesh_update_bounds(mesh);
     else
         sr_mesh_free(mesh);
+    return ok;
+}
+
+bool sr_assimp_load(sr_mesh *mesh, const char *path, unsigned seconds, sr_error *err)
+{
+    bool ok = sr_isolated_load(mesh, path, import_here, seconds, err);
+    if (ok)
+        sr_mesh_update_bounds(mesh);
     return ok;
 }

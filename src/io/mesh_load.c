@@ -12,5 +12,5 @@ static bool ends_with_obj(const char *path)
 
 bool sr_mesh_load(sr_mesh *mesh, const char *path, sr_error *err)
 {
-    return ends_with_obj(path) ? sr_obj_load(mesh, path, err) : sr_assimp_load(mesh, path, err);
+    return ends_with_obj(path) ? sr_obj_load(mesh, path, err) : sr_assimp_load(mesh, path, SR_IMPORT_SECONDS, err);
 }

@@ -5,7 +5,11 @@
 
 #include "softrast/files.h"
 
-/* A file through Assimp; false with "FILE: reason" in err, mesh zeroed. */
-bool sr_assimp_load(sr_mesh *mesh, const char *path, sr_error *err);
+/* The CPU time an import may take before it is stopped as a hang. */
+#define SR_IMPORT_SECONDS 120u
+
+/* A file through Assimp, in a child process given `seconds` of CPU time;
+ * false with "FILE: reason" in err, mesh zeroed. */
+bool sr_assimp_load(sr_mesh *mesh, const char *path, unsigned seconds, sr_error *err);
 
 #endif

@@ -1,0 +1,185 @@
+/* A loader run in a child process, its mesh sent back through a pipe.
+ *
+ * Third-party importers (Assimp) cannot be made crash- and hang-free from
+ * outside: a hostile file may crash one or loop for ever. In a child, a
+ * crash is a signal the parent reads and reports, and a loop ends at the
+ * child's CPU-time limit (SIGXCPU), a read that blocks (a glTF naming a FIFO
+ * as its buffer) at its alarm (SIGALRM). The child writes a header, then the
+ * mesh's arrays or the error message; the parent checks the counts against
+ * the documented limits before it allocates, so a lying child cannot make
+ * it allocate more than those allow.
+ */
+#include <errno.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "isolated_load.h"
+
+typedef struct wire_header {
+    uint32_t ok;
+    uint32_t vertex_count, index_count;
+    uint32_t has_normals, has_uvs, has_colors;
+    uint32_t text_len; /* the texture path (ok) or the message (not ok), without its NUL */
+    double origin[3];
+} wire_header;
+
+static bool write_all(int fd, const void *data, size_t n)
+{
+    const char *p = data;
+    while (n > 0) {
+        ssize_t w = write(fd, p, n);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0)
+            return false;
+        p += w;
+        n -= (size_t)w;
+    }
+    return true;
+}
+
+static bool read_all(int fd, void *data, size_t n)
+{
+    char *p = data;
+    while (n > 0) {
+        ssize_t r = read(fd, p, n);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            return false;
+        p += r;
+        n -= (size_t)r;
+    }
+    return true;
+}
+
+/* Each optional array: its element size, and where it sits in the mesh. */
+typedef struct wire_array {
+    void **data;
+    size_t elem;
+    uint32_t count;
+} wire_array;
+
+static int wire_arrays(sr_mesh *m, wire_array out[5])
+{
+    int n = 0;
+    out[n++] = (wire_array){ (void **)&m->positions, sizeof *m->positions, m->vertex_count };
+    if (m->normals)
+        out[n++] = (wire_array){ (void **)&m->normals, sizeof *m->normals, m->vertex_count };
+    if (m->uvs)
+        out[n++] = (wire_array){ (void **)&m->uvs, sizeof *m->uvs, m->vertex_count };
+    if (m->colors)
+        out[n++] = (wire_array){ (void **)&m->colors, sizeof *m->colors, m->vertex_count };
+    out[n++] = (wire_array){ (void **)&m->indices, sizeof *m->indices, m->index_count };
+    return n;
+}
+
+static void child_run(int fd, const char *path, sr_isolated_loader load, unsigned seconds)
+{
+    /* A crash must end the child with its signal, whatever handlers the
+     * parent installed (a sanitizer's, a fuzzer's, an embedder's). */
+    static const int deadly[] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGPIPE, SIGXCPU, SIGALRM };
+    for (size_t i = 0; i < sizeof deadly / sizeof *deadly; i++)
+        signal(deadly[i], SIG_DFL);
+    setrlimit(RLIMIT_CPU, &(struct rlimit){ seconds, seconds + 1 }); /* a loop */
+    alarm(seconds);                                                  /* a read that blocks */
+    sr_mesh m;
+    sr_error err = { "" };
+    bool ok = load(&m, path, &err);
+    const char *text = ok ? (m.texture_path ? m.texture_path : "") : err.message;
+    wire_header h = { .ok = ok, .text_len = (uint32_t)strlen(text) };
+    if (ok) {
+        h.vertex_count = m.vertex_count;
+        h.index_count = m.index_count;
+        h.has_normals = m.normals != NULL;
+        h.has_uvs = m.uvs != NULL;
+        h.has_colors = m.colors != NULL;
+        memcpy(h.origin, m.origin, sizeof h.origin);
+    }
+    bool sent = write_all(fd, &h, sizeof h) && write_all(fd, text, h.text_len);
+    wire_array arrays[5];
+    for (int i = 0, n = ok ? wire_arrays(&m, arrays) : 0; sent && i < n; i++)
+        sent = write_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
+    _exit(sent ? 0 : 1); /* no atexit handlers of the parent's libraries in the child */
+}
+
+static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, const char *path, sr_error *err)
+{
+    if (h->vertex_count > SR_MAX_MESH_VERTICES || h->index_count / 3 > SR_MAX_MESH_TRIANGLES ||
+        h->index_count % 3 != 0 || h->text_len > SR_ERROR_MAX * 8)
+        return sr_error_set(err, "%s: the importer sent a mesh past the limits", path);
+    if (!sr_mesh_alloc(mesh, h->vertex_count, h->index_count, h->has_normals, h->has_uvs, h->has_colors, err))
+        return false;
+    memcpy(mesh->origin, h->origin, sizeof mesh->origin);
+    char *texture = malloc((size_t)h->text_len + 1);
+    bool ok = texture && read_all(fd, texture, h->text_len);
+    if (ok && h->text_len > 0) {
+        texture[h->text_len] = '\0';
+        mesh->texture_path = texture;
+    } else {
+        free(texture);
+    }
+    wire_array arrays[5];
+    for (int i = 0, n = wire_arrays(mesh, arrays); ok && i < n; i++)
+        ok = read_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
+    return ok || sr_error_set(err, "%s: the importer stopped while sending the mesh", path);
+}
+
+static bool receive(int fd, sr_mesh *mesh, const char *path, sr_error *err)
+{
+    wire_header h;
+    if (!read_all(fd, &h, sizeof h))
+        return sr_error_set(err, "%s: the importer sent nothing", path);
+    if (h.ok)
+        return receive_mesh(fd, &h, mesh, path, err);
+    char message[SR_ERROR_MAX] = "";
+    size_t n = h.text_len < sizeof message - 1 ? h.text_len : sizeof message - 1;
+    read_all(fd, message, n);
+    return sr_error_set(err, "%s", message);
+}
+
+/* A child that died says why; one that exited cleanly said it through the pipe. */
+static bool child_status(pid_t pid, const char *path, unsigned seconds, sr_error *err)
+{
+    int status;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return sr_error_set(err, "%s: lost the importer: %s", path, strerror(errno));
+    if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU || WTERMSIG(status) == SIGALRM))
+        return sr_error_set(err, "%s: the importer took more than %u s", path, seconds);
+    if (WIFSIGNALED(status))
+        return sr_error_set(err, "%s: the importer crashed on this file (%s)", path, strsignal(WTERMSIG(status)));
+    return true;
+}
+
+bool sr_isolated_load(sr_mesh *mesh, const char *path, sr_isolated_loader load, unsigned seconds, sr_error *err)
+{
+    *mesh = (sr_mesh){ 0 };
+    int fds[2];
+    if (pipe(fds) != 0)
+        return sr_error_set(err, "%s: cannot start the importer: %s", path, strerror(errno));
+    pid_t pid = fork();
+    if (pid < 0) {
+        close(fds[0]);
+        close(fds[1]);
+        return sr_error_set(err, "%s: cannot start the importer: %s", path, strerror(errno));
+    }
+    if (pid == 0) {
+        close(fds[0]);
+        child_run(fds[1], path, load, seconds);
+    }
+    close(fds[1]);
+    sr_error received = { "" }, died = { "" };
+    bool ok = receive(fds[0], mesh, path, &received);
+    close(fds[0]);
+    bool lived = child_status(pid, path, seconds, &died);
+    if (lived && ok)
+        return true;
+    sr_mesh_free(mesh);
+    return sr_error_set(err, "%s", lived ? received.message : died.message);
+}
