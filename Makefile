@@ -157,10 +157,14 @@ docs-images: build/softrast
 	./build/softrast render assets/room.obj $(ROOM_CAMERA) --size 640x360 --out docs/images/room.png --depth-png docs/images/room-depth.png
 	./build/softrast render assets/room.obj $(ROOM_CAMERA) --size 640x360 --shade id --out docs/images/room-id.png
 	./build/softrast render assets/torus.obj --eye 0,2.2,-2.6 --target 0,0,0 --size 320x240 --shade normal --out docs/images/torus-normal.png
+	./build/softrast render $(ENGINE_GLB) --eye 300,250,-500 --target 0,0,0 --near 1 --far 5000 --size 640x360 --out docs/images/engine-gltf.png
 	$(call viewer_shot,,viewer)
 	$(call viewer_shot,--keys F4,viewer-depth)
 	$(call viewer_shot,--keys F2,viewer-wireframe)
 	$(call viewer_shot,--keys F1,viewer-help)
+
+# A glTF model from Debian's assimp-testmodels (material base colours, 110k triangles).
+ENGINE_GLB := /usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb
 
 # A screenshot of the viewer's window under Xvfb: $(1) extra options, $(2) name.
 define viewer_shot

@@ -130,3 +130,25 @@ Test(mesh_formats, a_broken_file_is_one_error_line_without_assimps_log, .init = 
         cr_assert_not_null(strstr(r.err, names[i]), "%s: the path is named: %s", names[i], r.err);
     }
 }
+
+/* The engine's parts differ only by their materials' base colour, which
+ * becomes the vertex colour: gray metal, blue caps, and more. */
+Test(mesh_formats, material_base_colours_become_vertex_colours)
+{
+    sr_mesh m = load(MODELS "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
+    cr_assert_not_null(m.colors);
+    vec3 seen[16];
+    int distinct = 0;
+    bool blue = false;
+    for (uint32_t v = 0; v < m.vertex_count && distinct < 16; v++) {
+        bool known = false;
+        for (int i = 0; i < distinct && !known; i++)
+            known = glm_vec3_eqv(seen[i], m.colors[v]);
+        if (!known)
+            glm_vec3_copy(m.colors[v], seen[distinct++]);
+        blue |= m.colors[v][2] > 0.5f && m.colors[v][0] < 0.2f;
+    }
+    cr_expect_geq(distinct, 3, "%d distinct colours", distinct);
+    cr_expect(blue, "the blue caps keep their colour");
+    sr_mesh_free(&m);
+}

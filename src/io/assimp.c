@@ -7,7 +7,8 @@
  * right-handed y-up like OBJ's, so the same flip applies: z negated (of
  * positions and normals) and each triangle (a, b, c) written as (a, c, b).
  * Meshes follow in Assimp's mesh order, faces in face order: triangle ids
- * count them so. Points and lines are left out. Positions are gathered in
+ * count them so. Points and lines are left out. A material's colour factor
+ * is multiplied into the vertex colours (white where a mesh has none). Positions are gathered in
  * double and stored relative to a far mesh's centre, as OBJ's are. The
  * import runs in a child process (isolated_load.h): Assimp is not ours to
  * make crash- and hang-free.
@@ -42,6 +43,24 @@ static bool is_triangle(const struct aiFace *f)
     return f->mNumIndices == 3;
 }
 
+/* The material's colour factor (glTF's base colour, else the diffuse
+ * colour), white when it has none: it multiplies the vertex colours. */
+static struct aiColor4D material_color(const struct aiScene *sc, const struct aiMesh *m)
+{
+    struct aiColor4D c = { 1.0f, 1.0f, 1.0f, 1.0f };
+    if (m->mMaterialIndex < sc->mNumMaterials) {
+        const struct aiMaterial *mat = sc->mMaterials[m->mMaterialIndex];
+        if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) != aiReturn_SUCCESS)
+            aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c);
+    }
+    return c;
+}
+
+static bool is_white(struct aiColor4D c)
+{
+    return c.r == 1.0f && c.g == 1.0f && c.b == 1.0f;
+}
+
 /* What the scene needs, counted before anything is allocated for it. */
 typedef struct scene_counts {
     uint64_t vertices, indices;
@@ -60,7 +79,7 @@ static bool count_scene(const struct aiScene *sc, const char *path, scene_counts
             n->indices += is_triangle(&m->mFaces[f]) ? 3u : 0u;
         n->normals |= m->mNormals != NULL;
         n->uvs |= m->mTextureCoords[0] != NULL;
-        n->colors |= m->mColors[0] != NULL;
+        n->colors |= m->mColors[0] != NULL || !is_white(material_color(sc, m));
     }
     if (n->vertices > SR_MAX_MESH_VERTICES || n->indices / 3 > SR_MAX_MESH_TRIANGLES)
         return sr_error_set(err, "%s: %llu vertices and %llu triangles exceed the limits (%u, %u)", path,
@@ -99,6 +118,7 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
         const struct aiMesh *m = sc->mMeshes[i];
         if (!is_triangles(m))
             continue;
+        const struct aiColor4D factor = material_color(sc, m);
         for (unsigned j = 0; j < m->mNumVertices; j++, v++) {
             const struct aiVector3D p = m->mVertices[j];
             const double world[3] = { p.x, p.y, -(double)p.z };
@@ -108,10 +128,10 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
                 glm_vec3_copy((vec3){ m->mNormals[j].x, m->mNormals[j].y, -m->mNormals[j].z }, mesh->normals[v]);
             if (mesh->uvs && m->mTextureCoords[0])
                 glm_vec2_copy((vec2){ m->mTextureCoords[0][j].x, m->mTextureCoords[0][j].y }, mesh->uvs[v]);
-            if (mesh->colors)
-                glm_vec3_copy(m->mColors[0] ? (vec3){ m->mColors[0][j].r, m->mColors[0][j].g, m->mColors[0][j].b }
-                                            : (vec3){ 1.0f, 1.0f, 1.0f },
-                              mesh->colors[v]);
+            if (mesh->colors) {
+                const struct aiColor4D c = m->mColors[0] ? m->mColors[0][j] : (struct aiColor4D){ 1, 1, 1, 1 };
+                glm_vec3_copy((vec3){ c.r * factor.r, c.g * factor.g, c.b * factor.b }, mesh->colors[v]);
+            }
         }
         for (unsigned f = 0; f < m->mNumFaces; f++) {
             if (!is_triangle(&m->mFaces[f]))
