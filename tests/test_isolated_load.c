@@ -24,7 +24,13 @@ static bool load_two_triangles(sr_mesh *m, const char *path, sr_error *err)
     memcpy(m->indices, idx, sizeof idx);
     m->origin[0] = 1e7;
     m->texture_path = strdup("tex.png");
-    return m->texture_path != NULL;
+    m->parts = malloc(2 * sizeof *m->parts);
+    if (!m->texture_path || !m->parts)
+        return false;
+    m->parts[0] = (sr_mesh_part){ 0, 1 };
+    m->parts[1] = (sr_mesh_part){ 1, 1 };
+    m->part_count = 2;
+    return true;
 }
 
 static bool fail_politely(sr_mesh *m, const char *path, sr_error *err)
@@ -71,6 +77,8 @@ Test(isolated_load, the_childs_mesh_comes_back_whole)
     cr_assert_eq(memcmp(got.indices, want.indices, sizeof(uint32_t) * 6), 0);
     cr_assert_eq(got.origin[0], 1e7);
     cr_assert_str_eq(got.texture_path, "tex.png");
+    cr_assert_eq(got.part_count, 2);
+    cr_assert_eq(memcmp(got.parts, want.parts, 2 * sizeof *got.parts), 0);
     sr_mesh_free(&want);
     sr_mesh_free(&got);
 }

@@ -152,3 +152,23 @@ Test(mesh_formats, material_base_colours_become_vertex_colours)
     cr_expect(blue, "the blue caps keep their colour");
     sr_mesh_free(&m);
 }
+
+/* Each of the engine's meshes is a part: runs of triangle ids that follow
+ * each other and cover every slot, in the file's mesh order. */
+Test(mesh_formats, the_parts_of_a_multi_mesh_file_cover_its_triangles_in_order)
+{
+    sr_mesh m = load(MODELS "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
+    cr_assert_gt(m.part_count, 10, "%u parts", m.part_count);
+    uint32_t next = 0;
+    for (uint32_t i = 0; i < m.part_count; i++) {
+        cr_assert_eq(m.parts[i].first_triangle, next, "part %u starts at %u", i, m.parts[i].first_triangle);
+        cr_assert_gt(m.parts[i].triangle_count, 0);
+        next += m.parts[i].triangle_count;
+    }
+    cr_assert_eq(next, sr_mesh_triangle_slots(&m));
+    sr_mesh one = load(MODELS "STL/triangle.stl");
+    cr_assert_eq(one.part_count, 1);
+    cr_assert_eq(one.parts[0].triangle_count, 1);
+    sr_mesh_free(&one);
+    sr_mesh_free(&m);
+}

@@ -30,7 +30,8 @@
  * space (node transforms applied, instanced meshes repeated), triangulated,
  * and given smooth normals where it has none; it is right-handed y-up like
  * OBJ and flipped the same way (z negated, winding reversed). Triangle ids
- * count the meshes in file order, then their faces in order. Points, lines,
+ * count the meshes in file order, then their faces in order, and
+ * mesh->parts gives each mesh's run of ids (OBJ files have none). Points, lines,
  * skinning, animation, lights and cameras are ignored; texture_path is the
  * first base-colour or diffuse texture file a drawn mesh uses (embedded
  * textures are not read yet). A file over SR_MAX_MESH_VERTICES vertices or

@@ -63,6 +63,12 @@ typedef enum sr_topology {
     SR_TRIANGLE_STRIP     /* triangle k = (i[k], i[k+1], i[k+2]); odd k swaps its last two */
 } sr_topology;
 
+/* A run of triangle slots that came from one part of a file: a loader's
+ * mesh of a multi-mesh scene (softrast/files.h), in the file's order. */
+typedef struct sr_mesh_part {
+    uint32_t first_triangle, triangle_count;
+} sr_mesh_part;
+
 /* An indexed triangle mesh in plain arrays, positions in softrast's
  * left-handed world. A triangle with a repeated index is degenerate and
  * skipped (a strip's way of restarting); triangle ids count the slots of the
@@ -88,6 +94,8 @@ typedef struct sr_mesh {
     bool bounded;       /* bounds_lo/hi hold the positions' bounds (sr_mesh_update_bounds) */
     vec3 bounds_lo, bounds_hi;
     char *texture_path; /* a loader's: the used material's map_Kd, or NULL */
+    uint32_t part_count; /* a loader's: the file's meshes as runs of triangle ids; 0 for one */
+    sr_mesh_part *parts;
 } sr_mesh;
 
 /* Allocates zeroed arrays for the attributes asked for. False on overflow or

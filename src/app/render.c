@@ -79,16 +79,27 @@ static bool write_outputs(const render_job *job, sr_scene *scene, sr_error *err)
     return !job->depth_png_path || sr_image_write_depth_png(job->depth_png_path, fb, err);
 }
 
-static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_simd simd)
+/* The triangle ids of each part of a multi-mesh file: [[first, count], ...]. */
+static void print_parts(const sr_mesh *mesh)
+{
+    printf("[");
+    for (uint32_t i = 0; i < mesh->part_count; i++)
+        printf("%s[%u, %u]", i ? ", " : "", mesh->parts[i].first_triangle, mesh->parts[i].triangle_count);
+    printf("]");
+}
+
+static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_simd simd, const sr_mesh *mesh)
 {
     printf("{\"frames\": %d, \"ms_median\": %.4f, \"ms_min\": %.4f, \"triangles\": %llu, \"rejected\": %llu, "
            "\"clipped\": %llu, \"culled\": %llu, \"fragments\": %llu, \"nonfinite\": %llu, \"drawn\": %llu, "
-           "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu, \"simd\": \"%s\"}\n",
+           "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu, \"simd\": \"%s\", \"parts\": ",
            frames, t->median, t->min, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
            (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->fragments,
            (unsigned long long)s->nonfinite, (unsigned long long)s->drawn, (unsigned long long)s->cuts_float,
            (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact,
            sr_simd_name(sr_raster_simd_resolve(simd)));
+    print_parts(mesh);
+    printf("}\n");
 }
 
 static bool render(render_job *job, sr_scene *scene, sr_error *err)
@@ -104,7 +115,7 @@ static bool render(render_job *job, sr_scene *scene, sr_error *err)
         !run_frames(job->frames, scene, &desc, &stats, &times, err) || !write_outputs(job, scene, err))
         return false;
     if (job->stats)
-        print_stats(job->frames, &times, &stats, study.simd);
+        print_stats(job->frames, &times, &stats, study.simd, &scene->mesh);
     return true;
 }
 

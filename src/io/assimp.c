@@ -64,6 +64,7 @@ static bool is_white(struct aiColor4D c)
 /* What the scene needs, counted before anything is allocated for it. */
 typedef struct scene_counts {
     uint64_t vertices, indices;
+    uint32_t parts; /* drawn meshes: at least one triangle */
     bool normals, uvs, colors;
 } scene_counts;
 
@@ -75,8 +76,10 @@ static bool count_scene(const struct aiScene *sc, const char *path, scene_counts
         if (!is_triangles(m))
             continue;
         n->vertices += m->mNumVertices;
+        uint64_t before = n->indices;
         for (unsigned f = 0; f < m->mNumFaces; f++)
             n->indices += is_triangle(&m->mFaces[f]) ? 3u : 0u;
+        n->parts += n->indices > before;
         n->normals |= m->mNormals != NULL;
         n->uvs |= m->mTextureCoords[0] != NULL;
         n->colors |= m->mColors[0] != NULL || !is_white(material_color(sc, m));
@@ -113,7 +116,7 @@ static bool texture_beside(const struct aiScene *sc, const char *path, char **ou
 
 static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double origin[3])
 {
-    uint32_t v = 0, x = 0;
+    uint32_t v = 0, x = 0, part = 0;
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         const struct aiMesh *m = sc->mMeshes[i];
         if (!is_triangles(m))
@@ -133,6 +136,7 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
                 glm_vec3_copy((vec3){ c.r * factor.r, c.g * factor.g, c.b * factor.b }, mesh->colors[v]);
             }
         }
+        uint32_t first = x / 3;
         for (unsigned f = 0; f < m->mNumFaces; f++) {
             if (!is_triangle(&m->mFaces[f]))
                 continue;
@@ -142,6 +146,8 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
             mesh->indices[x++] = base + c[2];
             mesh->indices[x++] = base + c[1];
         }
+        if (x / 3 > first)
+            mesh->parts[part++] = (sr_mesh_part){ first, x / 3 - first };
     }
 }
 
@@ -180,9 +186,13 @@ static bool build_mesh(const struct aiScene *sc, const char *path, sr_mesh *mesh
         free(texture);
         return false;
     }
+    mesh->texture_path = texture;
+    mesh->parts = calloc(n.parts ? n.parts : 1, sizeof *mesh->parts);
+    if (!mesh->parts)
+        return sr_error_set(err, "%s: out of memory", path);
+    mesh->part_count = n.parts;
     copy_vertices(sc, mesh, origin);
     memcpy(mesh->origin, origin, sizeof mesh->origin);
-    mesh->texture_path = texture;
     return true;
 }
 
@@ -195,9 +205,7 @@ static bool import_here(sr_mesh *mesh, const char *path, sr_error *err)
         return sr_error_set(err, "%s: %s", path, aiGetErrorString());
     bool ok = build_mesh(sc, path, mesh, err);
     aiReleaseImport(sc);
-    if (ok)
-        sr_mesh_update_bounds(mesh);
-    else
+    if (!ok)
         sr_mesh_free(mesh);
     return ok;
 }

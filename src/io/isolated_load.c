@@ -23,7 +23,7 @@
 typedef struct wire_header {
     uint32_t ok;
     uint32_t vertex_count, index_count;
-    uint32_t has_normals, has_uvs, has_colors;
+    uint32_t has_normals, has_uvs, has_colors, part_count;
     uint32_t text_len; /* the texture path (ok) or the message (not ok), without its NUL */
     double origin[3];
 } wire_header;
@@ -65,7 +65,7 @@ typedef struct wire_array {
     uint32_t count;
 } wire_array;
 
-static int wire_arrays(sr_mesh *m, wire_array out[5])
+static int wire_arrays(sr_mesh *m, wire_array out[6])
 {
     int n = 0;
     out[n++] = (wire_array){ (void **)&m->positions, sizeof *m->positions, m->vertex_count };
@@ -76,6 +76,8 @@ static int wire_arrays(sr_mesh *m, wire_array out[5])
     if (m->colors)
         out[n++] = (wire_array){ (void **)&m->colors, sizeof *m->colors, m->vertex_count };
     out[n++] = (wire_array){ (void **)&m->indices, sizeof *m->indices, m->index_count };
+    if (m->parts)
+        out[n++] = (wire_array){ (void **)&m->parts, sizeof *m->parts, m->part_count };
     return n;
 }
 
@@ -99,10 +101,11 @@ static void child_run(int fd, const char *path, sr_isolated_loader load, unsigne
         h.has_normals = m.normals != NULL;
         h.has_uvs = m.uvs != NULL;
         h.has_colors = m.colors != NULL;
+        h.part_count = m.parts ? m.part_count : 0;
         memcpy(h.origin, m.origin, sizeof h.origin);
     }
     bool sent = write_all(fd, &h, sizeof h) && write_all(fd, text, h.text_len);
-    wire_array arrays[5];
+    wire_array arrays[6];
     for (int i = 0, n = ok ? wire_arrays(&m, arrays) : 0; sent && i < n; i++)
         sent = write_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
     _exit(sent ? 0 : 1); /* no atexit handlers of the parent's libraries in the child */
@@ -111,11 +114,17 @@ static void child_run(int fd, const char *path, sr_isolated_loader load, unsigne
 static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, const char *path, sr_error *err)
 {
     if (h->vertex_count > SR_MAX_MESH_VERTICES || h->index_count / 3 > SR_MAX_MESH_TRIANGLES ||
-        h->index_count % 3 != 0 || h->text_len > SR_ERROR_MAX * 8)
+        h->index_count % 3 != 0 || h->part_count > h->index_count / 3 || h->text_len > SR_ERROR_MAX * 8)
         return sr_error_set(err, "%s: the importer sent a mesh past the limits", path);
     if (!sr_mesh_alloc(mesh, h->vertex_count, h->index_count, h->has_normals, h->has_uvs, h->has_colors, err))
         return false;
     memcpy(mesh->origin, h->origin, sizeof mesh->origin);
+    if (h->part_count > 0) {
+        mesh->parts = malloc(h->part_count * sizeof *mesh->parts);
+        if (!mesh->parts)
+            return sr_error_set(err, "%s: out of memory for %u parts", path, h->part_count);
+        mesh->part_count = h->part_count;
+    }
     char *texture = malloc((size_t)h->text_len + 1);
     bool ok = texture && read_all(fd, texture, h->text_len);
     if (ok && h->text_len > 0) {
@@ -124,7 +133,7 @@ static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, const char
     } else {
         free(texture);
     }
-    wire_array arrays[5];
+    wire_array arrays[6];
     for (int i = 0, n = wire_arrays(mesh, arrays); ok && i < n; i++)
         ok = read_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
     return ok || sr_error_set(err, "%s: the importer stopped while sending the mesh", path);

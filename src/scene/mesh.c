@@ -41,6 +41,7 @@ void sr_mesh_free(sr_mesh *mesh)
     free(mesh->colors);
     free(mesh->indices);
     free(mesh->texture_path);
+    free(mesh->parts);
     *mesh = (sr_mesh){ 0 };
 }
 
