@@ -110,33 +110,21 @@ static bool parse_vertex(obj_reader *o, char *cursor)
     return push_color(o, n == 6 ? rgb : NULL);
 }
 
-static bool parse_uv(obj_reader *o, char *cursor)
+/* A 'vt' or 'vn' line: at least `least` numbers (at most 3), the first
+ * size / sizeof(float) of them, as floats, pushed onto g. */
+static bool parse_float_attribute(obj_reader *o, char *cursor, sr_array *g, size_t size, int least,
+                                  const char *needs, const char *what)
 {
     float f[3];
     int n = parse_floats(o, cursor, f, 3);
     if (n < 0)
         return false;
-    if (n < 2)
-        return sr_line_fail(&o->in, o->err, "'vt' needs u v or u v w, got %d numbers", n);
-    vec2 *t = push_attribute(o, &o->uvs, sizeof *t, "texture coordinates");
-    if (!t)
+    if (n < least)
+        return sr_line_fail(&o->in, o->err, "%s, got %d numbers", needs, n);
+    void *at = push_attribute(o, g, size, what);
+    if (!at)
         return false;
-    glm_vec2_copy(f, *t);
-    return true;
-}
-
-static bool parse_normal(obj_reader *o, char *cursor)
-{
-    float f[3];
-    int n = parse_floats(o, cursor, f, 3);
-    if (n < 0)
-        return false;
-    if (n != 3)
-        return sr_line_fail(&o->in, o->err, "'vn' needs x y z, got %d numbers", n);
-    vec3 *nv = push_attribute(o, &o->normals, sizeof *nv, "normals");
-    if (!nv)
-        return false;
-    glm_vec3_copy(f, *nv);
+    memcpy(at, f, size);
     return true;
 }
 
@@ -332,9 +320,10 @@ static bool parse_statement(obj_reader *o, char *line)
     if (strcmp(keyword, "v") == 0)
         return parse_vertex(o, cursor);
     if (strcmp(keyword, "vt") == 0)
-        return parse_uv(o, cursor);
+        return parse_float_attribute(o, cursor, &o->uvs, sizeof(vec2), 2, "'vt' needs u v or u v w",
+                                     "texture coordinates");
     if (strcmp(keyword, "vn") == 0)
-        return parse_normal(o, cursor);
+        return parse_float_attribute(o, cursor, &o->normals, sizeof(vec3), 3, "'vn' needs x y z", "normals");
     if (strcmp(keyword, "f") == 0)
         return parse_face(o, cursor);
     if (strcmp(keyword, "mtllib") == 0)
