@@ -1,7 +1,6 @@
 /* softrast render — one image without a window. */
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "app.h"
 #include "scene_setup.h"
@@ -41,13 +40,9 @@ static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_err
         { "--stats", SR_OPT_FLAG, &job->stats, NULL, "print one JSON line of per-frame statistics" },
         { 0 },
     };
-    sr_option table[SR_SCENE_OPTION_COUNT + sizeof own / sizeof *own];
-    sr_scene_setup_options(&job->scene, table);
-    memcpy(&table[SR_SCENE_OPTION_COUNT], own, sizeof own);
-    int positional = 0;
-    if (!sr_options_parse(table, USAGE, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
+    if (!sr_scene_setup_parse(&job->scene, own, USAGE, argc, argv, help, err))
         return false;
-    if (!*help && positional != 1)
+    if (!*help && !job->scene.mesh_path)
         return sr_error_set(err, "render needs one MESH.obj (see softrast render --help)");
     return true;
 }

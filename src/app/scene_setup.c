@@ -1,3 +1,4 @@
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -23,7 +24,9 @@ void sr_scene_setup_defaults(sr_scene_setup *s)
     }
 }
 
-void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
+#define SCENE_OPTION_COUNT 17
+
+static void scene_options(sr_scene_setup *s, sr_option *table)
 {
     const sr_option entries[] = {
         { "--size", SR_OPT_SIZE, s->size, "WxH", "framebuffer size (default 1280x720)", 1, SR_MAX_FRAMEBUFFER_SIDE },
@@ -44,8 +47,25 @@ void sr_scene_setup_options(sr_scene_setup *s, sr_option *table)
         { "--threads", SR_OPT_INT, &s->threads, "N", "threads in all, the calling one included (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--simd", SR_OPT_CHOICE, &s->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
     };
-    _Static_assert(sizeof entries / sizeof *entries == SR_SCENE_OPTION_COUNT, "SR_SCENE_OPTION_COUNT is the entries' count");
+    _Static_assert(sizeof entries / sizeof *entries == SCENE_OPTION_COUNT, "SCENE_OPTION_COUNT is the entries' count");
     memcpy(table, entries, sizeof entries);
+}
+
+bool sr_scene_setup_parse(sr_scene_setup *s, const sr_option *own, const char *usage, int argc, char **argv,
+                          bool *help, sr_error *err)
+{
+    size_t own_count = 1; /* the { 0 } */
+    while (own[own_count - 1].name)
+        own_count++;
+    sr_option *table = malloc((SCENE_OPTION_COUNT + own_count) * sizeof *table);
+    if (!table)
+        return sr_error_set(err, "out of memory for the option table");
+    scene_options(s, table);
+    memcpy(&table[SCENE_OPTION_COUNT], own, own_count * sizeof *own);
+    int positional = 0;
+    bool ok = sr_options_parse(table, usage, argc, argv, 2, &s->mesh_path, 1, &positional, help, err);
+    free(table);
+    return ok;
 }
 
 static bool shade_uses_texture(sr_shade shade)

@@ -10,14 +10,14 @@ static bool out_of_memory(const sr_line_reader *in, sr_error *err)
     return sr_line_fail(in, err, "out of memory");
 }
 
-static bool parse_newmtl(sr_growable *lib, sr_line_reader *in, char *cursor, sr_error *err)
+static bool parse_newmtl(sr_array *lib, sr_line_reader *in, char *cursor, sr_error *err)
 {
     /* The whole rest is the name: exporters write names with spaces. */
     const char *name = sr_obj_rest(cursor);
     if (!*name)
         return sr_line_fail(in, err, "'newmtl' needs a material name");
     char *copy = strdup(name);
-    sr_material *m = copy ? sr_grow(lib, sizeof *m, 1) : NULL;
+    sr_material *m = copy ? sr_array_push(lib, sizeof *m) : NULL;
     if (!m) {
         free(copy);
         return out_of_memory(in, err);
@@ -40,14 +40,14 @@ static const char *map_file_name(char *rest)
     return name;
 }
 
-static bool parse_map_kd(sr_growable *lib, sr_line_reader *in, char *cursor, sr_error *err)
+static bool parse_map_kd(sr_array *lib, sr_line_reader *in, char *cursor, sr_error *err)
 {
-    if (lib->len == 0)
+    if (lib->count == 0)
         return sr_line_fail(in, err, "'map_Kd' before any 'newmtl'");
     const char *file = map_file_name(sr_obj_rest(cursor));
     if (!*file || file[0] == '-')
         return sr_line_fail(in, err, "'map_Kd' needs a file name");
-    sr_material *m = (sr_material *)lib->data + lib->len - 1;
+    sr_material *m = (sr_material *)lib->data + lib->count - 1;
     char *path = sr_obj_path_beside(in->path, file);
     if (!path)
         return out_of_memory(in, err);
@@ -56,7 +56,7 @@ static bool parse_map_kd(sr_growable *lib, sr_line_reader *in, char *cursor, sr_
     return true;
 }
 
-static bool parse_mtl_statement(sr_growable *lib, sr_line_reader *in, char *line,
+static bool parse_mtl_statement(sr_array *lib, sr_line_reader *in, char *line,
                                 sr_error *err)
 {
     char *cursor = line;
@@ -71,7 +71,7 @@ static bool parse_mtl_statement(sr_growable *lib, sr_line_reader *in, char *line
     return true;
 }
 
-static bool read_library(sr_growable *lib, sr_line_reader *in, sr_error *err)
+static bool read_library(sr_array *lib, sr_line_reader *in, sr_error *err)
 {
     for (;;) {
         char *line;
@@ -85,7 +85,7 @@ static bool read_library(sr_growable *lib, sr_line_reader *in, sr_error *err)
 }
 
 /* 1 loaded, 0 cannot open (errno set), -1 error in the library (err set). */
-static int load_library(sr_growable *lib, const sr_line_reader *obj, const char *name,
+static int load_library(sr_array *lib, const sr_line_reader *obj, const char *name,
                         sr_error *err)
 {
     char *path = sr_obj_path_beside(obj->path, name);
@@ -115,7 +115,7 @@ static bool cannot_open(const sr_line_reader *obj, const char *name, sr_error *e
  * the OBJ); the format also allows several names separated by blanks, which
  * is tried when the whole rest is not a file. A missing library is an error:
  * softrast never drops a texture silently. */
-bool sr_mtl_load(sr_growable *lib, const sr_line_reader *obj, char *names, sr_error *err)
+bool sr_mtl_load(sr_array *lib, const sr_line_reader *obj, char *names, sr_error *err)
 {
     if (!*names)
         return sr_line_fail(obj, err, "'mtllib' needs a file name");
@@ -134,21 +134,21 @@ bool sr_mtl_load(sr_growable *lib, const sr_line_reader *obj, char *names, sr_er
     return true;
 }
 
-ptrdiff_t sr_mtl_find(const sr_growable *lib, const char *name)
+ptrdiff_t sr_mtl_find(const sr_array *lib, const char *name)
 {
     const sr_material *m = lib->data;
-    for (size_t i = 0; i < lib->len; i++)
+    for (size_t i = 0; i < lib->count; i++)
         if (strcmp(m[i].name, name) == 0)
             return (ptrdiff_t)i;
     return -1;
 }
 
-void sr_mtl_free(sr_growable *lib)
+void sr_mtl_free(sr_array *lib)
 {
     sr_material *m = lib->data;
-    for (size_t i = 0; i < lib->len; i++) {
+    for (size_t i = 0; i < lib->count; i++) {
         free(m[i].name);
         free(m[i].map_kd);
     }
-    sr_growable_free(lib);
+    sr_array_free(lib);
 }

@@ -18,14 +18,14 @@ typedef struct sr_material {
 
 /* Reads the libraries that an `mtllib` statement names (`names`: the rest of
  * its line, relative to the OBJ's folder; `obj` is at that line) and appends
- * their materials to `lib`, an sr_growable of sr_material. Errors are
+ * their materials to `lib`, an sr_array of sr_material. Errors are
  * "OBJ:LINE: cannot open material library 'x.mtl': …" or "MTL:LINE: what".
  * `names` is tokenized in place. */
-bool sr_mtl_load(sr_growable *lib, const sr_line_reader *obj, char *names, sr_error *err);
+bool sr_mtl_load(sr_array *lib, const sr_line_reader *obj, char *names, sr_error *err);
 
 /* Index of the first material called `name`, or -1. */
-ptrdiff_t sr_mtl_find(const sr_growable *lib, const char *name);
+ptrdiff_t sr_mtl_find(const sr_array *lib, const char *name);
 
-void sr_mtl_free(sr_growable *lib);
+void sr_mtl_free(sr_array *lib);
 
 #endif

@@ -35,13 +35,13 @@ typedef struct corner {
 typedef struct obj_reader {
     sr_line_reader in;
     sr_error *err;
-    sr_growable positions, colors, uvs, normals; /* dvec3, vec3, vec2, vec3 as read */
-    sr_growable corners;                          /* corner per mesh vertex */
-    sr_growable indices;                          /* uint32_t, three per triangle */
-    uint32_t *map;                                /* open addressing: corner id + 1, 0 = free */
-    size_t map_cap;                               /* a power of two, kept at least half free */
+    sr_array positions, colors, uvs, normals; /* dvec3, vec3, vec2, vec3 as read */
+    sr_array corners;                         /* corner per mesh vertex */
+    sr_array indices;                         /* uint32_t, three per triangle */
+    uint32_t *map;                            /* open addressing: corner id + 1, 0 = free */
+    size_t map_cap;                           /* a power of two, kept at least half free */
     bool any_uv, any_normal;
-    sr_growable materials; /* sr_material */
+    sr_array materials; /* sr_material */
     bool has_mtllib;
     ptrdiff_t material;  /* selected by usemtl, or -1 */
     const char *texture; /* first map_Kd used by a face; owned by materials */
@@ -54,13 +54,13 @@ static bool out_of_memory(const obj_reader *o)
 
 /* ---- attribute lines ---- */
 
-static void *push_attribute(obj_reader *o, sr_growable *g, size_t size, const char *what)
+static void *push_attribute(obj_reader *o, sr_array *g, size_t size, const char *what)
 {
-    if (g->len >= MAX_ITEMS) {
+    if (g->count >= MAX_ITEMS) {
         sr_line_fail(&o->in, o->err, "more than %u %s", MAX_ITEMS, what);
         return NULL;
     }
-    void *at = sr_grow(g, size, 1);
+    void *at = sr_array_push(g, size);
     if (!at)
         out_of_memory(o);
     return at;
@@ -70,10 +70,10 @@ static void *push_attribute(obj_reader *o, sr_growable *g, size_t size, const ch
  * vertices before the first colored one, and any without a color, are white. */
 static bool push_color(obj_reader *o, const float *rgb)
 {
-    if (!rgb && o->colors.len == 0)
+    if (!rgb && o->colors.count == 0)
         return true;
-    size_t missing = o->positions.len - o->colors.len;
-    vec3 *c = sr_grow(&o->colors, sizeof(vec3), missing);
+    size_t missing = o->positions.count - o->colors.count;
+    vec3 *c = sr_array_grow(&o->colors, missing, sizeof(vec3));
     if (!c)
         return out_of_memory(o);
     for (size_t i = 0; i < missing; i++)
@@ -110,33 +110,21 @@ static bool parse_vertex(obj_reader *o, char *cursor)
     return push_color(o, n == 6 ? rgb : NULL);
 }
 
-static bool parse_uv(obj_reader *o, char *cursor)
+/* A 'vt' or 'vn' line: at least `least` numbers (at most 3), the first
+ * size / sizeof(float) of them, as floats, pushed onto g. */
+static bool parse_float_attribute(obj_reader *o, char *cursor, sr_array *g, size_t size, int least,
+                                  const char *needs, const char *what)
 {
     float f[3];
     int n = parse_floats(o, cursor, f, 3);
     if (n < 0)
         return false;
-    if (n < 2)
-        return sr_line_fail(&o->in, o->err, "'vt' needs u v or u v w, got %d numbers", n);
-    vec2 *t = push_attribute(o, &o->uvs, sizeof *t, "texture coordinates");
-    if (!t)
+    if (n < least)
+        return sr_line_fail(&o->in, o->err, "%s, got %d numbers", needs, n);
+    void *at = push_attribute(o, g, size, what);
+    if (!at)
         return false;
-    glm_vec2_copy(f, *t);
-    return true;
-}
-
-static bool parse_normal(obj_reader *o, char *cursor)
-{
-    float f[3];
-    int n = parse_floats(o, cursor, f, 3);
-    if (n < 0)
-        return false;
-    if (n != 3)
-        return sr_line_fail(&o->in, o->err, "'vn' needs x y z, got %d numbers", n);
-    vec3 *nv = push_attribute(o, &o->normals, sizeof *nv, "normals");
-    if (!nv)
-        return false;
-    glm_vec3_copy(f, *nv);
+    memcpy(at, f, size);
     return true;
 }
 
@@ -217,7 +205,7 @@ static bool grow_map(obj_reader *o)
     o->map = map;
     o->map_cap = cap;
     const corner *known = o->corners.data;
-    for (size_t id = 0; id < o->corners.len; id++)
+    for (size_t id = 0; id < o->corners.count; id++)
         o->map[find_slot(o, known[id])] = (uint32_t)id + 1;
     return true;
 }
@@ -225,7 +213,7 @@ static bool grow_map(obj_reader *o)
 /* The mesh vertex for c, made on first sight. */
 static bool intern_corner(obj_reader *o, corner c, uint32_t *id)
 {
-    if (2 * (o->corners.len + 1) > o->map_cap && !grow_map(o))
+    if (2 * (o->corners.count + 1) > o->map_cap && !grow_map(o))
         return false;
     size_t slot = find_slot(o, c);
     if (o->map[slot] != 0) {
@@ -236,7 +224,7 @@ static bool intern_corner(obj_reader *o, corner c, uint32_t *id)
     if (!fresh)
         return false;
     *fresh = c;
-    *id = (uint32_t)(o->corners.len - 1);
+    *id = (uint32_t)(o->corners.count - 1);
     o->map[slot] = *id + 1;
     return true;
 }
@@ -250,11 +238,11 @@ static bool parse_face_corner(obj_reader *o, const char *tok, uint32_t *id)
                             "malformed face vertex '%.40s' (expected v, v/vt, v//vn or v/vt/vn)",
                             tok);
     corner c = { NONE, NONE, NONE };
-    if (!resolve_index(o, idx[0], o->positions.len, "vertex", &c.v))
+    if (!resolve_index(o, idx[0], o->positions.count, "vertex", &c.v))
         return false;
-    if (has[1] && !resolve_index(o, idx[1], o->uvs.len, "texture coordinate", &c.vt))
+    if (has[1] && !resolve_index(o, idx[1], o->uvs.count, "texture coordinate", &c.vt))
         return false;
-    if (has[2] && !resolve_index(o, idx[2], o->normals.len, "normal", &c.vn))
+    if (has[2] && !resolve_index(o, idx[2], o->normals.count, "normal", &c.vn))
         return false;
     o->any_uv |= has[1];
     o->any_normal |= has[2];
@@ -265,9 +253,9 @@ static bool parse_face_corner(obj_reader *o, const char *tok, uint32_t *id)
 
 static bool emit_triangle(obj_reader *o, uint32_t a, uint32_t b, uint32_t c)
 {
-    if (o->indices.len > UINT32_MAX - 3)
+    if (o->indices.count > UINT32_MAX - 3)
         return sr_line_fail(&o->in, o->err, "more than %u triangles", UINT32_MAX / 3);
-    uint32_t *t = sr_grow(&o->indices, sizeof *t, 3);
+    uint32_t *t = sr_array_grow(&o->indices, 3, sizeof *t);
     if (!t)
         return out_of_memory(o);
     t[0] = a;
@@ -332,9 +320,10 @@ static bool parse_statement(obj_reader *o, char *line)
     if (strcmp(keyword, "v") == 0)
         return parse_vertex(o, cursor);
     if (strcmp(keyword, "vt") == 0)
-        return parse_uv(o, cursor);
+        return parse_float_attribute(o, cursor, &o->uvs, sizeof(vec2), 2, "'vt' needs u v or u v w",
+                                     "texture coordinates");
     if (strcmp(keyword, "vn") == 0)
-        return parse_normal(o, cursor);
+        return parse_float_attribute(o, cursor, &o->normals, sizeof(vec3), 3, "'vn' needs x y z", "normals");
     if (strcmp(keyword, "f") == 0)
         return parse_face(o, cursor);
     if (strcmp(keyword, "mtllib") == 0)
@@ -371,7 +360,7 @@ static void world_position(const obj_reader *o, uint32_t i, double out[3])
  * the faces use. */
 static void choose_origin(const obj_reader *o, sr_mesh *mesh)
 {
-    uint32_t count = (uint32_t)o->corners.len;
+    uint32_t count = (uint32_t)o->corners.count;
     double lo[3], hi[3], p[3];
     if (count == 0)
         return;
@@ -409,8 +398,8 @@ static void write_vertex(const obj_reader *o, sr_mesh *mesh, uint32_t i)
 
 static bool build_mesh(obj_reader *o, sr_mesh *mesh)
 {
-    uint32_t count = (uint32_t)o->corners.len;
-    if (!sr_mesh_alloc(mesh, count, 0, o->any_normal, o->any_uv, o->colors.len > 0, o->err))
+    uint32_t count = (uint32_t)o->corners.count;
+    if (!sr_mesh_alloc(mesh, count, 0, o->any_normal, o->any_uv, o->colors.count > 0, o->err))
         return false;
     choose_origin(o, mesh);
     for (uint32_t i = 0; i < count; i++)
@@ -421,21 +410,21 @@ static bool build_mesh(obj_reader *o, sr_mesh *mesh)
     }
     /* Hand the index array over rather than copy it: sr_mesh_free frees it. */
     mesh->indices = o->indices.data;
-    mesh->index_count = (uint32_t)o->indices.len;
+    mesh->index_count = (uint32_t)o->indices.count;
     mesh->topology = SR_TRIANGLE_LIST;
-    o->indices = (sr_growable){ 0 };
+    o->indices = (sr_array){ 0 };
     return true;
 }
 
 static void obj_reader_free(obj_reader *o)
 {
     sr_line_reader_close(&o->in);
-    sr_growable_free(&o->positions);
-    sr_growable_free(&o->colors);
-    sr_growable_free(&o->uvs);
-    sr_growable_free(&o->normals);
-    sr_growable_free(&o->corners);
-    sr_growable_free(&o->indices);
+    sr_array_free(&o->positions);
+    sr_array_free(&o->colors);
+    sr_array_free(&o->uvs);
+    sr_array_free(&o->normals);
+    sr_array_free(&o->corners);
+    sr_array_free(&o->indices);
     free(o->map);
     sr_mtl_free(&o->materials);
 }

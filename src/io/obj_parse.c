@@ -179,34 +179,6 @@ bool sr_obj_parse_long(const char **s, long *out)
     return true;
 }
 
-void *sr_grow(sr_growable *g, size_t elem_size, size_t n)
-{
-    if (n > SIZE_MAX - g->len)
-        return NULL;
-    size_t need = g->len + n;
-    if (need > g->cap) {
-        size_t cap = g->cap ? g->cap : 64;
-        while (cap < need)
-            cap = cap > SIZE_MAX / 2 ? need : 2 * cap;
-        if (cap > SIZE_MAX / elem_size)
-            return NULL;
-        void *data = realloc(g->data, cap * elem_size);
-        if (!data)
-            return NULL;
-        g->data = data;
-        g->cap = cap;
-    }
-    void *at = (char *)g->data + g->len * elem_size;
-    g->len = need;
-    return at;
-}
-
-void sr_growable_free(sr_growable *g)
-{
-    free(g->data);
-    *g = (sr_growable){ 0 };
-}
-
 char *sr_obj_path_beside(const char *base_file, const char *name)
 {
     const char *slash = strrchr(base_file, '/');

@@ -1,8 +1,9 @@
 /* src/io/obj_parse.h — private to src/io: the text layer under the OBJ and
  * MTL readers. A bounded line reader (no line may exceed SR_OBJ_MAX_LINE, so
  * a hostile file cannot make us buffer without end), a whitespace tokenizer
- * that treats `#` as the start of a comment, strict number parsers, a
- * growable array and the folder-relative path rule both formats share.
+ * that treats `#` as the start of a comment, strict number parsers and the
+ * folder-relative path rule both formats share (their growable arrays are
+ * core/array.h's).
  */
 #ifndef SOFTRAST_IO_OBJ_PARSE_H
 #define SOFTRAST_IO_OBJ_PARSE_H
@@ -12,6 +13,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "core/array.h"
 #include "core/error.h"
 
 #define SR_OBJ_MAX_LINE (64 * 1024) /* bytes, line end excluded */
@@ -56,17 +58,6 @@ int sr_obj_parse_numbers(const sr_line_reader *r, char *cursor, double *out, int
  * advances *s. False if there are no digits. Overflow saturates to
  * LONG_MIN/LONG_MAX, which every later range check rejects. */
 bool sr_obj_parse_long(const char **s, long *out);
-
-/* A growable array of fixed-size elements. */
-typedef struct sr_growable {
-    void *data;
-    size_t len, cap;
-} sr_growable;
-
-/* Appends n uninitialised elements and returns the first, or NULL (array
- * unchanged) when out of memory. Callers enforce their own count limits. */
-void *sr_grow(sr_growable *g, size_t elem_size, size_t n);
-void sr_growable_free(sr_growable *g);
 
 /* `name` resolved against the folder of `base_file` ("a/b.obj" + "c.mtl" ->
  * "a/c.mtl"); absolute names stay as they are. Malloc'd, or NULL. */

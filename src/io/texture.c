@@ -82,6 +82,7 @@ static void copy_texels(uint32_t *dst, const SDL_Surface *s)
     }
 }
 
+/* tex from the loaded image; tex is left empty when that fails. */
 static bool texels_from_surface(sr_texture *tex, SDL_Surface *loaded, const char *path, sr_error *err)
 {
     if (loaded->w > SR_MAX_TEXTURE_SIDE || loaded->h > SR_MAX_TEXTURE_SIDE)
@@ -108,12 +109,8 @@ bool sr_texture_load(sr_texture *tex, const char *path, sr_error *err)
 {
     *tex = (sr_texture){ 0 };
     SDL_Surface *loaded = load_surface(path, err);
-    if (!loaded)
-        return false;
-    bool ok = texels_from_surface(tex, loaded, path, err);
-    SDL_FreeSurface(loaded);
-    if (!ok)
-        sr_texture_free(tex);
+    bool ok = loaded && texels_from_surface(tex, loaded, path, err);
+    SDL_FreeSurface(loaded); /* NULL is fine */
     return ok;
 }
 

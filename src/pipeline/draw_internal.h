@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "clip.h"
+#include "core/array.h"
 #include "raster.h"
 #include "raster_setup.h"
 #include "softrast/softrast.h"
@@ -18,16 +19,6 @@
 /* Snapped coordinates stay below 2^SR_FIXED_POINT_BITS so the 64-bit edge
  * functions cannot overflow whatever the precision asked for. */
 #define SR_FIXED_POINT_BITS 30
-
-/* A growable array of fixed-size elements. */
-typedef struct sr_array {
-    void *data;
-    size_t count, capacity, elem;
-} sr_array;
-
-bool sr_array_reserve(sr_array *a, size_t count, size_t elem);
-void *sr_array_push(sr_array *a, size_t elem); /* NULL when out of memory */
-void sr_array_free(sr_array *a);
 
 /* A fan triangle in a bin: its three vertices as references (below the mesh's
  * vertex count: the shared screen vertex; from there on: the binning

@@ -54,46 +54,30 @@ static inline __attribute__((always_inline)) vf select_f(vi mask, vf a, vf b)
     return (vf)select_i(mask, (vi)a, (vi)b);
 }
 
-/* n values from p (a whole vector when n is SPAN_LANES), zeros past n. */
-static inline __attribute__((always_inline)) vf load_f(const float *p, int n)
-{
-    vf v = { 0 };
-    if (n == SPAN_LANES)
-        memcpy(&v, p, sizeof v);
-    else
-        for (int l = 0; l < n; l++)
-            v[l] = p[l];
-    return v;
-}
-
-static inline __attribute__((always_inline)) vi load_i(const uint32_t *p, int n)
-{
-    vi v = { 0 };
-    if (n == SPAN_LANES)
-        memcpy(&v, p, sizeof v);
-    else
-        for (int l = 0; l < n; l++)
-            v[l] = (int32_t)p[l];
-    return v;
-}
-
-static inline __attribute__((always_inline)) void store_f(float *p, vf v, int n)
-{
-    if (n == SPAN_LANES)
-        memcpy(p, &v, sizeof v);
-    else
-        for (int l = 0; l < n; l++)
-            p[l] = v[l];
-}
-
-static inline __attribute__((always_inline)) void store_i(uint32_t *p, vi v, int n)
-{
-    if (n == SPAN_LANES)
-        memcpy(p, &v, sizeof v);
-    else
-        for (int l = 0; l < n; l++)
-            p[l] = (uint32_t)v[l];
-}
+/* load_<suffix>: n values from p (a whole vector when n is SPAN_LANES),
+ * zeros past n; store_<suffix>: v's first n lanes to p. Made for the depths
+ * (float) and the packed colors (uint32_t in memory, int32_t in lanes). */
+#define SPAN_LOAD_STORE(suffix, vec, elem, lane)                                            \
+    static inline __attribute__((always_inline)) vec load_##suffix(const elem *p, int n)    \
+    {                                                                                       \
+        vec v = { 0 };                                                                      \
+        if (n == SPAN_LANES)                                                                \
+            memcpy(&v, p, sizeof v);                                                        \
+        else                                                                                \
+            for (int l = 0; l < n; l++)                                                     \
+                v[l] = (lane)p[l];                                                          \
+        return v;                                                                           \
+    }                                                                                       \
+    static inline __attribute__((always_inline)) void store_##suffix(elem *p, vec v, int n) \
+    {                                                                                       \
+        if (n == SPAN_LANES)                                                                \
+            memcpy(p, &v, sizeof v);                                                        \
+        else                                                                                \
+            for (int l = 0; l < n; l++)                                                     \
+                p[l] = (elem)v[l];                                                          \
+    }
+SPAN_LOAD_STORE(f, vf, float, float)
+SPAN_LOAD_STORE(i, vi, uint32_t, int32_t)
 
 static inline __attribute__((always_inline)) vf edge_to_float(edge_lanes e)
 {

@@ -3,38 +3,6 @@
 
 #include "draw_internal.h"
 
-bool sr_array_reserve(sr_array *a, size_t count, size_t elem)
-{
-    if (a->elem != elem) {
-        sr_array_free(a);
-        a->elem = elem;
-    }
-    if (count <= a->capacity)
-        return true;
-    size_t cap = a->capacity ? a->capacity : 64;
-    while (cap < count)
-        cap *= 2;
-    void *data = realloc(a->data, cap * elem);
-    if (!data)
-        return false;
-    a->data = data;
-    a->capacity = cap;
-    return true;
-}
-
-void *sr_array_push(sr_array *a, size_t elem)
-{
-    if (!sr_array_reserve(a, a->count + 1, elem))
-        return NULL;
-    return (char *)a->data + elem * a->count++;
-}
-
-void sr_array_free(sr_array *a)
-{
-    free(a->data);
-    *a = (sr_array){ 0 };
-}
-
 /* aligned_alloc keeps the per-thread parts on their own cache lines. */
 sr_workspace *sr_workspace_create(void)
 {

@@ -166,6 +166,11 @@ static void sliver_triangle(const sr_stability_case *c, sr_stability_rng *rng, v
 #define CAMERA(ex, ey, ez, tx, ty, tz, ux, uy, uz, n, f) \
     { .eye = { ex, ey, ez }, .target = { tx, ty, tz }, .up = { ux, uy, uz }, .fov_deg = SR_CAMERA_FOV, \
       .near = n, .far = f }
+/* The camera, grid and inner radius of an eye `height` above a level ground
+ * (the grid: `half` to each side of the origin in x and z), looking along +z
+ * at its own height; the grid's cells start `inner` out. */
+#define LEVEL_GROUND(height, n, f, half, inner) \
+    CAMERA(0, height, 0, 0, height, 1, 0, 1, 0, n, f), { 0, 0, 0 }, { half, 0, 0 }, { 0, 0, half }, (inner) / (half)
 
 /* Grids lie in y = 0 (or z = const for the near-parallel case), so their
  * float vertices are exactly in the plane the region test intersects. An eye
@@ -173,12 +178,10 @@ static void sliver_triangle(const sr_stability_case *c, sr_stability_rng *rng, v
 static const sr_stability_case CASES[SR_STABILITY_CASES] = {
     { "near 1e-6, far 1e9", "eye 2e-7 above a ground 4e9 across, cells from 1e-7 out: near and far both cut it",
       "vertices 1e-8 … 1e10 away, 15% behind the eye, spread past the sides",
-      CAMERA(0, 2e-7f, 0, 0, 2e-7f, 1, 0, 1, 0, 1e-6f, 1e9f),
-      { 0, 0, 0 }, { 2e9f, 0, 0 }, { 0, 0, 2e9f }, 1e-7 / 2e9, span_triangle },
+      LEVEL_GROUND(2e-7f, 1e-6f, 1e9f, 2e9, 1e-7), span_triangle },
     { "far = +inf", "near 1e-3, eye 1e-4 above a ground 2e12 across, cells from 1e-4 out",
       "vertices 1e-5 … 1e27 away, 15% behind the eye, spread past the sides",
-      CAMERA(0, 1e-4f, 0, 0, 1e-4f, 1, 0, 1, 0, 1e-3f, INFINITY),
-      { 0, 0, 0 }, { 1e12f, 0, 0 }, { 0, 0, 1e12f }, 1e-4 / 1e12, span_triangle },
+      LEVEL_GROUND(1e-4f, 1e-3f, INFINITY, 1e12, 1e-4), span_triangle },
     { "1e30 vertices", "near 0.1, far 100, ground 2e30 across in even cells (3e28) seen from 4 units",
       "one or two vertices 1e30 from the origin, the rest within 3 of it",
       CAMERA(0, 3, -3, 0, 0, 0, 0, 1, 0, 0.1f, 100.0f),
@@ -193,8 +196,7 @@ static const sr_stability_case CASES[SR_STABILITY_CASES] = {
       { 0, 0, 0.01f }, { 0.02f, 0, 0 }, { 0, 0.02f, 0 }, 0.0, parallel_triangle },
     { "eye-spanning, w = -1000", "near 1e-6, far 1e4, eye 1e-7 above a ground from z = -1000 to 1000, cells from 1e-7 out",
       "in a plane 1e-7 … 1 below the eye: two vertices in front on either side, one at w = -1000",
-      CAMERA(0, 1e-7f, 0, 0, 1e-7f, 1, 0, 1, 0, 1e-6f, 1e4f),
-      { 0, 0, 0 }, { 1000, 0, 0 }, { 0, 0, 1000 }, 1e-7 / 1000, eye_spanning_triangle },
+      LEVEL_GROUND(1e-7f, 1e-6f, 1e4f, 1000, 1e-7), eye_spanning_triangle },
     { "sliver 1e-7", "near 1e-6, far 1; even grid cells 15.6 by 1e-7 seen from 1e-5 above",
       "two vertices 1e-7 apart, 1e-3 … 1 away; the third anywhere, 1e-7 … 100 away",
       CAMERA(0, 1e-5f, 3.2e-6f, 0, 0, 3.2e-6f, 0, 0, 1, 1e-6f, 1.0f),

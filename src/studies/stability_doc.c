@@ -41,14 +41,21 @@ static double worst_over_cases(const sr_stability_report *r, int clipper)
     return worst;
 }
 
-static void write_clip_table(FILE *f, const sr_stability_report *r)
+/* A table's head: the leading columns (`lead`, aligned by `rule`), then one
+ * right-aligned column per clipper, titled by its name and `suffix`. */
+static void write_table_head(FILE *f, const char *lead, const char *suffix, const char *rule)
 {
-    fprintf(f, "\n| case | triangles |");
+    fprintf(f, "\n| %s |", lead);
     for (int k = 0; k < SR_STABILITY_CLIPPERS; k++)
-        fprintf(f, " %s: max / p99 |", sr_stability_clippers[k].name);
-    fprintf(f, "\n| --- | ---: |");
+        fprintf(f, " %s%s |", sr_stability_clippers[k].name, suffix);
+    fprintf(f, "\n| %s |", rule);
     for (int k = 0; k < SR_STABILITY_CLIPPERS; k++)
         fprintf(f, " ---: |");
+}
+
+static void write_clip_table(FILE *f, const sr_stability_report *r)
+{
+    write_table_head(f, "case | triangles", ": max / p99", "--- | ---:");
     for (int i = 0; i < SR_STABILITY_CASES; i++) {
         fprintf(f, "\n| %s | %llu |", sr_stability_cases()[i].name, (unsigned long long)r->clip[i][0].triangles);
         for (int k = 0; k < SR_STABILITY_CLIPPERS; k++)
@@ -175,12 +182,7 @@ static void total_hits(const sr_stability_report *r, int clipper, uint64_t *hole
 
 static void write_hits_table(FILE *f, const sr_stability_report *r)
 {
-    fprintf(f, "\n| case | grid | inside pixels | fan triangles drawn |");
-    for (int k = 0; k < SR_STABILITY_CLIPPERS; k++)
-        fprintf(f, " %s |", sr_stability_clippers[k].name);
-    fprintf(f, "\n| --- | --- | ---: | ---: |");
-    for (int k = 0; k < SR_STABILITY_CLIPPERS; k++)
-        fprintf(f, " ---: |");
+    write_table_head(f, "case | grid | inside pixels | fan triangles drawn", "", "--- | --- | ---: | ---:");
     for (int i = 0; i < SR_STABILITY_CASES; i++) {
         for (int g = 0; g < SR_STABILITY_GRIDS; g++) {
             const sr_stability_hits *h = r->hits[i][g];

@@ -50,11 +50,7 @@ static bool parse_job(view_job *job, int argc, char **argv, bool *help, sr_error
         { "--overlays", SR_OPT_FLAG, &job->overlays, NULL, "draw the status line, help and wireframe on scripted frames too" },
         { 0 },
     };
-    sr_option table[SR_SCENE_OPTION_COUNT + sizeof own / sizeof *own];
-    sr_scene_setup_options(&job->scene, table);
-    memcpy(&table[SR_SCENE_OPTION_COUNT], own, sizeof own);
-    int positional = 0;
-    if (!sr_options_parse(table, USAGE, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
+    if (!sr_scene_setup_parse(&job->scene, own, USAGE, argc, argv, help, err))
         return false;
     if (!job->script_path && (job->shots_dir || job->grab_dir || job->frames || job->no_window || job->overlays))
         return sr_error_set(err, "--frames, --shots, --grab, --no-window and --overlays go with --script");
