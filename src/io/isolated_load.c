@@ -28,34 +28,30 @@ typedef struct wire_header {
     double origin[3];
 } wire_header;
 
-static bool write_all(int fd, const void *data, size_t n)
+/* Moves n bytes through the pipe, whole: write when `out`, else read. */
+static bool transfer(int fd, void *data, size_t n, bool out)
 {
-    const char *p = data;
+    char *p = data;
     while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0 && errno == EINTR)
+        ssize_t done = out ? write(fd, p, n) : read(fd, p, n);
+        if (done < 0 && errno == EINTR)
             continue;
-        if (w <= 0)
+        if (done <= 0)
             return false;
-        p += w;
-        n -= (size_t)w;
+        p += done;
+        n -= (size_t)done;
     }
     return true;
 }
 
+static bool write_all(int fd, const void *data, size_t n)
+{
+    return transfer(fd, (void *)data, n, true);
+}
+
 static bool read_all(int fd, void *data, size_t n)
 {
-    char *p = data;
-    while (n > 0) {
-        ssize_t r = read(fd, p, n);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r <= 0)
-            return false;
-        p += r;
-        n -= (size_t)r;
-    }
-    return true;
+    return transfer(fd, data, n, false);
 }
 
 /* Each optional array: its element size, and where it sits in the mesh. */
