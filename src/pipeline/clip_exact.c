@@ -8,17 +8,12 @@
  * coordinate as an exact product pair. */
 #define MAX_TERMS (2 * SR_CLIP_DISTANCE_TERMS * 2)
 
-static bool depth_applies(sr_clip_plane plane, const sr_clip_depth *depth)
-{
-    return depth && depth->on && (plane == SR_PLANE_NEAR || plane == SR_PLANE_FAR);
-}
-
 /* Near a·w + b and far w − a·w − b: a·w of two floats is exact in double,
  * so one two-sum or two make them exact. */
 static int depth_distance(sr_clip_plane plane, double w, const sr_clip_depth *depth, double d[])
 {
     double aw = (double)depth->a * w;
-    if (plane == SR_PLANE_NEAR) {
+    if (!sr_clip_plane_table[plane].bounded_by_w) {
         two_sum(aw, depth->b, &d[1], &d[0]);
         return 2;
     }
@@ -30,17 +25,16 @@ int sr_clip_distance_exact(sr_clip_plane plane, const float *c, const sr_clip_de
                            double d[SR_CLIP_DISTANCE_TERMS])
 {
     double w = c[SR_W];
-    if (depth_applies(plane, depth))
+    if (depth && depth->on && sr_clip_plane_in_depth_model(plane))
         return depth_distance(plane, w, depth, d);
-    switch (plane) {
-    case SR_PLANE_NEAR:   d[0] = c[SR_Z]; return 1;
-    case SR_PLANE_FAR:    two_sum(w, -(double)c[SR_Z], &d[1], &d[0]); return 2;
-    case SR_PLANE_LEFT:   two_sum(w, c[SR_X], &d[1], &d[0]); return 2;
-    case SR_PLANE_RIGHT:  two_sum(w, -(double)c[SR_X], &d[1], &d[0]); return 2;
-    case SR_PLANE_BOTTOM: two_sum(w, c[SR_Y], &d[1], &d[0]); return 2;
-    case SR_PLANE_TOP:    two_sum(w, -(double)c[SR_Y], &d[1], &d[0]); return 2;
+    const sr_clip_plane_row *row = &sr_clip_plane_table[plane];
+    double along = row->sign * (double)c[row->axis];
+    if (!row->bounded_by_w) {
+        d[0] = along;
+        return 1;
     }
-    return 0;
+    two_sum(w, along, &d[1], &d[0]);
+    return 2;
 }
 
 /* Adds d · x to the expansion, exactly. */
