@@ -197,6 +197,9 @@ sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *in
     place_on_plane(plane, depth, cut->v);
     if (cfg && cfg->counts)
         cfg->counts->cuts[p]++;
+    if (cfg && cfg->trace)
+        cfg->trace(cfg->trace_context,
+                   &(sr_clip_cut){ .plane = plane, .inside = inside, .outside = outside, .cut = cut, .precision = p });
     return p;
 }
 

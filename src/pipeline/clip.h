@@ -85,11 +85,23 @@ typedef struct sr_clip_counts {
  * given: half a 1/256-pixel step on a 16384-pixel side. */
 #define SR_CLIP_DEFAULT_TOLERANCE (1.0 / (256.0 * 16384.0))
 
+/* One cut vertex as the clipper made it, for a trace hook. */
+typedef struct sr_clip_cut {
+    sr_clip_plane plane;
+    const sr_vertex_out *inside, *outside; /* the edge's end points */
+    const sr_vertex_out *cut;              /* the cut vertex, placed on the plane */
+    sr_clip_precision precision;           /* the precision it was made in */
+} sr_clip_cut;
+
+typedef void sr_clip_trace(void *context, const sr_clip_cut *cut);
+
 typedef struct sr_clip_config {
     sr_clip_precision precision;
     double ndc_tolerance;  /* adaptive: allowed error in NDC; 0: SR_CLIP_DEFAULT_TOLERANCE */
     sr_clip_counts *counts; /* optional: incremented per cut vertex */
     sr_clip_depth depth;    /* the projection's depth model (sr_clip_depth_of); zero: off */
+    sr_clip_trace *trace;   /* optional: called with each cut vertex, in the order they are made */
+    void *trace_context;    /* passed to trace */
 } sr_clip_config;
 
 #define SR_OUT_PLANES ((1u << SR_CLIP_PLANES) - 1u)
