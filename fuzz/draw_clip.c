@@ -2,20 +2,6 @@
  * plane mask, clipped in each precision and both walk directions. */
 #include "fuzz_draw.h"
 
-/* Distances from the convention table (DESIGN.md), not from the clipper. */
-static double plane_distance(int plane, const float *c)
-{
-    double x = c[SR_X], y = c[SR_Y], z = c[SR_Z], w = c[SR_W];
-    switch (plane) {
-    case SR_PLANE_NEAR: return z;
-    case SR_PLANE_FAR: return w - z;
-    case SR_PLANE_LEFT: return w + x;
-    case SR_PLANE_RIGHT: return w - x;
-    case SR_PLANE_BOTTOM: return w + y;
-    default: return w - y;
-    }
-}
-
 /* w first, then x, y, z each either free or on a plane through w (tag
  * 0xE0–0xFF: ±w, a few ulps off), then the varyings. All finite: the
  * pipeline never hands the clipper anything else. */
@@ -122,7 +108,7 @@ void fuzz_clip(reader *r)
             continue;
         int outside = 0;
         for (int i = 0; i < 3; i++)
-            outside += plane_distance(p, in.vert[i].v) < 0.0;
+            outside += sr_clip_distance((sr_clip_plane)p, in.vert[i].v) < 0.0;
         all_inside &= outside == 0;
         one_plane_all_outside |= outside == 3;
     }
@@ -163,7 +149,7 @@ void fuzz_clip(reader *r)
         for (int p = 0; p < SR_CLIP_PLANES && exact; p++) {
             if (!(planes & (1u << p)))
                 continue;
-            double d = plane_distance(p, v);
+            double d = sr_clip_distance((sr_clip_plane)p, v);
             if (!(d >= -CLIP_INSIDE_REL_TOL * mag) && !tolerated("clip_precision")) {
                 print_polygon("input", &in, floats);
                 print_polygon("clipped", &out, floats);

@@ -13,7 +13,6 @@
 
 static const char *const stat_names[CASE_STAT_COUNT] = { "triangles", "rejected", "nonfinite", "clipped",
                                                          "culled",    "drawn",    "fragments" };
-static const char *const plane_names[SR_CLIP_PLANES] = { "near", "far", "left", "right", "bottom", "top" };
 
 const char *case_stat_name(case_stat s)
 {
@@ -22,7 +21,7 @@ const char *case_stat_name(case_stat s)
 
 const char *case_plane_name(int plane)
 {
-    return plane >= 0 && plane < SR_CLIP_PLANES ? plane_names[plane] : "?";
+    return plane >= 0 && plane < SR_CLIP_PLANES ? sr_clip_plane_table[plane].name : "?";
 }
 
 void case_root_path(const char *relative, char out[CASE_PATH_MAX])
@@ -82,7 +81,7 @@ static bool parse_vec3(const char *s, vec3 out)
 static int parse_plane(const char *s)
 {
     for (int p = 0; p < SR_CLIP_PLANES; p++)
-        if (strcmp(s, plane_names[p]) == 0)
+        if (strcmp(s, sr_clip_plane_table[p].name) == 0)
             return p;
     return -1;
 }

@@ -1,6 +1,5 @@
 /* Helpers shared by tests/test_clip.c and tests/test_clip_random.c: a seeded
- * random generator, plane distances written from the convention table
- * (DESIGN.md) rather than taken from the clipper, an independent reference
+ * random generator, plane distances from the plane table, an independent reference
  * clipper in double precision, and polygon area and convexity checks.
  *
  * Everything here is static inline so each test file stands alone. */
@@ -53,20 +52,11 @@ static inline bool floats_identical(const float *a, const float *b, int n)
     return memcmp(a, b, (size_t)n * sizeof(float)) == 0;
 }
 
-/* ---- plane distances from the convention table ------------------------ */
+/* ---- plane distances from the plane table (clip.h) ------------------- */
 
-/* -w <= x <= w, -w <= y <= w, 0 <= z <= w, indexed like sr_clip_plane
- * (near, far, left, right, bottom, top). */
 static inline double ref_distance(int plane, const double c[4])
 {
-    switch (plane) {
-    case SR_PLANE_NEAR: return c[2];
-    case SR_PLANE_FAR: return c[3] - c[2];
-    case SR_PLANE_LEFT: return c[3] + c[0];
-    case SR_PLANE_RIGHT: return c[3] - c[0];
-    case SR_PLANE_BOTTOM: return c[3] + c[1];
-    default: return c[3] - c[1];
-    }
+    return sr_clip_plane_distance((sr_clip_plane)plane, c[sr_clip_plane_table[plane].axis], c[SR_W]);
 }
 
 static inline void to_double4(const sr_vertex_out *v, double out[4])
@@ -82,17 +72,9 @@ static inline double ref_distance_f(int plane, const sr_vertex_out *v)
     return ref_distance(plane, c);
 }
 
-/* The coordinate the clipper overwrites to put a cut vertex on `plane`. */
-static inline int placed_coord(int plane)
-{
-    static const int coord[SR_CLIP_PLANES] = { SR_Z, SR_Z, SR_X, SR_X, SR_Y, SR_Y };
-    return coord[plane];
-}
-
 static inline const char *plane_name(int plane)
 {
-    static const char *names[SR_CLIP_PLANES] = { "near", "far", "left", "right", "bottom", "top" };
-    return plane >= 0 && plane < SR_CLIP_PLANES ? names[plane] : "?";
+    return plane >= 0 && plane < SR_CLIP_PLANES ? sr_clip_plane_table[plane].name : "?";
 }
 
 /* ---- reference clipper: Sutherland–Hodgman in double ------------------ */

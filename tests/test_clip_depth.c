@@ -65,9 +65,11 @@ static void exact_distance(sr_clip_plane plane, const sr_clip_depth *m, double w
     mpq_set_d(b, m->b);
     mpq_set_d(wq, w);
     mpq_mul(d, a, wq);
-    mpq_add(d, d, b);
-    if (plane == SR_PLANE_FAR)
-        mpq_sub(d, wq, d);
+    mpq_add(d, d, b); /* the model's z; the distance is the plane table's with it */
+    if (sr_clip_plane_table[plane].sign < 0)
+        mpq_neg(d, d);
+    if (sr_clip_plane_table[plane].bounded_by_w)
+        mpq_add(d, d, wq);
     mpq_clears(a, b, wq, NULL);
 }
 

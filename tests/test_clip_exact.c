@@ -28,18 +28,13 @@ static float magnitude(double lo, double hi)
 /* The exact distance of a clip-space point to a plane, as a rational. */
 static void exact_distance(sr_clip_plane plane, const float *c, mpq_t d)
 {
-    mpq_t w, other;
-    mpq_inits(w, other, NULL);
-    mpq_set_d(w, c[SR_W]);
-    static const int coord[] = { SR_Z, SR_Z, SR_X, SR_X, SR_Y, SR_Y };
-    mpq_set_d(other, c[coord[plane]]);
-    if (plane == SR_PLANE_NEAR)
-        mpq_set(d, other);
-    else if (plane == SR_PLANE_LEFT || plane == SR_PLANE_BOTTOM)
-        mpq_add(d, w, other);
-    else
-        mpq_sub(d, w, other);
-    mpq_clears(w, other, NULL);
+    const sr_clip_plane_row *row = &sr_clip_plane_table[plane];
+    mpq_t w;
+    mpq_init(w);
+    mpq_set_d(d, row->sign * (double)c[row->axis]);
+    mpq_set_d(w, row->bounded_by_w ? c[SR_W] : 0.0);
+    mpq_add(d, d, w);
+    mpq_clear(w);
 }
 
 /* Coordinate i of the exact cut point a + t(b − a), t = d_a / (d_a − d_b). */
@@ -71,8 +66,7 @@ static void random_edge(sr_clip_plane plane, sr_vertex_out *in, sr_vertex_out *o
  * others. */
 static bool placed_coordinate(sr_clip_plane plane, int i)
 {
-    static const int coord[] = { SR_Z, SR_Z, SR_X, SR_X, SR_Y, SR_Y };
-    return i == coord[plane];
+    return i == sr_clip_plane_table[plane].axis;
 }
 
 Test(clip_exact, exact_cut_is_the_rational_cut_rounded_to_float)

@@ -31,10 +31,8 @@ static sr_vertex_out edge_vertex(test_rng *r, int family)
         break;
     case 2: { /* on a plane, or a few ulps either side */
         int plane = rng_below(r, SR_CLIP_PLANES), ulps = rng_below(r, 7) - 3;
-        int k = placed_coord(plane);
-        c[k] = plane == SR_PLANE_NEAR ? 0.0f
-               : plane == SR_PLANE_FAR || plane == SR_PLANE_RIGHT || plane == SR_PLANE_TOP ? c[SR_W]
-                                                                                           : -c[SR_W];
+        int k = sr_clip_plane_table[plane].axis;
+        c[k] = sr_clip_plane_coordinate_at((sr_clip_plane)plane, c[SR_W]);
         for (; ulps > 0; ulps--)
             c[k] = nextafterf(c[k], INFINITY);
         for (; ulps < 0; ulps++)

@@ -18,20 +18,12 @@
 /* The plane table of clip.h on a point in double. */
 static double distance_d(sr_clip_plane plane, const double c[4])
 {
-    switch (plane) {
-    case SR_PLANE_NEAR:   return c[SR_Z];
-    case SR_PLANE_FAR:    return c[SR_W] - c[SR_Z];
-    case SR_PLANE_LEFT:   return c[SR_W] + c[SR_X];
-    case SR_PLANE_RIGHT:  return c[SR_W] - c[SR_X];
-    case SR_PLANE_BOTTOM: return c[SR_W] + c[SR_Y];
-    case SR_PLANE_TOP:    return c[SR_W] - c[SR_Y];
-    }
-    return 0.0;
+    return sr_clip_plane_distance(plane, c[sr_clip_plane_table[plane].axis], c[SR_W]);
 }
 
 double sr_clip_distance(sr_clip_plane plane, const float *c)
 {
-    return distance_d(plane, (const double[4]){ c[SR_X], c[SR_Y], c[SR_Z], c[SR_W] });
+    return sr_clip_plane_distance(plane, c[sr_clip_plane_table[plane].axis], c[SR_W]);
 }
 
 sr_clip_depth sr_clip_depth_of(const float m[4][4])
@@ -46,7 +38,7 @@ sr_clip_depth sr_clip_depth_of(const float m[4][4])
 
 double sr_clip_distance_with(sr_clip_plane plane, const float *c, const sr_clip_depth *depth)
 {
-    if (!depth || !depth->on || plane > SR_PLANE_FAR)
+    if (!depth || !depth->on || !sr_clip_plane_in_depth_model(plane))
         return sr_clip_distance(plane, c);
     double d[SR_CLIP_DISTANCE_TERMS];
     int n = sr_clip_distance_exact(plane, c, depth, d);
@@ -70,13 +62,12 @@ unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth *depth)
 {
     if (!isfinite(c[SR_X]) || !isfinite(c[SR_Y]) || !isfinite(c[SR_Z]) || !isfinite(c[SR_W]))
         return SR_OUT_NONFINITE;
-    double x = c[SR_X], y = c[SR_Y], w = c[SR_W];
-    unsigned code = (unsigned)(w + x < 0.0) << SR_PLANE_LEFT | (unsigned)(w - x < 0.0) << SR_PLANE_RIGHT |
-                    (unsigned)(w + y < 0.0) << SR_PLANE_BOTTOM | (unsigned)(w - y < 0.0) << SR_PLANE_TOP;
-    if (depth && depth->on)
-        return code | depth_outcode(c, depth);
-    double z = c[SR_Z];
-    return code | (unsigned)(z < 0.0) << SR_PLANE_NEAR | (unsigned)(w - z < 0.0) << SR_PLANE_FAR;
+    bool model = depth && depth->on;
+    unsigned code = model ? depth_outcode(c, depth) : 0u;
+    for (int p = 0; p < SR_CLIP_PLANES; p++)
+        if (!model || !sr_clip_plane_in_depth_model((sr_clip_plane)p))
+            code |= (unsigned)(sr_clip_distance((sr_clip_plane)p, c) < 0.0) << p;
+    return code;
 }
 
 unsigned sr_clip_outcode(const float *c)
@@ -126,18 +117,11 @@ sr_clip_box sr_clip_classify_box(const float clip_from_object[4][4], const float
  * from w too, so this z is for the record). */
 static void place_on_plane(sr_clip_plane plane, const sr_clip_depth *depth, float *c)
 {
-    if (depth && depth->on && plane <= SR_PLANE_FAR) {
+    if (depth && depth->on && sr_clip_plane_in_depth_model(plane)) {
         c[SR_Z] = (float)((double)depth->a * c[SR_W] + depth->b);
         return;
     }
-    switch (plane) {
-    case SR_PLANE_NEAR:   c[SR_Z] = 0.0f; break;
-    case SR_PLANE_FAR:    c[SR_Z] = c[SR_W]; break;
-    case SR_PLANE_LEFT:   c[SR_X] = -c[SR_W]; break;
-    case SR_PLANE_RIGHT:  c[SR_X] = c[SR_W]; break;
-    case SR_PLANE_BOTTOM: c[SR_Y] = -c[SR_W]; break;
-    case SR_PLANE_TOP:    c[SR_Y] = c[SR_W]; break;
-    }
+    c[sr_clip_plane_table[plane].axis] = sr_clip_plane_coordinate_at(plane, c[SR_W]);
 }
 
 static void intersect_double(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
@@ -213,6 +197,9 @@ sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *in
     place_on_plane(plane, depth, cut->v);
     if (cfg && cfg->counts)
         cfg->counts->cuts[p]++;
+    if (cfg && cfg->trace)
+        cfg->trace(cfg->trace_context,
+                   &(sr_clip_cut){ .plane = plane, .inside = inside, .outside = outside, .cut = cut, .precision = p });
     return p;
 }
 

@@ -24,13 +24,57 @@
 
 /* Planes in processing order; the outcode bit of plane p is 1 << p. */
 typedef enum sr_clip_plane {
-    SR_PLANE_NEAR = 0, /* z >= 0 */
-    SR_PLANE_FAR,      /* z <= w */
-    SR_PLANE_LEFT,     /* x >= -w */
-    SR_PLANE_RIGHT,    /* x <= w */
-    SR_PLANE_BOTTOM,   /* y >= -w */
-    SR_PLANE_TOP       /* y <= w */
+    SR_PLANE_NEAR = 0,
+    SR_PLANE_FAR,
+    SR_PLANE_LEFT,
+    SR_PLANE_RIGHT,
+    SR_PLANE_BOTTOM,
+    SR_PLANE_TOP
 } sr_clip_plane;
+
+/* The one table of the planes (as Mesa's clipper keeps its plane vectors):
+ * plane p is sign·c[axis] >= -w, or sign·c[axis] >= 0 for the one not
+ * bounded by w, and a point's distance to it is w + sign·c[axis] (without
+ * the w for that one). Under a depth model (sr_clip_depth) the planes on
+ * the z axis are planes in w alone. */
+typedef struct sr_clip_plane_row {
+    int axis;          /* SR_X, SR_Y or SR_Z */
+    int sign;          /* +1: the lower bound, -1: the upper */
+    bool bounded_by_w; /* false: z >= 0 */
+    const char *name;
+} sr_clip_plane_row;
+
+static const sr_clip_plane_row sr_clip_plane_table[SR_CLIP_PLANES] = {
+    [SR_PLANE_NEAR] = { SR_Z, +1, false, "near" }, /* z >= 0 */
+    [SR_PLANE_FAR] = { SR_Z, -1, true, "far" }, /* z <= w */
+    [SR_PLANE_LEFT] = { SR_X, +1, true, "left" }, /* x >= -w */
+    [SR_PLANE_RIGHT] = { SR_X, -1, true, "right" }, /* x <= w */
+    [SR_PLANE_BOTTOM] = { SR_Y, +1, true, "bottom" }, /* y >= -w */
+    [SR_PLANE_TOP] = { SR_Y, -1, true, "top" }, /* y <= w */
+};
+
+/* The distance from the table, given the point's coordinate on the plane's
+ * axis and its w, in double (exact in sign for float input). */
+static inline double sr_clip_plane_distance(sr_clip_plane plane, double coordinate, double w)
+{
+    const sr_clip_plane_row *row = &sr_clip_plane_table[plane];
+    double along = row->sign * coordinate;
+    return row->bounded_by_w ? w + along : along;
+}
+
+/* The coordinate on the plane's axis of the point of the plane at this w
+ * (0 for z >= 0: the plane does not move with w). */
+static inline float sr_clip_plane_coordinate_at(sr_clip_plane plane, float w)
+{
+    const sr_clip_plane_row *row = &sr_clip_plane_table[plane];
+    return !row->bounded_by_w ? 0.0f : row->sign > 0 ? -w : w;
+}
+
+/* Whether a depth model, when on, gives the plane's distance from w. */
+static inline bool sr_clip_plane_in_depth_model(sr_clip_plane plane)
+{
+    return sr_clip_plane_table[plane].axis == SR_Z;
+}
 
 /* How many cut vertices each precision made (index: sr_clip_precision). */
 typedef struct sr_clip_counts {
@@ -41,11 +85,23 @@ typedef struct sr_clip_counts {
  * given: half a 1/256-pixel step on a 16384-pixel side. */
 #define SR_CLIP_DEFAULT_TOLERANCE (1.0 / (256.0 * 16384.0))
 
+/* One cut vertex as the clipper made it, for a trace hook. */
+typedef struct sr_clip_cut {
+    sr_clip_plane plane;
+    const sr_vertex_out *inside, *outside; /* the edge's end points */
+    const sr_vertex_out *cut;              /* the cut vertex, placed on the plane */
+    sr_clip_precision precision;           /* the precision it was made in */
+} sr_clip_cut;
+
+typedef void sr_clip_trace(void *context, const sr_clip_cut *cut);
+
 typedef struct sr_clip_config {
     sr_clip_precision precision;
     double ndc_tolerance;  /* adaptive: allowed error in NDC; 0: SR_CLIP_DEFAULT_TOLERANCE */
     sr_clip_counts *counts; /* optional: incremented per cut vertex */
     sr_clip_depth depth;    /* the projection's depth model (sr_clip_depth_of); zero: off */
+    sr_clip_trace *trace;   /* optional: called with each cut vertex, in the order they are made */
+    void *trace_context;    /* passed to trace */
 } sr_clip_config;
 
 #define SR_OUT_PLANES ((1u << SR_CLIP_PLANES) - 1u)

@@ -4,21 +4,12 @@
 #include "expansion.h"
 #include "clip.h"
 
-/* Two distances of SR_CLIP_DISTANCE_TERMS parts, each part times a float
- * coordinate as an exact product pair. */
-#define MAX_TERMS (2 * SR_CLIP_DISTANCE_TERMS * 2)
-
-static bool depth_applies(sr_clip_plane plane, const sr_clip_depth *depth)
-{
-    return depth && depth->on && (plane == SR_PLANE_NEAR || plane == SR_PLANE_FAR);
-}
-
 /* Near a·w + b and far w − a·w − b: a·w of two floats is exact in double,
  * so one two-sum or two make them exact. */
 static int depth_distance(sr_clip_plane plane, double w, const sr_clip_depth *depth, double d[])
 {
     double aw = (double)depth->a * w;
-    if (plane == SR_PLANE_NEAR) {
+    if (!sr_clip_plane_table[plane].bounded_by_w) {
         two_sum(aw, depth->b, &d[1], &d[0]);
         return 2;
     }
@@ -30,17 +21,16 @@ int sr_clip_distance_exact(sr_clip_plane plane, const float *c, const sr_clip_de
                            double d[SR_CLIP_DISTANCE_TERMS])
 {
     double w = c[SR_W];
-    if (depth_applies(plane, depth))
+    if (depth && depth->on && sr_clip_plane_in_depth_model(plane))
         return depth_distance(plane, w, depth, d);
-    switch (plane) {
-    case SR_PLANE_NEAR:   d[0] = c[SR_Z]; return 1;
-    case SR_PLANE_FAR:    two_sum(w, -(double)c[SR_Z], &d[1], &d[0]); return 2;
-    case SR_PLANE_LEFT:   two_sum(w, c[SR_X], &d[1], &d[0]); return 2;
-    case SR_PLANE_RIGHT:  two_sum(w, -(double)c[SR_X], &d[1], &d[0]); return 2;
-    case SR_PLANE_BOTTOM: two_sum(w, c[SR_Y], &d[1], &d[0]); return 2;
-    case SR_PLANE_TOP:    two_sum(w, -(double)c[SR_Y], &d[1], &d[0]); return 2;
+    const sr_clip_plane_row *row = &sr_clip_plane_table[plane];
+    double along = row->sign * (double)c[row->axis];
+    if (!row->bounded_by_w) {
+        d[0] = along;
+        return 1;
     }
-    return 0;
+    two_sum(w, along, &d[1], &d[0]);
+    return 2;
 }
 
 /* Adds d · x to the expansion, exactly. */
@@ -55,27 +45,39 @@ static int add_product(double *e, int n, const double *d, int dn, double x)
     return n;
 }
 
+/* The denominator is a sum of two non-negative parts and never cancels. */
+void sr_clip_exact_edge_of(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                           const sr_clip_depth *depth, sr_clip_exact_edge *edge)
+{
+    edge->d_in_terms = sr_clip_distance_exact(plane, inside->v, depth, edge->d_in);
+    edge->d_out_terms = sr_clip_distance_exact(plane, outside->v, depth, edge->neg_d_out);
+    int n = 0;
+    for (int k = 0; k < edge->d_in_terms; k++)
+        n = grow(edge->denominator, n, edge->d_in[k]);
+    for (int k = 0; k < edge->d_out_terms; k++) {
+        edge->neg_d_out[k] = -edge->neg_d_out[k];
+        n = grow(edge->denominator, n, edge->neg_d_out[k]);
+    }
+    edge->denominator_terms = n;
+}
+
+int sr_clip_exact_numerator(const sr_clip_exact_edge *edge, float a, float b, double num[SR_CLIP_NUMERATOR_TERMS])
+{
+    int n = add_product(num, 0, edge->d_in, edge->d_in_terms, b);
+    return add_product(num, n, edge->neg_d_out, edge->d_out_terms, a);
+}
+
 /* v = (d_in·b − d_out·a) / (d_in − d_out): the same point as a + t(b − a),
- * written so that both sums are exact and only the quotient rounds. The
- * denominator is a sum of two non-negative parts and never cancels. */
+ * written so that both sums are exact and only the quotient rounds. */
 void sr_clip_intersect_exact(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
                              int floats, const sr_clip_depth *depth, sr_vertex_out *cut)
 {
-    double d_in[SR_CLIP_DISTANCE_TERMS], neg_out[SR_CLIP_DISTANCE_TERMS], den[2 * SR_CLIP_DISTANCE_TERMS];
-    int in_n = sr_clip_distance_exact(plane, inside->v, depth, d_in);
-    int out_n = sr_clip_distance_exact(plane, outside->v, depth, neg_out);
-    int dn = 0;
-    for (int k = 0; k < in_n; k++)
-        dn = grow(den, dn, d_in[k]);
-    for (int k = 0; k < out_n; k++) {
-        neg_out[k] = -neg_out[k];
-        dn = grow(den, dn, neg_out[k]);
-    }
-    double denominator = expansion_value(den, dn);
+    sr_clip_exact_edge edge;
+    sr_clip_exact_edge_of(plane, inside, outside, depth, &edge);
+    double denominator = expansion_value(edge.denominator, edge.denominator_terms);
     for (int i = 0; i < floats; i++) {
-        double num[MAX_TERMS];
-        int n = add_product(num, 0, d_in, in_n, outside->v[i]);
-        n = add_product(num, n, neg_out, out_n, inside->v[i]);
+        double num[SR_CLIP_NUMERATOR_TERMS];
+        int n = sr_clip_exact_numerator(&edge, inside->v[i], outside->v[i], num);
         cut->v[i] = (float)(expansion_value(num, n) / denominator);
     }
 }

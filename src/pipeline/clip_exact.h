@@ -18,6 +18,28 @@
 int sr_clip_distance_exact(sr_clip_plane plane, const float *c, const sr_clip_depth *depth,
                            double d[SR_CLIP_DISTANCE_TERMS]);
 
+/* The longest numerator expansion: two distances, each part times a float
+ * coordinate as an exact product pair. */
+#define SR_CLIP_NUMERATOR_TERMS (2 * SR_CLIP_DISTANCE_TERMS * 2)
+
+/* An edge inside -> outside on a plane, ready for exact cuts: coordinate i
+ * of the cut is (d_in·b − d_out·a) / (d_in − d_out), a and b the end
+ * points' coordinates, the numerator (sr_clip_exact_numerator) and the
+ * denominator exact expansions. */
+typedef struct sr_clip_exact_edge {
+    double d_in[SR_CLIP_DISTANCE_TERMS], neg_d_out[SR_CLIP_DISTANCE_TERMS];
+    int d_in_terms, d_out_terms;
+    double denominator[2 * SR_CLIP_DISTANCE_TERMS];
+    int denominator_terms;
+} sr_clip_exact_edge;
+
+void sr_clip_exact_edge_of(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                           const sr_clip_depth *depth, sr_clip_exact_edge *edge);
+
+/* d_in·b − d_out·a as an expansion num[0..n); returns n. */
+int sr_clip_exact_numerator(const sr_clip_exact_edge *edge, float a, float b, double num[SR_CLIP_NUMERATOR_TERMS]);
+
+/* The cut vertex from sr_clip_exact_edge_of, each coordinate rounded once. */
 void sr_clip_intersect_exact(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
                              int floats, const sr_clip_depth *depth, sr_vertex_out *cut);
 

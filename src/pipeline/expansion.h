@@ -1,7 +1,7 @@
-/* expansion.h — exact floating-point sums and products for the clipper
- * (Shewchuk, "Adaptive Precision Floating-Point Arithmetic"): a value is an
- * expansion, an array of doubles whose exact sum it is, smallest first and
- * nonoverlapping. Not public API. */
+/* expansion.h — exact floating-point sums and products for the clipper and
+ * the studies that measure it (Shewchuk, "Adaptive Precision Floating-Point
+ * Arithmetic"): a value is an expansion, an array of doubles whose exact sum
+ * it is, smallest first and nonoverlapping. Not public API. */
 #ifndef SOFTRAST_EXPANSION_H
 #define SOFTRAST_EXPANSION_H
 
@@ -41,6 +41,15 @@ static inline int grow(double *e, int n, double b)
 static inline double expansion_value(const double *e, int n)
 {
     double s = 0.0;
+    for (int i = 0; i < n; i++)
+        s += e[i];
+    return s;
+}
+
+/* The same in long double, to measure a double result against. */
+static inline long double expansion_value_long(const double *e, int n)
+{
+    long double s = 0.0L;
     for (int i = 0; i < n; i++)
         s += e[i];
     return s;

@@ -88,7 +88,6 @@ typedef struct sr_stability_clip_stats {
     double worst_spread;   /* and how many times larger its end points are (‖·‖∞) */
     uint64_t triangles;    /* clipped triangles measured */
     uint64_t lost;         /* of those, clipped to nothing where the exact clipper keeps a polygon */
-    uint64_t walk_differs; /* the walk and sr_clip_polygon disagree (must be 0) */
     sr_clip_counts cuts;   /* cut vertices by the precision actually used */
 } sr_stability_clip_stats;
 
