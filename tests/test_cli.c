@@ -1,7 +1,11 @@
+#define _XOPEN_SOURCE 700 /* mknod, S_IFMT */
 /* The program's command line: every bad input gets exactly one
  * "softrast: error: ..." line and a non-zero exit that is not a crash. */
 #include <criterion/criterion.h>
+#include <dirent.h>
 #include <stdlib.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 
 #include "run_helpers.h"
 #include "temp_dir.h"
@@ -15,12 +19,13 @@ static void make_dir_with_triangle(void)
 
 TestSuite(cli, .init = make_dir_with_triangle, .fini = temp_dir_remove);
 
-/* One error line that starts with the prefix and mentions `needle`. */
+/* One error line that starts with the prefix and mentions `needle`, at
+ * once: a run that hangs is killed (exit 128 + 9) and fails the test. */
 static void assert_one_error(const char *args, const char *needle)
 {
     char full[1024];
     snprintf(full, sizeof full, args, temp_dir, temp_dir);
-    run_result r = run_softrast(temp_dir, full);
+    run_result r = run_softrast_env(temp_dir, "timeout -s KILL 20", full);
     cr_assert(r.status != 0 && r.status < 128, "`softrast %s` exited %d", full, r.status);
     cr_assert_eq(strncmp(r.err, "softrast: error: ", 17), 0, "stderr was: %s", r.err);
     cr_assert_eq(count_lines(r.err), 1, "want one line, stderr was: %s", r.err);
@@ -136,4 +141,41 @@ Test(cli, stats_is_one_json_line_with_the_named_keys)
     cr_assert_eq(r.out[0], '{');
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
         cr_assert_not_null(strstr(r.out, keys[i]), "stats lack %s: %s", keys[i], r.out);
+}
+
+static mode_t file_type(const char *name)
+{
+    char path[512];
+    struct stat st;
+    cr_assert_eq(stat(temp_path(path, sizeof path, name), &st), 0, "%s is gone", name);
+    return st.st_mode & S_IFMT;
+}
+
+static void assert_no_temporary_file_left(void)
+{
+    DIR *d = opendir(temp_dir);
+    cr_assert_not_null(d);
+    for (struct dirent *e; (e = readdir(d));)
+        cr_expect_null(strstr(e->d_name, ".tmp-"), "%s was left behind", e->d_name);
+    closedir(d);
+}
+
+/* A FIFO, a directory or a device node at an output path is refused at once
+ * and survives; a FIFO used to block the write forever and a failed write
+ * used to remove() whatever was at the path. */
+Test(cli, output_that_is_not_a_regular_file_survives)
+{
+    char path[512];
+    cr_assert_eq(mkfifo(temp_path(path, sizeof path, "fifo.png"), 0666), 0);
+    cr_assert_eq(mkdir(temp_path(path, sizeof path, "dir.pfm"), 0777), 0);
+    assert_one_error("render %s/tri.obj --out %s/fifo.png", "fifo.png: not a regular file");
+    assert_one_error("render %s/tri.obj --depth %s/dir.pfm", "dir.pfm: not a regular file");
+    cr_expect_eq(file_type("fifo.png"), S_IFIFO);
+    cr_expect_eq(file_type("dir.pfm"), S_IFDIR);
+    if (geteuid() == 0) { /* /dev/full's numbers: every write fails */
+        cr_assert_eq(mknod(temp_path(path, sizeof path, "node"), S_IFCHR | 0666, makedev(1, 7)), 0);
+        assert_one_error("render %s/tri.obj --depth-png %s/node", "node: not a regular file");
+        cr_expect_eq(file_type("node"), S_IFCHR);
+    }
+    assert_no_temporary_file_left();
 }
