@@ -72,7 +72,8 @@ $(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden
 
 # The installed libraries: the room's objects linked into one and every
 # hidden symbol made local, so an embedder sees the public API alone. The
-# files library carries its own local copy of the core's error formatting.
+# files library carries its own local copies of the core's error formatting
+# and input checks.
 define public_archive
 build/public/$(1): $(patsubst %.c,build/%.o,$(2))
 	@mkdir -p $$(@D)
@@ -82,7 +83,7 @@ build/public/$(1): $(patsubst %.c,build/%.o,$(2))
 	@rm -f $$@ && ar rcs $$@ $$(@:.a=.o) && rm $$(@:.a=.o)
 endef
 $(eval $(call public_archive,libsoftrast.a,$(CORE_SRC)))
-$(eval $(call public_archive,libsoftrast-files.a,$(FILES_SRC) src/core/error.c))
+$(eval $(call public_archive,libsoftrast-files.a,$(FILES_SRC) src/core/error.c src/core/input_file.c))
 
 # One archive per room, in both builds: $(1) is build or build/san.
 define room_archive

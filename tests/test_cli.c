@@ -168,14 +168,34 @@ Test(cli, output_that_is_not_a_regular_file_survives)
     char path[512];
     cr_assert_eq(mkfifo(temp_path(path, sizeof path, "fifo.png"), 0666), 0);
     cr_assert_eq(mkdir(temp_path(path, sizeof path, "dir.pfm"), 0777), 0);
-    assert_one_error("render %s/tri.obj --out %s/fifo.png", "fifo.png: not a regular file");
-    assert_one_error("render %s/tri.obj --depth %s/dir.pfm", "dir.pfm: not a regular file");
+    assert_one_error("render %s/tri.obj --out %s/fifo.png", "fifo.png: cannot write: not a regular file (a FIFO)");
+    assert_one_error("render %s/tri.obj --depth %s/dir.pfm", "dir.pfm: cannot write: not a regular file (a directory)");
     cr_expect_eq(file_type("fifo.png"), S_IFIFO);
     cr_expect_eq(file_type("dir.pfm"), S_IFDIR);
     if (geteuid() == 0) { /* /dev/full's numbers: every write fails */
         cr_assert_eq(mknod(temp_path(path, sizeof path, "node"), S_IFCHR | 0666, makedev(1, 7)), 0);
-        assert_one_error("render %s/tri.obj --depth-png %s/node", "node: not a regular file");
+        assert_one_error("render %s/tri.obj --depth-png %s/node", "node: cannot write: not a regular file (a character device)");
         cr_expect_eq(file_type("node"), S_IFCHR);
     }
     assert_no_temporary_file_left();
+}
+
+/* A FIFO, a device or a directory as the mesh, its material library, the
+ * texture or a flight script gets its error at once: a FIFO used to block
+ * the open (or the read) forever. */
+Test(cli, input_that_is_not_a_regular_file_is_refused_at_once)
+{
+    static const char *const fifos[] = { "in.obj", "lib.mtl", "tex.png", "fly.txt" };
+    char path[512];
+    for (size_t i = 0; i < sizeof fifos / sizeof *fifos; i++)
+        cr_assert_eq(mkfifo(temp_path(path, sizeof path, fifos[i]), 0666), 0);
+    cr_assert_eq(mkdir(temp_path(path, sizeof path, "dir.obj"), 0777), 0);
+    write_text(temp_dir, "lib.obj", "mtllib lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const char *fifo = "cannot open: not a regular file (a FIFO)";
+    assert_one_error("render %s/in.obj", fifo);
+    assert_one_error("render %s/lib.obj", "cannot open material library 'lib.mtl': not a regular file (a FIFO)");
+    assert_one_error("render assets/cube.obj --texture %s/tex.png", fifo);
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt", fifo);
+    assert_one_error("render %s/dir.obj", "dir.obj: cannot open: not a regular file (a directory)");
+    assert_one_error("render /dev/zero", "/dev/zero: cannot open: not a regular file (a character device)");
 }

@@ -451,7 +451,7 @@ Test(obj, missing_file_is_an_error)
 Test(obj, directory_is_an_error)
 {
     mkdir(tmp_path("folder.obj"), 0700);
-    assert_file_fails("folder.obj", 0, "Is a directory");
+    assert_file_fails("folder.obj", 0, "not a regular file (a directory)");
 }
 
 Test(obj, bad_number_is_an_error)

@@ -50,7 +50,8 @@
  * zero (docs/precision.md).
  *
  * Errors: false with "FILE:LINE: what" in err (or "FILE: what" when the file
- * cannot be read); the mesh is left zeroed, never half-filled, whatever it
+ * cannot be read, or is not a regular file: a FIFO, a device or a directory
+ * is refused without being read); the mesh is left zeroed, never half-filled, whatever it
  * held before (it is not freed: pass an empty or freed mesh). Errors include
  * a malformed or non-finite number, a wrong count of numbers, an index that
  * is 0 or outside the elements read so far, a malformed face corner, a face
@@ -62,12 +63,19 @@ SR_API bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err);
 /* ---- textures ----------------------------------------------------------- */
 
 /* Any image SDL2_image reads, as 0x00RRGGBB texels, row 0 at the top; false
- * for a missing file, anything that is not a readable image, or a side over
+ * for a missing file or one that is not a regular file, anything that is not
+ * a readable image, or a side over
  * SR_MAX_TEXTURE_SIDE. Free with sr_texture_free. */
 SR_API bool sr_texture_load(sr_texture *tex, const char *path, sr_error *err);
 SR_API void sr_texture_free(sr_texture *tex);
 
-/* ---- images ------------------------------------------------------------- */
+/* ---- images -------------------------------------------------------------
+ *
+ * path must be a regular file or not exist yet (a directory, FIFO or device
+ * there is refused and left alone). The image is written to a temporary file
+ * beside it, renamed into place when complete: a failed write leaves what
+ * was at path untouched. An existing file keeps its permissions; a symbolic
+ * link at path keeps pointing at the file it names, which is replaced. */
 
 /* 8-bit RGB PNG of 0x00RRGGBB pixels, row 0 at the top. */
 SR_API bool sr_image_write_png(const char *path, const uint32_t *pixels, int width, int height, sr_error *err);

@@ -12,6 +12,7 @@
 
 #include "softrast/files.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 #define RGB24_BYTES 3
 #define FLOAT32_BYTES 4
@@ -72,7 +73,8 @@ static bool output_open(output *o, const char *path, sr_error *err)
     struct stat st;
     bool exists = stat(path, &st) == 0;
     if (exists && !S_ISREG(st.st_mode))
-        return sr_error_set(err, "%s: not a regular file; softrast writes only regular files", path);
+        return sr_error_set(err, "%s: cannot write: %s; softrast writes only regular files", path,
+                            sr_not_regular(st.st_mode));
     o->target = exists ? realpath(path, NULL) : strdup(path);
     int fd = o->target ? create_tmp(o) : -1;
     if (fd >= 0 && exists)

@@ -7,6 +7,7 @@
 
 #include "obj_parse.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 /* Room for a few maximal lines per read, so compacting the unread tail to
  * the front costs little next to reading. */
@@ -17,14 +18,13 @@ static const char utf8_bom[] = "\xEF\xBB\xBF";
 bool sr_line_reader_open(sr_line_reader *r, const char *path)
 {
     *r = (sr_line_reader){ .path = path };
-    r->file = fopen(path, "rb");
+    r->file = sr_input_open(path, &r->why);
     if (!r->file)
         return false;
     r->buf = malloc(READER_CAP + 1); /* +1: a final line without "\n" still gets its NUL */
     if (!r->buf) {
         fclose(r->file);
-        *r = (sr_line_reader){ 0 };
-        errno = ENOMEM;
+        *r = (sr_line_reader){ .why = strerror(ENOMEM) };
         return false;
     }
     return true;

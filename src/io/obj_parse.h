@@ -19,15 +19,17 @@
 typedef struct sr_line_reader {
     FILE *file;
     const char *path; /* borrowed; used in "PATH:LINE:" messages */
+    const char *why;  /* after a failed open: the reason in words */
     size_t line;      /* number of the line last returned, from 1 */
     char *buf;
     size_t start, end;
     bool eof;
 } sr_line_reader;
 
-/* False (errno set by fopen, nothing to close) if the file cannot be opened;
- * the caller words the message, since "cannot open" means different things
- * for an OBJ and for the material library it names. */
+/* False (r->why says why, nothing to close) if the file cannot be opened or
+ * is not a regular file (sr_input_open); the caller words the message, since
+ * "cannot open" means different things for an OBJ and for the material
+ * library it names. */
 bool sr_line_reader_open(sr_line_reader *r, const char *path);
 /* The next line, NUL-terminated, without its "\n" or "\r\n"; *line = NULL at
  * the end of the file. False on a read error, an over-long line or a NUL

@@ -1,4 +1,3 @@
-#include <errno.h>
 #include <fcntl.h>
 #include <unistd.h>
 #include <stdio.h>
@@ -10,6 +9,7 @@
 
 #include "softrast/files.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 #define RGB_MASK 0x00FFFFFFu
 
@@ -51,9 +51,10 @@ static SDL_Surface *decode_quietly(SDL_RWops *rw, const char *type)
  * no SDL_Init (it initialises its own decoders), so this works headless. */
 static SDL_Surface *load_surface(const char *path, sr_error *err)
 {
-    FILE *f = fopen(path, "rb");
+    const char *why;
+    FILE *f = sr_input_open(path, &why);
     if (!f) {
-        sr_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+        sr_error_set(err, "%s: cannot open: %s", path, why);
         return NULL;
     }
     SDL_RWops *rw = SDL_RWFromFP(f, SDL_TRUE);

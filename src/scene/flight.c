@@ -6,6 +6,7 @@
 
 #include "flight.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 #define LINE_MAX_CHARS 4096
 
@@ -64,9 +65,10 @@ static bool read_keys(sr_flight *s, FILE *f, const char *path, sr_error *err)
 bool sr_flight_load(sr_flight *s, const char *path, sr_error *err)
 {
     *s = (sr_flight){ 0 };
-    FILE *f = fopen(path, "r");
+    const char *why;
+    FILE *f = sr_input_open(path, &why);
     if (!f)
-        return sr_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+        return sr_error_set(err, "%s: cannot open: %s", path, why);
     bool ok = read_keys(s, f, path, err);
     fclose(f);
     if (!ok)
