@@ -62,10 +62,16 @@ SR_API bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err);
 
 /* ---- textures ----------------------------------------------------------- */
 
-/* Any image SDL2_image reads, as 0x00RRGGBB texels, row 0 at the top; false
- * for a missing file or one that is not a regular file, anything that is not
- * a readable image, or a side over
- * SR_MAX_TEXTURE_SIDE. Free with sr_texture_free. */
+/* At most this many texels (8192 x 8192; 256 MiB as 0x00RRGGBB) in a loaded
+ * texture: a PNG's size is read from its header and checked before anything
+ * is allocated, so a small file claiming a huge image costs nothing. */
+#define SR_MAX_TEXTURE_TEXELS (1ul << 26)
+
+/* Any image SDL2_image reads (PNG through libpng directly), as 0x00RRGGBB
+ * texels, row 0 at the top; false for a missing file or one that is not a
+ * regular file, anything that is not a readable image, a side over
+ * SR_MAX_TEXTURE_SIDE or more than SR_MAX_TEXTURE_TEXELS texels. Free with
+ * sr_texture_free. */
 SR_API bool sr_texture_load(sr_texture *tex, const char *path, sr_error *err);
 SR_API void sr_texture_free(sr_texture *tex);
 
