@@ -199,3 +199,18 @@ Test(cli, input_that_is_not_a_regular_file_is_refused_at_once)
     assert_one_error("render %s/dir.obj", "dir.obj: cannot open: not a regular file (a directory)");
     assert_one_error("render /dev/zero", "/dev/zero: cannot open: not a regular file (a character device)");
 }
+
+/* With no display SDL used to fall back to its offscreen driver: the viewer
+ * ran for ever with no window. Now it fails at once, naming the ways out. */
+Test(cli, view_without_a_display_fails_at_once_naming_the_ways_out)
+{
+    run_result r = run_softrast_env(temp_dir,
+                                    "env -u DISPLAY -u WAYLAND_DISPLAY -u XDG_RUNTIME_DIR -u SDL_VIDEODRIVER "
+                                    "ASAN_OPTIONS=detect_leaks=0 timeout -s KILL 2",
+                                    "view");
+    cr_assert(r.status != 0 && r.status < 128, "exit %d, stderr: %s", r.status, r.err);
+    cr_assert_eq(count_lines(r.err), 1, "stderr was: %s", r.err);
+    cr_assert_eq(strncmp(r.err, "softrast: error: ", 17), 0, "stderr was: %s", r.err);
+    cr_expect_not_null(strstr(r.err, "--no-window"), "%s", r.err);
+    cr_expect_not_null(strstr(r.err, "xvfb-run"), "%s", r.err);
+}
