@@ -214,3 +214,20 @@ Test(cli, view_without_a_display_fails_at_once_naming_the_ways_out)
     cr_expect_not_null(strstr(r.err, "--no-window"), "%s", r.err);
     cr_expect_not_null(strstr(r.err, "xvfb-run"), "%s", r.err);
 }
+
+/* The default camera frames a mesh 1000 units across and 1000 units from
+ * the origin; near and far used to stay 0.1 and 100, so every triangle was
+ * rejected and the image was black with exit 0. */
+Test(cli, default_camera_draws_a_big_mesh_far_from_the_origin)
+{
+    write_text(temp_dir, "big.obj", "v 500 -500 0\nv 1500 -500 0\nv 1500 500 0\nv 500 500 0\nf 1 2 3 4\n");
+    char args[256];
+    snprintf(args, sizeof args, "render %s/big.obj --size 64x64 --cull none --shade id --stats", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_not_null(strstr(r.out, "\"rejected\": 0,"), "%s", r.out);
+    const char *fragments = strstr(r.out, "\"fragments\": ");
+    cr_assert_not_null(fragments, "%s", r.out);
+    long drawn = strtol(fragments + strlen("\"fragments\": "), NULL, 10);
+    cr_expect_gt(drawn, 64 * 64 / 4, "%ld of %d pixels drawn: %s", drawn, 64 * 64, r.out);
+}
