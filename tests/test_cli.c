@@ -225,9 +225,28 @@ Test(cli, default_camera_draws_a_big_mesh_far_from_the_origin)
     snprintf(args, sizeof args, "render %s/big.obj --size 64x64 --cull none --shade id --stats", temp_dir);
     run_result r = run_softrast(temp_dir, args);
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_eq(r.err[0], '\0', "stderr: %s", r.err);
     cr_expect_not_null(strstr(r.out, "\"rejected\": 0,"), "%s", r.out);
+    cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": null}"), "%s", r.out);
     const char *fragments = strstr(r.out, "\"fragments\": ");
     cr_assert_not_null(fragments, "%s", r.out);
     long drawn = strtol(fragments + strlen("\"fragments\": "), NULL, 10);
     cr_expect_gt(drawn, 64 * 64 / 4, "%ld of %d pixels drawn: %s", drawn, 64 * 64, r.out);
+}
+
+/* A render that draws nothing used to be silent with exit 0; now one
+ * warning line says why, with the numbers, and --stats says it too. */
+Test(cli, nothing_drawn_says_why)
+{
+    char args[256];
+    snprintf(args, sizeof args, "render %s/tri.obj --size 32x32 --eye 0,0,-500 --target 0,0,0 --stats", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_assert_eq(count_lines(r.err), 1, "stderr: %s", r.err);
+    const char *start = "softrast: warning: nothing drawn: every triangle lies outside the view volume "
+                        "(1 triangles: 1 rejected outside";
+    cr_expect_eq(strncmp(r.err, start, strlen(start)), 0, "stderr: %s", r.err);
+    cr_expect_not_null(strstr(r.err, "the eye is at 0,0,-500 looking at 0,0,0 with near 0.1, far 100"), "%s", r.err);
+    cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": \"every triangle lies outside the view volume\"}"), "%s",
+                       r.out);
 }
