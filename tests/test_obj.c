@@ -253,6 +253,18 @@ Test(obj, crlf_comments_blank_lines_and_whitespace)
     sr_mesh_free(&m);
 }
 
+/* "0#c" used to be "'0#c' is not a number": a comment may follow data with
+ * no blank before it. */
+Test(obj, comment_right_after_data_ends_the_token)
+{
+    sr_mesh m = load_ok("v 1 0 0#c\nv 0 1 0# two\nv 0 0 1#\nf 1 2 3#face\n");
+    cr_assert_eq(m.vertex_count, 3);
+    cr_assert_eq(m.index_count, 3);
+    assert_vec3(m.positions[0], 1, 0, 0);
+    assert_vec3(m.positions[2], 0, 0, -1);
+    sr_mesh_free(&m);
+}
+
 Test(obj, utf8_byte_order_mark_is_skipped)
 {
     sr_mesh m = load_ok("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");

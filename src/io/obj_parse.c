@@ -116,9 +116,11 @@ char *sr_obj_next_token(char **cursor)
         return NULL;
     }
     char *tok = s;
-    while (*s && !is_blank(*s))
+    while (*s && !is_blank(*s) && *s != '#')
         s++;
-    if (*s)
+    if (*s == '#')
+        *s = '\0'; /* a comment right after the token: the next call ends the line */
+    else if (*s)
         *s++ = '\0';
     *cursor = s;
     return tok;

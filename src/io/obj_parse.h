@@ -41,7 +41,8 @@ bool sr_line_fail(const sr_line_reader *r, sr_error *err, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
 /* Next whitespace-separated token, NUL-terminated in place; NULL at the end
- * of the line or at a token starting with '#' (a trailing comment). */
+ * of the line or at a '#' (a trailing comment), which also ends a token it
+ * follows with no blank between ("0#c" is the token "0"). */
 char *sr_obj_next_token(char **cursor);
 /* The rest of the line without surrounding whitespace (file and material
  * names may contain spaces); "" if nothing is left. */
