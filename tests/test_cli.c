@@ -250,3 +250,22 @@ Test(cli, nothing_drawn_says_why)
     cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": \"every triangle lies outside the view volume\"}"), "%s",
                        r.out);
 }
+
+/* "--out -" used to write a file named "-"; it is stdout, as users expect. */
+Test(cli, out_dash_writes_the_png_to_stdout)
+{
+    char args[256];
+    snprintf(args, sizeof args, "render %s/tri.obj --size 8x4 --out -", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    int left_a_file = access("-", F_OK) == 0;
+    remove("-");
+    cr_expect_not(left_a_file, "a file named '-' was written");
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_eq(memcmp(r.out, "\x89PNG\r\n\x1a\n", 8), 0, "stdout is no PNG");
+}
+
+Test(cli, only_one_output_can_use_stdout)
+{
+    assert_one_error("render %s/tri.obj --out - --depth -", "only one of");
+    assert_one_error("render %s/tri.obj --depth-png - --stats", "only one of");
+}

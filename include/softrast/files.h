@@ -81,7 +81,8 @@ SR_API void sr_texture_free(sr_texture *tex);
  * there is refused and left alone). The image is written to a temporary file
  * beside it, renamed into place when complete: a failed write leaves what
  * was at path untouched. An existing file keeps its permissions; a symbolic
- * link at path keeps pointing at the file it names, which is replaced. */
+ * link at path keeps pointing at the file it names, which is replaced. The
+ * path "-" is stdout (flushed, not closed), refused when it is a terminal. */
 
 /* 8-bit RGB PNG of 0x00RRGGBB pixels, row 0 at the top. */
 SR_API bool sr_image_write_png(const char *path, const uint32_t *pixels, int width, int height, sr_error *err);

@@ -31,6 +31,11 @@ static void job_defaults(render_job *job)
     sr_scene_setup_defaults(&job->scene);
 }
 
+static int is_stdout(const char *path)
+{
+    return path && strcmp(path, "-") == 0;
+}
+
 static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option own[] = {
@@ -49,6 +54,10 @@ static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_err
         return false;
     if (!*help && positional != 1)
         return sr_error_set(err, "render needs one MESH.obj (see softrast render --help)");
+    int to_stdout = job->stats + is_stdout(job->out_path) + is_stdout(job->depth_path) +
+                    is_stdout(job->depth_png_path);
+    if (to_stdout > 1)
+        return sr_error_set(err, "only one of --out -, --depth -, --depth-png - and --stats can write to stdout");
     return true;
 }
 

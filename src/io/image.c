@@ -66,10 +66,17 @@ static int create_tmp(output *o)
 }
 
 /* Only a regular file (an existing one keeps its permissions) or a path that
- * does not exist yet is an output: never a device, FIFO or directory. */
+ * does not exist yet is an output: never a device, FIFO or directory. "-"
+ * is stdout, unless that is a terminal. */
 static bool output_open(output *o, const char *path, sr_error *err)
 {
     *o = (output){ 0 };
+    if (strcmp(path, "-") == 0) {
+        if (isatty(STDOUT_FILENO))
+            return sr_error_set(err, "-: stdout is a terminal; redirect it to a file or name one");
+        o->f = stdout;
+        return true;
+    }
     struct stat st;
     bool exists = stat(path, &st) == 0;
     if (exists && !S_ISREG(st.st_mode))
@@ -93,23 +100,25 @@ static bool output_open(output *o, const char *path, sr_error *err)
 
 /* Flushes and closes the temporary file, reporting the first failure (errno
  * from a failed write, or from flush/close: buffered data can still hit a
- * full disk there), then renames it into place or removes it. */
+ * full disk there), then renames it into place or removes it. stdout is
+ * flushed only. */
 static bool output_close(output *o, const char *path, bool ok, sr_error *err)
 {
     int code = ok ? 0 : errno;
+    bool file = o->tmp != NULL;
     if (fflush(o->f) != 0 && ok) {
         ok = false;
         code = errno;
     }
-    if (fclose(o->f) != 0 && ok) {
+    if (file && fclose(o->f) != 0 && ok) {
         ok = false;
         code = errno;
     }
-    if (ok && rename(o->tmp, o->target) != 0) {
+    if (file && ok && rename(o->tmp, o->target) != 0) {
         ok = false;
         code = errno;
     }
-    if (!ok)
+    if (file && !ok)
         remove(o->tmp);
     output_free(o);
     return ok || sr_error_set(err, "%s: cannot write: %s", path, strerror(code ? code : EIO));
