@@ -269,3 +269,12 @@ Test(cli, only_one_output_can_use_stdout)
     assert_one_error("render %s/tri.obj --out - --depth -", "only one of");
     assert_one_error("render %s/tri.obj --depth-png - --stats", "only one of");
 }
+
+/* "--keys ,,," used to be accepted, pressing nothing. */
+Test(cli, empty_key_names_are_refused)
+{
+    write_text(temp_dir, "fly.txt", "0 0 -3  0 0 0  0 1 0  60 0.1 100\n");
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys ,,,", "--keys: an empty key name");
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys F2,,L", "--keys: an empty key name");
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys F2,", "--keys: an empty key name");
+}

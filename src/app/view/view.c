@@ -158,15 +158,21 @@ static void print_frame_camera(int frame, const sr_camera *c)
 }
 
 /* Feeds each named key to the viewer as a press and release, the same
- * events a window delivers. */
+ * events a window delivers. An empty name (",,", a leading or trailing
+ * comma) is an error, not skipped: it is a typo more often than not. */
 static bool press_keys(const char *names, sr_viewer *v, sr_error *err)
 {
     char buf[MAX_KEYS_TEXT];
     if (strlen(names) >= sizeof buf)
         return sr_error_set(err, "--keys is longer than %d characters", MAX_KEYS_TEXT - 1);
     strcpy(buf, names);
-    char *save = NULL;
-    for (char *name = strtok_r(buf, ",", &save); name; name = strtok_r(NULL, ",", &save)) {
+    for (char *name = buf, *end; name; name = end ? end + 1 : NULL) {
+        end = strchr(name, ',');
+        if (end)
+            *end = '\0';
+        if (!*name)
+            return sr_error_set(err, "--keys: an empty key name in '%s' (names separated by commas, such as F4,L)",
+                                names);
         SDL_Keycode key = SDL_GetKeyFromName(name);
         if (key == SDLK_UNKNOWN)
             return sr_error_set(err, "--keys: unknown key '%s' (SDL key names, such as F4, L, Tab)", name);
