@@ -218,16 +218,25 @@ Test(cli, view_without_a_display_fails_at_once_naming_the_ways_out)
 /* The default camera frames a mesh 1000 units across and 1000 units from
  * the origin; near and far used to stay 0.1 and 100, so every triangle was
  * rejected and the image was black with exit 0. */
-Test(cli, default_camera_draws_a_big_mesh_far_from_the_origin)
+/* Renders `obj` (text) with the default camera and `options`, expecting
+ * success, something drawn and nothing on stderr; returns the run. */
+static run_result render_draws_something(const char *obj, const char *options)
 {
-    write_text(temp_dir, "big.obj", "v 500 -500 0\nv 1500 -500 0\nv 1500 500 0\nv 500 500 0\nf 1 2 3 4\n");
-    char args[256];
-    snprintf(args, sizeof args, "render %s/big.obj --size 64x64 --cull none --shade id --stats", temp_dir);
+    write_text(temp_dir, "mesh.obj", obj);
+    char args[512];
+    snprintf(args, sizeof args, "render %s/mesh.obj --cull none --stats %s", temp_dir, options);
     run_result r = run_softrast(temp_dir, args);
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cr_expect_eq(r.err[0], '\0', "stderr: %s", r.err);
-    cr_expect_not_null(strstr(r.out, "\"rejected\": 0,"), "%s", r.out);
     cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": null}"), "%s", r.out);
+    return r;
+}
+
+Test(cli, default_camera_draws_a_big_mesh_far_from_the_origin)
+{
+    run_result r = render_draws_something("v 500 -500 0\nv 1500 -500 0\nv 1500 500 0\nv 500 500 0\nf 1 2 3 4\n",
+                                          "--size 64x64 --shade id");
+    cr_expect_not_null(strstr(r.out, "\"rejected\": 0,"), "%s", r.out);
     const char *fragments = strstr(r.out, "\"fragments\": ");
     cr_assert_not_null(fragments, "%s", r.out);
     long drawn = strtol(fragments + strlen("\"fragments\": "), NULL, 10);
@@ -277,4 +286,13 @@ Test(cli, empty_key_names_are_refused)
     assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys ,,,", "--keys: an empty key name");
     assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys F2,,L", "--keys: an empty key name");
     assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys F2,", "--keys: an empty key name");
+}
+
+/* Vertices at ±2e19: framing squared the bounds' half-diagonal in float
+ * ("camera eye, target and up must be finite"), the projection multiplied
+ * near by far in float and the normals crossed edges in float, each past
+ * float's range. The default camera and shading now draw it. */
+Test(cli, default_camera_and_normals_near_float_range)
+{
+    render_draws_something("v -2e19 -2e19 -2e19\nv 2e19 -2e19 0\nv 0 2e19 2e19\nf 1 2 3\n", "--size 16x16");
 }

@@ -105,8 +105,8 @@ static bool has_origin(const sr_mesh *mesh)
  * sphere, so near stays positive. */
 static void fit_depth_range(sr_camera *cam, const vec3 lo, const vec3 hi)
 {
-    float radius = 0.5f * glm_vec3_distance((float *)lo, (float *)hi);
-    float distance = glm_vec3_distance(cam->eye, cam->target);
+    float radius = 0.5f * sr_vec3_distance_d(lo, hi);
+    float distance = sr_vec3_distance_d(cam->eye, cam->target);
     float nearest = distance - radius, farthest = distance + radius;
     if (nearest >= cam->near && farthest <= cam->far)
         return;
