@@ -253,11 +253,12 @@ Test(cli, nothing_drawn_says_why)
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cr_assert_eq(count_lines(r.err), 1, "stderr: %s", r.err);
     const char *start = "softrast: warning: nothing drawn: every triangle lies outside the view volume "
-                        "(1 triangles: 1 rejected outside";
+                        "(or is non-finite) (1 triangles: 1 rejected outside";
     cr_expect_eq(strncmp(r.err, start, strlen(start)), 0, "stderr: %s", r.err);
     cr_expect_not_null(strstr(r.err, "the eye is at 0,0,-500 looking at 0,0,0 with near 0.1, far 100"), "%s", r.err);
-    cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": \"every triangle lies outside the view volume\"}"), "%s",
-                       r.out);
+    cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": \"every triangle lies outside the view volume "
+                                     "(or is non-finite)\"}"),
+                       "%s", r.out);
 }
 
 /* "--out -" used to write a file named "-"; it is stdout, as users expect. */
@@ -295,4 +296,18 @@ Test(cli, empty_key_names_are_refused)
 Test(cli, default_camera_and_normals_near_float_range)
 {
     render_draws_something("v -2e19 -2e19 -2e19\nv 2e19 -2e19 0\nv 0 2e19 2e19\nf 1 2 3\n", "--size 16x16");
+}
+
+/* A triangle whose clip coordinates overflow float is not "outside the
+ * view": the warning says what it is. */
+Test(cli, nothing_drawn_names_non_finite_triangles)
+{
+    write_text(temp_dir, "wide.obj", "v -3e38 0 5\nv 3e38 0 5\nv 0 3e38 5\nf 1 2 3\n");
+    char args[256];
+    snprintf(args, sizeof args, "render %s/wide.obj --size 8x8 --eye 0,0,-3 --target 0,0,0 --stats", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    const char *why = "every triangle has a non-finite position or varying";
+    cr_expect_not_null(strstr(r.err, why), "%s", r.err);
+    cr_expect_not_null(strstr(r.out, why), "%s", r.out);
 }

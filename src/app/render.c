@@ -95,8 +95,10 @@ static const char *nothing_drawn(const sr_stats *s)
         return NULL;
     if (s->triangles == 0)
         return "the mesh has no triangles";
+    if (s->nonfinite == s->triangles)
+        return "every triangle has a non-finite position or varying (NaN, inf or past float range)";
     if (s->rejected == s->triangles)
-        return "every triangle lies outside the view volume";
+        return "every triangle lies outside the view volume (or is non-finite)";
     if (s->drawn == 0)
         return "every triangle inside the view faces away or has no area";
     return "the triangles drawn cover no pixel centre";
