@@ -62,6 +62,14 @@ Test(cli, non_finite_numbers_are_refused)
     assert_one_error("render %s/tri.obj --eye 0,0,1e999", "--eye");
 }
 
+/* "--eye 1e300,0,0" was "expected three finite numbers", which 1e300 is:
+ * the message now gives the range. */
+Test(cli, out_of_range_coordinates_name_the_range)
+{
+    assert_one_error("render %s/tri.obj --eye 1e300,0,0", "three numbers X,Y,Z, each in [-3e+38, 3e+38]");
+    assert_one_error("render %s/tri.obj --up 0,-1e39,0", "each in [-3e+38, 3e+38]");
+}
+
 Test(cli, absurd_camera_is_refused)
 {
     assert_one_error("render %s/tri.obj --near 10 --far 1", "far");
