@@ -319,3 +319,11 @@ Test(cli, nothing_drawn_names_non_finite_triangles)
     cr_expect_not_null(strstr(r.err, why), "%s", r.err);
     cr_expect_not_null(strstr(r.out, why), "%s", r.out);
 }
+
+/* A missing report folder used to fail only after the whole study ran
+ * (9 s for --stability); now at once. */
+Test(cli, missing_report_dir_fails_before_measuring)
+{
+    assert_one_error("bench --stability --report-dir %s/none", "none: cannot write the report there");
+    assert_one_error("bench --report --report-dir %s/tri.obj", "tri.obj: cannot write the report there: not a directory");
+}
