@@ -265,6 +265,32 @@ Test(obj, comment_right_after_data_ends_the_token)
     sr_mesh_free(&m);
 }
 
+/* Old Mac files end lines with a lone CR: they used to fail on line 1. */
+Test(obj, cr_only_line_ends)
+{
+    sr_mesh m = load_ok("v 1 0 0\rv 0 1 0\r\rv 0 0 1\rf 1 2 3\r");
+    cr_assert_eq(m.vertex_count, 3);
+    cr_assert_eq(m.index_count, 3);
+    sr_mesh_free(&m);
+    assert_text_fails("v 0 0 0\rv 1 0 0\rf 1 2 9\r", 3, "out of range");
+}
+
+/* A "\r\n" split between two reads (the reader's first read is 256 KiB:
+ * 9 + 32766·8 + 6 puts a "\r" on its last byte) is still one line end, so
+ * the line numbers stay right. */
+Test(obj, crlf_across_a_read_is_one_line_end)
+{
+    size_t lines = 40000, size = 9 + 8 * lines + 64;
+    char *text = malloc(size), *p = text;
+    cr_assert_not_null(text);
+    p += sprintf(p, "#abcdef\r\n");
+    for (size_t i = 0; i < lines; i++)
+        p += sprintf(p, "# abcd\r\n");
+    sprintf(p, "v 0 0 0\r\nf 1 1 x\r\n");
+    assert_text_fails(text, (int)lines + 3, "malformed face vertex");
+    free(text);
+}
+
 Test(obj, utf8_byte_order_mark_is_skipped)
 {
     sr_mesh m = load_ok("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");

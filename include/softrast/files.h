@@ -27,7 +27,7 @@
  * Reads `v` (optionally with r g b, or with a w that is ignored), `vt` (u v,
  * an optional w ignored), `vn`, `f` in the forms v, v/vt, v//vn and v/vt/vn
  * (mixed freely) with positive or negative (relative) indices, polygons,
- * comments (whole-line and trailing), blank lines and CRLF line ends;
+ * comments (whole-line and trailing), blank lines and LF, CRLF or CR line ends;
  * `mtllib` + `usemtl` give the texture path from the material's `map_Kd`.
  * Other statements (o, g, s, l, p, …) are ignored. OBJ is right-handed: the
  * loader negates z (of positions and normals) and reverses each face's

@@ -70,11 +70,25 @@ static bool refill(sr_line_reader *r, sr_error *err)
     return true;
 }
 
+/* The first line end in the unread bytes: "\n", "\r\n" or a lone "\r" (old
+ * Mac files). NULL when there is none yet, or when a "\r" ends what was read
+ * so far: the "\n" that may follow is still in the file. */
+static char *line_end(const sr_line_reader *r)
+{
+    char *s = r->buf + r->start;
+    size_t n = r->end - r->start;
+    char *nl = memchr(s, '\n', n);
+    char *cr = memchr(s, '\r', nl ? (size_t)(nl - s) : n);
+    if (!cr)
+        return nl;
+    return cr + 1 == r->buf + r->end && !r->eof ? NULL : cr;
+}
+
 bool sr_line_reader_next(sr_line_reader *r, char **line, sr_error *err)
 {
     char *nl;
     *line = NULL;
-    while (!(nl = memchr(r->buf + r->start, '\n', r->end - r->start)) && !r->eof) {
+    while (!(nl = line_end(r)) && !r->eof) {
         /* Give up before buffering more than a line may hold ("+1": a "\r"). */
         if (r->end - r->start > SR_OBJ_MAX_LINE + 1)
             return line_too_long(r, r->line + 1, err);
@@ -85,7 +99,8 @@ bool sr_line_reader_next(sr_line_reader *r, char **line, sr_error *err)
         return true;
     char *s = r->buf + r->start;
     size_t len = nl ? (size_t)(nl - s) : r->end - r->start;
-    r->start += len + (nl != NULL);
+    bool crlf = nl && *nl == '\r' && nl + 1 < r->buf + r->end && nl[1] == '\n';
+    r->start += len + (nl != NULL) + crlf;
     r->line++;
     if (len > 0 && s[len - 1] == '\r')
         len--;

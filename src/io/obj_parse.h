@@ -31,7 +31,7 @@ typedef struct sr_line_reader {
  * "cannot open" means different things for an OBJ and for the material
  * library it names. */
 bool sr_line_reader_open(sr_line_reader *r, const char *path);
-/* The next line, NUL-terminated, without its "\n" or "\r\n"; *line = NULL at
+/* The next line, NUL-terminated, without its "\n", "\r\n" or lone "\r"; *line = NULL at
  * the end of the file. False on a read error, an over-long line or a NUL
  * byte. */
 bool sr_line_reader_next(sr_line_reader *r, char **line, sr_error *err);
