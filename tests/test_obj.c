@@ -431,6 +431,16 @@ Test(obj, mtl_map_kd_sets_texture_path)
     sr_mesh_free(&m);
 }
 
+/* MTL files written on Windows name ".\\tex\\wood.png"; that used to be
+ * "cannot open" on the backslashes. */
+Test(obj, windows_separators_in_mtl_paths_are_normalised)
+{
+    write_text("mats/a.mtl", "newmtl wood\nmap_Kd .\\tex\\wood.png\n");
+    sr_mesh m = load_ok("mtllib mats\\a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl wood\nf 1 2 3\n");
+    cr_assert_str_eq(m.texture_path, tmp_path("mats/./tex/wood.png"));
+    sr_mesh_free(&m);
+}
+
 Test(obj, texture_is_the_first_map_kd_a_face_uses)
 {
     write_text("a.mtl", "newmtl plain\nKd 1 0 0\n"

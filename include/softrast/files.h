@@ -42,7 +42,8 @@
  * some face corner gives vn / vt; corners without one get (0,0,0) / (0,0).
  * colors exist iff some `v` has r g b; the other vertices are white.
  * texture_path is the first `map_Kd` of a material that a face is drawn
- * with, resolved against the .mtl's folder (the .mtl against the OBJ's).
+ * with, resolved against the .mtl's folder (the .mtl against the OBJ's),
+ * with Windows separators ('\') read as '/'.
  * Coordinates are read in double. A mesh far from the world origin — the
  * centre of its bounds more than 16 times their largest side away — is
  * stored relative to that centre (computed in double), which becomes

@@ -234,5 +234,7 @@ char *sr_obj_path_beside(const char *base_file, const char *name)
         return NULL;
     memcpy(path, base_file, dir_len);
     memcpy(path + dir_len, name, name_len + 1);
+    for (char *c = path + dir_len; (c = strchr(c, '\\'));)
+        *c = '/'; /* files written on Windows: ".\tex\wood.png" */
     return path;
 }

@@ -72,7 +72,8 @@ void *sr_grow(sr_growable *g, size_t elem_size, size_t n);
 void sr_growable_free(sr_growable *g);
 
 /* `name` resolved against the folder of `base_file` ("a/b.obj" + "c.mtl" ->
- * "a/c.mtl"); absolute names stay as they are. Malloc'd, or NULL. */
+ * "a/c.mtl"); absolute names stay as they are. Backslashes in name become
+ * '/' (files written on Windows). Malloc'd, or NULL. */
 char *sr_obj_path_beside(const char *base_file, const char *name);
 
 #endif
