@@ -2,7 +2,7 @@
 # Optimised objects go to build/, sanitised ones (ASan + UBSan) to build/san/.
 
 CC      ?= cc
-PKGS    := cglm sdl2 SDL2_image assimp
+PKGS    := cglm sdl2 SDL2_image libpng assimp
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-missing-field-initializers
@@ -73,7 +73,7 @@ $(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden
 # The installed libraries: the room's objects linked into one and every
 # hidden symbol made local, so an embedder sees the public API alone. The
 # files library carries its own local copies of the core's error formatting
-# and growable array.
+# input checks and growable array.
 define public_archive
 build/public/$(1): $(patsubst %.c,build/%.o,$(2))
 	@mkdir -p $$(@D)
@@ -83,7 +83,7 @@ build/public/$(1): $(patsubst %.c,build/%.o,$(2))
 	@rm -f $$@ && ar rcs $$@ $$(@:.a=.o) && rm $$(@:.a=.o)
 endef
 $(eval $(call public_archive,libsoftrast.a,$(CORE_SRC)))
-$(eval $(call public_archive,libsoftrast-files.a,$(FILES_SRC) src/core/error.c src/core/array.c))
+$(eval $(call public_archive,libsoftrast-files.a,$(FILES_SRC) src/core/error.c src/core/input_file.c src/core/array.c))
 
 # One archive per room, in both builds: $(1) is build or build/san.
 define room_archive

@@ -22,8 +22,8 @@ FUZZ_MAX_LEN_draw := 4096
 FUZZ_MAX_LEN_obj  := 8192
 FUZZ_MAX_LEN_mesh := 20000
 
-FUZZ_PKG_CFLAGS = $(shell pkg-config --cflags cglm sdl2 SDL2_image assimp 2>/dev/null)
-FUZZ_PKG_LIBS   = $(shell pkg-config --libs cglm sdl2 SDL2_image assimp 2>/dev/null)
+FUZZ_PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+FUZZ_PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 FUZZ_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -g -O1 -fsanitize=address,undefined \
               -fno-sanitize-recover=all -fno-omit-frame-pointer -Iinclude -Isrc $(FUZZ_PKG_CFLAGS) -MMD -MP
 FUZZ_WARN   = -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-missing-field-initializers

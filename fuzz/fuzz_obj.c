@@ -125,11 +125,12 @@ static bool names_outside_path(const uint8_t *data, size_t size)
     return false;
 }
 
+/* Lines as the loader counts them: each ends at "\n", "\r\n" or a lone "\r". */
 static size_t count_lines(const uint8_t *data, size_t size)
 {
     size_t n = 1;
     for (size_t i = 0; i < size; i++)
-        n += data[i] == '\n';
+        n += data[i] == '\n' || (data[i] == '\r' && (i + 1 == size || data[i + 1] != '\n'));
     return n;
 }
 

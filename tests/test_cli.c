@@ -1,7 +1,11 @@
+#define _XOPEN_SOURCE 700 /* mknod, S_IFMT */
 /* The program's command line: every bad input gets exactly one
  * "softrast: error: ..." line and a non-zero exit that is not a crash. */
 #include <criterion/criterion.h>
+#include <dirent.h>
 #include <stdlib.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 
 #include "run_helpers.h"
 #include "temp_dir.h"
@@ -15,12 +19,13 @@ static void make_dir_with_triangle(void)
 
 TestSuite(cli, .init = make_dir_with_triangle, .fini = temp_dir_remove);
 
-/* One error line that starts with the prefix and mentions `needle`. */
+/* One error line that starts with the prefix and mentions `needle`, at
+ * once: a run that hangs is killed (exit 128 + 9) and fails the test. */
 static void assert_one_error(const char *args, const char *needle)
 {
     char full[1024];
     snprintf(full, sizeof full, args, temp_dir, temp_dir);
-    run_result r = run_softrast(temp_dir, full);
+    run_result r = run_softrast_env(temp_dir, "timeout -s KILL 20", full);
     cr_assert(r.status != 0 && r.status < 128, "`softrast %s` exited %d", full, r.status);
     cr_assert_eq(strncmp(r.err, "softrast: error: ", 17), 0, "stderr was: %s", r.err);
     cr_assert_eq(count_lines(r.err), 1, "want one line, stderr was: %s", r.err);
@@ -55,6 +60,14 @@ Test(cli, non_finite_numbers_are_refused)
     assert_one_error("render %s/tri.obj --near nan", "--near");
     assert_one_error("render %s/tri.obj --fov inf", "--fov");
     assert_one_error("render %s/tri.obj --eye 0,0,1e999", "--eye");
+}
+
+/* "--eye 1e300,0,0" was "expected three finite numbers", which 1e300 is:
+ * the message now gives the range. */
+Test(cli, out_of_range_coordinates_name_the_range)
+{
+    assert_one_error("render %s/tri.obj --eye 1e300,0,0", "three numbers X,Y,Z, each in [-3e+38, 3e+38]");
+    assert_one_error("render %s/tri.obj --up 0,-1e39,0", "each in [-3e+38, 3e+38]");
 }
 
 Test(cli, absurd_camera_is_refused)
@@ -136,4 +149,181 @@ Test(cli, stats_is_one_json_line_with_the_named_keys)
     cr_assert_eq(r.out[0], '{');
     for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
         cr_assert_not_null(strstr(r.out, keys[i]), "stats lack %s: %s", keys[i], r.out);
+}
+
+static mode_t file_type(const char *name)
+{
+    char path[512];
+    struct stat st;
+    cr_assert_eq(stat(temp_path(path, sizeof path, name), &st), 0, "%s is gone", name);
+    return st.st_mode & S_IFMT;
+}
+
+static void assert_no_temporary_file_left(void)
+{
+    DIR *d = opendir(temp_dir);
+    cr_assert_not_null(d);
+    for (struct dirent *e; (e = readdir(d));)
+        cr_expect_null(strstr(e->d_name, ".tmp-"), "%s was left behind", e->d_name);
+    closedir(d);
+}
+
+/* A FIFO, a directory or a device node at an output path is refused at once
+ * and survives; a FIFO used to block the write forever and a failed write
+ * used to remove() whatever was at the path. */
+Test(cli, output_that_is_not_a_regular_file_survives)
+{
+    char path[512];
+    cr_assert_eq(mkfifo(temp_path(path, sizeof path, "fifo.png"), 0666), 0);
+    cr_assert_eq(mkdir(temp_path(path, sizeof path, "dir.pfm"), 0777), 0);
+    assert_one_error("render %s/tri.obj --out %s/fifo.png", "fifo.png: cannot write: not a regular file (a FIFO)");
+    assert_one_error("render %s/tri.obj --depth %s/dir.pfm", "dir.pfm: cannot write: not a regular file (a directory)");
+    cr_expect_eq(file_type("fifo.png"), S_IFIFO);
+    cr_expect_eq(file_type("dir.pfm"), S_IFDIR);
+    if (geteuid() == 0) { /* /dev/full's numbers: every write fails */
+        cr_assert_eq(mknod(temp_path(path, sizeof path, "node"), S_IFCHR | 0666, makedev(1, 7)), 0);
+        assert_one_error("render %s/tri.obj --depth-png %s/node", "node: cannot write: not a regular file (a character device)");
+        cr_expect_eq(file_type("node"), S_IFCHR);
+    }
+    assert_no_temporary_file_left();
+}
+
+/* A FIFO, a device or a directory as the mesh, its material library, the
+ * texture or a flight script gets its error at once: a FIFO used to block
+ * the open (or the read) forever. */
+Test(cli, input_that_is_not_a_regular_file_is_refused_at_once)
+{
+    static const char *const fifos[] = { "in.obj", "lib.mtl", "tex.png", "fly.txt" };
+    char path[512];
+    for (size_t i = 0; i < sizeof fifos / sizeof *fifos; i++)
+        cr_assert_eq(mkfifo(temp_path(path, sizeof path, fifos[i]), 0666), 0);
+    cr_assert_eq(mkdir(temp_path(path, sizeof path, "dir.obj"), 0777), 0);
+    write_text(temp_dir, "lib.obj", "mtllib lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const char *fifo = "cannot open: not a regular file (a FIFO)";
+    assert_one_error("render %s/in.obj", fifo);
+    assert_one_error("render %s/lib.obj", "cannot open material library 'lib.mtl': not a regular file (a FIFO)");
+    assert_one_error("render assets/cube.obj --texture %s/tex.png", fifo);
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt", fifo);
+    assert_one_error("render %s/dir.obj", "dir.obj: cannot open: not a regular file (a directory)");
+    assert_one_error("render /dev/zero", "/dev/zero: cannot open: not a regular file (a character device)");
+}
+
+/* With no display SDL used to fall back to its offscreen driver: the viewer
+ * ran for ever with no window. Now it fails at once, naming the ways out. */
+Test(cli, view_without_a_display_fails_at_once_naming_the_ways_out)
+{
+    run_result r = run_softrast_env(temp_dir,
+                                    "env -u DISPLAY -u WAYLAND_DISPLAY -u XDG_RUNTIME_DIR -u SDL_VIDEODRIVER "
+                                    "ASAN_OPTIONS=detect_leaks=0 timeout -s KILL 2",
+                                    "view");
+    cr_assert(r.status != 0 && r.status < 128, "exit %d, stderr: %s", r.status, r.err);
+    cr_assert_eq(count_lines(r.err), 1, "stderr was: %s", r.err);
+    cr_assert_eq(strncmp(r.err, "softrast: error: ", 17), 0, "stderr was: %s", r.err);
+    cr_expect_not_null(strstr(r.err, "--no-window"), "%s", r.err);
+    cr_expect_not_null(strstr(r.err, "xvfb-run"), "%s", r.err);
+}
+
+/* The default camera frames a mesh 1000 units across and 1000 units from
+ * the origin; near and far used to stay 0.1 and 100, so every triangle was
+ * rejected and the image was black with exit 0. */
+/* Renders `obj` (text) with the default camera and `options`, expecting
+ * success, something drawn and nothing on stderr; returns the run. */
+static run_result render_draws_something(const char *obj, const char *options)
+{
+    write_text(temp_dir, "mesh.obj", obj);
+    char args[512];
+    snprintf(args, sizeof args, "render %s/mesh.obj --cull none --stats %s", temp_dir, options);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_eq(r.err[0], '\0', "stderr: %s", r.err);
+    cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": null}"), "%s", r.out);
+    return r;
+}
+
+Test(cli, default_camera_draws_a_big_mesh_far_from_the_origin)
+{
+    run_result r = render_draws_something("v 500 -500 0\nv 1500 -500 0\nv 1500 500 0\nv 500 500 0\nf 1 2 3 4\n",
+                                          "--size 64x64 --shade id");
+    cr_expect_not_null(strstr(r.out, "\"rejected\": 0,"), "%s", r.out);
+    const char *fragments = strstr(r.out, "\"fragments\": ");
+    cr_assert_not_null(fragments, "%s", r.out);
+    long drawn = strtol(fragments + strlen("\"fragments\": "), NULL, 10);
+    cr_expect_gt(drawn, 64 * 64 / 4, "%ld of %d pixels drawn: %s", drawn, 64 * 64, r.out);
+}
+
+/* A render that draws nothing used to be silent with exit 0; now one
+ * warning line says why, with the numbers, and --stats says it too. */
+Test(cli, nothing_drawn_says_why)
+{
+    char args[256];
+    snprintf(args, sizeof args, "render %s/tri.obj --size 32x32 --eye 0,0,-500 --target 0,0,0 --stats", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_assert_eq(count_lines(r.err), 1, "stderr: %s", r.err);
+    const char *start = "softrast: warning: nothing drawn: every triangle lies outside the view volume "
+                        "(or is non-finite) (1 triangles: 1 rejected outside";
+    cr_expect_eq(strncmp(r.err, start, strlen(start)), 0, "stderr: %s", r.err);
+    cr_expect_not_null(strstr(r.err, "the eye is at 0,0,-500 looking at 0,0,0 with near 0.1, far 100"), "%s", r.err);
+    cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": \"every triangle lies outside the view volume "
+                                     "(or is non-finite)\"}"),
+                       "%s", r.out);
+}
+
+/* "--out -" used to write a file named "-"; it is stdout, as users expect. */
+Test(cli, out_dash_writes_the_png_to_stdout)
+{
+    char args[256];
+    snprintf(args, sizeof args, "render %s/tri.obj --size 8x4 --out -", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    int left_a_file = access("-", F_OK) == 0;
+    remove("-");
+    cr_expect_not(left_a_file, "a file named '-' was written");
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_eq(memcmp(r.out, "\x89PNG\r\n\x1a\n", 8), 0, "stdout is no PNG");
+}
+
+Test(cli, only_one_output_can_use_stdout)
+{
+    assert_one_error("render %s/tri.obj --out - --depth -", "only one of");
+    assert_one_error("render %s/tri.obj --depth-png - --stats", "only one of");
+}
+
+/* "--keys ,,," used to be accepted, pressing nothing. */
+Test(cli, empty_key_names_are_refused)
+{
+    write_text(temp_dir, "fly.txt", "0 0 -3  0 0 0  0 1 0  60 0.1 100\n");
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys ,,,", "--keys: an empty key name");
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys F2,,L", "--keys: an empty key name");
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys F2,", "--keys: an empty key name");
+}
+
+/* Vertices at ±2e19: framing squared the bounds' half-diagonal in float
+ * ("camera eye, target and up must be finite"), the projection multiplied
+ * near by far in float and the normals crossed edges in float, each past
+ * float's range. The default camera and shading now draw it. */
+Test(cli, default_camera_and_normals_near_float_range)
+{
+    render_draws_something("v -2e19 -2e19 -2e19\nv 2e19 -2e19 0\nv 0 2e19 2e19\nf 1 2 3\n", "--size 16x16");
+}
+
+/* A triangle whose clip coordinates overflow float is not "outside the
+ * view": the warning says what it is. */
+Test(cli, nothing_drawn_names_non_finite_triangles)
+{
+    write_text(temp_dir, "wide.obj", "v -3e38 0 5\nv 3e38 0 5\nv 0 3e38 5\nf 1 2 3\n");
+    char args[256];
+    snprintf(args, sizeof args, "render %s/wide.obj --size 8x8 --eye 0,0,-3 --target 0,0,0 --stats", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    const char *why = "every triangle has a non-finite position or varying";
+    cr_expect_not_null(strstr(r.err, why), "%s", r.err);
+    cr_expect_not_null(strstr(r.out, why), "%s", r.out);
+}
+
+/* A missing report folder used to fail only after the whole study ran
+ * (9 s for --stability); now at once. */
+Test(cli, missing_report_dir_fails_before_measuring)
+{
+    assert_one_error("bench --stability --report-dir %s/none", "none: cannot write the report there");
+    assert_one_error("bench --report --report-dir %s/tri.obj", "tri.obj: cannot write the report there: not a directory");
 }

@@ -86,6 +86,15 @@ Test(flights, stiff_near_and_far_planes_in_the_room)
     cr_assert_eq(fly_and_check("assets/room.obj", "tests/flights/room_stiff.txt", "", "--no-window", ""), 6);
 }
 
+/* "inf" as far used to be "expected 12 finite numbers", though render takes
+ * --far inf; each frame still equals render's with the camera it prints. */
+Test(flights, infinite_far_plane_as_render_takes_it)
+{
+    cr_assert_eq(fly_and_check("assets/room.obj", "tests/flights/room_infinite_far.txt", "", "--no-window --frames 5",
+                               ""),
+                 5);
+}
+
 Test(flights, interpolated_frames_between_keys)
 {
     cr_assert_eq(fly_and_check("assets/room.obj", "tests/flights/room_walls.txt", "", "--no-window --frames 16", ""),

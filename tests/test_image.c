@@ -1,6 +1,8 @@
+#define _XOPEN_SOURCE 700 /* symlink, lstat */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <criterion/criterion.h>
@@ -193,4 +195,27 @@ Test(image, depth_png_is_the_gray_view)
             cr_expect_eq(row[x] & 0xFFFFFFu, gray[2 * y + x], "(%d, %d): %#08x", x, y, row[x]);
     }
     SDL_FreeSurface(rgb);
+}
+
+/* The write goes to a temporary file renamed onto the file the link names:
+ * the link stays a link, the file keeps its permissions, nothing is left. */
+Test(image, png_through_a_symlink_replaces_the_file_it_names)
+{
+    char file[512], link[512];
+    temp_path(file, sizeof file, "old.png");
+    FILE *f = fopen(file, "wb");
+    cr_assert_not_null(f);
+    fclose(f);
+    cr_assert_eq(chmod(file, 0640), 0);
+    cr_assert_eq(symlink(file, temp_path(link, sizeof link, "link.png")), 0);
+    cr_assert(sr_image_write_png(link, png_pixels, 5, 3, NULL));
+    struct stat st;
+    cr_assert_eq(lstat(link, &st), 0);
+    cr_expect(S_ISLNK(st.st_mode), "the link was replaced");
+    cr_assert_eq(stat(file, &st), 0);
+    cr_expect_eq(st.st_mode & 0777, 0640, "mode %o", (unsigned)(st.st_mode & 0777));
+    cr_expect_gt(st.st_size, 8, "old.png was not written");
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "test $(ls %s | wc -l) -eq 2", temp_dir);
+    cr_expect_eq(system(cmd), 0, "a temporary file was left in %s", temp_dir);
 }

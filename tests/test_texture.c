@@ -1,4 +1,6 @@
 #include <stdio.h>
+#include <sys/resource.h>
+#include <time.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -126,4 +128,85 @@ Test(texture, free_zeroes_struct)
     cr_expect_null(tex.texels);
     cr_expect_eq(tex.width, 0);
     cr_expect_eq(tex.height, 0);
+}
+
+/* PNG's CRC-32 (ISO 3309) of the chunk type and data. */
+static uint32_t png_crc(const unsigned char *bytes, size_t size)
+{
+    uint32_t crc = 0xFFFFFFFFu;
+    for (size_t i = 0; i < size; i++) {
+        crc ^= bytes[i];
+        for (int k = 0; k < 8; k++)
+            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+
+static size_t put_be32(unsigned char *out, uint32_t v)
+{
+    for (int i = 0; i < 4; i++)
+        out[i] = (unsigned char)(v >> (24 - 8 * i));
+    return 4;
+}
+
+/* One chunk at out: length, type, data, CRC; returns its size. */
+static size_t put_chunk(unsigned char *out, const char *type, const unsigned char *data, uint32_t size)
+{
+    size_t n = put_be32(out, size);
+    memcpy(out + n, type, 4);
+    memcpy(out + n + 4, data, size);
+    n += put_be32(out + n + 4 + size, png_crc(out + n, 4 + (size_t)size));
+    return n + 4 + size;
+}
+
+/* A valid PNG header claiming width x height (8-bit RGB), then a few bytes
+ * of pixel data and IEND: 87 bytes that would decode to gigabytes. */
+static void write_huge_png_header(const char *path, uint32_t width, uint32_t height)
+{
+    unsigned char png[128] = "\x89PNG\r\n\x1a\n", ihdr[13] = { 0 };
+    static const unsigned char idat[] = { 0x78, 0x9c, 0x63, 0x60, 0x18, 0x05, 0xa3, 0x60, 0x14, 0x0c, 0x77 };
+    put_be32(ihdr, width);
+    put_be32(ihdr + 4, height);
+    ihdr[8] = 8; /* bit depth */
+    ihdr[9] = 2; /* RGB */
+    size_t n = 8;
+    n += put_chunk(png + n, "IHDR", ihdr, sizeof ihdr);
+    n += put_chunk(png + n, "IDAT", idat, sizeof idat);
+    n += put_chunk(png + n, "IEND", ihdr, 0);
+    write_bytes(path, png, n);
+}
+
+static double seconds_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Loading a header that claims width x height fails at once, saying `what`,
+ * without the memory the image would take: each test runs in a process of
+ * its own, so its peak resident size tells. */
+static void expect_refused_from_header(uint32_t width, uint32_t height, const char *what)
+{
+    char path[512];
+    sr_error err = { "" };
+    write_huge_png_header(temp_path(path, sizeof path, "huge.png"), width, height);
+    double start = seconds_now();
+    expect_load_fails(path, &err);
+    double elapsed = seconds_now() - start;
+    cr_expect_not_null(strstr(err.message, what), "message: %s", err.message);
+    cr_expect_lt(elapsed, 0.25, "took %.2f s", elapsed);
+    struct rusage use;
+    cr_assert_eq(getrusage(RUSAGE_SELF, &use), 0);
+    cr_expect_lt(use.ru_maxrss, 256L * 1024, "peak resident size %ld KiB", use.ru_maxrss);
+}
+
+Test(texture, png_header_over_the_side_limit_is_refused_before_decoding)
+{
+    expect_refused_from_header(40000, 40000, "larger than 16384 on a side");
+}
+
+Test(texture, png_header_over_the_texel_limit_is_refused_before_decoding)
+{
+    expect_refused_from_header(16384, 16384, "more than 67108864 texels");
 }

@@ -47,7 +47,7 @@ SR_API bool sr_mesh_load(sr_mesh *mesh, const char *path, sr_error *err);
  * Reads `v` (optionally with r g b, or with a w that is ignored), `vt` (u v,
  * an optional w ignored), `vn`, `f` in the forms v, v/vt, v//vn and v/vt/vn
  * (mixed freely) with positive or negative (relative) indices, polygons,
- * comments (whole-line and trailing), blank lines and CRLF line ends;
+ * comments (whole-line and trailing), blank lines and LF, CRLF or CR line ends;
  * `mtllib` + `usemtl` give the texture path from the material's `map_Kd`.
  * Other statements (o, g, s, l, p, …) are ignored. OBJ is right-handed: the
  * loader negates z (of positions and normals) and reverses each face's
@@ -62,7 +62,8 @@ SR_API bool sr_mesh_load(sr_mesh *mesh, const char *path, sr_error *err);
  * some face corner gives vn / vt; corners without one get (0,0,0) / (0,0).
  * colors exist iff some `v` has r g b; the other vertices are white.
  * texture_path is the first `map_Kd` of a material that a face is drawn
- * with, resolved against the .mtl's folder (the .mtl against the OBJ's).
+ * with, resolved against the .mtl's folder (the .mtl against the OBJ's),
+ * with Windows separators ('\') read as '/'.
  * Coordinates are read in double. A mesh far from the world origin — the
  * centre of its bounds more than 16 times their largest side away — is
  * stored relative to that centre (computed in double), which becomes
@@ -70,7 +71,8 @@ SR_API bool sr_mesh_load(sr_mesh *mesh, const char *path, sr_error *err);
  * zero (docs/precision.md).
  *
  * Errors: false with "FILE:LINE: what" in err (or "FILE: what" when the file
- * cannot be read); the mesh is left zeroed, never half-filled, whatever it
+ * cannot be read, or is not a regular file: a FIFO, a device or a directory
+ * is refused without being read); the mesh is left zeroed, never half-filled, whatever it
  * held before (it is not freed: pass an empty or freed mesh). Errors include
  * a malformed or non-finite number, a wrong count of numbers, an index that
  * is 0 or outside the elements read so far, a malformed face corner, a face
@@ -81,13 +83,27 @@ SR_API bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err);
 
 /* ---- textures ----------------------------------------------------------- */
 
-/* Any image SDL2_image reads, as 0x00RRGGBB texels, row 0 at the top; false
- * for a missing file, anything that is not a readable image, or a side over
- * SR_MAX_TEXTURE_SIDE. Free with sr_texture_free. */
+/* At most this many texels (8192 x 8192; 256 MiB as 0x00RRGGBB) in a loaded
+ * texture: a PNG's size is read from its header and checked before anything
+ * is allocated, so a small file claiming a huge image costs nothing. */
+#define SR_MAX_TEXTURE_TEXELS (1ul << 26)
+
+/* Any image SDL2_image reads (PNG through libpng directly), as 0x00RRGGBB
+ * texels, row 0 at the top; false for a missing file or one that is not a
+ * regular file, anything that is not a readable image, a side over
+ * SR_MAX_TEXTURE_SIDE or more than SR_MAX_TEXTURE_TEXELS texels. Free with
+ * sr_texture_free. */
 SR_API bool sr_texture_load(sr_texture *tex, const char *path, sr_error *err);
 SR_API void sr_texture_free(sr_texture *tex);
 
-/* ---- images ------------------------------------------------------------- */
+/* ---- images -------------------------------------------------------------
+ *
+ * path must be a regular file or not exist yet (a directory, FIFO or device
+ * there is refused and left alone). The image is written to a temporary file
+ * beside it, renamed into place when complete: a failed write leaves what
+ * was at path untouched. An existing file keeps its permissions; a symbolic
+ * link at path keeps pointing at the file it names, which is replaced. The
+ * path "-" is stdout (flushed, not closed), refused when it is a terminal. */
 
 /* 8-bit RGB PNG of 0x00RRGGBB pixels, row 0 at the top. */
 SR_API bool sr_image_write_png(const char *path, const uint32_t *pixels, int width, int height, sr_error *err);

@@ -1,8 +1,11 @@
 /* softrast bench — the benchmark scenes, timed as a viewer pays for a frame. */
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "app.h"
 #include "studies/bench_scenes.h"
@@ -136,6 +139,18 @@ static bool run(const bench_job *job, sr_error *err)
     return !wants(job, SCENE_SCALING) || run_scaling(job, err);
 }
 
+/* The folder --report and --stability write to, checked before the seconds
+ * of measuring rather than after. */
+static bool report_dir_ok(const char *dir, sr_error *err)
+{
+    struct stat st;
+    if (stat(dir, &st) != 0 || (S_ISDIR(st.st_mode) && access(dir, W_OK) != 0))
+        return sr_error_set(err, "%s: cannot write the report there: %s", dir, strerror(errno));
+    if (!S_ISDIR(st.st_mode))
+        return sr_error_set(err, "%s: cannot write the report there: not a directory", dir);
+    return true;
+}
+
 int sr_app_bench(int argc, char **argv)
 {
     bench_job job = { .frames = 10 };
@@ -147,6 +162,8 @@ int sr_app_bench(int argc, char **argv)
     if (help)
         return 0;
     const char *dir = job.report_dir ? job.report_dir : "docs";
+    if ((job.stability || job.report) && !report_dir_ok(dir, &err))
+        return sr_app_fail(err.message);
     bool ok = job.stability ? sr_stability_write(dir, &err)
               : job.report  ? sr_report_write(dir, job.frames, &err)
                             : run(&job, &err);

@@ -5,6 +5,10 @@
 
 #include "options.h"
 
+/* Largest coordinate an X,Y,Z option takes: within float range, where the
+ * camera is drawn. */
+#define VEC3_LIMIT 3.0e38
+
 static bool parse_double(const char *text, double lo, double hi, double *out)
 {
     char *end;
@@ -50,7 +54,7 @@ static bool parse_dvec3(const char *text, double *out)
     if (split(text, ',', buf, sizeof buf, f, 3) != 3)
         return false;
     for (int i = 0; i < 3; i++)
-        if (!parse_double(f[i], -HUGE_VAL, HUGE_VAL, &out[i]) || fabs(out[i]) > 3.0e38)
+        if (!parse_double(f[i], -VEC3_LIMIT, VEC3_LIMIT, &out[i]))
             return false;
     return true;
 }
@@ -91,7 +95,9 @@ static void describe_expected(const sr_option *o, char *buf, size_t cap)
         break;
     case SR_OPT_INT:   snprintf(buf, cap, "a whole number in [%g, %g]", o->lo, o->hi); break;
     case SR_OPT_VEC3:
-    case SR_OPT_DVEC3: snprintf(buf, cap, "three finite numbers X,Y,Z"); break;
+    case SR_OPT_DVEC3:
+        snprintf(buf, cap, "three numbers X,Y,Z, each in [%g, %g]", -VEC3_LIMIT, VEC3_LIMIT);
+        break;
     case SR_OPT_SIZE:  snprintf(buf, cap, "WxH with each side in [%g, %g]", o->lo, o->hi); break;
     case SR_OPT_CHOICE: {
         size_t used = (size_t)snprintf(buf, cap, "one of");

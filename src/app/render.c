@@ -1,6 +1,7 @@
 /* softrast render — one image without a window. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "app.h"
 #include "scene_setup.h"
@@ -30,6 +31,11 @@ static void job_defaults(render_job *job)
     sr_scene_setup_defaults(&job->scene);
 }
 
+static int is_stdout(const char *path)
+{
+    return path && strcmp(path, "-") == 0;
+}
+
 static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option own[] = {
@@ -44,6 +50,10 @@ static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_err
         return false;
     if (!*help && !job->scene.mesh_path)
         return sr_error_set(err, "render needs one MESH.obj (see softrast render --help)");
+    int to_stdout = job->stats + is_stdout(job->out_path) + is_stdout(job->depth_path) +
+                    is_stdout(job->depth_png_path);
+    if (to_stdout > 1)
+        return sr_error_set(err, "only one of --out -, --depth -, --depth-png - and --stats can write to stdout");
     return true;
 }
 
@@ -83,16 +93,56 @@ static void print_parts(const sr_mesh *mesh)
     printf("]");
 }
 
+/* Why no pixel was drawn, in words, or NULL when some were. */
+static const char *nothing_drawn(const sr_stats *s)
+{
+    if (s->fragments > 0)
+        return NULL;
+    if (s->triangles == 0)
+        return "the mesh has no triangles";
+    if (s->nonfinite == s->triangles)
+        return "every triangle has a non-finite position or varying (NaN, inf or past float range)";
+    if (s->rejected == s->triangles)
+        return "every triangle lies outside the view volume (or is non-finite)";
+    if (s->drawn == 0)
+        return "every triangle inside the view faces away or has no area";
+    return "the triangles drawn cover no pixel centre";
+}
+
+/* One line on stderr when nothing was drawn: the counts, where the mesh lies
+ * in softrast's world (the file's z negated, --rotate-y not applied) and
+ * where the camera looks from, so the fix can be read off. */
+static void explain_nothing_drawn(const sr_scene_setup *setup, const sr_scene *scene, const sr_stats *s)
+{
+    const char *why = nothing_drawn(s);
+    if (!why)
+        return;
+    vec3 lo = { 0 }, hi = { 0 };
+    sr_mesh_bounds(&scene->mesh, lo, hi);
+    const double *m = scene->mesh.origin, *c = setup->camera.origin;
+    const float *eye = setup->camera.eye, *at = setup->camera.target;
+    fprintf(stderr,
+            "softrast: warning: nothing drawn: %s (%llu triangles: %llu rejected outside, %llu of them non-finite, "
+            "%llu culled); the mesh spans %g,%g,%g to %g,%g,%g in softrast's world (the file's z negated), the eye "
+            "is at %g,%g,%g looking at %g,%g,%g with near %g, far %g: see --eye, --target, --near, --far, --cull\n",
+            why, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
+            (unsigned long long)s->nonfinite, (unsigned long long)s->culled, lo[0] + m[0], lo[1] + m[1],
+            lo[2] + m[2], hi[0] + m[0], hi[1] + m[1], hi[2] + m[2], eye[0] + c[0], eye[1] + c[1], eye[2] + c[2],
+            at[0] + c[0], at[1] + c[1], at[2] + c[2], setup->camera.near, setup->camera.far);
+}
+
 static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_simd simd, const sr_mesh *mesh)
 {
+    const char *why = nothing_drawn(s);
     printf("{\"frames\": %d, \"ms_median\": %.4f, \"ms_min\": %.4f, \"triangles\": %llu, \"rejected\": %llu, "
            "\"clipped\": %llu, \"culled\": %llu, \"fragments\": %llu, \"nonfinite\": %llu, \"drawn\": %llu, "
-           "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu, \"simd\": \"%s\", \"parts\": ",
+           "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu, \"simd\": \"%s\", "
+           "\"nothing_drawn\": %s%s%s, \"parts\": ",
            frames, t->median, t->min, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
            (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->fragments,
            (unsigned long long)s->nonfinite, (unsigned long long)s->drawn, (unsigned long long)s->cuts_float,
            (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact,
-           sr_simd_name(sr_raster_simd_resolve(simd)));
+           sr_simd_name(sr_raster_simd_resolve(simd)), why ? "\"" : "", why ? why : "null", why ? "\"" : "");
     print_parts(mesh);
     printf("}\n");
 }
@@ -109,6 +159,7 @@ static bool render(render_job *job, sr_scene *scene, sr_error *err)
     if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) ||
         !run_frames(job->frames, scene, &desc, &stats, &times, err) || !write_outputs(job, scene, err))
         return false;
+    explain_nothing_drawn(&job->scene, scene, &stats);
     if (job->stats)
         print_stats(job->frames, &times, &stats, study.simd, &scene->mesh);
     return true;

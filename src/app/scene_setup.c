@@ -34,8 +34,8 @@ static void scene_options(sr_scene_setup *s, sr_option *table)
         { "--target", SR_OPT_DVEC3, s->target, "X,Y,Z", "point looked at (default: the mesh's centre)", .seen = &s->target_set },
         { "--up", SR_OPT_VEC3, s->camera.up, "X,Y,Z", "up direction (default 0,1,0)" },
         { "--fov", SR_OPT_FLOAT, &s->camera.fov_deg, "DEG", "vertical field of view in degrees (default 60)", 1e-3, 179.999 },
-        { "--near", SR_OPT_FLOAT, &s->camera.near, "N", "near clip plane distance (default 0.1)", 1e-30, 3e38 },
-        { "--far", SR_OPT_FLOAT, &s->camera.far, "F", "far clip plane distance, or inf (default 100)", 1e-30, 3e38, .allow_infinity = true },
+        { "--near", SR_OPT_FLOAT, &s->camera.near, "N", "near clip plane distance (default 0.1, or fitted to a framed mesh)", 1e-30, 3e38, .seen = &s->near_set },
+        { "--far", SR_OPT_FLOAT, &s->camera.far, "F", "far clip plane distance, or inf (default 100, or fitted to a framed mesh)", 1e-30, 3e38, .allow_infinity = true, .seen = &s->far_set },
         { "--ortho", SR_OPT_FLOAT, &s->camera.ortho_height, "HEIGHT", "orthographic projection of this view height", 1e-30, 3e38 },
         { "--rotate-y", SR_OPT_FLOAT, &s->rotate_y, "DEG", "turn the mesh about +y; positive turns +z toward +x", -1e6, 1e6 },
         { "--cull", SR_OPT_CHOICE, &s->cull, "back|front|none", "faces to drop (default back)", .choices = SR_CULL_NAMES },
@@ -113,6 +113,27 @@ static bool has_origin(const sr_mesh *mesh)
     return mesh->origin[0] != 0.0 || mesh->origin[1] != 0.0 || mesh->origin[2] != 0.0;
 }
 
+/* Slack around the framed mesh's bounding sphere when near and far are
+ * fitted to it, so its nearest and farthest points are never clipped. */
+#define FIT_NEAR_SLACK 0.99f
+#define FIT_FAR_SLACK 1.01f
+
+/* The contract's near and far while the framed mesh lies between them (its
+ * images do not change); else near and far hug the mesh's bounding sphere,
+ * as large a near as the view allows, so a mesh of any size is drawn whole
+ * with depth precision to spare. The framing keeps the eye outside the
+ * sphere, so near stays positive. */
+static void fit_depth_range(sr_camera *cam, const vec3 lo, const vec3 hi)
+{
+    float radius = 0.5f * sr_vec3_distance_d(lo, hi);
+    float distance = sr_vec3_distance_d(cam->eye, cam->target);
+    float nearest = distance - radius, farthest = distance + radius;
+    if (nearest >= cam->near && farthest <= cam->far)
+        return;
+    cam->near = FIT_NEAR_SLACK * nearest;
+    cam->far = FIT_FAR_SLACK * farthest;
+}
+
 void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene)
 {
     vec3 lo, hi;
@@ -120,6 +141,8 @@ void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene)
     if (!s->eye_set && !s->target_set && sr_mesh_bounds(&scene->mesh, lo, hi)) {
         memcpy(s->camera.origin, scene->mesh.origin, sizeof s->camera.origin);
         sr_camera_frame_bounds(&s->camera, lo, hi, aspect);
+        if (!s->near_set && !s->far_set)
+            fit_depth_range(&s->camera, lo, hi);
         return;
     }
     static const double world_origin[3];

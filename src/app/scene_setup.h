@@ -13,7 +13,7 @@ typedef struct sr_scene_setup {
     int size[2];
     sr_camera camera;
     double eye[3], target[3]; /* world points of --eye and --target, kept in double */
-    bool eye_set, target_set;
+    bool eye_set, target_set, near_set, far_set;
     float rotate_y;
     int shade, cull, front, filter, simd; /* sr_shade, sr_cull, sr_front, sr_filter, sr_simd */
     const char *texture_path;
@@ -51,7 +51,9 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
 void sr_scene_free(sr_scene *scene);
 
 /* Places the camera: framed on the mesh (from the mesh's origin) when
- * neither --eye nor --target was given. Else, for a mesh with an origin (one
+ * neither --eye nor --target was given; then, unless --near or --far was
+ * given, near and far stay 0.1 and 100 if the mesh lies between them and
+ * are fitted to its bounding sphere if it does not. Else, for a mesh with an origin (one
  * far from the world origin), the camera's origin goes to the eye (to the
  * target if only that was given) and eye and target are relative to it, so
  * an eye 1e7 away keeps its digits (docs/precision.md); for any other mesh

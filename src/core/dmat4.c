@@ -54,6 +54,16 @@ float sr_double_to_float(double d)
     return (float)d;
 }
 
+float sr_vec3_distance_d(const vec3 a, const vec3 b)
+{
+    double sum = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double d = (double)a[k] - (double)b[k];
+        sum += d * d;
+    }
+    return sr_double_to_float(sqrt(sum));
+}
+
 void sr_dmat4_to_mat4(const sr_dmat4 *a, mat4 out)
 {
     for (int c = 0; c < 4; c++)

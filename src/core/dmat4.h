@@ -25,6 +25,10 @@ sr_dmat4 sr_dmat4_translate(const sr_dmat4 *a, const double t[3]);
 /* d rounded to the nearest float; beyond float range ±inf (as float
  * arithmetic would overflow, where a plain cast is undefined), NaN stays NaN. */
 float sr_double_to_float(double d);
+/* |a − b| computed in double, then rounded by sr_double_to_float: float
+ * points up to float's range apart do not overflow, as glm_vec3_distance's
+ * squares do past about 1.8e19. */
+float sr_vec3_distance_d(const vec3 a, const vec3 b);
 /* Each entry rounded to float once, by sr_double_to_float. */
 void sr_dmat4_to_mat4(const sr_dmat4 *a, mat4 out);
 

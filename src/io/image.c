@@ -1,13 +1,18 @@
+#define _XOPEN_SOURCE 700 /* realpath */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <SDL.h>
 #include <SDL_image.h>
 
 #include "softrast/files.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 #define RGB24_BYTES 3
 #define FLOAT32_BYTES 4
@@ -21,24 +26,102 @@ static bool size_ok(const char *path, int width, int height, sr_error *err)
     return true;
 }
 
-/* Flushes and closes f, reporting the first failure (errno from a failed
- * write, or from flush/close: buffered data can still hit a full disk there).
- * A half-written file is removed so nobody mistakes it for a result. */
-static bool finish_file(FILE *f, const char *path, bool ok, sr_error *err)
+/* An output being written. softrast never writes into the path itself: the
+ * bytes go to a temporary file beside the target (same folder, so the rename
+ * stays on one file system), renamed over the target once complete. A failed
+ * write removes only that temporary file, which softrast created; whatever
+ * was at the path is left as it was. */
+typedef struct output {
+    FILE *f;
+    char *target; /* the path, or the file a symbolic link at it points to */
+    char *tmp;
+} output;
+
+#define TMP_NAME_TRIES 100
+
+static void output_free(output *o)
+{
+    free(o->target);
+    free(o->tmp);
+    *o = (output){ 0 };
+}
+
+/* An exclusive new file "TARGET.tmp-PID-N" (O_EXCL: never an existing one). */
+static int create_tmp(output *o)
+{
+    size_t size = strlen(o->target) + 64;
+    o->tmp = malloc(size);
+    if (!o->tmp) {
+        errno = ENOMEM;
+        return -1;
+    }
+    int fd = -1;
+    for (int n = 0; fd < 0 && n < TMP_NAME_TRIES; n++) {
+        snprintf(o->tmp, size, "%s.tmp-%ld-%d", o->target, (long)getpid(), n);
+        fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd < 0 && errno != EEXIST)
+            break;
+    }
+    return fd;
+}
+
+/* Only a regular file (an existing one keeps its permissions) or a path that
+ * does not exist yet is an output: never a device, FIFO or directory. "-"
+ * is stdout, unless that is a terminal. */
+static bool output_open(output *o, const char *path, sr_error *err)
+{
+    *o = (output){ 0 };
+    if (strcmp(path, "-") == 0) {
+        if (isatty(STDOUT_FILENO))
+            return sr_error_set(err, "-: stdout is a terminal; redirect it to a file or name one");
+        o->f = stdout;
+        return true;
+    }
+    struct stat st;
+    bool exists = stat(path, &st) == 0;
+    if (exists && !S_ISREG(st.st_mode))
+        return sr_error_set(err, "%s: cannot write: %s; softrast writes only regular files", path,
+                            sr_not_regular(st.st_mode));
+    o->target = exists ? realpath(path, NULL) : strdup(path);
+    int fd = o->target ? create_tmp(o) : -1;
+    if (fd >= 0 && exists)
+        fchmod(fd, st.st_mode & 07777);
+    o->f = fd >= 0 ? fdopen(fd, "wb") : NULL;
+    if (o->f)
+        return true;
+    int code = errno;
+    if (fd >= 0) {
+        close(fd);
+        remove(o->tmp);
+    }
+    output_free(o);
+    return sr_error_set(err, "%s: cannot write: %s", path, strerror(code));
+}
+
+/* Flushes and closes the temporary file, reporting the first failure (errno
+ * from a failed write, or from flush/close: buffered data can still hit a
+ * full disk there), then renames it into place or removes it. stdout is
+ * flushed only. */
+static bool output_close(output *o, const char *path, bool ok, sr_error *err)
 {
     int code = ok ? 0 : errno;
-    if (fflush(f) != 0 && ok) {
+    bool file = o->tmp != NULL;
+    if (fflush(o->f) != 0 && ok) {
         ok = false;
         code = errno;
     }
-    if (fclose(f) != 0 && ok) {
+    if (file && fclose(o->f) != 0 && ok) {
         ok = false;
         code = errno;
     }
-    if (ok)
-        return true;
-    remove(path);
-    return sr_error_set(err, "%s: cannot write: %s", path, strerror(code ? code : EIO));
+    if (file && ok && rename(o->tmp, o->target) != 0) {
+        ok = false;
+        code = errno;
+    }
+    if (file && !ok)
+        remove(o->tmp);
+    output_free(o);
+    return ok || sr_error_set(err, "%s: cannot write: %s", path, strerror(code ? code : EIO));
 }
 
 /* 0x00RRGGBB words → R, G, B bytes, the memory order of SDL_PIXELFORMAT_RGB24
@@ -74,20 +157,18 @@ bool sr_image_write_png(const char *path, const uint32_t *pixels, int width, int
     if (!s)
         return sr_error_set(err, "%s: cannot write PNG: %s", path, SDL_GetError());
     fill_rgb24(s, pixels);
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        int saved = errno;
+    output o;
+    if (!output_open(&o, path, err)) {
         SDL_FreeSurface(s);
-        return sr_error_set(err, "%s: cannot write: %s", path, strerror(saved));
+        return false;
     }
-    bool saved_png = save_surface(s, f);
+    bool saved_png = save_surface(s, o.f);
     SDL_FreeSurface(s);
     if (!saved_png) {
-        fclose(f);
-        remove(path);
+        output_close(&o, path, false, NULL);
         return sr_error_set(err, "%s: cannot write PNG: %s", path, SDL_GetError());
     }
-    return finish_file(f, path, true, err);
+    return output_close(&o, path, true, err);
 }
 
 /* Little-endian bytes of each float's bit pattern, whatever the host order. */
@@ -123,12 +204,12 @@ bool sr_image_write_pfm(const char *path, const float *depth, int width, int hei
 {
     if (!size_ok(path, width, height, err))
         return false;
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        return sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    output o;
+    if (!output_open(&o, path, err))
+        return false;
     errno = 0;
-    bool written = write_pfm_rows(f, depth, width, height);
-    return finish_file(f, path, written, err);
+    bool written = write_pfm_rows(o.f, depth, width, height);
+    return output_close(&o, path, written, err);
 }
 
 bool sr_image_write_depth_png(const char *path, const sr_framebuffer *fb, sr_error *err)

@@ -1,4 +1,3 @@
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -84,9 +83,9 @@ static bool read_library(sr_array *lib, sr_line_reader *in, sr_error *err)
     }
 }
 
-/* 1 loaded, 0 cannot open (errno set), -1 error in the library (err set). */
+/* 1 loaded, 0 cannot open (*why says why), -1 error in the library (err set). */
 static int load_library(sr_array *lib, const sr_line_reader *obj, const char *name,
-                        sr_error *err)
+                        const char **why, sr_error *err)
 {
     char *path = sr_obj_path_beside(obj->path, name);
     if (!path) {
@@ -98,17 +97,16 @@ static int load_library(sr_array *lib, const sr_line_reader *obj, const char *na
     if (sr_line_reader_open(&in, path)) {
         status = read_library(lib, &in, err) ? 1 : -1;
         sr_line_reader_close(&in);
+    } else {
+        *why = in.why;
     }
-    int saved = errno; /* free() may change it */
     free(path);
-    errno = saved;
     return status;
 }
 
-static bool cannot_open(const sr_line_reader *obj, const char *name, sr_error *err)
+static bool cannot_open(const sr_line_reader *obj, const char *name, const char *why, sr_error *err)
 {
-    return sr_line_fail(obj, err, "cannot open material library '%s': %s", name,
-                        strerror(errno));
+    return sr_line_fail(obj, err, "cannot open material library '%s': %s", name, why);
 }
 
 /* Usually one name, which may contain spaces (Blender names the library after
@@ -119,15 +117,16 @@ bool sr_mtl_load(sr_array *lib, const sr_line_reader *obj, char *names, sr_error
 {
     if (!*names)
         return sr_line_fail(obj, err, "'mtllib' needs a file name");
-    int status = load_library(lib, obj, names, err);
+    const char *why = NULL;
+    int status = load_library(lib, obj, names, &why, err);
     if (status != 0)
         return status > 0;
     if (!strpbrk(names, " \t"))
-        return cannot_open(obj, names, err);
+        return cannot_open(obj, names, why, err);
     for (char *name; (name = sr_obj_next_token(&names));) {
-        status = load_library(lib, obj, name, err);
+        status = load_library(lib, obj, name, &why, err);
         if (status == 0)
-            return cannot_open(obj, name, err);
+            return cannot_open(obj, name, why, err);
         if (status < 0)
             return false;
     }

@@ -10,7 +10,6 @@
  * origin (mesh.h: SR_MESH_RECENTRE_RATIO) is stored relative to the centre
  * of its bounds, computed in double, with the centre as the mesh's origin.
  */
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -434,7 +433,7 @@ bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err)
     *mesh = (sr_mesh){ 0 };
     obj_reader o = { .err = err, .material = -1 };
     if (!sr_line_reader_open(&o.in, path))
-        return sr_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+        return sr_error_set(err, "%s: cannot open: %s", path, o.in.why);
     bool ok = read_statements(&o) && build_mesh(&o, mesh);
     obj_reader_free(&o);
     if (ok)

@@ -7,6 +7,7 @@
 
 #include "obj_parse.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 /* Room for a few maximal lines per read, so compacting the unread tail to
  * the front costs little next to reading. */
@@ -17,14 +18,13 @@ static const char utf8_bom[] = "\xEF\xBB\xBF";
 bool sr_line_reader_open(sr_line_reader *r, const char *path)
 {
     *r = (sr_line_reader){ .path = path };
-    r->file = fopen(path, "rb");
+    r->file = sr_input_open(path, &r->why);
     if (!r->file)
         return false;
     r->buf = malloc(READER_CAP + 1); /* +1: a final line without "\n" still gets its NUL */
     if (!r->buf) {
         fclose(r->file);
-        *r = (sr_line_reader){ 0 };
-        errno = ENOMEM;
+        *r = (sr_line_reader){ .why = strerror(ENOMEM) };
         return false;
     }
     return true;
@@ -70,11 +70,25 @@ static bool refill(sr_line_reader *r, sr_error *err)
     return true;
 }
 
+/* The first line end in the unread bytes: "\n", "\r\n" or a lone "\r" (old
+ * Mac files). NULL when there is none yet, or when a "\r" ends what was read
+ * so far: the "\n" that may follow is still in the file. */
+static char *line_end(const sr_line_reader *r)
+{
+    char *s = r->buf + r->start;
+    size_t n = r->end - r->start;
+    char *nl = memchr(s, '\n', n);
+    char *cr = memchr(s, '\r', nl ? (size_t)(nl - s) : n);
+    if (!cr)
+        return nl;
+    return cr + 1 == r->buf + r->end && !r->eof ? NULL : cr;
+}
+
 bool sr_line_reader_next(sr_line_reader *r, char **line, sr_error *err)
 {
     char *nl;
     *line = NULL;
-    while (!(nl = memchr(r->buf + r->start, '\n', r->end - r->start)) && !r->eof) {
+    while (!(nl = line_end(r)) && !r->eof) {
         /* Give up before buffering more than a line may hold ("+1": a "\r"). */
         if (r->end - r->start > SR_OBJ_MAX_LINE + 1)
             return line_too_long(r, r->line + 1, err);
@@ -85,7 +99,8 @@ bool sr_line_reader_next(sr_line_reader *r, char **line, sr_error *err)
         return true;
     char *s = r->buf + r->start;
     size_t len = nl ? (size_t)(nl - s) : r->end - r->start;
-    r->start += len + (nl != NULL);
+    bool crlf = nl && *nl == '\r' && nl + 1 < r->buf + r->end && nl[1] == '\n';
+    r->start += len + (nl != NULL) + crlf;
     r->line++;
     if (len > 0 && s[len - 1] == '\r')
         len--;
@@ -116,9 +131,11 @@ char *sr_obj_next_token(char **cursor)
         return NULL;
     }
     char *tok = s;
-    while (*s && !is_blank(*s))
+    while (*s && !is_blank(*s) && *s != '#')
         s++;
-    if (*s)
+    if (*s == '#')
+        *s = '\0'; /* a comment right after the token: the next call ends the line */
+    else if (*s)
         *s++ = '\0';
     *cursor = s;
     return tok;
@@ -189,5 +206,7 @@ char *sr_obj_path_beside(const char *base_file, const char *name)
         return NULL;
     memcpy(path, base_file, dir_len);
     memcpy(path + dir_len, name, name_len + 1);
+    for (char *c = path + dir_len; (c = strchr(c, '\\'));)
+        *c = '/'; /* files written on Windows: ".\tex\wood.png" */
     return path;
 }

@@ -21,17 +21,19 @@
 typedef struct sr_line_reader {
     FILE *file;
     const char *path; /* borrowed; used in "PATH:LINE:" messages */
+    const char *why;  /* after a failed open: the reason in words */
     size_t line;      /* number of the line last returned, from 1 */
     char *buf;
     size_t start, end;
     bool eof;
 } sr_line_reader;
 
-/* False (errno set by fopen, nothing to close) if the file cannot be opened;
- * the caller words the message, since "cannot open" means different things
- * for an OBJ and for the material library it names. */
+/* False (r->why says why, nothing to close) if the file cannot be opened or
+ * is not a regular file (sr_input_open); the caller words the message, since
+ * "cannot open" means different things for an OBJ and for the material
+ * library it names. */
 bool sr_line_reader_open(sr_line_reader *r, const char *path);
-/* The next line, NUL-terminated, without its "\n" or "\r\n"; *line = NULL at
+/* The next line, NUL-terminated, without its "\n", "\r\n" or lone "\r"; *line = NULL at
  * the end of the file. False on a read error, an over-long line or a NUL
  * byte. */
 bool sr_line_reader_next(sr_line_reader *r, char **line, sr_error *err);
@@ -41,7 +43,8 @@ bool sr_line_fail(const sr_line_reader *r, sr_error *err, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
 /* Next whitespace-separated token, NUL-terminated in place; NULL at the end
- * of the line or at a token starting with '#' (a trailing comment). */
+ * of the line or at a '#' (a trailing comment), which also ends a token it
+ * follows with no blank between ("0#c" is the token "0"). */
 char *sr_obj_next_token(char **cursor);
 /* The rest of the line without surrounding whitespace (file and material
  * names may contain spaces); "" if nothing is left. */
@@ -60,7 +63,8 @@ int sr_obj_parse_numbers(const sr_line_reader *r, char *cursor, double *out, int
 bool sr_obj_parse_long(const char **s, long *out);
 
 /* `name` resolved against the folder of `base_file` ("a/b.obj" + "c.mtl" ->
- * "a/c.mtl"); absolute names stay as they are. Malloc'd, or NULL. */
+ * "a/c.mtl"); absolute names stay as they are. Backslashes in name become
+ * '/' (files written on Windows). Malloc'd, or NULL. */
 char *sr_obj_path_beside(const char *base_file, const char *name);
 
 #endif

@@ -1,15 +1,14 @@
-#include <errno.h>
-#include <fcntl.h>
-#include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <SDL.h>
 #include <SDL_image.h>
+#include <png.h>
 
 #include "softrast/files.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 #define RGB_MASK 0x00FFFFFFu
 
@@ -24,45 +23,68 @@ static const char *file_extension(const char *path)
     return dot + 1;
 }
 
-/* SDL_image leaves libpng's default error handler in place, which prints
- * "libpng error: ..." on stderr before SDL_image returns its own error; that
- * would make a corrupt texture two lines where softrast promises one. stderr
- * is pointed at /dev/null for the decode only (textures load on the calling
- * thread, before any drawing), and the message comes back through
- * IMG_GetError. */
-static SDL_Surface *decode_quietly(SDL_RWops *rw, const char *type)
+/* Refused before any texel is allocated: an empty image, a side over
+ * SR_MAX_TEXTURE_SIDE or more than SR_MAX_TEXTURE_TEXELS in all. */
+static bool size_allowed(const char *path, unsigned long width, unsigned long height, sr_error *err)
 {
-    fflush(stderr);
-    int saved = dup(STDERR_FILENO), null = open("/dev/null", O_WRONLY);
-    if (saved >= 0 && null >= 0)
-        dup2(null, STDERR_FILENO);
-    SDL_Surface *s = IMG_LoadTyped_RW(rw, 1, type);
-    if (saved >= 0 && null >= 0)
-        dup2(saved, STDERR_FILENO);
-    if (saved >= 0)
-        close(saved);
-    if (null >= 0)
-        close(null);
-    return s;
+    if (width < 1 || height < 1)
+        return sr_error_set(err, "%s: texture is empty (%lux%lu)", path, width, height);
+    if (width > SR_MAX_TEXTURE_SIDE || height > SR_MAX_TEXTURE_SIDE)
+        return sr_error_set(err, "%s: texture is %lux%lu, larger than %d on a side", path, width, height,
+                            SR_MAX_TEXTURE_SIDE);
+    if (width * height > SR_MAX_TEXTURE_TEXELS)
+        return sr_error_set(err, "%s: texture is %lux%lu, more than %lu texels in all", path, width, height,
+                            (unsigned long)SR_MAX_TEXTURE_TEXELS);
+    return true;
 }
 
-/* Opening the file ourselves gives a clean strerror for a missing or
- * unreadable file; SDL_image would only say "Couldn't open". IMG_Load needs
- * no SDL_Init (it initialises its own decoders), so this works headless. */
-static SDL_Surface *load_surface(const char *path, sr_error *err)
+/* libpng's byte order for a 0x00RRGGBB word as this host stores it. */
+static png_uint_32 texel_format(void)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        sr_error_set(err, "%s: cannot open: %s", path, strerror(errno));
-        return NULL;
-    }
+    const uint32_t probe = 1;
+    return *(const unsigned char *)&probe ? PNG_FORMAT_BGRA : PNG_FORMAT_ARGB;
+}
+
+/* A PNG through libpng's simplified API, which reads the header alone first
+ * (so the size is checked before anything is allocated) and reports every
+ * error through png.message: nothing on stderr, which SDL_image's libpng
+ * use would print to. 16-bit files without gamma information are taken as
+ * sRGB, as SDL_image took them. Alpha is dropped, not blended. Closes f. */
+static bool load_png(sr_texture *tex, FILE *f, const char *path, sr_error *err)
+{
+    png_image png = { .version = PNG_IMAGE_VERSION, .flags = PNG_IMAGE_FLAG_16BIT_sRGB };
+    bool ok = png_image_begin_read_from_stdio(&png, f) ||
+              sr_error_set(err, "%s: not a readable image: %s", path, png.message);
+    ok = ok && size_allowed(path, png.width, png.height, err);
+    size_t count = (size_t)png.width * png.height;
+    if (ok && !(tex->texels = malloc(count * sizeof *tex->texels)))
+        ok = sr_error_set(err, "%s: out of memory for a %ux%u texture", path, (unsigned)png.width,
+                          (unsigned)png.height);
+    png.format = texel_format();
+    if (ok && !png_image_finish_read(&png, NULL, tex->texels, 0, NULL))
+        ok = sr_error_set(err, "%s: not a readable image: %s", path, png.message);
+    png_image_free(&png);
+    fclose(f);
+    if (!ok)
+        return false;
+    for (size_t i = 0; i < count; i++)
+        tex->texels[i] &= RGB_MASK;
+    tex->width = (int)png.width;
+    tex->height = (int)png.height;
+    return true;
+}
+
+/* Any other format through SDL_image (which prints nothing of its own for
+ * them). Closes f. */
+static SDL_Surface *load_surface(FILE *f, const char *path, sr_error *err)
+{
     SDL_RWops *rw = SDL_RWFromFP(f, SDL_TRUE);
     if (!rw) {
         fclose(f);
         sr_error_set(err, "%s: cannot open: %s", path, SDL_GetError());
         return NULL;
     }
-    SDL_Surface *s = decode_quietly(rw, file_extension(path));
+    SDL_Surface *s = IMG_LoadTyped_RW(rw, 1, file_extension(path));
     if (!s)
         sr_error_set(err, "%s: not a readable image: %s", path, IMG_GetError());
     return s;
@@ -85,11 +107,8 @@ static void copy_texels(uint32_t *dst, const SDL_Surface *s)
 /* tex from the loaded image; tex is left empty when that fails. */
 static bool texels_from_surface(sr_texture *tex, SDL_Surface *loaded, const char *path, sr_error *err)
 {
-    if (loaded->w > SR_MAX_TEXTURE_SIDE || loaded->h > SR_MAX_TEXTURE_SIDE)
-        return sr_error_set(err, "%s: texture is %dx%d, larger than %d on a side",
-                            path, loaded->w, loaded->h, SR_MAX_TEXTURE_SIDE);
-    if (loaded->w < 1 || loaded->h < 1)
-        return sr_error_set(err, "%s: texture is empty (%dx%d)", path, loaded->w, loaded->h);
+    if (!size_allowed(path, (unsigned long)loaded->w, (unsigned long)loaded->h, err))
+        return false;
     SDL_Surface *rgb = SDL_ConvertSurfaceFormat(loaded, SDL_PIXELFORMAT_RGB888, 0);
     if (!rgb)
         return sr_error_set(err, "%s: cannot convert the image to RGB: %s", path, SDL_GetError());
@@ -105,12 +124,37 @@ static bool texels_from_surface(sr_texture *tex, SDL_Surface *loaded, const char
     return true;
 }
 
+static bool load_other(sr_texture *tex, FILE *f, const char *path, sr_error *err)
+{
+    SDL_Surface *loaded = load_surface(f, path, err);
+    bool ok = loaded && texels_from_surface(tex, loaded, path, err);
+    SDL_FreeSurface(loaded); /* NULL is fine */
+    return ok;
+}
+
+static bool is_png(FILE *f)
+{
+    png_byte signature[8];
+    bool png = fread(signature, 1, sizeof signature, f) == sizeof signature &&
+               png_sig_cmp(signature, 0, sizeof signature) == 0;
+    rewind(f);
+    return png;
+}
+
+/* Opening the file ourselves gives a clean strerror for a missing or
+ * unreadable file (SDL_image would only say "Couldn't open") and refuses
+ * what is not a regular file. Neither decoder needs SDL_Init, so this works
+ * headless. */
 bool sr_texture_load(sr_texture *tex, const char *path, sr_error *err)
 {
     *tex = (sr_texture){ 0 };
-    SDL_Surface *loaded = load_surface(path, err);
-    bool ok = loaded && texels_from_surface(tex, loaded, path, err);
-    SDL_FreeSurface(loaded); /* NULL is fine */
+    const char *why;
+    FILE *f = sr_input_open(path, &why);
+    if (!f)
+        return sr_error_set(err, "%s: cannot open: %s", path, why);
+    bool ok = is_png(f) ? load_png(tex, f, path, err) : load_other(tex, f, path, err);
+    if (!ok)
+        sr_texture_free(tex);
     return ok;
 }
 

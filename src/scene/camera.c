@@ -17,10 +17,9 @@ sr_camera sr_camera_default(void)
 
 void sr_camera_frame_bounds(sr_camera *cam, const vec3 lo, const vec3 hi, float aspect)
 {
-    vec3 centre, half;
+    vec3 centre;
     glm_vec3_center((float *)lo, (float *)hi, centre);
-    glm_vec3_sub((float *)hi, centre, half);
-    float radius = glm_vec3_norm(half);
+    float radius = 0.5f * sr_vec3_distance_d(lo, hi);
     float half_fov = glm_rad(cam->fov_deg) * 0.5f;
     float half_fov_x = atanf(tanf(half_fov) * aspect);
     float narrow = half_fov < half_fov_x ? half_fov : half_fov_x;
@@ -131,8 +130,10 @@ void sr_camera_view(const sr_camera *cam, mat4 out)
 
 /* z_clip = a·z_view + b (w is z_view for perspective, 1 for orthographic):
  * the z row for the reversed and infinite mappings, in double so the
- * coefficients are the correctly rounded ones (the point of reversed z). */
-static void reversed_or_infinite_z(const sr_camera *cam, mat4 out)
+ * coefficients are the correctly rounded ones (the point of reversed z),
+ * and for a standard perspective whose n·f overflows float (a framed mesh
+ * near float's range) though a and b themselves fit. */
+static void z_row_in_double(const sr_camera *cam, mat4 out)
 {
     double n = cam->near, f = cam->far, a, b;
     bool ortho = cam->ortho_height > 0.0f, infinite = isinf(f);
@@ -142,12 +143,15 @@ static void reversed_or_infinite_z(const sr_camera *cam, mat4 out)
     } else if (infinite) {
         a = cam->reversed_z ? 0.0 : 1.0;
         b = cam->reversed_z ? n : -n;
+    } else if (!cam->reversed_z) {
+        a = f / (f - n);
+        b = -n * f / (f - n);
     } else {
         a = -n / (f - n);
         b = n * f / (f - n);
     }
-    out[2][2] = (float)a;
-    out[3][2] = (float)b;
+    out[2][2] = sr_double_to_float(a);
+    out[3][2] = sr_double_to_float(b);
 }
 
 void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out)
@@ -159,8 +163,8 @@ void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out)
     } else {
         glm_perspective_lh_zo(glm_rad(cam->fov_deg), aspect, cam->near, far, out);
     }
-    if (cam->reversed_z || isinf(cam->far))
-        reversed_or_infinite_z(cam, out);
+    if (cam->reversed_z || isinf(cam->far) || !isfinite(out[3][2]))
+        z_row_in_double(cam, out);
 }
 
 double sr_camera_view_distance(float z_ndc, const void *camera)

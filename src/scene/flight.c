@@ -6,11 +6,14 @@
 
 #include "flight.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 #define LINE_MAX_CHARS 4096
 
-/* Reads exactly twelve finite numbers from one line; false if it has more,
- * fewer, or anything that is not a number. */
+#define FAR_INDEX 11 /* the one number that may be inf, as --far inf */
+
+/* Reads exactly twelve finite numbers from one line (far may also be inf);
+ * false if it has more, fewer, or anything that is not a number. */
 static bool parse_key(char *line, float key[SR_FLIGHT_NUMBERS])
 {
     int n = 0;
@@ -18,8 +21,9 @@ static bool parse_key(char *line, float key[SR_FLIGHT_NUMBERS])
         char *end;
         errno = 0;
         double v = strtod(tok, &end);
-        if (n == SR_FLIGHT_NUMBERS || *end != '\0' || end == tok || errno == ERANGE || !isfinite(v) ||
-            fabs(v) > 3.0e38)
+        bool infinite_far = n == FAR_INDEX && isinf(v) && v > 0.0;
+        if (n == SR_FLIGHT_NUMBERS || *end != '\0' || end == tok || errno == ERANGE ||
+            (!infinite_far && !(fabs(v) <= 3.0e38)))
             return false;
         key[n++] = (float)v;
     }
@@ -40,7 +44,7 @@ static bool add_key(sr_flight *s, const char *path, int line_no, char *line, sr_
         return sr_error_set(err, "%s:%d: out of memory", path, line_no);
     s->keys = grown;
     if (!parse_key(line, s->keys[s->count]))
-        return sr_error_set(err, "%s:%d: expected 12 finite numbers: eye(3) target(3) up(3) fov near far",
+        return sr_error_set(err, "%s:%d: expected 12 finite numbers (far may be inf): eye(3) target(3) up(3) fov near far",
                             path, line_no);
     s->count++;
     return true;
@@ -64,9 +68,10 @@ static bool read_keys(sr_flight *s, FILE *f, const char *path, sr_error *err)
 bool sr_flight_load(sr_flight *s, const char *path, sr_error *err)
 {
     *s = (sr_flight){ 0 };
-    FILE *f = fopen(path, "r");
+    const char *why;
+    FILE *f = sr_input_open(path, &why);
     if (!f)
-        return sr_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+        return sr_error_set(err, "%s: cannot open: %s", path, why);
     bool ok = read_keys(s, f, path, err);
     fclose(f);
     if (!ok)
@@ -88,7 +93,7 @@ void sr_flight_camera(const sr_flight *s, int frame, int frames, sr_camera *cam)
     const float *a = s->keys[k], *b = s->keys[k + 1 < s->count ? k + 1 : k];
     float v[SR_FLIGHT_NUMBERS];
     for (int i = 0; i < SR_FLIGHT_NUMBERS; i++)
-        v[i] = t == 0.0f ? a[i] : a[i] + t * (b[i] - a[i]);
+        v[i] = t == 0.0f ? a[i] : isinf(a[i]) || isinf(b[i]) ? INFINITY : a[i] + t * (b[i] - a[i]);
     *cam = (sr_camera){ .eye = { v[0], v[1], v[2] }, .target = { v[3], v[4], v[5] }, .up = { v[6], v[7], v[8] },
                         .fov_deg = v[9], .near = v[10], .far = v[11] };
 }

@@ -3,8 +3,10 @@
  * A script is text, one key frame per line: twelve numbers
  *     eye_x eye_y eye_z  target_x target_y target_z  up_x up_y up_z  fov near far
  * separated by spaces or commas; '#' starts a comment, blank lines are
- * skipped. Frame i of N sits at key position i·(K−1)/(N−1) and interpolates
- * every number linearly between the two keys around it.
+ * skipped. far may be inf (an infinite far plane, as --far inf). Frame i of
+ * N sits at key position i·(K−1)/(N−1) and interpolates every number
+ * linearly between the two keys around it; a far of inf on either key is
+ * inf between them.
  */
 #ifndef SOFTRAST_SCENE_FLIGHT_H
 #define SOFTRAST_SCENE_FLIGHT_H

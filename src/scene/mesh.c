@@ -68,6 +68,22 @@ uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh)
     return mesh->index_count / 3;
 }
 
+/* A power of two that brings the mesh's largest coordinate near 1: edges
+ * scaled by it keep their area weights' ratios exactly, and their cross
+ * products neither overflow (edges past about 1e19 would) nor underflow. */
+static float normal_scale(const sr_mesh *mesh)
+{
+    vec3 lo, hi;
+    if (!sr_mesh_bounds(mesh, lo, hi))
+        return 1.0f;
+    float largest = 0.0f;
+    for (int k = 0; k < 3; k++)
+        largest = fmaxf(largest, fmaxf(fabsf(lo[k]), fabsf(hi[k])));
+    int exponent = 0;
+    frexpf(largest, &exponent);
+    return largest > 0.0f && isfinite(largest) ? ldexpf(1.0f, -exponent) : 1.0f;
+}
+
 bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err)
 {
     if (mesh->normals || mesh->vertex_count == 0)
@@ -78,6 +94,7 @@ bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err)
     if (!mesh->normals)
         return sr_error_set(err, "out of memory for %u normals", mesh->vertex_count);
     uint32_t slots = sr_mesh_triangle_slots(mesh);
+    float scale = normal_scale(mesh);
     for (uint32_t k = 0; k < slots; k++) {
         uint32_t t[3];
         if (!sr_assemble_triangle(mesh, k, t))
@@ -85,6 +102,8 @@ bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err)
         vec3 e1, e2, n;
         glm_vec3_sub(mesh->positions[t[1]], mesh->positions[t[0]], e1);
         glm_vec3_sub(mesh->positions[t[2]], mesh->positions[t[0]], e2);
+        glm_vec3_scale(e1, scale, e1);
+        glm_vec3_scale(e2, scale, e2);
         /* Left-handed, clockwise front faces: e1 x e2 points outward. */
         glm_vec3_cross(e1, e2, n);
         for (int i = 0; i < 3; i++)

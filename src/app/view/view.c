@@ -1,5 +1,6 @@
 /* softrast view — the fly-through window, and scripted flights. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "app/app.h"
@@ -153,15 +154,21 @@ static void print_frame_camera(int frame, const sr_camera *c)
 }
 
 /* Feeds each named key to the viewer as a press and release, the same
- * events a window delivers. */
+ * events a window delivers. An empty name (",,", a leading or trailing
+ * comma) is an error, not skipped: it is a typo more often than not. */
 static bool press_keys(const char *names, sr_viewer *v, sr_error *err)
 {
     char buf[MAX_KEYS_TEXT];
     if (strlen(names) >= sizeof buf)
         return sr_error_set(err, "--keys is longer than %d characters", MAX_KEYS_TEXT - 1);
     strcpy(buf, names);
-    char *save = NULL;
-    for (char *name = strtok_r(buf, ",", &save); name; name = strtok_r(NULL, ",", &save)) {
+    for (char *name = buf, *end; name; name = end ? end + 1 : NULL) {
+        end = strchr(name, ',');
+        if (end)
+            *end = '\0';
+        if (!*name)
+            return sr_error_set(err, "--keys: an empty key name in '%s' (names separated by commas, such as F4,L)",
+                                names);
         SDL_Keycode key = SDL_GetKeyFromName(name);
         if (key == SDLK_UNKNOWN)
             return sr_error_set(err, "--keys: unknown key '%s' (SDL key names, such as F4, L, Tab)", name);
@@ -254,14 +261,29 @@ static bool fly_interactive(sr_viewer *v, window *w, sr_error *err)
     return ok;
 }
 
+/* Only the video drivers that show a person a window, in SDL's order:
+ * otherwise SDL falls back to its offscreen driver when there is no display
+ * and the viewer runs for ever with no window. SDL_VIDEODRIVER (offscreen,
+ * for --shots without a display) still wins over this hint. Wayland is
+ * tried only where a compositor could be found: its probe prints a line of
+ * its own on stderr when XDG_RUNTIME_DIR is unset. */
+static bool start_video(sr_error *err)
+{
+    bool wayland = getenv("WAYLAND_DISPLAY") || getenv("XDG_RUNTIME_DIR");
+    SDL_SetHint(SDL_HINT_VIDEODRIVER, wayland ? "x11,wayland,KMSDRM" : "x11,KMSDRM");
+    if (SDL_Init(SDL_INIT_VIDEO) == 0)
+        return true;
+    return sr_error_set(err, "cannot open a window: no display (%s); run under xvfb-run -a, or fly a script "
+                             "without a window: --no-window", SDL_GetError());
+}
+
 static bool run(view_job *job, sr_error *err)
 {
     sr_viewer v;
     window w = { 0 };
     bool windowed = !job->no_window;
-    if (windowed && SDL_Init(SDL_INIT_VIDEO) != 0)
-        return sr_error_set(err, "cannot start SDL video: %s (no display? a scripted flight runs without one: "
-                                 "--no-window)", SDL_GetError());
+    if (windowed && !start_video(err))
+        return false;
     bool ok = sr_viewer_init(&v, &job->scene, err) &&
               (!windowed || window_open(&w, v.scene.fb.width, v.scene.fb.height, err));
     ok = ok && (!job->keys || press_keys(job->keys, &v, err));
