@@ -279,7 +279,8 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     sr_workspace *ws = desc->workspace ? desc->workspace : sr_workspace_create();
     if (!ws)
         return sr_error_set(err, "out of memory for a workspace");
-    sr_draw_state st = { .fb = fb, .desc = desc, .study = study, .mode = mode, .ws = ws, .threads = thread_count(desc, &study),
+    sr_draw_state st = { .fb = fb, .desc = desc, .study = study, .mode = mode, .ws = ws,
+                         .threads = thread_count(desc, &study),
                          .vertex_count = desc->mesh->vertex_count, .slots = sr_mesh_triangle_slots(desc->mesh),
                          .tiles_x = (fb->width + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
                          .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
