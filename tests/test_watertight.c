@@ -1,9 +1,8 @@
 /* Watertightness: triangles that share edges cover every pixel once.
  *
- * Each scene is one sr_draw with id shading; scene_hit_counter (see
- * hit_counter.h) harvests each fan triangle's pixels before the next one is
- * drawn, so the counts are true per-pixel hit counts and the depth test hides
- * nothing. Pixels whose centre is clearly inside the mesh must be hit exactly
+ * Each scene is one sr_draw counting hits (sr_draw_study.count_hits, see
+ * hit_counter.h), so the counts are true per-pixel hit counts and no depth
+ * test hides anything. Pixels whose centre is clearly inside the mesh must be hit exactly
  * once, pixels clearly outside never, and no pixel twice; only pixels whose
  * centre is exactly on the outline may go either way (0 or 1). These flat
  * scenes use the pixel-space orthographic camera, so the outline is known
@@ -84,7 +83,6 @@ static void draw_covers_polygon_once(const char *name, const char *what, const s
     static unsigned char regions[FLAT_SIZE * FLAT_SIZE];
     polygon_regions(polygon, n, FLAT_SIZE, regions);
     scene_expect_each_pixel_once(name, &counter, regions);
-    scene_hit_counter_free(&counter);
     sr_framebuffer_destroy(&fb);
 }
 

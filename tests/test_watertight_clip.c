@@ -118,7 +118,6 @@ Test(watertight, ground_grid_cut_by_near_side_and_far_planes_covers_each_pixel_o
     check_ground("watertight_ground_grid_cut_by_near_side_and_far_planes", &cam, &counter);
     cr_expect_gt(counter.near_cut_vertices, 0, "the near plane cut nothing on screen");
     cr_expect_gt(counter.side_cut_vertices, 0, "the side planes cut nothing");
-    scene_hit_counter_free(&counter);
 }
 
 /* From above and outside, toward a corner of the grid: its outline is in the
@@ -129,7 +128,6 @@ Test(watertight, ground_grid_seen_from_above_across_side_planes_covers_each_pixe
     scene_hit_counter counter;
     check_ground("watertight_ground_grid_seen_from_above_across_side_planes", &cam, &counter);
     cr_expect_gt(counter.side_cut_vertices, 0, "the side planes cut nothing");
-    scene_hit_counter_free(&counter);
 }
 
 Test(watertight, ground_grid_at_grazing_angle_with_wide_fov_covers_each_pixel_once)
@@ -138,7 +136,6 @@ Test(watertight, ground_grid_at_grazing_angle_with_wide_fov_covers_each_pixel_on
     scene_hit_counter counter;
     check_ground("watertight_ground_grid_at_grazing_angle_with_wide_fov", &cam, &counter);
     cr_expect_gt(counter.near_cut_vertices, 0, "the near plane cut nothing on screen");
-    scene_hit_counter_free(&counter);
 }
 
 /* ---- long triangles through the near plane ---- */
@@ -210,7 +207,6 @@ Test(watertight, long_triangles_cut_by_the_near_plane_beside_the_eye_cover_each_
         }
     }
     scene_expect_each_pixel_once("watertight_long_triangles_cut_by_the_near_plane_beside_the_eye", &counter, regions);
-    scene_hit_counter_free(&counter);
     sr_framebuffer_destroy(&fb);
     sr_mesh_free(&mesh);
 }

@@ -7,7 +7,7 @@
  * their cost and their error can be measured (docs/report.md); every zero
  * field is the default that the conventions pin, so a zeroed study draws
  * exactly what no study draws. The trace sees the fan triangles the
- * rasterizer gets.
+ * rasterizer gets; count_hits counts how many cover each pixel.
  */
 #ifndef SOFTRAST_STUDY_H
 #define SOFTRAST_STUDY_H
@@ -74,7 +74,18 @@ typedef struct sr_draw_study {
     sr_simd simd;                     /* SR_SIMD_AUTO: the best per-pixel loop the CPU has */
     sr_triangle_observer observer;    /* optional */
     void *observer_user;
+    bool count_hits;                  /* count coverage instead of shading: see below */
 } sr_draw_study;
+
+/* count_hits: every pixel a fan triangle covers gets color += 1 (the caller
+ * clears color to 0 first), so after the draw each pixel holds the number of
+ * fan triangles that cover it: 1 inside a watertight mesh, 0 in a crack, 2
+ * where two overlap. Coverage is the rasterizer's own (the same exact edge
+ * functions and top-left rule); nothing is depth tested, depth is not
+ * written, desc.shade is not used and no vertex attribute is read, and
+ * sr_stats.fragments counts the hits. It runs on any number of threads (each
+ * tile is counted by one) and gives the same counts on all; only the scalar
+ * per-pixel loop counts (sr_workspace_simd_draws stays 0). */
 
 /* How many rasterizer calls of the last draw with this workspace a SIMD
  * kernel made (a call is a fan triangle, or with threads its share of one

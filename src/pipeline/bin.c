@@ -115,7 +115,7 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
             const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
                                                      vertex_of(st, w, rec->ref[2]) };
             bool simd = false;
-            fragments += sr_raster_triangle_on(st->fb, rect, st->vp.subpixel_bits, st->desc->shade, &st->shade,
+            fragments += sr_raster_triangle_on(st->fb, rect, st->vp.subpixel_bits, st->mode, &st->shade,
                                                tri, rec->area2, rec->id, &simd);
             *simd_draws += simd;
         }

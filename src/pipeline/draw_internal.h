@@ -56,6 +56,7 @@ typedef struct sr_draw_state {
     sr_framebuffer *fb;
     const sr_draw_desc *desc;
     sr_draw_study study; /* desc's, or the defaults */
+    sr_shade mode;       /* desc's shading, or SR_RASTER_COUNT_HITS */
     sr_shade_context shade;
     sr_viewport vp;
     sr_clip_precision precision;

@@ -89,7 +89,7 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
         return sr_error_set(err, "this shading mode needs vertex normals and the mesh has none");
     if (l->color >= 0 && !d->mesh->colors)
         return sr_error_set(err, "color shading needs vertex colors and the mesh has none");
-    if (d->shade == SR_SHADE_TEXTURE && (!d->mesh->uvs || !d->texture || !d->texture->texels))
+    if (l->uv >= 0 && (!d->mesh->uvs || !d->texture || !d->texture->texels))
         return sr_error_set(err, "texture shading needs texture coordinates and a texture");
     if (d->texture && d->texture->texels &&
         (d->texture->width < 1 || d->texture->height < 1 || d->texture->width > SR_MAX_TEXTURE_SIDE ||
@@ -199,7 +199,7 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], 
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
     bool simd = false;
     sink->work->stats.fragments +=
-        sr_raster_triangle_on(st->fb, all, st->vp.subpixel_bits, st->desc->shade, &st->shade, tri, area2, id, &simd);
+        sr_raster_triangle_on(st->fb, all, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2, id, &simd);
     sink->work->simd_draws += simd;
 }
 
@@ -269,16 +269,18 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
 {
     if (!desc)
         return sr_error_set(err, "draw without a description");
+    const sr_draw_study study = desc->study ? *desc->study : (sr_draw_study){ 0 };
+    sr_shade mode = study.count_hits ? SR_RASTER_COUNT_HITS : desc->shade;
     sr_varying_layout layout = { .color = -1, .uv = -1, .normal = -1 };
     if (desc->mesh)
-        layout = sr_vertex_layout(desc->shade, desc->mesh, desc->texture && desc->texture->texels);
-    const sr_draw_study study = desc->study ? *desc->study : (sr_draw_study){ 0 };
+        layout = sr_vertex_layout(mode, desc->mesh, desc->texture && desc->texture->texels);
     if (!check_inputs(fb, desc, &study, &layout, err))
         return false;
     sr_workspace *ws = desc->workspace ? desc->workspace : sr_workspace_create();
     if (!ws)
         return sr_error_set(err, "out of memory for a workspace");
-    sr_draw_state st = { .fb = fb, .desc = desc, .study = study, .ws = ws, .threads = thread_count(desc, &study),
+    sr_draw_state st = { .fb = fb, .desc = desc, .study = study, .mode = mode, .ws = ws,
+                         .threads = thread_count(desc, &study),
                          .vertex_count = desc->mesh->vertex_count, .slots = sr_mesh_triangle_slots(desc->mesh),
                          .tiles_x = (fb->width + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
                          .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE,

@@ -108,7 +108,7 @@ static inline void varyings_at(const setup *s, float l1, float l2, float *var)
 
 static inline bool mode_reads_varyings(sr_shade mode)
 {
-    return mode != SR_SHADE_ID && mode != SR_SHADE_DEPTH;
+    return mode != SR_SHADE_ID && mode != SR_SHADE_DEPTH && mode != SR_RASTER_COUNT_HITS;
 }
 
 /* LESS for the standard depth convention, GREATER for reversed z. */
@@ -118,11 +118,15 @@ static inline bool depth_passes(float z, float stored, bool greater)
 }
 
 /* Depth test, depth write and shading of covered pixel i of a row; returns
- * 1 if the fragment passed. */
+ * 1 if the fragment passed. Counting hits, the pixel only counts one more. */
 static inline __attribute__((always_inline)) uint64_t
 fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, const sr_shade_context *shade,
            uint32_t id, size_t at, int64_t e1, int64_t e2)
 {
+    if (mode == SR_RASTER_COUNT_HITS) {
+        fb->color[at]++;
+        return 1;
+    }
     float l1 = (float)e1 * s->inv_area2, l2 = (float)e2 * s->inv_area2;
     float z = depth_at(s, l1, l2);
     if (!depth_passes(z, fb->depth[at], greater))
@@ -305,6 +309,8 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
     *simd = kernel && edges_fit_double(&s);
     if (*simd)
         return kernel(&s, shade, fb, triangle_id);
+    if (mode == SR_RASTER_COUNT_HITS) /* past the enum's cases, so not in the switch */
+        return raster_loop(&s, fb, SR_RASTER_COUNT_HITS, false, shade, triangle_id);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(&s, fb, SR_SHADE_ID, shade, triangle_id);
     case SR_SHADE_COLOR:   return raster_mode(&s, fb, SR_SHADE_COLOR, shade, triangle_id);

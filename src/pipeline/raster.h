@@ -38,10 +38,16 @@ sr_simd sr_raster_simd_resolve(sr_simd want);
 const char *sr_simd_name(sr_simd simd); /* "auto", "scalar", "sse2", "avx2", "avx512" */
 extern const char *const sr_simd_names[SR_SIMD_COUNT + 1]; /* indexed by sr_simd, NULL-terminated */
 
+/* The rasterizer's mode for sr_draw_study.count_hits, past the public
+ * shading modes: every covered pixel adds 1 to its color, with no depth test
+ * or write and no varyings. No SIMD kernel has it, so the scalar loop draws. */
+#define SR_RASTER_COUNT_HITS ((sr_shade)SR_SHADE_COUNT)
+
 /* Draws one triangle of nonzero signed area2 (either winding) into fb within
  * rect, its vertices in units of 2^-subpixel_bits pixel (SR_SUBPIXEL_BITS
- * unless the draw asked for another precision); returns the number of
- * fragments that passed the depth test. */
+ * unless the draw asked for another precision) in a shading mode or
+ * SR_RASTER_COUNT_HITS; returns the number of fragments that passed the
+ * depth test. */
 uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
                             const sr_shade_context *shade, const sr_screen_vertex tri[3], int64_t area2,
                             uint32_t triangle_id);

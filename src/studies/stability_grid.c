@@ -1,9 +1,7 @@
 /* Section 2 of the stability report: a flat grid of GRID_CELLS² quads drawn
- * under each stiff camera, hits counted per pixel. The draw's observer
- * rasterizes every fan triangle alone into a scratch framebuffer whose depth
- * is cleared to +inf (so the depth test hides nothing: this counts coverage),
- * adds its pixels to the counts and clears them again. On a watertight grid
- * every pixel inside the grid's picture is hit exactly once. */
+ * under each stiff camera, counting hits (sr_draw_study.count_hits): each
+ * pixel's color ends as the number of fan triangles covering it. On a
+ * watertight grid every pixel inside the grid's picture is hit exactly once. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -12,40 +10,6 @@
 #define GRID_CELLS 64
 #define GRID_SIDE (GRID_CELLS + 1) /* vertices per side */
 #define OUTLINE_MARGIN_PX 1.0      /* pixels this close to the grid's outline may go either way */
-#define SCRATCH_BACKGROUND 0u      /* id shading writes id + 1, never 0 */
-
-typedef struct hit_counter {
-    sr_framebuffer scratch;
-    uint16_t *counts;
-} hit_counter;
-
-static void scratch_reset(sr_framebuffer *fb, size_t i)
-{
-    fb->color[i] = SCRATCH_BACKGROUND;
-    fb->depth[i] = INFINITY;
-}
-
-/* The draw's observer: the fan triangle alone into the scratch buffer, then
- * its pixels (all within the box the rasterizer scans) into the counts. */
-static void count_triangle(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id)
-{
-    (void)clipped;
-    hit_counter *c = user;
-    sr_framebuffer *fb = &c->scratch;
-    sr_raster_rect all = { 0, 0, fb->width, fb->height }, box = sr_raster_scan_box(tri, all, SR_SUBPIXEL_BITS);
-    sr_shade_context none = { .layout = { .color = -1, .uv = -1, .normal = -1 } };
-    int64_t area2 = sr_cull_area2(&tri[0], &tri[1], &tri[2]);
-    sr_raster_triangle(fb, all, SR_SUBPIXEL_BITS, SR_SHADE_ID, &none, tri, area2, id);
-    for (int y = box.y0; y < box.y1; y++) {
-        for (int x = box.x0; x < box.x1; x++) {
-            size_t i = (size_t)y * (size_t)fb->width + (size_t)x;
-            if (fb->color[i] == SCRATCH_BACKGROUND)
-                continue;
-            c->counts[i]++;
-            scratch_reset(fb, i);
-        }
-    }
-}
 
 /* Grid line k (0 … GRID_CELLS) as a coordinate in [-1, 1]. */
 static double grid_line(int k, double inner)
@@ -156,12 +120,12 @@ static grid_region region_of(const sr_stability_case *c)
     return r;
 }
 
-static void tally(const sr_stability_case *c, const uint16_t *counts, sr_stability_hits *out)
+static void tally(const sr_stability_case *c, const uint32_t *counts, sr_stability_hits *out)
 {
     grid_region r = region_of(c);
     for (int y = 0; y < SR_STABILITY_HEIGHT; y++) {
         for (int x = 0; x < SR_STABILITY_WIDTH; x++) {
-            unsigned hits = counts[y * SR_STABILITY_WIDTH + x];
+            uint32_t hits = counts[y * SR_STABILITY_WIDTH + x];
             out->double_hits += hits >= 2;
             if (pixel_inside(&r, x, y)) {
                 out->inside++;
@@ -171,20 +135,16 @@ static void tally(const sr_stability_case *c, const uint16_t *counts, sr_stabili
     }
 }
 
+/* The grid drawn counting hits into fb's color. */
 static bool draw_counting(const sr_stability_case *c, const sr_mesh *grid, sr_clip_precision precision,
-                          hit_counter *counter, sr_stats *stats, sr_error *err)
+                          sr_framebuffer *fb, sr_stats *stats, sr_error *err)
 {
-    sr_framebuffer fb;
-    if (!sr_framebuffer_create(&fb, SR_STABILITY_WIDTH, SR_STABILITY_HEIGHT, err))
-        return false;
-    sr_draw_study study = { .clip_precision = precision, .observer = count_triangle, .observer_user = counter };
-    sr_draw_desc desc = { .mesh = grid, .shade = SR_SHADE_ID, .study = &study };
+    sr_draw_study study = { .clip_precision = precision, .count_hits = true };
+    sr_draw_desc desc = { .mesh = grid, .study = &study };
     sr_camera_view(&c->camera, desc.view);
     sr_camera_projection(&c->camera, (float)SR_STABILITY_WIDTH / SR_STABILITY_HEIGHT, desc.projection);
-    sr_framebuffer_clear(&fb, 0);
-    bool ok = sr_draw(&fb, &desc, stats, err);
-    sr_framebuffer_destroy(&fb);
-    return ok;
+    sr_framebuffer_clear(fb, 0);
+    return sr_draw(fb, &desc, stats, err);
 }
 
 bool sr_stability_grid_hits(const sr_stability_case *c, bool graded, const sr_stability_clipper *clipper,
@@ -194,21 +154,13 @@ bool sr_stability_grid_hits(const sr_stability_case *c, bool graded, const sr_st
     if (!out->measured)
         return true;
     sr_mesh grid = { 0 };
-    hit_counter counter = { .counts = calloc((size_t)SR_STABILITY_WIDTH * SR_STABILITY_HEIGHT, sizeof(uint16_t)) };
-    bool ok = counter.counts && grid_mesh(c, graded ? c->grid_inner : 0.0, &grid, err) &&
-              sr_framebuffer_create(&counter.scratch, SR_STABILITY_WIDTH, SR_STABILITY_HEIGHT, err);
-    if (ok) {
-        for (size_t i = 0; i < (size_t)SR_STABILITY_WIDTH * SR_STABILITY_HEIGHT; i++)
-            scratch_reset(&counter.scratch, i);
-        ok = draw_counting(c, &grid, clipper->precision, &counter, &out->stats, err);
-    }
+    sr_framebuffer counts = { 0 };
+    bool ok = grid_mesh(c, graded ? c->grid_inner : 0.0, &grid, err) &&
+              sr_framebuffer_create(&counts, SR_STABILITY_WIDTH, SR_STABILITY_HEIGHT, err) &&
+              draw_counting(c, &grid, clipper->precision, &counts, &out->stats, err);
     if (ok)
-        tally(c, counter.counts, out);
-    if (!counter.counts)
-        sr_error_set(err, "out of memory for the hit counts");
-    if (counter.scratch.color)
-        sr_framebuffer_destroy(&counter.scratch);
+        tally(c, counts.color, out);
+    sr_framebuffer_destroy(&counts);
     sr_mesh_free(&grid);
-    free(counter.counts);
     return ok;
 }
