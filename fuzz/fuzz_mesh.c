@@ -73,16 +73,22 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     snprintf(path, sizeof path, "%s/in.%s", dir, ENDINGS[data[0] % ENDING_COUNT]);
     write_file(path, data + 1, size - 1);
     sr_mesh mesh;
+    sr_texture texture;
     sr_error err = { "" };
-    if (sr_assimp_load(&mesh, path, SECONDS, &err)) {
+    if (sr_assimp_load(&mesh, &texture, path, SECONDS, &err)) {
         check_mesh(&mesh);
         check_drawable(&mesh);
+        CHECK(!texture.texels || (texture.width >= 1 && texture.height >= 1 && texture.width <= SR_MAX_TEXTURE_SIDE &&
+                                  texture.height <= SR_MAX_TEXTURE_SIDE),
+              "texture %dx%d", texture.width, texture.height);
     } else {
         CHECK(strncmp(err.message, path, strlen(path)) == 0 && !strchr(err.message, '\n'),
               "want one line naming the file: %s", err.message);
-        CHECK(mesh.positions == NULL && mesh.indices == NULL && mesh.vertex_count == 0, "failed load left a mesh");
+        CHECK(mesh.positions == NULL && mesh.indices == NULL && mesh.vertex_count == 0 && !texture.texels,
+              "failed load left a mesh or texture");
     }
     sr_mesh_free(&mesh);
+    sr_texture_free(&texture);
     unlink(path);
     return 0;
 }

@@ -10,9 +10,16 @@
 #include "io/isolated_load.h"
 #include "softrast_private.h"
 
-static bool load_two_triangles(sr_mesh *m, const char *path, sr_error *err)
+static bool load_two_triangles(sr_mesh *m, sr_texture *t, const char *path, sr_error *err)
 {
     (void)path;
+    t->texels = malloc(3 * 2 * sizeof *t->texels);
+    if (!t->texels)
+        return false;
+    for (int i = 0; i < 6; i++)
+        t->texels[i] = 0x010203u * (uint32_t)i;
+    t->width = 3;
+    t->height = 2;
     if (!sr_mesh_alloc(m, 4, 6, true, false, true, err))
         return false;
     for (uint32_t i = 0; i < 4; i++) {
@@ -33,30 +40,31 @@ static bool load_two_triangles(sr_mesh *m, const char *path, sr_error *err)
     return true;
 }
 
-static bool fail_politely(sr_mesh *m, const char *path, sr_error *err)
+static bool fail_politely(sr_mesh *m, sr_texture *t, const char *path, sr_error *err)
 {
+    (void)t;
     *m = (sr_mesh){ 0 };
     return sr_error_set(err, "%s: no faces here", path);
 }
 
-static bool crash(sr_mesh *m, const char *path, sr_error *err)
+static bool crash(sr_mesh *m, sr_texture *t, const char *path, sr_error *err)
 {
-    (void)m, (void)path, (void)err;
+    (void)m, (void)t, (void)path, (void)err;
     abort();
 }
 
 static volatile bool spinning = true; /* never cleared: the child spins until its CPU limit */
 
-static bool block(sr_mesh *m, const char *path, sr_error *err)
+static bool block(sr_mesh *m, sr_texture *t, const char *path, sr_error *err)
 {
-    (void)m, (void)path, (void)err;
+    (void)m, (void)t, (void)path, (void)err;
     pause(); /* as a read of a FIFO no one writes */
     return false;
 }
 
-static bool spin(sr_mesh *m, const char *path, sr_error *err)
+static bool spin(sr_mesh *m, sr_texture *t, const char *path, sr_error *err)
 {
-    (void)m, (void)path, (void)err;
+    (void)m, (void)t, (void)path, (void)err;
     while (spinning)
         ;
     return false;
@@ -65,9 +73,10 @@ static bool spin(sr_mesh *m, const char *path, sr_error *err)
 Test(isolated_load, the_childs_mesh_comes_back_whole)
 {
     sr_mesh want, got;
+    sr_texture want_tex = { 0 }, tex;
     sr_error err = { "" };
-    cr_assert(load_two_triangles(&want, "x", &err));
-    cr_assert(sr_isolated_load(&got, "x", load_two_triangles, 10, &err), "%s", err.message);
+    cr_assert(load_two_triangles(&want, &want_tex, "x", &err));
+    cr_assert(sr_isolated_load(&got, &tex, "x", load_two_triangles, 10, &err), "%s", err.message);
     cr_assert_eq(got.vertex_count, 4);
     cr_assert_eq(got.index_count, 6);
     cr_assert_null(got.uvs);
@@ -79,6 +88,11 @@ Test(isolated_load, the_childs_mesh_comes_back_whole)
     cr_assert_str_eq(got.texture_path, "tex.png");
     cr_assert_eq(got.part_count, 2);
     cr_assert_eq(memcmp(got.parts, want.parts, 2 * sizeof *got.parts), 0);
+    cr_assert_eq(tex.width, 3);
+    cr_assert_eq(tex.height, 2);
+    cr_assert_eq(memcmp(tex.texels, want_tex.texels, 6 * sizeof *tex.texels), 0);
+    sr_texture_free(&want_tex);
+    sr_texture_free(&tex);
     sr_mesh_free(&want);
     sr_mesh_free(&got);
 }
@@ -86,8 +100,9 @@ Test(isolated_load, the_childs_mesh_comes_back_whole)
 Test(isolated_load, the_childs_error_comes_back_as_it_said_it)
 {
     sr_mesh m;
+    sr_texture tex;
     sr_error err = { "" };
-    cr_assert_not(sr_isolated_load(&m, "a.ply", fail_politely, 10, &err));
+    cr_assert_not(sr_isolated_load(&m, &tex, "a.ply", fail_politely, 10, &err));
     cr_assert_str_eq(err.message, "a.ply: no faces here");
     cr_assert_null(m.positions);
 }
@@ -95,8 +110,9 @@ Test(isolated_load, the_childs_error_comes_back_as_it_said_it)
 Test(isolated_load, a_crash_in_the_child_is_an_error_line)
 {
     sr_mesh m;
+    sr_texture tex;
     sr_error err = { "" };
-    cr_assert_not(sr_isolated_load(&m, "bad.fbx", crash, 10, &err));
+    cr_assert_not(sr_isolated_load(&m, &tex, "bad.fbx", crash, 10, &err));
     cr_assert_not_null(strstr(err.message, "bad.fbx: the importer crashed on this file"), "%s", err.message);
     cr_assert_null(m.positions);
 }
@@ -104,15 +120,17 @@ Test(isolated_load, a_crash_in_the_child_is_an_error_line)
 Test(isolated_load, an_endless_loop_in_the_child_ends_at_the_time_limit)
 {
     sr_mesh m;
+    sr_texture tex;
     sr_error err = { "" };
-    cr_assert_not(sr_isolated_load(&m, "loop.dae", spin, 1, &err));
+    cr_assert_not(sr_isolated_load(&m, &tex, "loop.dae", spin, 1, &err));
     cr_assert_str_eq(err.message, "loop.dae: the importer took more than 1 s");
 }
 
 Test(isolated_load, a_child_that_blocks_ends_at_the_time_limit)
 {
     sr_mesh m;
+    sr_texture tex;
     sr_error err = { "" };
-    cr_assert_not(sr_isolated_load(&m, "fifo.gltf", block, 1, &err));
+    cr_assert_not(sr_isolated_load(&m, &tex, "fifo.gltf", block, 1, &err));
     cr_assert_str_eq(err.message, "fifo.gltf: the importer took more than 1 s");
 }

@@ -18,7 +18,7 @@ static sr_mesh load(const char *path)
 {
     sr_mesh m;
     sr_error err = { "" };
-    cr_assert(sr_mesh_load(&m, path, &err), "%s: %s", path, err.message);
+    cr_assert(sr_mesh_load(&m, NULL, path, &err), "%s: %s", path, err.message);
     return m;
 }
 
@@ -44,7 +44,7 @@ Test(mesh_formats, each_format_gives_the_expected_triangles_and_attributes)
         { MODELS "STL/Spider_ascii.stl", 1368, false, false },
         { MODELS "STL/Spider_binary.stl", 1368, false, false },
         { MODELS "glTF2/BoxTextured-glTF/BoxTextured.gltf", 12, true, true },
-        { MODELS "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb", 12, true, false }, /* embedded: not read yet */
+        { MODELS "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb", 12, true, false }, /* embedded: no file named */
         { MODELS "FBX/box.fbx", 12, false, false },
         { MODELS "Collada/duck.dae", 4212, true, true },
     };
@@ -171,4 +171,41 @@ Test(mesh_formats, the_parts_of_a_multi_mesh_file_cover_its_triangles_in_order)
     cr_assert_eq(one.parts[0].triangle_count, 1);
     sr_mesh_free(&one);
     sr_mesh_free(&m);
+}
+
+/* The .glb carries the image the .gltf names beside it: decoded from memory
+ * it is the same texels, and the textured box draws the same pixels. */
+Test(mesh_formats, an_embedded_texture_is_the_image_the_gltf_names)
+{
+    sr_mesh glb, gltf;
+    sr_texture inside, beside;
+    sr_error err = { "" };
+    cr_assert(sr_mesh_load(&glb, &inside, MODELS "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb", &err), "%s",
+              err.message);
+    cr_assert(sr_mesh_load(&gltf, NULL, MODELS "glTF2/BoxTextured-glTF/BoxTextured.gltf", &err), "%s", err.message);
+    cr_assert_not_null(inside.texels, "the .glb's texture is decoded");
+    cr_assert_null(glb.texture_path);
+    cr_assert(sr_texture_load(&beside, gltf.texture_path, &err), "%s", err.message);
+    cr_assert_eq(inside.width, beside.width);
+    cr_assert_eq(inside.height, beside.height);
+    cr_assert_eq(memcmp(inside.texels, beside.texels, sizeof(uint32_t) * (size_t)beside.width * beside.height), 0);
+    sr_framebuffer a, b;
+    scene_fb_make(&a, SIDE, SIDE);
+    scene_fb_make(&b, SIDE, SIDE);
+    sr_camera cam = scene_camera(1.3f, 1.1f, -1.9f, 0.0f, 0.0f, 0.0f, 50.0f, 0.1f, 10.0f);
+    sr_draw_desc da = { .mesh = &glb, .shade = SR_SHADE_TEXTURE, .texture = &inside };
+    sr_draw_desc db = { .mesh = &gltf, .shade = SR_SHADE_TEXTURE, .texture = &beside };
+    scene_camera_desc(&da, &cam, SIDE, SIDE);
+    scene_camera_desc(&db, &cam, SIDE, SIDE);
+    sr_framebuffer_clear(&a, 0);
+    sr_framebuffer_clear(&b, 0);
+    cr_assert(sr_draw(&a, &da, NULL, &err) && sr_draw(&b, &db, NULL, &err), "%s", err.message);
+    cr_assert_gt(scene_count_drawn(&a), SIDE * SIDE / 10);
+    cr_assert_eq(memcmp(a.color, b.color, sizeof(uint32_t) * SIDE * SIDE), 0, "the two boxes draw alike");
+    sr_framebuffer_destroy(&a);
+    sr_framebuffer_destroy(&b);
+    sr_texture_free(&inside);
+    sr_texture_free(&beside);
+    sr_mesh_free(&glb);
+    sr_mesh_free(&gltf);
 }

@@ -32,15 +32,16 @@
  * OBJ and flipped the same way (z negated, winding reversed). Triangle ids
  * count the meshes in file order, then their faces in order, and
  * mesh->parts gives each mesh's run of ids (OBJ files have none). Points, lines,
- * skinning, animation, lights and cameras are ignored; texture_path is the
- * first base-colour or diffuse texture file a drawn mesh uses (embedded
- * textures are not read yet). A file over SR_MAX_MESH_VERTICES vertices or
+ * skinning, animation, lights and cameras are ignored. The first base-colour
+ * or diffuse texture a drawn mesh uses is decoded into *texture when the
+ * file embeds it (.glb, FBX; texture may be NULL to skip it, and is left
+ * empty otherwise), else named by mesh->texture_path for sr_texture_load. A file over SR_MAX_MESH_VERTICES vertices or
  * SR_MAX_MESH_TRIANGLES triangles is refused before anything is allocated
  * for it. Errors: false with "FILE: reason" (Assimp's reason for its
  * formats); the mesh is left zeroed. */
 #define SR_MAX_MESH_VERTICES (1u << 28)
 #define SR_MAX_MESH_TRIANGLES (1u << 28)
-SR_API bool sr_mesh_load(sr_mesh *mesh, const char *path, sr_error *err);
+SR_API bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err);
 
 /* ---- Wavefront OBJ ---------------------------------------------------------
  *

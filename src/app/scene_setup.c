@@ -81,10 +81,12 @@ static bool shade_uses_normals(sr_shade shade)
 bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err)
 {
     *scene = (sr_scene){ 0 };
-    if (!sr_mesh_load(&scene->mesh, s->mesh_path, err))
+    if (!sr_mesh_load(&scene->mesh, &scene->texture, s->mesh_path, err))
         return false;
-    const char *tex = s->texture_path ? s->texture_path : scene->mesh.texture_path;
     bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);
+    if (s->texture_path || !wants_texture)
+        sr_texture_free(&scene->texture); /* the file's own, embedded: replaced, or not needed */
+    const char *tex = s->texture_path ? s->texture_path : scene->texture.texels ? NULL : scene->mesh.texture_path;
     if (tex && wants_texture && !sr_texture_load(&scene->texture, tex, err))
         return false;
     bool wants_normals = everything || shade_uses_normals((sr_shade)s->shade);

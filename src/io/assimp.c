@@ -9,7 +9,9 @@
  * Meshes follow in Assimp's mesh order, faces in face order: triangle ids
  * count them so. Points and lines are left out. A material's colour factor
  * is multiplied into the vertex colours (white where a mesh has none). Positions are gathered in
- * double and stored relative to a far mesh's centre, as OBJ's are. The
+ * double and stored relative to a far mesh's centre, as OBJ's are. A
+ * texture embedded in the file (.glb, FBX) is decoded here; one beside it
+ * is named by texture_path. The
  * import runs in a child process (isolated_load.h): Assimp is not ours to
  * make crash- and hang-free.
  */
@@ -26,6 +28,7 @@
 #include "mesh_loaders.h"
 #include "mesh_origin.h"
 #include "obj_parse.h"
+#include "texture_read.h"
 
 #define IMPORT_STEPS                                                                                      \
     (aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |         \
@@ -91,27 +94,76 @@ static bool count_scene(const struct aiScene *sc, const char *path, scene_counts
     return true;
 }
 
-/* The diffuse texture of the first material that has one and is used by a
- * drawn mesh (glTF's base colour first), resolved beside the model; an
- * embedded texture ("*N") is not read yet. */
-static bool texture_beside(const struct aiScene *sc, const char *path, char **out, sr_error *err)
+/* The first base-colour (glTF) or diffuse texture of a material that a
+ * drawn mesh uses; false when none has one. */
+static bool first_texture(const struct aiScene *sc, struct aiString *name)
 {
-    *out = NULL;
     static const enum aiTextureType kinds[] = { aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE };
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         if (!is_triangles(sc->mMeshes[i]) || sc->mMeshes[i]->mMaterialIndex >= sc->mNumMaterials)
             continue;
         const struct aiMaterial *mat = sc->mMaterials[sc->mMeshes[i]->mMaterialIndex];
-        for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
-            struct aiString name;
-            if (aiGetMaterialTexture(mat, kinds[k], 0, &name, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS ||
-                name.length == 0 || name.data[0] == '*')
-                continue;
-            *out = sr_obj_path_beside(path, name.data);
-            return *out || sr_error_set(err, "%s: out of memory", path);
-        }
+        for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++)
+            if (aiGetMaterialTexture(mat, kinds[k], 0, name, NULL, NULL, NULL, NULL, NULL, NULL) == aiReturn_SUCCESS &&
+                name->length > 0)
+                return true;
     }
+    return false;
+}
+
+/* The texture a name refers to inside the file: "*N" is the N-th, any other
+ * name one whose file name it is; NULL when the name is a file beside it. */
+static const struct aiTexture *embedded_texture(const struct aiScene *sc, const char *name)
+{
+    if (name[0] == '*') {
+        char *end;
+        unsigned long i = strtoul(name + 1, &end, 10);
+        return *end == '\0' && i < sc->mNumTextures ? sc->mTextures[i] : NULL;
+    }
+    for (unsigned i = 0; i < sc->mNumTextures; i++)
+        if (strcmp(sc->mTextures[i]->mFilename.data, name) == 0)
+            return sc->mTextures[i];
+    return NULL;
+}
+
+/* An embedded image: a whole file in memory (mHeight 0; its format's
+ * ending in achFormatHint), decoded as a texture file would be, or raw
+ * BGRA texels. */
+static bool decode_embedded(const struct aiTexture *t, const char *path, sr_texture *tex, sr_error *err)
+{
+    char name[SR_ERROR_MAX / 2];
+    snprintf(name, sizeof name, "%s#texture.%s", path, t->achFormatHint[0] ? t->achFormatHint : "png");
+    if (t->mHeight == 0) {
+        FILE *f = fmemopen(t->pcData, t->mWidth, "rb");
+        return f ? sr_texture_read(tex, f, name, err) : sr_error_set(err, "%s: out of memory", name);
+    }
+    uint64_t count = (uint64_t)t->mWidth * t->mHeight;
+    if (t->mWidth > SR_MAX_TEXTURE_SIDE || t->mHeight > SR_MAX_TEXTURE_SIDE || count > SR_MAX_TEXTURE_TEXELS)
+        return sr_error_set(err, "%s: texture is %ux%u, past the limits", name, t->mWidth, t->mHeight);
+    tex->texels = malloc(count * sizeof *tex->texels);
+    if (!tex->texels)
+        return sr_error_set(err, "%s: out of memory", name);
+    for (uint64_t i = 0; i < count; i++)
+        tex->texels[i] = (uint32_t)t->pcData[i].r << 16 | (uint32_t)t->pcData[i].g << 8 | t->pcData[i].b;
+    tex->width = (int)t->mWidth;
+    tex->height = (int)t->mHeight;
     return true;
+}
+
+/* The mesh's texture: decoded into tex when the file embeds it, else named
+ * by mesh->texture_path, resolved beside the model. */
+static bool find_texture(const struct aiScene *sc, const char *path, sr_mesh *mesh, sr_texture *tex, sr_error *err)
+{
+    struct aiString name;
+    if (!first_texture(sc, &name))
+        return true;
+    const struct aiTexture *inside = embedded_texture(sc, name.data);
+    if (inside)
+        return decode_embedded(inside, path, tex, err);
+    if (name.data[0] == '*')
+        return true; /* an index past the file's textures: none */
+    mesh->texture_path = sr_obj_path_beside(path, name.data);
+    return mesh->texture_path || sr_error_set(err, "%s: out of memory", path);
 }
 
 static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double origin[3])
@@ -178,15 +230,9 @@ static bool build_mesh(const struct aiScene *sc, const char *path, sr_mesh *mesh
 {
     scene_counts n;
     double origin[3];
-    char *texture = NULL;
     if (!count_scene(sc, path, &n, err) || !scene_origin(sc, path, origin, err) ||
-        !texture_beside(sc, path, &texture, err))
+        !sr_mesh_alloc(mesh, (uint32_t)n.vertices, (uint32_t)n.indices, n.normals, n.uvs, n.colors, err))
         return false;
-    if (!sr_mesh_alloc(mesh, (uint32_t)n.vertices, (uint32_t)n.indices, n.normals, n.uvs, n.colors, err)) {
-        free(texture);
-        return false;
-    }
-    mesh->texture_path = texture;
     mesh->parts = calloc(n.parts ? n.parts : 1, sizeof *mesh->parts);
     if (!mesh->parts)
         return sr_error_set(err, "%s: out of memory", path);
@@ -197,22 +243,22 @@ static bool build_mesh(const struct aiScene *sc, const char *path, sr_mesh *mesh
 }
 
 /* In the child process: Assimp's import, converted. */
-static bool import_here(sr_mesh *mesh, const char *path, sr_error *err)
+static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
     const struct aiScene *sc = aiImportFile(path, IMPORT_STEPS);
     if (!sc)
         return sr_error_set(err, "%s: %s", path, aiGetErrorString());
-    bool ok = build_mesh(sc, path, mesh, err);
+    bool ok = build_mesh(sc, path, mesh, err) && find_texture(sc, path, mesh, texture, err);
     aiReleaseImport(sc);
     if (!ok)
         sr_mesh_free(mesh);
     return ok;
 }
 
-bool sr_assimp_load(sr_mesh *mesh, const char *path, unsigned seconds, sr_error *err)
+bool sr_assimp_load(sr_mesh *mesh, sr_texture *texture, const char *path, unsigned seconds, sr_error *err)
 {
-    bool ok = sr_isolated_load(mesh, path, import_here, seconds, err);
+    bool ok = sr_isolated_load(mesh, texture, path, import_here, seconds, err);
     if (ok)
         sr_mesh_update_bounds(mesh);
     return ok;

@@ -24,6 +24,7 @@ typedef struct wire_header {
     uint32_t ok;
     uint32_t vertex_count, index_count;
     uint32_t has_normals, has_uvs, has_colors, part_count;
+    uint32_t texture_width, texture_height; /* 0: no texture */
     uint32_t text_len; /* the texture path (ok) or the message (not ok), without its NUL */
     double origin[3];
 } wire_header;
@@ -61,7 +62,9 @@ typedef struct wire_array {
     uint32_t count;
 } wire_array;
 
-static int wire_arrays(sr_mesh *m, wire_array out[6])
+#define WIRE_ARRAYS 7
+
+static int wire_arrays(sr_mesh *m, sr_texture *t, wire_array out[WIRE_ARRAYS])
 {
     int n = 0;
     out[n++] = (wire_array){ (void **)&m->positions, sizeof *m->positions, m->vertex_count };
@@ -74,6 +77,8 @@ static int wire_arrays(sr_mesh *m, wire_array out[6])
     out[n++] = (wire_array){ (void **)&m->indices, sizeof *m->indices, m->index_count };
     if (m->parts)
         out[n++] = (wire_array){ (void **)&m->parts, sizeof *m->parts, m->part_count };
+    if (t->texels)
+        out[n++] = (wire_array){ (void **)&t->texels, sizeof *t->texels, (uint32_t)t->width * (uint32_t)t->height };
     return n;
 }
 
@@ -87,8 +92,9 @@ static void child_run(int fd, const char *path, sr_isolated_loader load, unsigne
     setrlimit(RLIMIT_CPU, &(struct rlimit){ seconds, seconds + 1 }); /* a loop */
     alarm(seconds);                                                  /* a read that blocks */
     sr_mesh m;
+    sr_texture t = { 0 };
     sr_error err = { "" };
-    bool ok = load(&m, path, &err);
+    bool ok = load(&m, &t, path, &err);
     const char *text = ok ? (m.texture_path ? m.texture_path : "") : err.message;
     wire_header h = { .ok = ok, .text_len = (uint32_t)strlen(text) };
     if (ok) {
@@ -98,19 +104,29 @@ static void child_run(int fd, const char *path, sr_isolated_loader load, unsigne
         h.has_uvs = m.uvs != NULL;
         h.has_colors = m.colors != NULL;
         h.part_count = m.parts ? m.part_count : 0;
+        h.texture_width = t.texels ? (uint32_t)t.width : 0;
+        h.texture_height = t.texels ? (uint32_t)t.height : 0;
         memcpy(h.origin, m.origin, sizeof h.origin);
     }
     bool sent = write_all(fd, &h, sizeof h) && write_all(fd, text, h.text_len);
-    wire_array arrays[6];
-    for (int i = 0, n = ok ? wire_arrays(&m, arrays) : 0; sent && i < n; i++)
+    wire_array arrays[WIRE_ARRAYS];
+    for (int i = 0, n = ok ? wire_arrays(&m, &t, arrays) : 0; sent && i < n; i++)
         sent = write_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
     _exit(sent ? 0 : 1); /* no atexit handlers of the parent's libraries in the child */
 }
 
-static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, const char *path, sr_error *err)
+static bool texture_fits(uint32_t width, uint32_t height)
+{
+    return width <= SR_MAX_TEXTURE_SIDE && height <= SR_MAX_TEXTURE_SIDE &&
+           (uint64_t)width * height <= SR_MAX_TEXTURE_TEXELS && (width == 0) == (height == 0);
+}
+
+static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, sr_texture *texture, const char *path,
+                         sr_error *err)
 {
     if (h->vertex_count > SR_MAX_MESH_VERTICES || h->index_count / 3 > SR_MAX_MESH_TRIANGLES ||
-        h->index_count % 3 != 0 || h->part_count > h->index_count / 3 || h->text_len > SR_ERROR_MAX * 8)
+        h->index_count % 3 != 0 || h->part_count > h->index_count / 3 || h->text_len > SR_ERROR_MAX * 8 ||
+        !texture_fits(h->texture_width, h->texture_height))
         return sr_error_set(err, "%s: the importer sent a mesh past the limits", path);
     if (!sr_mesh_alloc(mesh, h->vertex_count, h->index_count, h->has_normals, h->has_uvs, h->has_colors, err))
         return false;
@@ -121,27 +137,35 @@ static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, const char
             return sr_error_set(err, "%s: out of memory for %u parts", path, h->part_count);
         mesh->part_count = h->part_count;
     }
-    char *texture = malloc((size_t)h->text_len + 1);
-    bool ok = texture && read_all(fd, texture, h->text_len);
-    if (ok && h->text_len > 0) {
-        texture[h->text_len] = '\0';
-        mesh->texture_path = texture;
-    } else {
-        free(texture);
+    if (h->texture_width > 0) {
+        texture->texels = malloc((size_t)h->texture_width * h->texture_height * sizeof *texture->texels);
+        if (!texture->texels)
+            return sr_error_set(err, "%s: out of memory for a %ux%u texture", path, h->texture_width,
+                                h->texture_height);
+        texture->width = (int)h->texture_width;
+        texture->height = (int)h->texture_height;
     }
-    wire_array arrays[6];
-    for (int i = 0, n = wire_arrays(mesh, arrays); ok && i < n; i++)
+    char *texture_path = malloc((size_t)h->text_len + 1);
+    bool ok = texture_path && read_all(fd, texture_path, h->text_len);
+    if (ok && h->text_len > 0) {
+        texture_path[h->text_len] = '\0';
+        mesh->texture_path = texture_path;
+    } else {
+        free(texture_path);
+    }
+    wire_array arrays[WIRE_ARRAYS];
+    for (int i = 0, n = wire_arrays(mesh, texture, arrays); ok && i < n; i++)
         ok = read_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
     return ok || sr_error_set(err, "%s: the importer stopped while sending the mesh", path);
 }
 
-static bool receive(int fd, sr_mesh *mesh, const char *path, sr_error *err)
+static bool receive(int fd, sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err)
 {
     wire_header h;
     if (!read_all(fd, &h, sizeof h))
         return sr_error_set(err, "%s: the importer sent nothing", path);
     if (h.ok)
-        return receive_mesh(fd, &h, mesh, path, err);
+        return receive_mesh(fd, &h, mesh, texture, path, err);
     char message[SR_ERROR_MAX] = "";
     size_t n = h.text_len < sizeof message - 1 ? h.text_len : sizeof message - 1;
     read_all(fd, message, n);
@@ -162,9 +186,11 @@ static bool child_status(pid_t pid, const char *path, unsigned seconds, sr_error
     return true;
 }
 
-bool sr_isolated_load(sr_mesh *mesh, const char *path, sr_isolated_loader load, unsigned seconds, sr_error *err)
+bool sr_isolated_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_isolated_loader load, unsigned seconds,
+                      sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
+    *texture = (sr_texture){ 0 };
     int fds[2];
     if (pipe(fds) != 0)
         return sr_error_set(err, "%s: cannot start the importer: %s", path, strerror(errno));
@@ -180,11 +206,12 @@ bool sr_isolated_load(sr_mesh *mesh, const char *path, sr_isolated_loader load, 
     }
     close(fds[1]);
     sr_error received = { "" }, died = { "" };
-    bool ok = receive(fds[0], mesh, path, &received);
+    bool ok = receive(fds[0], mesh, texture, path, &received);
     close(fds[0]);
     bool lived = child_status(pid, path, seconds, &died);
     if (lived && ok)
         return true;
     sr_mesh_free(mesh);
+    sr_texture_free(texture);
     return sr_error_set(err, "%s", lived ? received.message : died.message);
 }

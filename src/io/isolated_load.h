@@ -5,13 +5,15 @@
 
 #include "softrast/files.h"
 
-typedef bool (*sr_isolated_loader)(sr_mesh *mesh, const char *path, sr_error *err);
+typedef bool (*sr_isolated_loader)(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err);
 
-/* Runs load(mesh, path) in a child limited to `seconds` (CPU and wall) and
- * copies its mesh back. False, with one line in err, for the loader's own
+/* Runs load(mesh, texture, path) in a child limited to `seconds` (CPU and
+ * wall) and copies its mesh and texture (empty when it made none) back. False, with one line in err, for the loader's own
  * error, a crash ("the importer crashed on this file (…)"), the time limit,
- * or counts past SR_MAX_MESH_VERTICES / SR_MAX_MESH_TRIANGLES; the mesh is
- * then zeroed. */
-bool sr_isolated_load(sr_mesh *mesh, const char *path, sr_isolated_loader load, unsigned seconds, sr_error *err);
+ * or counts past SR_MAX_MESH_VERTICES / SR_MAX_MESH_TRIANGLES or a texture
+ * past SR_MAX_TEXTURE_SIDE / SR_MAX_TEXTURE_TEXELS; mesh and texture are
+ * then empty. */
+bool sr_isolated_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_isolated_loader load, unsigned seconds,
+                      sr_error *err);
 
 #endif

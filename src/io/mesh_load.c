@@ -1,7 +1,10 @@
 /* sr_mesh_load: the file's ending picks the loader. */
+#include <stdio.h>
 #include <string.h>
 #include <strings.h>
 
+#include "core/error.h"
+#include "core/input_file.h"
 #include "mesh_loaders.h"
 
 static bool ends_with_obj(const char *path)
@@ -10,7 +13,28 @@ static bool ends_with_obj(const char *path)
     return n >= 4 && strcasecmp(path + n - 4, ".obj") == 0;
 }
 
-bool sr_mesh_load(sr_mesh *mesh, const char *path, sr_error *err)
+/* Assimp opens the file itself: it must be a regular file before that
+ * (a FIFO would block the importer until its time limit). */
+static bool regular_file(const char *path, sr_error *err)
 {
-    return ends_with_obj(path) ? sr_obj_load(mesh, path, err) : sr_assimp_load(mesh, path, SR_IMPORT_SECONDS, err);
+    const char *why;
+    FILE *f = sr_input_open(path, &why);
+    if (!f)
+        return sr_error_set(err, "%s: cannot open: %s", path, why);
+    fclose(f);
+    return true;
+}
+
+bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err)
+{
+    sr_texture unwanted;
+    sr_texture *embedded = texture ? texture : &unwanted;
+    *embedded = (sr_texture){ 0 };
+    if (ends_with_obj(path))
+        return sr_obj_load(mesh, path, err);
+    *mesh = (sr_mesh){ 0 };
+    bool ok = regular_file(path, err) && sr_assimp_load(mesh, embedded, path, SR_IMPORT_SECONDS, err);
+    if (!texture)
+        sr_texture_free(&unwanted);
+    return ok;
 }

@@ -8,8 +8,9 @@
 /* The CPU time an import may take before it is stopped as a hang. */
 #define SR_IMPORT_SECONDS 120u
 
-/* A file through Assimp, in a child process given `seconds` of CPU time;
- * false with "FILE: reason" in err, mesh zeroed. */
-bool sr_assimp_load(sr_mesh *mesh, const char *path, unsigned seconds, sr_error *err);
+/* A file through Assimp, in a child process given `seconds`; a texture the
+ * file embeds goes into texture. False with "FILE: reason" in err, mesh and
+ * texture empty. */
+bool sr_assimp_load(sr_mesh *mesh, sr_texture *texture, const char *path, unsigned seconds, sr_error *err);
 
 #endif

@@ -9,6 +9,7 @@
 #include "softrast/files.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "texture_read.h"
 
 #define RGB_MASK 0x00FFFFFFu
 
@@ -141,6 +142,15 @@ static bool is_png(FILE *f)
     return png;
 }
 
+bool sr_texture_read(sr_texture *tex, FILE *f, const char *name, sr_error *err)
+{
+    *tex = (sr_texture){ 0 };
+    bool ok = is_png(f) ? load_png(tex, f, name, err) : load_other(tex, f, name, err);
+    if (!ok)
+        sr_texture_free(tex);
+    return ok;
+}
+
 /* Opening the file ourselves gives a clean strerror for a missing or
  * unreadable file (SDL_image would only say "Couldn't open") and refuses
  * what is not a regular file. Neither decoder needs SDL_Init, so this works
@@ -152,10 +162,7 @@ bool sr_texture_load(sr_texture *tex, const char *path, sr_error *err)
     FILE *f = sr_input_open(path, &why);
     if (!f)
         return sr_error_set(err, "%s: cannot open: %s", path, why);
-    bool ok = is_png(f) ? load_png(tex, f, path, err) : load_other(tex, f, path, err);
-    if (!ok)
-        sr_texture_free(tex);
-    return ok;
+    return sr_texture_read(tex, f, path, err);
 }
 
 void sr_texture_free(sr_texture *tex)
