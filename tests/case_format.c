@@ -93,7 +93,7 @@ static bool inline_grow(case_inline *in)
     if (in->count < in->cap)
         return true;
     uint32_t cap = in->cap ? 2 * in->cap : 16;
-    float(*pos)[3] = realloc(in->pos, cap * sizeof *pos);
+    float(*pos)[4] = realloc(in->pos, cap * sizeof *pos);
     if (pos)
         in->pos = pos;
     float(*rgb)[3] = realloc(in->rgb, cap * sizeof *rgb);
@@ -125,20 +125,27 @@ static bool inline_index(case_inline *in, uint32_t i)
     return true;
 }
 
-/* v X Y Z [rgb R G B] [uv U V] [n X Y Z]; absent attributes are white, 0, 0. */
+/* v X Y Z [rgb R G B] [uv U V] [n X Y Z], or vclip X Y Z W [...] in clip
+ * space; absent attributes are white, 0, 0. */
 static const char *parse_vertex(case_inline *in, char **tok, int n)
 {
-    if (n < 4 || !inline_grow(in))
-        return "v needs X Y Z";
+    bool clip = strcmp(tok[0], "vclip") == 0;
+    int coords = clip ? 4 : 3;
+    if (in->count > 0 && in->clip_space != clip)
+        return "a case has either v or vclip lines, not both";
+    in->clip_space = clip;
+    if (n < 1 + coords || !inline_grow(in))
+        return clip ? "vclip needs X Y Z W" : "v needs X Y Z";
     uint32_t at = in->count;
     float *p = in->pos[at], *rgb = in->rgb[at], *uv = in->uv[at], *nrm = in->nrm[at];
     rgb[0] = rgb[1] = rgb[2] = 1.0f;
     uv[0] = uv[1] = 0.0f;
     nrm[0] = nrm[1] = nrm[2] = 0.0f;
-    for (int k = 0; k < 3; k++)
+    p[3] = 1.0f;
+    for (int k = 0; k < coords; k++)
         if (!parse_float(tok[1 + k], &p[k]))
             return "bad vertex coordinate";
-    for (int i = 4; i < n;) {
+    for (int i = 1 + coords; i < n;) {
         int size = strcmp(tok[i], "rgb") == 0 ? 3 : strcmp(tok[i], "uv") == 0 ? 2 : strcmp(tok[i], "n") == 0 ? 3 : 0;
         float *dst = size == 0 ? NULL : tok[i][0] == 'r' ? rgb : tok[i][0] == 'u' ? uv : nrm;
         if (!dst || i + size >= n)
@@ -377,7 +384,7 @@ static const char *parse_line(case_desc *c, char *line, int number)
     if (n == 0)
         return NULL;
     if (strcmp(tok[0], "mesh") == 0) return parse_mesh(c, tok, n);
-    if (strcmp(tok[0], "v") == 0) return parse_vertex(&c->in, tok, n);
+    if (strcmp(tok[0], "v") == 0 || strcmp(tok[0], "vclip") == 0) return parse_vertex(&c->in, tok, n);
     if (strcmp(tok[0], "t") == 0) return parse_indices(&c->in, tok, n, false);
     if (strcmp(tok[0], "strip") == 0) return parse_indices(&c->in, tok, n, true);
     if (strcmp(tok[0], "camera") == 0) return parse_camera(c, tok, n);
@@ -416,6 +423,8 @@ bool case_load(case_desc *c, const char *path, sr_error *err)
     fclose(f);
     if (!why && c->mesh_kind != CASE_MESH_INLINE && (c->in.count || c->in.index_count))
         why = "v / t / strip lines need `mesh inline`", number = 0;
+    if (!why && c->in.clip_space && case_wants(c, CASE_EXPECT_RAYCAST))
+        why = "expect raycast casts rays through a camera: not for vclip vertices", number = 0;
     if (why) {
         sr_error_set(err, "%s:%d: %s", path, number, why);
         case_free(c);
@@ -438,8 +447,14 @@ static bool make_inline_mesh(const case_inline *in, sr_mesh *mesh, sr_error *err
 {
     if (!sr_mesh_alloc(mesh, in->count, in->index_count, in->has_nrm, in->has_uv, in->has_rgb, err))
         return false;
-    if (in->count)
-        memcpy(mesh->positions, in->pos, in->count * sizeof(vec3));
+    for (uint32_t i = 0; i < in->count; i++)
+        glm_vec3_copy(in->pos[i], mesh->positions[i]);
+    if (in->clip_space) {
+        mesh->clip_positions = malloc(in->count * sizeof *mesh->clip_positions);
+        if (!mesh->clip_positions)
+            return sr_error_set(err, "out of memory");
+        memcpy(mesh->clip_positions, in->pos, in->count * sizeof *mesh->clip_positions);
+    }
     if (in->has_nrm)
         memcpy(mesh->normals, in->nrm, in->count * sizeof(vec3));
     if (in->has_uv)

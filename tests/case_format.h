@@ -71,8 +71,9 @@ typedef struct case_expect {
 /* Growable inline vertex data; attributes exist iff some `v` line gave them. */
 typedef struct case_inline {
     uint32_t count, cap;
-    float (*pos)[3], (*rgb)[3], (*uv)[2], (*nrm)[3];
+    float (*pos)[4], (*rgb)[3], (*uv)[2], (*nrm)[3]; /* pos: x y z, and w for vclip */
     bool has_rgb, has_uv, has_nrm;
+    bool clip_space; /* the vertices are `vclip` lines: clip space, no matrices */
     uint32_t index_count, index_cap;
     uint32_t *indices;
     bool strip; /* the indices came from a `strip` line */

@@ -65,7 +65,8 @@ void case_clip_run(const sr_mesh *mesh, const mat4 world, const mat4 view, const
     /* As sr_draw configures the clipper by default: the default precision,
      * cut vertices within half a subpixel step in NDC, the projection's depth
      * model for near, far and z_ndc. */
-    const sr_clip_depth depth = sr_clip_depth_of((const float(*)[4])projection);
+    const sr_clip_depth depth = mesh->clip_positions ? (sr_clip_depth){ .on = false }
+                                                     : sr_clip_depth_of((const float(*)[4])projection);
     const sr_viewport vp = { .width = width, .height = height, .subpixel_bits = SR_SUBPIXEL_BITS, .guard = 1.0f,
                              .depth = depth };
     const sr_clip_config cfg = { .ndc_tolerance = 1.0 / ((double)SR_SUBPIXEL_ONE * (width > height ? width : height)),

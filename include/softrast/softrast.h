@@ -84,6 +84,11 @@ typedef struct sr_mesh_part {
 typedef struct sr_mesh {
     uint32_t vertex_count;
     vec3 *positions;
+    /* Optional: positions already in clip space (x, y, z, w), as conformance
+     * suites write their cases. When given, the draw uses them as they are
+     * (no world, view or projection matrix; positions may then be NULL) and
+     * clips them exactly as it clips transformed ones. sr_mesh_free frees it. */
+    vec4 *clip_positions;
     vec3 *normals; /* optional (NULL) */
     vec2 *uvs;     /* optional; v = 0 is the bottom row of the texture */
     vec3 *colors;  /* optional; linear 0..1 RGB */

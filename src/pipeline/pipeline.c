@@ -85,6 +85,8 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
         return sr_error_set(err, "mesh has an index past its %u vertices", d->mesh->vertex_count);
     if (d->mesh->vertex_count == 0)
         return true; /* nothing to shade: an empty mesh needs no attributes */
+    if (!d->mesh->positions && !d->mesh->clip_positions)
+        return sr_error_set(err, "mesh has neither positions nor clip-space positions");
     if (l->normal >= 0 && !d->mesh->normals)
         return sr_error_set(err, "this shading mode needs vertex normals and the mesh has none");
     if (l->color >= 0 && !d->mesh->colors)
@@ -233,7 +235,8 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     vertex_phase ph = { .st = st };
     make_transform(st, &ph.xf);
     const sr_mesh *mesh = st->desc->mesh;
-    sr_clip_box box = mesh->bounded ? sr_clip_classify_box(ph.xf.clip_from_object, mesh->bounds_lo, mesh->bounds_hi)
+    /* Bounds are of the positions: clip-space input is classified per vertex. */
+    sr_clip_box box = mesh->bounded && !mesh->clip_positions ? sr_clip_classify_box(ph.xf.clip_from_object, mesh->bounds_lo, mesh->bounds_hi)
                                     : SR_BOX_CROSSES;
     if (box == SR_BOX_OUTSIDE) {
         reject_all(st);
@@ -254,6 +257,15 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         add_stats(stats, &w->stats);
     }
     return true;
+}
+
+/* The projection's depth model (clip.h); off for clip-space input, whose z
+ * no projection made. */
+static sr_clip_depth clip_depth(const sr_draw_desc *d)
+{
+    if (d->mesh->clip_positions)
+        return (sr_clip_depth){ .on = false };
+    return sr_clip_depth_of((const float(*)[4])d->projection);
 }
 
 /* Several threads need the observer called in order from one thread, so a
@@ -285,7 +297,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
                          .tiles_x = (fb->width + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
                          .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
                          .vp = { fb->width, fb->height, subpixel_bits(&study), guard_band(&study),
-                                 sr_clip_depth_of((const float(*)[4])desc->projection) },
+                                 clip_depth(desc) },
                          .precision = study.clip_precision };
     /* Half a subpixel step, in NDC of the squeezed clip space of a guard band. */
     int side = fb->width > fb->height ? fb->width : fb->height;

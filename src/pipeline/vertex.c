@@ -85,8 +85,12 @@ void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_
     for (uint32_t k = 0; k < count; k++) {
         uint32_t i = first + k;
         float *v = out[k].v;
-        vec4 p = { mesh->positions[i][0], mesh->positions[i][1], mesh->positions[i][2], 1.0f };
-        glm_mat4_mulv((vec4 *)xf->clip_from_object, p, v);
+        if (mesh->clip_positions) {
+            glm_vec4_copy(mesh->clip_positions[i], v);
+        } else {
+            vec4 p = { mesh->positions[i][0], mesh->positions[i][1], mesh->positions[i][2], 1.0f };
+            glm_mat4_mulv((vec4 *)xf->clip_from_object, p, v);
+        }
         if (layout->normal >= 0) {
             vec3 n;
             glm_mat3_mulv((vec3 *)xf->normal_matrix, mesh->normals[i], n);

@@ -36,6 +36,7 @@ bool sr_mesh_alloc(sr_mesh *mesh, uint32_t vertex_count, uint32_t index_count,
 void sr_mesh_free(sr_mesh *mesh)
 {
     free(mesh->positions);
+    free(mesh->clip_positions);
     free(mesh->normals);
     free(mesh->uvs);
     free(mesh->colors);
@@ -47,7 +48,7 @@ void sr_mesh_free(sr_mesh *mesh)
 
 bool sr_mesh_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi)
 {
-    if (mesh->vertex_count == 0)
+    if (mesh->vertex_count == 0 || !mesh->positions)
         return false;
     glm_vec3_copy(mesh->positions[0], lo);
     glm_vec3_copy(mesh->positions[0], hi);
@@ -88,6 +89,8 @@ bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err)
 {
     if (mesh->normals || mesh->vertex_count == 0)
         return true;
+    if (!mesh->positions)
+        return sr_error_set(err, "smooth normals need the mesh's positions");
     if (!sr_assemble_indices_valid(mesh))
         return sr_error_set(err, "mesh has an index past its %u vertices", mesh->vertex_count);
     mesh->normals = calloc(mesh->vertex_count, sizeof(vec3));
