@@ -71,14 +71,10 @@ double sr_truth_z_ndc(const mat4 projection, double distance)
     return isinf(distance) ? (a < 0.5 ? 0.0 : 1.0) : a + b / distance;
 }
 
-static sr_dmat4 given_or_float(const sr_dmat4 *d, const mat4 f)
-{
-    return sr_dmat4_is_zero(d) ? sr_dmat4_from_mat4(f) : *d;
-}
-
 static void transform_vertices(const sr_draw_desc *desc, double (*out)[3])
 {
-    sr_dmat4 world = given_or_float(&desc->world_d, desc->world), view = given_or_float(&desc->view_d, desc->view);
+    sr_dmat4 world = sr_dmat4_desc_matrix(&desc->world_d, desc->world);
+    sr_dmat4 view = sr_dmat4_desc_matrix(&desc->view_d, desc->view);
     sr_dmat4 vw = sr_dmat4_mul(&view, &world);
     vw = sr_dmat4_translate(&vw, desc->mesh->origin);
     for (uint32_t i = 0; i < desc->mesh->vertex_count; i++) {
