@@ -14,13 +14,12 @@
 #define BRUTE_SIDE 48
 #define CLEAR_MARGIN 1e-9 /* the brute force's double results count only this far from a decision */
 
-/* View = world = identity and a perspective projection with x_ndc = x/z,
- * y_ndc = y/z: pixel centres of a power-of-two image lie on exact view rays. */
+/* View = world = identity (left all zero, which the truth must read as
+ * sr_draw does) and a perspective projection with x_ndc = x/z, y_ndc = y/z:
+ * pixel centres of a power-of-two image lie on exact view rays. */
 static void unit_lens_desc(sr_draw_desc *desc, const sr_mesh *mesh, sr_cull cull)
 {
     *desc = (sr_draw_desc){ .mesh = mesh, .shade = SR_SHADE_ID, .cull = cull };
-    glm_mat4_identity(desc->world);
-    glm_mat4_identity(desc->view);
     glm_perspective_lh_zo(glm_rad(90.0f), 1.0f, NEAR, FAR, desc->projection);
     desc->projection[0][0] = desc->projection[1][1] = 1.0f;
 }
