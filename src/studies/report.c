@@ -39,8 +39,7 @@ static const knob KNOBS[SR_REPORT_KNOBS] = {
 static const knob REFERENCE = { "reference: 16 bits, exact clip, reversed z", REFERENCE_BITS, SR_CLIP_EXACT, 0.0f,
                                 true, 1 };
 
-/* The frames of a scene: its path's key frames, or its one camera. */
-static int scene_frames(const sr_bench_scene *s)
+int sr_report_scene_frames(const sr_bench_scene *s)
 {
     return s->path.count ? (s->path.count < MAX_PATH_FRAMES ? s->path.count : MAX_PATH_FRAMES) : 1;
 }
@@ -50,7 +49,7 @@ static sr_draw_desc knob_desc(const sr_bench_scene *s, const knob *k, int f, sr_
                               sr_draw_study *study)
 {
     sr_camera cam;
-    sr_bench_scene_camera(s, f, scene_frames(s), &cam);
+    sr_bench_scene_camera(s, f, sr_report_scene_frames(s), &cam);
     cam.reversed_z = k->reversed;
     fb->reversed_z = k->reversed;
     *study = (sr_draw_study){ .subpixel_bits = k->subpixel_bits, .clip_precision = k->clip, .guard_band = k->guard };
@@ -113,7 +112,7 @@ static void compare(const sr_framebuffer *ref, const sr_framebuffer *fb, uint64_
 static bool measure_knob(const sr_bench_scene *s, const sr_framebuffer *refs, const frame_truth *truths,
                          const knob *k, int frames, sr_report_point *out, sr_error *err)
 {
-    int scene_n = scene_frames(s), timed = scene_n * frames;
+    int scene_n = sr_report_scene_frames(s), timed = scene_n * frames;
     sr_framebuffer fb;
     sr_workspace *ws = sr_workspace_create();
     double *ms = malloc((size_t)timed * sizeof *ms);
@@ -146,7 +145,7 @@ static bool measure_knob(const sr_bench_scene *s, const sr_framebuffer *refs, co
 
 static bool measure_scene(const sr_bench_scene *s, int frames, sr_report_scene *out, sr_error *err)
 {
-    int n = scene_frames(s);
+    int n = sr_report_scene_frames(s);
     sr_framebuffer refs[MAX_PATH_FRAMES] = { 0 };
     frame_truth truths[MAX_PATH_FRAMES] = { 0 };
     bool ok = true;

@@ -63,7 +63,8 @@ static bool write_markdown(const char *path, const sr_report_scene *scenes, cons
                "a different triangle, and the truth's runner-up at that pixel lies more than the tie tolerance\n"
                "%g (in the knob's z_ndc) behind its nearest; *ties*: the same within it; *coverage*: drawn by\n"
                "one and not the other; *|z − truth|*: in the knob's z_ndc, over the pixels where both drew\n"
-               "the same triangle.\n", SR_REPORT_TIE_TOLERANCE);
+               "the same triangle. llvmpipe's rows, on the same cameras: docs/bench-compare.md\n"
+               "(`./build/bench-gl --truth`).\n", SR_REPORT_TIE_TOLERANCE);
     for (int i = 0; i < SR_REPORT_SCENES; i++)
         write_truth_table(f, &scenes[i]);
     sr_report_simd_write(f, loops);
