@@ -7,6 +7,7 @@
 #include "bench_gl.h"
 #include "app/options.h"
 #include "app/scene_setup.h"
+#include "studies/report.h"
 
 #define DEFAULT_FRAMES 10
 #define DEFAULT_FILL_FRAMES 3 /* fill takes llvmpipe 0.7 s a frame */
@@ -21,6 +22,7 @@ typedef struct job {
     int scene, frames, fill_frames, threads, simd;
     bool lp_raster_all; /* LP_NUM_THREADS = threads, not threads - 1 */
     bool sequential;
+    bool truth; /* llvmpipe against the truth image on the report's scenes, instead of timing */
 } job;
 
 static const char USAGE[] =
@@ -96,6 +98,27 @@ static bool run_scene(const job *j, int kind, sr_error *err)
     return ok;
 }
 
+/* llvmpipe's row of docs/report.md's "Against the truth", one per report scene. */
+static bool run_truth(const job *j, sr_error *err)
+{
+    bool (*make[])(sr_bench_scene *, sr_error *) = { sr_bench_dense_default, sr_bench_fly, sr_bench_stiff };
+    printf("\n| llvmpipe | wrong triangle | ties | coverage | \\|z − truth\\| max | p99.9 | median |\n"
+           "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    bool ok = true;
+    for (size_t i = 0; ok && i < sizeof make / sizeof *make; i++) {
+        sr_bench_scene s;
+        sr_truth_errors e;
+        ok = make[i](&s, err) && bench_gl_truth(&s, j->lp_raster_all ? j->threads : j->threads - 1, &e, err);
+        if (ok)
+            printf("| %s (%d camera%s) | %llu | %llu | %llu | %.3g | %.3g | %.3g |\n", s.name,
+                   sr_report_scene_frames(&s), sr_report_scene_frames(&s) > 1 ? "s" : "",
+                   (unsigned long long)e.wrong_triangle, (unsigned long long)e.ties,
+                   (unsigned long long)e.coverage, e.z_max, e.z_p999, e.z_median);
+        sr_bench_scene_free(&s);
+    }
+    return ok;
+}
+
 /* A first context proves llvmpipe runs here before any scene is built. */
 static bool print_renderer(sr_error *err)
 {
@@ -121,6 +144,8 @@ static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
           "LP_NUM_THREADS = N (N rasterizers + the calling thread), not N - 1" },
         { "--sequential", SR_OPT_FLAG, &j->sequential, NULL,
           "all softrast frames, then all llvmpipe frames (default: alternate frame by frame)" },
+        { "--truth", SR_OPT_FLAG, &j->truth, NULL,
+          "instead of timing: llvmpipe's errors against the truth image on the report's scenes" },
         { "--simd", SR_OPT_CHOICE, &j->simd, SR_SIMD_CHOICES,
           "softrast's per-pixel loop (default auto: the best the CPU has)", .choices = sr_simd_names },
         { 0 },
@@ -133,6 +158,8 @@ static bool run(const job *j, sr_error *err)
 {
     if (!print_renderer(err))
         return false;
+    if (j->truth)
+        return run_truth(j, err);
     printf("softrast per-pixel loop: %s\n", sr_simd_name(sr_raster_simd_resolve((sr_simd)j->simd)));
     printf(LEGEND, BENCH_GL_COLOR_TOLERANCE,
            j->sequential ? "all softrast frames, then all llvmpipe frames (--sequential)"

@@ -10,6 +10,7 @@
  *   bench_gl_run.c      both renderers on one scene: frames, clocks, picture check
  *   bench_gl_context.c  llvmpipe forced and sized by environment, EGL context
  *   bench_gl_scene.c    the scene on the GL side: buffers, shaders, frames
+ *   bench_gl_truth.c    llvmpipe's ids and depths against the truth image (--truth)
  *
  * docs/bench-compare.md says what it measures and what it measured here.
  */
@@ -20,6 +21,7 @@
 #include <stdint.h>
 
 #include "studies/bench_scenes.h"
+#include "studies/report_truth.h"
 #include "softrast_private.h"
 
 /* One renderer's result over the timed frames of one scene. */
@@ -107,5 +109,12 @@ bool bench_gl_scene_read(bench_gl_scene *g, uint32_t *color, float *depth, sr_er
 /* View and projection of frame f of n, as `softrast bench` makes them (the
  * warm-up frame, f < 0, uses frame 0's camera). World is the identity. */
 void bench_gl_frame_camera(const sr_bench_scene *s, int f, int n, mat4 view, mat4 projection);
+
+/* --- bench_gl_truth.c: llvmpipe against the truth image --- */
+
+/* Draws the scene's report cameras (sr_report_scene_frames) with llvmpipe in
+ * id shading (s->shade becomes SR_SHADE_ID) and tallies them against the
+ * truth of each camera, as the report tallies softrast's knobs. */
+bool bench_gl_truth(sr_bench_scene *s, int lp_threads, sr_truth_errors *out, sr_error *err);
 
 #endif

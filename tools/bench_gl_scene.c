@@ -60,6 +60,9 @@ static const char FRAGMENT_BODY[] =
     "    frag_color = vec4((AMBIENT + (1.0 - AMBIENT) * max(d, 0.0)) * albedo(), 1.0);\n"
     "#elif defined(SHADE_TEXTURE)\n"
     "    frag_color = vec4(albedo(), 1.0);\n"
+    "#elif defined(SHADE_ID)\n"
+    "    uint id = uint(gl_PrimitiveID) + 1u;\n"
+    "    frag_color = vec4(uvec4(id >> 16, id >> 8, id, 255u) & 255u) / 255.0;\n"
     "#endif\n"
     "}\n";
 
@@ -89,6 +92,7 @@ static const char *shade_define(sr_shade shade)
     switch (shade) {
     case SR_SHADE_LAMBERT: return "#define SHADE_LAMBERT\n";
     case SR_SHADE_TEXTURE: return "#define SHADE_TEXTURE\n";
+    case SR_SHADE_ID:      return "#define SHADE_ID\n";
     default: return "";
     }
 }
@@ -231,8 +235,9 @@ static bool set_fixed_state(bench_gl_scene *g, sr_error *err)
 
 bool bench_gl_scene_create(bench_gl_scene **out, const sr_bench_scene *s, sr_error *err)
 {
-    if (s->shade != SR_SHADE_LAMBERT && s->shade != SR_SHADE_TEXTURE && s->shade != SR_SHADE_DEPTH)
-        return sr_error_set(err, "scene %s: bench-gl has shaders for lambert, texture and depth only", s->name);
+    if (s->shade != SR_SHADE_LAMBERT && s->shade != SR_SHADE_TEXTURE && s->shade != SR_SHADE_DEPTH &&
+        s->shade != SR_SHADE_ID)
+        return sr_error_set(err, "scene %s: bench-gl has shaders for lambert, texture, depth and id only", s->name);
     bench_gl_scene *g = calloc(1, sizeof *g);
     if (!g)
         return sr_error_set(err, "out of memory for the GL scene");

@@ -26,6 +26,14 @@ sr_dmat4 sr_dmat4_from_mat4(const mat4 a)
     return d;
 }
 
+sr_dmat4 sr_dmat4_desc_matrix(const sr_dmat4 *d, const mat4 f)
+{
+    if (!sr_dmat4_is_zero(d))
+        return *d;
+    sr_dmat4 m = sr_dmat4_from_mat4(f);
+    return sr_dmat4_is_zero(&m) ? sr_dmat4_identity() : m;
+}
+
 sr_dmat4 sr_dmat4_mul(const sr_dmat4 *a, const sr_dmat4 *b)
 {
     sr_dmat4 p;

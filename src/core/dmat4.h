@@ -18,6 +18,9 @@
 sr_dmat4 sr_dmat4_identity(void);
 bool sr_dmat4_is_zero(const sr_dmat4 *a);
 sr_dmat4 sr_dmat4_from_mat4(const mat4 a);
+/* A draw desc's matrix in double: d when it is not all zero, else f, an
+ * all-zero f being the identity (sr_draw_desc's defaults). */
+sr_dmat4 sr_dmat4_desc_matrix(const sr_dmat4 *d, const mat4 f);
 /* a · b */
 sr_dmat4 sr_dmat4_mul(const sr_dmat4 *a, const sr_dmat4 *b);
 /* a · T(t): a applied after a translation by t */

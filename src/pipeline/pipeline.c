@@ -11,30 +11,6 @@
 #include "core/dmat4.h"
 #include "raster.h"
 
-static bool matrix_is_zero(const mat4 m)
-{
-    static const mat4 zero;
-    return memcmp(m, zero, sizeof zero) == 0;
-}
-
-static void matrix_or_identity(const mat4 m, mat4 out)
-{
-    if (matrix_is_zero(m))
-        glm_mat4_identity(out);
-    else
-        glm_mat4_copy((vec4 *)m, out);
-}
-
-/* The double matrix when given, else the float one (zero: the identity). */
-static sr_dmat4 matrix_d(const sr_dmat4 *d, const mat4 f)
-{
-    if (!sr_dmat4_is_zero(d))
-        return *d;
-    mat4 m;
-    matrix_or_identity(f, m);
-    return sr_dmat4_from_mat4(m);
-}
-
 static int subpixel_bits(const sr_draw_study *d)
 {
     return d->subpixel_bits ? d->subpixel_bits : SR_SUBPIXEL_BITS;
@@ -148,8 +124,8 @@ static void make_transform(const sr_draw_state *st, sr_vertex_transform *xf)
 {
     const sr_draw_desc *d = st->desc;
     static const sr_dmat4 not_given;
-    sr_dmat4 world = matrix_d(&d->world_d, d->world), view = matrix_d(&d->view_d, d->view);
-    sr_dmat4 projection = matrix_d(&not_given, d->projection);
+    sr_dmat4 world = sr_dmat4_desc_matrix(&d->world_d, d->world), view = sr_dmat4_desc_matrix(&d->view_d, d->view);
+    sr_dmat4 projection = sr_dmat4_desc_matrix(&not_given, d->projection);
     /* A guard band clips x and y at ±G·w: squeeze x and y by 1/G here, clip
      * at ±w as always, and let the viewport scale them back. */
     for (int col = 0; col < 4; col++) {

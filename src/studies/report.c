@@ -39,25 +39,53 @@ static const knob KNOBS[SR_REPORT_KNOBS] = {
 static const knob REFERENCE = { "reference: 16 bits, exact clip, reversed z", REFERENCE_BITS, SR_CLIP_EXACT, 0.0f,
                                 true, 1 };
 
-/* The frames of a scene: its path's key frames, or its one camera. */
-static int scene_frames(const sr_bench_scene *s)
+int sr_report_scene_frames(const sr_bench_scene *s)
 {
     return s->path.count ? (s->path.count < MAX_PATH_FRAMES ? s->path.count : MAX_PATH_FRAMES) : 1;
+}
+
+/* The desc of knob k's draw of frame f into fb (its size and depth convention set). */
+static sr_draw_desc knob_desc(const sr_bench_scene *s, const knob *k, int f, sr_framebuffer *fb, sr_workspace *ws,
+                              sr_draw_study *study)
+{
+    sr_camera cam;
+    sr_bench_scene_camera(s, f, sr_report_scene_frames(s), &cam);
+    cam.reversed_z = k->reversed;
+    fb->reversed_z = k->reversed;
+    *study = (sr_draw_study){ .subpixel_bits = k->subpixel_bits, .clip_precision = k->clip, .guard_band = k->guard };
+    sr_draw_desc desc = { .mesh = &s->mesh, .shade = SR_SHADE_ID, .threads = k->threads, .workspace = ws,
+                          .study = study };
+    sr_camera_view(&cam, desc.view);
+    sr_camera_projection(&cam, (float)fb->width / (float)fb->height, desc.projection);
+    return desc;
 }
 
 static bool draw_ids(const sr_bench_scene *s, const knob *k, int f, sr_framebuffer *fb, sr_workspace *ws,
                      double *ms, sr_error *err)
 {
-    sr_camera cam;
-    sr_bench_scene_camera(s, f, scene_frames(s), &cam);
-    cam.reversed_z = k->reversed;
-    fb->reversed_z = k->reversed;
-    sr_draw_desc desc = { .mesh = &s->mesh, .shade = SR_SHADE_ID, .threads = k->threads, .workspace = ws,
-                          .study = &(sr_draw_study){ .subpixel_bits = k->subpixel_bits, .clip_precision = k->clip,
-                                                            .guard_band = k->guard } };
-    sr_camera_view(&cam, desc.view);
-    sr_camera_projection(&cam, (float)fb->width / (float)fb->height, desc.projection);
+    sr_draw_study study;
+    sr_draw_desc desc = knob_desc(s, k, f, fb, ws, &study);
     return sr_study_draw_frame(fb, &desc, NULL, ms, err);
+}
+
+/* The truth of frame f for the standard (0) and the reversed (1) projection. */
+typedef struct frame_truth {
+    sr_truth_image image[2];
+    mat4 projection[2];
+} frame_truth;
+
+static bool render_truths(const sr_bench_scene *s, int f, sr_framebuffer *fb, frame_truth *out, sr_error *err)
+{
+    bool ok = true;
+    for (int reversed = 0; ok && reversed < 2; reversed++) {
+        knob k = REFERENCE;
+        k.reversed = reversed;
+        sr_draw_study study;
+        sr_draw_desc desc = knob_desc(s, &k, f, fb, NULL, &study);
+        glm_mat4_copy(desc.projection, out->projection[reversed]);
+        ok = sr_truth_render(&desc, s->width, s->height, &out->image[reversed], err);
+    }
+    return ok;
 }
 
 static double standard_depth(const sr_framebuffer *fb, size_t i)
@@ -81,22 +109,26 @@ static void compare(const sr_framebuffer *ref, const sr_framebuffer *fb, uint64_
 
 /* Times `frames` draws of every scene frame with knob k; compares the last
  * draw of each frame with its reference. */
-static bool measure_knob(const sr_bench_scene *s, const sr_framebuffer *refs, const knob *k, int frames,
-                         sr_report_point *out, sr_error *err)
+static bool measure_knob(const sr_bench_scene *s, const sr_framebuffer *refs, const frame_truth *truths,
+                         const knob *k, int frames, sr_report_point *out, sr_error *err)
 {
-    int scene_n = scene_frames(s), timed = scene_n * frames;
+    int scene_n = sr_report_scene_frames(s), timed = scene_n * frames;
     sr_framebuffer fb;
     sr_workspace *ws = sr_workspace_create();
     double *ms = malloc((size_t)timed * sizeof *ms);
     bool ok = ws && ms && sr_framebuffer_create(&fb, s->width, s->height, err);
     uint64_t differ = 0;
+    sr_truth_tally tally = { 0 };
     *out = (sr_report_point){ .knob = k->name };
     for (int f = 0; ok && f < scene_n; f++) {
         for (int r = 0; ok && r < frames; r++)
             ok = draw_ids(s, k, f, &fb, ws, &ms[f * frames + r], err);
         if (ok)
             compare(&refs[f], &fb, &differ, &out->depth_error);
+        ok = ok && sr_truth_tally_add(&tally, &truths[f].image[k->reversed], truths[f].projection[k->reversed], &fb,
+                                      err);
     }
+    out->truth = sr_truth_tally_finish(&tally);
     if (ok) {
         double min;
         sr_study_median_min(ms, timed, &out->ms, &min);
@@ -113,23 +145,27 @@ static bool measure_knob(const sr_bench_scene *s, const sr_framebuffer *refs, co
 
 static bool measure_scene(const sr_bench_scene *s, int frames, sr_report_scene *out, sr_error *err)
 {
-    int n = scene_frames(s);
+    int n = sr_report_scene_frames(s);
     sr_framebuffer refs[MAX_PATH_FRAMES] = { 0 };
+    frame_truth truths[MAX_PATH_FRAMES] = { 0 };
     bool ok = true;
     for (int f = 0; ok && f < n; f++) {
         double ms;
         ok = sr_framebuffer_create(&refs[f], s->width, s->height, err) &&
-             draw_ids(s, &REFERENCE, f, &refs[f], NULL, &ms, err);
+             render_truths(s, f, &refs[f], &truths[f], err) && draw_ids(s, &REFERENCE, f, &refs[f], NULL, &ms, err);
     }
     *out = (sr_report_scene){ .name = s->name, .what = s->what, .frames = n };
     for (int k = 0; ok && k < SR_REPORT_KNOBS; k++) {
-        ok = measure_knob(s, refs, &KNOBS[k], frames, &out->points[k], err);
+        ok = measure_knob(s, refs, truths, &KNOBS[k], frames, &out->points[k], err);
         if (ok)
-            fprintf(stderr, "report: %s, %s: %.2f ms, %.3g%% ids differ\n", s->name, KNOBS[k].name,
-                    out->points[k].ms, 100.0 * out->points[k].id_error);
+            fprintf(stderr, "report: %s, %s: %.2f ms, %.3g%% ids differ, |z - truth| max %.3g\n", s->name,
+                    KNOBS[k].name, out->points[k].ms, 100.0 * out->points[k].id_error, out->points[k].truth.z_max);
     }
-    for (int f = 0; f < n; f++)
+    for (int f = 0; f < n; f++) {
         sr_framebuffer_destroy(&refs[f]);
+        sr_truth_image_free(&truths[f].image[0]);
+        sr_truth_image_free(&truths[f].image[1]);
+    }
     return ok;
 }
 

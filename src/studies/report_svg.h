@@ -6,6 +6,7 @@
 #include <stdbool.h>
 
 #include "report_simd.h"
+#include "report_truth.h"
 #include "softrast_private.h"
 
 #define SR_REPORT_KNOBS 9
@@ -16,6 +17,7 @@ typedef struct sr_report_point {
     double ms;          /* median per frame */
     double id_error;    /* fraction of pixels whose triangle id differs from the reference */
     double depth_error; /* largest depth difference where both drew */
+    sr_truth_errors truth;
 } sr_report_point;
 
 typedef struct sr_report_scene {
