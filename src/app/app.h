@@ -4,7 +4,19 @@
 
 #include <stdio.h>
 
+#include "scene_setup.h"
 #include "softrast_private.h"
+
+/* A subcommand: its command line parsed into its job (false: err says why;
+ * *help: the help was printed), then run on a scene the runner frees. */
+typedef struct sr_app_command {
+    bool (*parse)(void *job, int argc, char **argv, bool *help, sr_error *err);
+    bool (*run)(void *job, sr_scene *scene, sr_error *err);
+} sr_app_command;
+
+/* Parses and runs, and turns the outcome into the exit status: 0, or 1
+ * after one "softrast: error: …" line. */
+int sr_app_command_run(const sr_app_command *cmd, void *job, int argc, char **argv);
 
 int sr_app_render(int argc, char **argv);
 int sr_app_view(int argc, char **argv);

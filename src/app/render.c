@@ -36,8 +36,9 @@ static int is_stdout(const char *path)
     return path && strcmp(path, "-") == 0;
 }
 
-static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_error *err)
+static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
 {
+    render_job *job = j;
     const sr_option own[] = {
         { "--out", SR_OPT_STRING, &job->out_path, "FILE.png", "write the color image (8-bit RGB)" },
         { "--depth", SR_OPT_STRING, &job->depth_path, "FILE.pfm", "write the raw float32 depth buffer (PFM)" },
@@ -46,7 +47,7 @@ static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_err
         { "--stats", SR_OPT_FLAG, &job->stats, NULL, "print one JSON line of per-frame statistics" },
         { 0 },
     };
-    if (!sr_scene_setup_parse(&job->scene, own, USAGE, argc, argv, help, err))
+    if (!sr_scene_setup_parse(&job->scene, own, NULL, USAGE, argc, argv, help, err))
         return false;
     if (!*help && !job->scene.mesh_path)
         return sr_error_set(err, "render needs one MESH.obj (see softrast render --help)");
@@ -147,8 +148,9 @@ static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_
     printf("}\n");
 }
 
-static bool render(render_job *job, sr_scene *scene, sr_error *err)
+static bool render(void *j, sr_scene *scene, sr_error *err)
 {
+    render_job *job = j;
     sr_draw_desc desc;
     sr_draw_study study;
     sr_stats stats = { 0 };
@@ -168,15 +170,6 @@ static bool render(render_job *job, sr_scene *scene, sr_error *err)
 int sr_app_render(int argc, char **argv)
 {
     render_job job;
-    sr_scene scene = { 0 };
-    sr_error err = { { 0 } };
-    bool help = false;
     job_defaults(&job);
-    if (!parse_job(&job, argc, argv, &help, &err))
-        return sr_app_fail(err.message);
-    if (help)
-        return 0;
-    bool ok = render(&job, &scene, &err);
-    sr_scene_free(&scene);
-    return ok ? 0 : sr_app_fail(err.message);
+    return sr_app_command_run(&(sr_app_command){ parse_job, render }, &job, argc, argv);
 }

@@ -51,8 +51,16 @@ static void scene_options(sr_scene_setup *s, sr_option *table)
     memcpy(table, entries, sizeof entries);
 }
 
-bool sr_scene_setup_parse(sr_scene_setup *s, const sr_option *own, const char *usage, int argc, char **argv,
-                          bool *help, sr_error *err)
+static bool listed(const char *name, const char *const *names)
+{
+    for (; names && *names; names++)
+        if (strcmp(name, *names) == 0)
+            return true;
+    return false;
+}
+
+bool sr_scene_setup_parse(sr_scene_setup *s, const sr_option *own, const char *const *skip, const char *usage,
+                          int argc, char **argv, bool *help, sr_error *err)
 {
     size_t own_count = 1; /* the { 0 } */
     while (own[own_count - 1].name)
@@ -60,8 +68,13 @@ bool sr_scene_setup_parse(sr_scene_setup *s, const sr_option *own, const char *u
     sr_option *table = malloc((SCENE_OPTION_COUNT + own_count) * sizeof *table);
     if (!table)
         return sr_error_set(err, "out of memory for the option table");
-    scene_options(s, table);
-    memcpy(&table[SCENE_OPTION_COUNT], own, own_count * sizeof *own);
+    sr_option shared[SCENE_OPTION_COUNT];
+    scene_options(s, shared);
+    size_t n = 0;
+    for (size_t i = 0; i < SCENE_OPTION_COUNT; i++)
+        if (!listed(shared[i].name, skip))
+            table[n++] = shared[i];
+    memcpy(&table[n], own, own_count * sizeof *own);
     int positional = 0;
     bool ok = sr_options_parse(table, usage, argc, argv, 2, &s->mesh_path, 1, &positional, help, err);
     free(table);

@@ -38,11 +38,12 @@ void sr_scene_setup_defaults(sr_scene_setup *s);
 /* The machine's cores (at least 1, at most SR_MAX_THREAD_OPTION). */
 int sr_scene_default_threads(void);
 
-/* Parses a render or view command line, argv[2..]: the shared scene options
- * into s, then `own` (the subcommand's, ended by { 0 }); one positional
- * MESH.obj goes to s->mesh_path. */
-bool sr_scene_setup_parse(sr_scene_setup *s, const sr_option *own, const char *usage, int argc, char **argv,
-                          bool *help, sr_error *err);
+/* Parses a subcommand's command line, argv[2..]: the shared scene options
+ * into s, but those named in `skip` (NULL-terminated, or NULL), then `own`
+ * (the subcommand's, ended by { 0 }); one positional MESH goes to
+ * s->mesh_path. */
+bool sr_scene_setup_parse(sr_scene_setup *s, const sr_option *own, const char *const *skip, const char *usage,
+                          int argc, char **argv, bool *help, sr_error *err);
 
 /* Loads the mesh, then the texture and normals: all of them when `everything`
  * (the viewer switches modes), else only what s->shade reads. Creates the

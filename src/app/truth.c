@@ -18,34 +18,20 @@ static const char USAGE[] =
     "z_ndc, with render's camera and conventions (pixel centres, top-left rule, culling,\n"
     "depth LESS, near and far planes). Perspective cameras only.";
 
-/* The shared options a truth image depends on: the camera, the mesh's turn and the cull. */
-static bool truth_reads(const char *name)
-{
-    static const char *const ignored[] = { "--ortho", "--shade", "--texture", "--filter", "--threads", "--simd" };
-    for (size_t i = 0; i < sizeof ignored / sizeof *ignored; i++)
-        if (strcmp(name, ignored[i]) == 0)
-            return false;
-    return true;
-}
+/* What the truth image does not depend on. */
+static const char *const IGNORED[] = { "--ortho", "--shade", "--texture", "--filter", "--threads", "--simd", NULL };
 
-static bool parse_job(truth_job *job, int argc, char **argv, bool *help, sr_error *err)
+static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
 {
+    truth_job *job = j;
     const sr_option own[] = {
         { "--out-ids", SR_OPT_STRING, &job->ids_path, "FILE.png", "write the nearest triangle's id + 1 as 0xRRGGBB (0: none)" },
         { "--out-depth", SR_OPT_STRING, &job->depth_path, "FILE.pfm", "write its z_ndc as float32 (the clear value where none)" },
         { 0 },
     };
-    sr_option shared[SR_SCENE_OPTION_COUNT], table[SR_SCENE_OPTION_COUNT + sizeof own / sizeof *own];
-    sr_scene_setup_options(&job->scene, shared);
-    int n = 0;
-    for (int i = 0; i < SR_SCENE_OPTION_COUNT; i++)
-        if (truth_reads(shared[i].name))
-            table[n++] = shared[i];
-    memcpy(&table[n], own, sizeof own);
-    int positional = 0;
-    if (!sr_options_parse(table, USAGE, argc, argv, 2, &job->scene.mesh_path, 1, &positional, help, err))
+    if (!sr_scene_setup_parse(&job->scene, own, IGNORED, USAGE, argc, argv, help, err))
         return false;
-    if (!*help && positional != 1)
+    if (!*help && !job->scene.mesh_path)
         return sr_error_set(err, "truth needs one MESH (see softrast truth --help)");
     return true;
 }
@@ -64,8 +50,9 @@ static bool write_outputs(const truth_job *job, const sr_truth_image *t, const m
     return ok;
 }
 
-static bool run(truth_job *job, sr_scene *scene, sr_error *err)
+static bool run(void *j, sr_scene *scene, sr_error *err)
 {
+    truth_job *job = j;
     sr_draw_desc desc;
     sr_draw_study study;
     sr_truth_image truth;
@@ -84,15 +71,6 @@ static bool run(truth_job *job, sr_scene *scene, sr_error *err)
 int sr_app_truth(int argc, char **argv)
 {
     truth_job job = { 0 };
-    sr_scene scene = { 0 };
-    sr_error err = { { 0 } };
-    bool help = false;
     sr_scene_setup_defaults(&job.scene);
-    if (!parse_job(&job, argc, argv, &help, &err))
-        return sr_app_fail(err.message);
-    if (help)
-        return 0;
-    bool ok = run(&job, &scene, &err);
-    sr_scene_free(&scene);
-    return ok ? 0 : sr_app_fail(err.message);
+    return sr_app_command_run(&(sr_app_command){ parse_job, run }, &job, argc, argv);
 }

@@ -39,8 +39,9 @@ static const char USAGE[] =
     "Press F1 in the window for the keys. With --script the camera follows a path instead;\n"
     "--shots saves every frame, and works with no display (SDL_VIDEODRIVER=offscreen, or --no-window).";
 
-static bool parse_job(view_job *job, int argc, char **argv, bool *help, sr_error *err)
+static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
 {
+    view_job *job = j;
     const sr_option own[] = {
         { "--script", SR_OPT_STRING, &job->script_path, "FILE", "fly the key frames in FILE (one line each: eye target up fov near far)" },
         { "--frames", SR_OPT_INT, &job->frames, "N", "frames of the scripted flight (default: one per key frame)", 1, MAX_FRAMES },
@@ -51,7 +52,7 @@ static bool parse_job(view_job *job, int argc, char **argv, bool *help, sr_error
         { "--overlays", SR_OPT_FLAG, &job->overlays, NULL, "draw the status line, help and wireframe on scripted frames too" },
         { 0 },
     };
-    if (!sr_scene_setup_parse(&job->scene, own, USAGE, argc, argv, help, err))
+    if (!sr_scene_setup_parse(&job->scene, own, NULL, USAGE, argc, argv, help, err))
         return false;
     if (!job->script_path && (job->shots_dir || job->grab_dir || job->frames || job->no_window || job->overlays))
         return sr_error_set(err, "--frames, --shots, --grab, --no-window and --overlays go with --script");
@@ -277,8 +278,12 @@ static bool start_video(sr_error *err)
                              "without a window: --no-window", SDL_GetError());
 }
 
-static bool run(view_job *job, sr_error *err)
+/* The viewer keeps its scene in its own sr_viewer, not the runner's. */
+static bool run(void *j, sr_scene *unused, sr_error *err)
 {
+    (void)unused;
+    view_job *job = j;
+    use_default_scene(job);
     sr_viewer v;
     window w = { 0 };
     bool windowed = !job->no_window;
@@ -299,13 +304,6 @@ static bool run(view_job *job, sr_error *err)
 int sr_app_view(int argc, char **argv)
 {
     view_job job = { 0 };
-    sr_error err = { { 0 } };
-    bool help = false;
     sr_scene_setup_defaults(&job.scene);
-    if (!parse_job(&job, argc, argv, &help, &err))
-        return sr_app_fail(err.message);
-    if (help)
-        return 0;
-    use_default_scene(&job);
-    return run(&job, &err) ? 0 : sr_app_fail(err.message);
+    return sr_app_command_run(&(sr_app_command){ parse_job, run }, &job, argc, argv);
 }
