@@ -2,6 +2,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "load_progress.h"
 #include "scene_setup.h"
 
 const char *const SR_SHADE_NAMES[] = { "lambert", "id", "color", "normal", "texture", "depth", NULL };
@@ -94,7 +95,7 @@ static bool shade_uses_normals(sr_shade shade)
 bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err)
 {
     *scene = (sr_scene){ 0 };
-    if (!sr_mesh_load(&scene->mesh, &scene->texture, s->mesh_path, err))
+    if (!sr_app_load_mesh(s->mesh_path, &scene->mesh, &scene->texture, SR_APP_LOAD_QUIET_MS, err))
         return false;
     bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);
     if (s->texture_path || !wants_texture)
