@@ -191,8 +191,9 @@ static bool fly_script(const view_job *job, sr_viewer *v, window *w, sr_error *e
         return false;
     int frames = job->frames ? job->frames : script.count;
     int first = job->range_set ? job->range[0] : 0, end = job->range_set ? job->range[1] : frames;
-    bool ok = end <= frames || sr_error_set(err, "--frame-range %d:%d ends past the flight's %d frames (B is at most "
-                                                 "%d)", first, end, frames, frames);
+    bool ok = end <= frames ||
+              sr_error_set(err, "--frame-range %d:%d ends past the flight's %d frames (B is at most %d)", first, end,
+                           frames, frames);
     for (int f = first; ok && f < end && !v->quit; f++) {
         char grab[1024];
         SDL_Event e;
