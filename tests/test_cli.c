@@ -297,6 +297,24 @@ Test(cli, empty_key_names_are_refused)
     assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --keys F2,", "--keys: an empty key name");
 }
 
+/* A shard of a flight is A:B, whole numbers with A < B, and B no more than
+ * the flight's frames (--frames, else one per key frame: two here). */
+Test(cli, frame_ranges_outside_the_flight_are_refused)
+{
+    write_text(temp_dir, "fly.txt", "0 0 -3  0 0 0  0 1 0  60 0.1 100\n0 0 -4  0 0 0  0 1 0  60 0.1 100\n");
+    const char *bad[] = { "2:1", "1:1", "-1:1", "0:x", "0", "0:1:2", ":1", "0:100001" };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char args[256];
+        snprintf(args, sizeof args, "view %%s/tri.obj --no-window --script %%s/fly.txt --frame-range %s", bad[i]);
+        assert_one_error(args, "for --frame-range: expected A:B");
+    }
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --frame-range 1:3",
+                     "--frame-range 1:3 ends past the flight's 2 frames");
+    assert_one_error("view %s/tri.obj --no-window --script %s/fly.txt --frames 4 --frame-range 0:5",
+                     "--frame-range 0:5 ends past the flight's 4 frames");
+    assert_one_error("view %s/tri.obj --frame-range 0:1", "go with --script");
+}
+
 /* Vertices at ±2e19: framing squared the bounds' half-diagonal in float
  * ("camera eye, target and up must be finite"), the projection multiplied
  * near by far in float and the normals crossed edges in float, each past

@@ -69,11 +69,22 @@ static bool parse_vec3(const char *text, float *out)
     return true;
 }
 
-static bool parse_size(const char *text, double lo, double hi, int *out)
+/* "A<sep>B", two whole numbers each within [lo, hi]. */
+static bool parse_pair(const char *text, char sep, double lo, double hi, int *out)
 {
     char buf[64], *f[2];
-    return split(text, 'x', buf, sizeof buf, f, 2) == 2 && parse_long(f[0], lo, hi, &out[0]) &&
+    return split(text, sep, buf, sizeof buf, f, 2) == 2 && parse_long(f[0], lo, hi, &out[0]) &&
            parse_long(f[1], lo, hi, &out[1]);
+}
+
+static bool parse_range(const char *text, double lo, double hi, int *out)
+{
+    int pair[2];
+    if (!parse_pair(text, ':', lo, hi, pair) || pair[0] >= pair[1])
+        return false;
+    out[0] = pair[0];
+    out[1] = pair[1];
+    return true;
 }
 
 static bool parse_choice(const char *text, const char *const *choices, int *out)
@@ -99,6 +110,9 @@ static void describe_expected(const sr_option *o, char *buf, size_t cap)
         snprintf(buf, cap, "three numbers X,Y,Z, each in [%g, %g]", -VEC3_LIMIT, VEC3_LIMIT);
         break;
     case SR_OPT_SIZE:  snprintf(buf, cap, "WxH with each side in [%g, %g]", o->lo, o->hi); break;
+    case SR_OPT_RANGE:
+        snprintf(buf, cap, "A:B, whole numbers with %g <= A < B <= %g (A up to, not including, B)", o->lo, o->hi);
+        break;
     case SR_OPT_CHOICE: {
         size_t used = (size_t)snprintf(buf, cap, "one of");
         for (int i = 0; o->choices[i] && used < cap; i++)
@@ -125,7 +139,8 @@ static bool apply_value(const sr_option *o, const char *text)
     case SR_OPT_INT:    return parse_long(text, o->lo, o->hi, o->target);
     case SR_OPT_VEC3:   return parse_vec3(text, o->target);
     case SR_OPT_DVEC3:  return parse_dvec3(text, o->target);
-    case SR_OPT_SIZE:   return parse_size(text, o->lo, o->hi, o->target);
+    case SR_OPT_SIZE:   return parse_pair(text, 'x', o->lo, o->hi, o->target);
+    case SR_OPT_RANGE:  return parse_range(text, o->lo, o->hi, o->target);
     case SR_OPT_CHOICE: return parse_choice(text, o->choices, o->target);
     case SR_OPT_STRING:
         *(const char **)o->target = text;

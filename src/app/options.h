@@ -20,6 +20,7 @@ typedef enum sr_option_kind {
     SR_OPT_VEC3,   /* float[3], "X,Y,Z" */
     SR_OPT_DVEC3,  /* double[3], "X,Y,Z": a point kept to double precision */
     SR_OPT_SIZE,   /* int[2], "WxH", each within [lo, hi] */
+    SR_OPT_RANGE,  /* int[2], "A:B", lo <= A < B <= hi: the half-open range [A, B) */
     SR_OPT_STRING, /* const char ** */
     SR_OPT_FLAG,   /* bool *, takes no value */
     SR_OPT_CHOICE  /* int *, index into choices */

@@ -22,7 +22,8 @@ typedef struct view_job {
     sr_scene_setup scene;
     const char *script_path, *shots_dir, *grab_dir, *keys;
     int frames;
-    bool no_window, overlays;
+    int range[2]; /* --frame-range A:B: frames A up to, not including, B */
+    bool range_set, no_window, overlays;
 } view_job;
 
 /* The window and what presents the framebuffer in it (no GPU rendering of
@@ -45,6 +46,7 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
     const sr_option own[] = {
         { "--script", SR_OPT_STRING, &job->script_path, "FILE", "fly the key frames in FILE (one line each: eye target up fov near far)" },
         { "--frames", SR_OPT_INT, &job->frames, "N", "frames of the scripted flight (default: one per key frame)", 1, MAX_FRAMES },
+        { "--frame-range", SR_OPT_RANGE, job->range, "A:B", "fly only frames A up to, not including, B (a shard; files keep their global frame numbers)", 0, MAX_FRAMES, .seen = &job->range_set },
         { "--shots", SR_OPT_STRING, &job->shots_dir, "DIR", "save each scripted frame as DIR/frame-NNNN.png and .pfm" },
         { "--grab", SR_OPT_STRING, &job->grab_dir, "DIR", "save what the window shows of each scripted frame as DIR/window-NNNN.png" },
         { "--no-window", SR_OPT_FLAG, &job->no_window, NULL, "scripted flight without opening a window" },
@@ -54,8 +56,10 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
     };
     if (!sr_scene_setup_parse(&job->scene, own, NULL, USAGE, argc, argv, help, err))
         return false;
-    if (!job->script_path && (job->shots_dir || job->grab_dir || job->frames || job->no_window || job->overlays))
-        return sr_error_set(err, "--frames, --shots, --grab, --no-window and --overlays go with --script");
+    if (!job->script_path &&
+        (job->shots_dir || job->grab_dir || job->frames || job->range_set || job->no_window || job->overlays))
+        return sr_error_set(err,
+                            "--frames, --frame-range, --shots, --grab, --no-window and --overlays go with --script");
     if (job->grab_dir && job->no_window)
         return sr_error_set(err, "--grab reads the window back, so it cannot go with --no-window");
     return true;
@@ -187,8 +191,11 @@ static bool fly_script(const view_job *job, sr_viewer *v, window *w, sr_error *e
     if (!sr_flight_load(&script, job->script_path, err))
         return false;
     int frames = job->frames ? job->frames : script.count;
-    bool ok = true;
-    for (int f = 0; ok && f < frames && !v->quit; f++) {
+    int first = job->range_set ? job->range[0] : 0, end = job->range_set ? job->range[1] : frames;
+    bool ok = end <= frames ||
+              sr_error_set(err, "--frame-range %d:%d ends past the flight's %d frames (B is at most %d)", first, end,
+                           frames, frames);
+    for (int f = first; ok && f < end && !v->quit; f++) {
         char grab[1024];
         SDL_Event e;
         while (w->window && SDL_PollEvent(&e))
