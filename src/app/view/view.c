@@ -1,10 +1,12 @@
 /* softrast view — the fly-through window, and scripted flights. */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "app/app.h"
 #include "scene/flight.h"
+#include "studies/data.h"
 #include "softrast_private.h"
 #include "viewer.h"
 
@@ -60,11 +62,14 @@ static bool parse_job(view_job *job, int argc, char **argv, bool *help, sr_error
     return true;
 }
 
-static void use_default_scene(view_job *job)
+/* With no MESH, the room from the program's data (studies/data.h), into path. */
+static bool use_default_scene(view_job *job, char *path, size_t cap, sr_error *err)
 {
     if (job->scene.mesh_path)
-        return;
-    job->scene.mesh_path = DEFAULT_SCENE;
+        return true;
+    if (!sr_data_find(DEFAULT_SCENE, path, cap, err))
+        return false;
+    job->scene.mesh_path = path;
     if (!job->scene.eye_set && !job->scene.target_set) {
         for (int k = 0; k < 3; k++) {
             job->scene.eye[k] = ROOM_SPAWN.eye[k];
@@ -73,6 +78,7 @@ static void use_default_scene(view_job *job)
         job->scene.camera.fov_deg = ROOM_SPAWN.fov_deg;
         job->scene.eye_set = job->scene.target_set = true;
     }
+    return true;
 }
 
 static void window_close(window *w)
@@ -306,6 +312,6 @@ int sr_app_view(int argc, char **argv)
         return sr_app_fail(err.message);
     if (help)
         return 0;
-    use_default_scene(&job);
-    return run(&job, &err) ? 0 : sr_app_fail(err.message);
+    char scene_path[PATH_MAX];
+    return use_default_scene(&job, scene_path, sizeof scene_path, &err) && run(&job, &err) ? 0 : sr_app_fail(err.message);
 }
