@@ -327,3 +327,31 @@ Test(cli, missing_report_dir_fails_before_measuring)
     assert_one_error("bench --stability --report-dir %s/none", "none: cannot write the report there");
     assert_one_error("bench --report --report-dir %s/tri.obj", "tri.obj: cannot write the report there: not a directory");
 }
+
+/* A model shared without its textures used to stop the render at the
+ * missing map_Kd; now it warns once, naming the file, and draws lit gray.
+ * A texture named with --texture must still load. */
+Test(cli, missing_or_unreadable_map_kd_warns_and_draws_untextured)
+{
+    write_text(temp_dir, "m.mtl", "newmtl skin\nmap_Kd gone.png\nnewmtl cloth\nmap_Kd junk.png\n");
+    write_text(temp_dir, "junk.png", "not a png at all");
+    static const char *const materials[] = { "skin", "cloth" }, *const files[] = { "gone.png", "junk.png" };
+    for (int i = 0; i < 2; i++) {
+        char obj[256], args[1024], out[256];
+        snprintf(obj, sizeof obj, "mtllib m.mtl\nusemtl %s\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                 "f 1/1 2/2 3/3\n", materials[i]);
+        write_text(temp_dir, "m.obj", obj);
+        snprintf(args, sizeof args, "render %s/m.obj --cull none --size 32x32 --stats --out %s", temp_dir,
+                 temp_path(out, sizeof out, "m.png"));
+        run_result r = run_softrast(temp_dir, args);
+        cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+        cr_expect_eq(count_lines(r.err), 1, "stderr: %s", r.err);
+        cr_expect_eq(strncmp(r.err, "softrast: warning: ", 19), 0, "stderr: %s", r.err);
+        cr_expect_not_null(strstr(r.err, files[i]), "stderr: %s", r.err);
+        cr_expect_not_null(strstr(r.err, "untextured"), "stderr: %s", r.err);
+        cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": null"), "%s", r.out);
+        cr_expect(access(out, F_OK) == 0, "no image written");
+        snprintf(args, sizeof args, "render %s/m.obj --texture %s/%s", temp_dir, temp_dir, files[i]);
+        assert_one_error(args, files[i]);
+    }
+}
