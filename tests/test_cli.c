@@ -261,11 +261,12 @@ Test(cli, nothing_drawn_says_why)
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cr_assert_eq(count_lines(r.err), 1, "stderr: %s", r.err);
     const char *start = "softrast: warning: nothing drawn: every triangle lies outside the view volume "
-                        "(or is non-finite) (1 triangles: 1 rejected outside";
+                        "(or is non-finite) (1 triangles: 1 rejected outside (far 1), 0 of them non-finite";
     cr_expect_eq(strncmp(r.err, start, strlen(start)), 0, "stderr: %s", r.err);
     cr_expect_not_null(strstr(r.err, "the eye is at 0,0,-500 looking at 0,0,0 with near 0.1, far 100"), "%s", r.err);
     cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": \"every triangle lies outside the view volume "
-                                     "(or is non-finite)\"}"),
+                                     "(or is non-finite)\", \"rejected_by_plane\": {\"near\": 0, \"far\": 1, "
+                                     "\"left\": 0, \"right\": 0, \"bottom\": 0, \"top\": 0}"),
                        "%s", r.out);
 }
 
