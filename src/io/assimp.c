@@ -18,10 +18,12 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "isolated_load.h"
 #include "mesh_loaders.h"
 #include "mesh_origin.h"
@@ -210,8 +212,15 @@ static bool import_here(sr_mesh *mesh, const char *path, sr_error *err)
     return ok;
 }
 
+/* Only a regular file goes to Assimp (core/input_file.h): its reader would
+ * block on a FIFO and read a device without end. */
 bool sr_assimp_load(sr_mesh *mesh, const char *path, unsigned seconds, sr_error *err)
 {
+    const char *why;
+    FILE *f = sr_input_open(path, &why);
+    if (!f)
+        return sr_error_set(err, "%s: cannot open: %s", path, why);
+    fclose(f);
     bool ok = sr_isolated_load(mesh, path, import_here, seconds, err);
     if (ok)
         sr_mesh_update_bounds(mesh);
