@@ -13,7 +13,7 @@ typedef struct render_job {
     sr_scene_setup scene;
     const char *out_path, *depth_path, *depth_png_path;
     int frames;
-    bool stats;
+    bool stats, quiet;
 } render_job;
 
 typedef struct frame_times {
@@ -44,6 +44,7 @@ static bool parse_job(render_job *job, int argc, char **argv, bool *help, sr_err
         { "--depth-png", SR_OPT_STRING, &job->depth_png_path, "FILE.png", "write the depth buffer, remapped to the visible range" },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames, after one untimed warm-up when N > 1 (default 1)", 1, MAX_FRAMES },
         { "--stats", SR_OPT_FLAG, &job->stats, NULL, "print one JSON line of per-frame statistics" },
+        { "--quiet", SR_OPT_FLAG, &job->quiet, NULL, "no summary line on stderr on success (warnings still print)" },
         { 0 },
     };
     if (!sr_scene_setup_parse(&job->scene, own, USAGE, argc, argv, help, err))
@@ -166,6 +167,26 @@ static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_
     printf("}\n");
 }
 
+/* The one line a successful render prints on stderr, stdout being for the
+ * image or the stats: what was written (or that nothing was), the size and
+ * the triangles drawn. */
+static void report_done(const render_job *job, const sr_framebuffer *fb, const sr_stats *s)
+{
+    const char *paths[] = { job->out_path, job->depth_path, job->depth_png_path };
+    char line[3 * SR_ERROR_MAX];
+    int n = snprintf(line, sizeof line, "softrast: "), written = 0;
+    for (size_t i = 0; i < sizeof paths / sizeof *paths; i++)
+        if (paths[i] && n < (int)sizeof line)
+            n += snprintf(line + n, sizeof line - (size_t)n, "%s%s", written++ ? ", " : "wrote ",
+                          is_stdout(paths[i]) ? "stdout" : paths[i]);
+    const char *format = written ? " (%dx%d, %llu triangles drawn)\n"
+                                 : "drew %dx%d (%llu triangles drawn); nothing written: name a file with --out, "
+                                   "--depth or --depth-png\n";
+    if (n < (int)sizeof line)
+        snprintf(line + n, sizeof line - (size_t)n, format, fb->width, fb->height, (unsigned long long)s->drawn);
+    fputs(line, stderr);
+}
+
 static bool render(render_job *job, sr_scene *scene, sr_error *err)
 {
     sr_draw_desc desc;
@@ -181,6 +202,8 @@ static bool render(render_job *job, sr_scene *scene, sr_error *err)
     explain_nothing_drawn(&job->scene, scene, &stats);
     if (job->stats)
         print_stats(job->frames, &times, &stats, study.simd, &scene->mesh);
+    if (!job->quiet)
+        report_done(job, &scene->fb, &stats);
     return true;
 }
 
