@@ -67,6 +67,11 @@ build/san/%.o: %.c | deps
 	@echo "  CC san  $<"
 	@$(CC) $(ALL_CFLAGS) $(SAN) $(STRICT_FP) -c $< -o $@
 
+# Where an installed program's data lives, compiled into the search for it
+# (src/studies/data.h) after the places beside the executable.
+DATA_DIR = $(PREFIX)/share/softrast
+$(patsubst %,%/src/studies/data.o,build build/san): ALL_CFLAGS += -DSR_INSTALL_DATA='"$(DATA_DIR)"'
+
 # The library's objects export only what the public headers mark SR_API.
 $(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden
 
@@ -191,6 +196,8 @@ install: build/softrast $(PUBLIC_LIBS)
 	install -m 755 build/softrast $(DESTDIR)$(PREFIX)/bin/softrast
 	install -m 644 $(PUBLIC_LIBS) $(DESTDIR)$(PREFIX)/lib/
 	install -m 644 include/softrast/*.h $(DESTDIR)$(PREFIX)/include/softrast/
+	install -d $(DESTDIR)$(DATA_DIR)/assets
+	install -m 644 assets/room.obj assets/room.mtl assets/room.png $(DESTDIR)$(DATA_DIR)/assets/
 	for pc in softrast softrast-files; do \
 	  sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' tools/$$pc.pc.in \
 	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/$$pc.pc; done
@@ -215,6 +222,9 @@ test-install:
 	$(CC) -std=c11 -Wall -Wextra -Werror examples/render_obj.c \
 		$$($(INSTALL_PC) --cflags --libs softrast-files) -o $(INSTALL_CHECK)/render_obj
 	$(INSTALL_CHECK)/render_obj assets/cube.obj $(INSTALL_CHECK)/render_obj.png
+	mkdir -p $(INSTALL_CHECK)/shots && cd / && $(INSTALL_CHECK)/bin/softrast view --no-window --script $(CURDIR)/tests/flights/room_walls.txt --frames 1 \
+		--shots $(INSTALL_CHECK)/shots && test -s $(INSTALL_CHECK)/shots/frame-0000.png
+	cd / && $(INSTALL_CHECK)/bin/softrast bench --scene fly --frames 1 >/dev/null
 
 # Speed: the benchmark scenes, and error against time for every accuracy knob.
 bench: all

@@ -227,12 +227,13 @@ Test(cli, view_without_a_display_fails_at_once_naming_the_ways_out)
  * the origin; near and far used to stay 0.1 and 100, so every triangle was
  * rejected and the image was black with exit 0. */
 /* Renders `obj` (text) with the default camera and `options`, expecting
- * success, something drawn and nothing on stderr; returns the run. */
+ * success, something drawn and nothing on stderr (--quiet: no summary line,
+ * so any warning would show); returns the run. */
 static run_result render_draws_something(const char *obj, const char *options)
 {
     write_text(temp_dir, "mesh.obj", obj);
     char args[512];
-    snprintf(args, sizeof args, "render %s/mesh.obj --cull none --stats %s", temp_dir, options);
+    snprintf(args, sizeof args, "render %s/mesh.obj --cull none --stats --quiet %s", temp_dir, options);
     run_result r = run_softrast(temp_dir, args);
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cr_expect_eq(r.err[0], '\0', "stderr: %s", r.err);
@@ -256,16 +257,18 @@ Test(cli, default_camera_draws_a_big_mesh_far_from_the_origin)
 Test(cli, nothing_drawn_says_why)
 {
     char args[256];
-    snprintf(args, sizeof args, "render %s/tri.obj --size 32x32 --eye 0,0,-500 --target 0,0,0 --stats", temp_dir);
+    snprintf(args, sizeof args, "render %s/tri.obj --size 32x32 --eye 0,0,-500 --target 0,0,0 --stats --quiet",
+             temp_dir);
     run_result r = run_softrast(temp_dir, args);
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cr_assert_eq(count_lines(r.err), 1, "stderr: %s", r.err);
     const char *start = "softrast: warning: nothing drawn: every triangle lies outside the view volume "
-                        "(or is non-finite) (1 triangles: 1 rejected outside";
+                        "(or is non-finite) (1 triangles: 1 rejected outside (far 1), 0 of them non-finite";
     cr_expect_eq(strncmp(r.err, start, strlen(start)), 0, "stderr: %s", r.err);
     cr_expect_not_null(strstr(r.err, "the eye is at 0,0,-500 looking at 0,0,0 with near 0.1, far 100"), "%s", r.err);
     cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": \"every triangle lies outside the view volume "
-                                     "(or is non-finite)\","),
+                                     "(or is non-finite)\", \"rejected_by_plane\": {\"near\": 0, \"far\": 1, "
+                                     "\"left\": 0, \"right\": 0, \"bottom\": 0, \"top\": 0}"),
                        "%s", r.out);
 }
 
@@ -344,4 +347,58 @@ Test(cli, missing_report_dir_fails_before_measuring)
 {
     assert_one_error("bench --stability --report-dir %s/none", "none: cannot write the report there");
     assert_one_error("bench --report --report-dir %s/tri.obj", "tri.obj: cannot write the report there: not a directory");
+}
+
+/* A model shared without its textures used to stop the render at the
+ * missing map_Kd; now it warns once, naming the file, and draws lit gray.
+ * A texture named with --texture must still load. */
+Test(cli, missing_or_unreadable_map_kd_warns_and_draws_untextured)
+{
+    write_text(temp_dir, "m.mtl", "newmtl skin\nmap_Kd gone.png\nnewmtl cloth\nmap_Kd junk.png\n");
+    write_text(temp_dir, "junk.png", "not a png at all");
+    static const char *const materials[] = { "skin", "cloth" }, *const files[] = { "gone.png", "junk.png" };
+    for (int i = 0; i < 2; i++) {
+        char obj[256], args[1024], out[256];
+        snprintf(obj, sizeof obj, "mtllib m.mtl\nusemtl %s\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                 "f 1/1 2/2 3/3\n", materials[i]);
+        write_text(temp_dir, "m.obj", obj);
+        snprintf(args, sizeof args, "render %s/m.obj --cull none --size 32x32 --stats --quiet --out %s", temp_dir,
+                 temp_path(out, sizeof out, "m.png"));
+        run_result r = run_softrast(temp_dir, args);
+        cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+        cr_expect_eq(count_lines(r.err), 1, "stderr: %s", r.err);
+        cr_expect_eq(strncmp(r.err, "softrast: warning: ", 19), 0, "stderr: %s", r.err);
+        cr_expect_not_null(strstr(r.err, files[i]), "stderr: %s", r.err);
+        cr_expect_not_null(strstr(r.err, "untextured"), "stderr: %s", r.err);
+        cr_expect_not_null(strstr(r.out, "\"nothing_drawn\": null"), "%s", r.out);
+        cr_expect(access(out, F_OK) == 0, "no image written");
+        snprintf(args, sizeof args, "render %s/m.obj --texture %s/%s", temp_dir, temp_dir, files[i]);
+        assert_one_error(args, files[i]);
+    }
+}
+
+/* render used to print nothing on success, even when it wrote nothing; now
+ * one line on stderr says what it wrote (stdout stays the image's or the
+ * stats'), or that nothing was written; --quiet drops it. */
+Test(cli, render_says_what_it_wrote_in_one_line)
+{
+    char args[512], png[256];
+    snprintf(args, sizeof args, "render %s/tri.obj --size 32x16 --out %s", temp_dir, temp_path(png, sizeof png, "a.png"));
+    run_result r = run_softrast(temp_dir, args);
+    char want[512];
+    snprintf(want, sizeof want, "softrast: wrote %s (32x16, 1 triangles drawn)\n", png);
+    cr_expect_str_eq(r.err, want);
+    cr_expect_str_eq(r.out, "");
+    snprintf(args, sizeof args, "render %s/tri.obj --size 32x16", temp_dir);
+    r = run_softrast(temp_dir, args);
+    cr_expect_str_eq(r.err, "softrast: drew 32x16 (1 triangles drawn); nothing written: name a file with --out, "
+                            "--depth or --depth-png\n");
+    snprintf(args, sizeof args, "render %s/tri.obj --size 32x16 --out -", temp_dir);
+    r = run_softrast(temp_dir, args);
+    cr_expect_eq(memcmp(r.out, "\x89PNG\r\n", 6), 0, "stdout is not the PNG");
+    cr_expect_str_eq(r.err, "softrast: wrote stdout (32x16, 1 triangles drawn)\n");
+    snprintf(args, sizeof args, "render %s/tri.obj --size 32x16 --out %s --quiet", temp_dir, png);
+    r = run_softrast(temp_dir, args);
+    cr_expect_eq(r.status, 0);
+    cr_expect_str_eq(r.err, "");
 }

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -580,6 +581,16 @@ Test(obj, huge_index_is_out_of_range)
                       "out of range");
 }
 
+/* An index past long's range was reported as LONG_MAX (…807): the message
+ * now quotes the index as written. */
+Test(obj, index_past_long_is_reported_as_written)
+{
+    assert_text_fails("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9223372036854775808\n", 4,
+                      "vertex index 9223372036854775808 is out of range (3 defined so far)");
+    assert_text_fails("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//-9223372036854775809\n", 5,
+                      "normal index -9223372036854775809 is out of range (1 defined so far)");
+}
+
 Test(obj, most_negative_index_is_out_of_range)
 {
     assert_text_fails("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n", 4,
@@ -706,6 +717,32 @@ Test(obj, late_error_leaves_no_half_mesh)
     assert_text_fails("mtllib a.mtl\nv 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
                       "usemtl m\nf 1/1/1 2/1/1 3/1/1\nf 1 2 3\nf 1 2 3\nf 1 2 5\n",
                       11, "out of range");
+}
+
+/* Each `mtllib` line read its library again and appended its materials
+ * anew: 300 lines (4 KB) naming a 20000-material library (620 KB) took
+ * 490 MB. A library read before, by any name, is not read again. */
+Test(obj, a_library_named_again_is_not_read_again)
+{
+    enum { MATERIALS = 20000, LINES = 300 };
+    char *lib = malloc((size_t)MATERIALS * 40), *obj = malloc((size_t)LINES * 40 + 200);
+    cr_assert(lib && obj);
+    size_t n = 0;
+    for (int i = 0; i < MATERIALS; i++)
+        n += (size_t)sprintf(lib + n, "newmtl m%d\nmap_Kd t%d.png\n", i, i);
+    write_bytes("big.mtl", lib, n);
+    n = 0;
+    for (int i = 0; i < LINES; i++)
+        n += (size_t)sprintf(obj + n, "mtllib %sbig.mtl\n", i % 2 ? "./" : "");
+    sprintf(obj + n, "usemtl m19999\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    sr_mesh m = load_ok(obj);
+    free(lib);
+    free(obj);
+    cr_expect_str_eq(m.texture_path, tmp_path("t19999.png"));
+    sr_mesh_free(&m);
+    struct rusage use;
+    cr_assert_eq(getrusage(RUSAGE_SELF, &use), 0);
+    cr_expect_lt(use.ru_maxrss, 128L * 1024, "peak resident size %ld KiB", use.ru_maxrss);
 }
 
 Test(obj, null_error_is_allowed)

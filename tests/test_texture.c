@@ -183,14 +183,41 @@ static double seconds_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Loading a header that claims width x height fails at once, saying `what`,
- * without the memory the image would take: each test runs in a process of
- * its own, so its peak resident size tells. */
-static void expect_refused_from_header(uint32_t width, uint32_t height, const char *what)
+/* A JPEG's start and first frame header (SOF0, 8-bit, 3 components) claiming
+ * width x height after an APP0 segment the size reader walks past, then its
+ * end: no tables, no scan. */
+static void write_huge_jpeg_header(const char *path, uint32_t width, uint32_t height)
+{
+    const unsigned char jpeg[] = {
+        0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x10, 'J', 'F', 'I', 'F', 0, 1, 1, 0, 0, 1, 0, 1, 0, 0,
+        0xFF, 0xC0, 0x00, 0x11, 8, (unsigned char)(height >> 8), (unsigned char)height,
+        (unsigned char)(width >> 8), (unsigned char)width, 3, 1, 0x11, 0, 2, 0x11, 1, 3, 0x11, 1,
+        0xFF, 0xD9,
+    };
+    write_bytes(path, jpeg, sizeof jpeg);
+}
+
+/* An uncompressed 24-bit TGA header claiming width x height, then a few texels. */
+static void write_huge_tga_header(const char *path, uint32_t width, uint32_t height)
+{
+    unsigned char tga[18 + 12] = { 0, 0, 2 };
+    tga[12] = (unsigned char)width;
+    tga[13] = (unsigned char)(width >> 8);
+    tga[14] = (unsigned char)height;
+    tga[15] = (unsigned char)(height >> 8);
+    tga[16] = 24;
+    write_bytes(path, tga, sizeof tga);
+}
+
+/* Loading NAME, written by `write` claiming width x height, fails at once,
+ * saying `what`, without the memory the image would take: each test runs in
+ * a process of its own, so its peak resident size tells. */
+static void expect_refused_from_header(void (*write)(const char *, uint32_t, uint32_t), const char *name,
+                                       uint32_t width, uint32_t height, const char *what)
 {
     char path[512];
     sr_error err = { "" };
-    write_huge_png_header(temp_path(path, sizeof path, "huge.png"), width, height);
+    write(temp_path(path, sizeof path, name), width, height);
     double start = seconds_now();
     expect_load_fails(path, &err);
     double elapsed = seconds_now() - start;
@@ -203,10 +230,49 @@ static void expect_refused_from_header(uint32_t width, uint32_t height, const ch
 
 Test(texture, png_header_over_the_side_limit_is_refused_before_decoding)
 {
-    expect_refused_from_header(40000, 40000, "larger than 16384 on a side");
+    expect_refused_from_header(write_huge_png_header, "huge.png", 40000, 40000, "larger than 16384 on a side");
 }
 
 Test(texture, png_header_over_the_texel_limit_is_refused_before_decoding)
 {
-    expect_refused_from_header(16384, 16384, "more than 67108864 texels");
+    expect_refused_from_header(write_huge_png_header, "huge.png", 16384, 16384, "more than 67108864 texels");
+}
+
+/* JPEG and TGA go through SDL_image, which allocated the whole image before
+ * the limits were checked: their headers are read first now. */
+Test(texture, jpeg_and_tga_headers_over_the_side_limit_are_refused_before_decoding, .timeout = 20)
+{
+    expect_refused_from_header(write_huge_jpeg_header, "huge.jpg", 60000, 60000, "larger than 16384 on a side");
+    expect_refused_from_header(write_huge_tga_header, "huge.tga", 65535, 65535, "larger than 16384 on a side");
+    expect_refused_from_header(write_huge_tga_header, "HUGE.TGA", 20000, 10, "larger than 16384 on a side");
+}
+
+Test(texture, jpeg_and_tga_headers_over_the_texel_limit_are_refused_before_decoding, .timeout = 20)
+{
+    expect_refused_from_header(write_huge_jpeg_header, "huge.jpeg", 16384, 16384, "more than 67108864 texels");
+    expect_refused_from_header(write_huge_tga_header, "huge.tga", 16384, 16384, "more than 67108864 texels");
+}
+
+/* What the header reader lets through still decodes: a JPEG SDL_image wrote
+ * and a hand-made 2x1 TGA (bottom-up, BGR). */
+Test(texture, small_jpeg_and_tga_still_load)
+{
+    char path[512];
+    SDL_Surface *s = SDL_CreateRGBSurfaceWithFormat(0, 8, 8, 32, SDL_PIXELFORMAT_RGBA32);
+    cr_assert_not_null(s);
+    SDL_FillRect(s, NULL, SDL_MapRGB(s->format, 200, 100, 50));
+    cr_assert_eq(IMG_SaveJPG(s, temp_path(path, sizeof path, "a.jpg"), 95), 0, "%s", IMG_GetError());
+    SDL_FreeSurface(s);
+    sr_texture tex;
+    sr_error err = { "" };
+    cr_assert(sr_texture_load(&tex, path, &err), "%s", err.message);
+    cr_expect(tex.width == 8 && tex.height == 8, "%dx%d", tex.width, tex.height);
+    sr_texture_free(&tex);
+    const unsigned char tga[18 + 6] = { 0, 0, 2, [12] = 2, [14] = 1, [16] = 24, [18] = 0x56, 0x34, 0x12, 0xEF, 0xCD, 0xAB };
+    write_bytes(temp_path(path, sizeof path, "a.tga"), tga, sizeof tga);
+    cr_assert(sr_texture_load(&tex, path, &err), "%s", err.message);
+    cr_assert(tex.width == 2 && tex.height == 1, "%dx%d", tex.width, tex.height);
+    cr_expect_eq(tex.texels[0], 0x123456u, "%#08x", tex.texels[0]);
+    cr_expect_eq(tex.texels[1], 0xABCDEFu, "%#08x", tex.texels[1]);
+    sr_texture_free(&tex);
 }

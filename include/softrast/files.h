@@ -85,8 +85,9 @@ SR_API bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err);
 /* ---- textures ----------------------------------------------------------- */
 
 /* At most this many texels (8192 x 8192; 256 MiB as 0x00RRGGBB) in a loaded
- * texture: a PNG's size is read from its header and checked before anything
- * is allocated, so a small file claiming a huge image costs nothing. */
+ * texture: a PNG's, a JPEG's or a TGA's size is read from its header and
+ * checked before anything is allocated, so a small file claiming a huge
+ * image costs nothing. */
 #define SR_MAX_TEXTURE_TEXELS (1ul << 26)
 
 /* Any image SDL2_image reads (PNG through libpng directly), as 0x00RRGGBB

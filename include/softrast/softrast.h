@@ -268,6 +268,11 @@ typedef struct sr_stats {
     uint64_t drawn;     /* fan triangles rasterized */
     uint64_t fragments; /* pixels that passed the depth test */
     uint64_t cuts_float, cuts_double, cuts_exact; /* cut vertices by the precision the clipper used */
+    /* Of the rejected, those outside a plane, in the order near, far, left,
+     * right, bottom, top: each under the first plane all its corners are
+     * outside, or (a mesh rejected whole by its bounds) the first its
+     * bounding box is outside. With nonfinite they sum to rejected. */
+    uint64_t rejected_by_plane[6];
 } sr_stats;
 
 /* Scratch memory a draw reuses from frame to frame (transformed vertices,

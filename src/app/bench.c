@@ -32,8 +32,8 @@ typedef sr_bench_result bench_result;
 static const char USAGE[] =
     "usage: softrast bench [options]\n"
     "Times the benchmark scenes: median and minimum ms per frame over --frames frames\n"
-    "(after one untimed warm-up), a frame being clear + draw, as in the viewer. Run it from\n"
-    "the project's root (the fly scene reads assets/room.obj).";
+    "(after one untimed warm-up), a frame being clear + draw, as in the viewer. The fly\n"
+    "scene reads assets/room.obj from the program's data (docs/cli.md, \"Data files\").";
 
 static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_error *err)
 {

@@ -13,7 +13,7 @@ typedef struct render_job {
     sr_scene_setup scene;
     const char *out_path, *depth_path, *depth_png_path;
     int frames;
-    bool stats;
+    bool stats, quiet;
 } render_job;
 
 typedef struct frame_times {
@@ -45,6 +45,7 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
         { "--depth-png", SR_OPT_STRING, &job->depth_png_path, "FILE.png", "write the depth buffer, remapped to the visible range" },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames, after one untimed warm-up when N > 1 (default 1)", 1, MAX_FRAMES },
         { "--stats", SR_OPT_FLAG, &job->stats, NULL, "print one JSON line of per-frame statistics" },
+        { "--quiet", SR_OPT_FLAG, &job->quiet, NULL, "no summary line on stderr on success (warnings still print)" },
         { 0 },
     };
     if (!sr_scene_setup_parse(&job->scene, own, NULL, USAGE, argc, argv, help, err))
@@ -110,6 +111,22 @@ static const char *nothing_drawn(const sr_stats *s)
     return "the triangles drawn cover no pixel centre";
 }
 
+/* The rejected counts by plane: " (far 3, left 1)" for the warning (the
+ * planes with any, nothing when none), {"near": 0, ...} for --stats. */
+static void print_rejected_by_plane(FILE *out, const sr_stats *s, bool json)
+{
+    int n = 0;
+    for (int p = 0; p < SR_CLIP_PLANES; p++) {
+        unsigned long long count = s->rejected_by_plane[p];
+        const char *name = sr_clip_plane_table[p].name;
+        if (json)
+            fprintf(out, "%s\"%s\": %llu", n++ ? ", " : "{", name, count);
+        else if (count)
+            fprintf(out, "%s%s %llu", n++ ? ", " : " (", name, count);
+    }
+    fputs(json ? "}" : n ? ")" : "", out);
+}
+
 /* One line on stderr when nothing was drawn: the counts, where the mesh lies
  * in softrast's world (the file's z negated, --rotate-y not applied) and
  * where the camera looks from, so the fix can be read off. */
@@ -122,11 +139,12 @@ static void explain_nothing_drawn(const sr_scene_setup *setup, const sr_scene *s
     sr_mesh_bounds(&scene->mesh, lo, hi);
     const double *m = scene->mesh.origin, *c = setup->camera.origin;
     const float *eye = setup->camera.eye, *at = setup->camera.target;
+    fprintf(stderr, "softrast: warning: nothing drawn: %s (%llu triangles: %llu rejected outside", why,
+            (unsigned long long)s->triangles, (unsigned long long)s->rejected);
+    print_rejected_by_plane(stderr, s, false);
     fprintf(stderr,
-            "softrast: warning: nothing drawn: %s (%llu triangles: %llu rejected outside, %llu of them non-finite, "
-            "%llu culled); the mesh spans %g,%g,%g to %g,%g,%g in softrast's world (the file's z negated), the eye "
+            ", %llu of them non-finite, %llu culled); the mesh spans %g,%g,%g to %g,%g,%g in softrast's world (the file's z negated), the eye "
             "is at %g,%g,%g looking at %g,%g,%g with near %g, far %g: see --eye, --target, --near, --far, --cull\n",
-            why, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
             (unsigned long long)s->nonfinite, (unsigned long long)s->culled, lo[0] + m[0], lo[1] + m[1],
             lo[2] + m[2], hi[0] + m[0], hi[1] + m[1], hi[2] + m[2], eye[0] + c[0], eye[1] + c[1], eye[2] + c[2],
             at[0] + c[0], at[1] + c[1], at[2] + c[2], setup->camera.near, setup->camera.far);
@@ -138,14 +156,36 @@ static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_
     printf("{\"frames\": %d, \"ms_median\": %.4f, \"ms_min\": %.4f, \"triangles\": %llu, \"rejected\": %llu, "
            "\"clipped\": %llu, \"culled\": %llu, \"fragments\": %llu, \"nonfinite\": %llu, \"drawn\": %llu, "
            "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu, \"simd\": \"%s\", "
-           "\"nothing_drawn\": %s%s%s, \"parts\": ",
+           "\"nothing_drawn\": %s%s%s, \"rejected_by_plane\": ",
            frames, t->median, t->min, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
            (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->fragments,
            (unsigned long long)s->nonfinite, (unsigned long long)s->drawn, (unsigned long long)s->cuts_float,
            (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact,
            sr_simd_name(sr_raster_simd_resolve(simd)), why ? "\"" : "", why ? why : "null", why ? "\"" : "");
+    print_rejected_by_plane(stdout, s, true);
+    printf(", \"parts\": ");
     print_parts(mesh);
     printf("}\n");
+}
+
+/* The one line a successful render prints on stderr, stdout being for the
+ * image or the stats: what was written (or that nothing was), the size and
+ * the triangles drawn. */
+static void report_done(const render_job *job, const sr_framebuffer *fb, const sr_stats *s)
+{
+    const char *paths[] = { job->out_path, job->depth_path, job->depth_png_path };
+    char line[3 * SR_ERROR_MAX];
+    int n = snprintf(line, sizeof line, "softrast: "), written = 0;
+    for (size_t i = 0; i < sizeof paths / sizeof *paths; i++)
+        if (paths[i] && n < (int)sizeof line)
+            n += snprintf(line + n, sizeof line - (size_t)n, "%s%s", written++ ? ", " : "wrote ",
+                          is_stdout(paths[i]) ? "stdout" : paths[i]);
+    const char *format = written ? " (%dx%d, %llu triangles drawn)\n"
+                                 : "drew %dx%d (%llu triangles drawn); nothing written: name a file with --out, "
+                                   "--depth or --depth-png\n";
+    if (n < (int)sizeof line)
+        snprintf(line + n, sizeof line - (size_t)n, format, fb->width, fb->height, (unsigned long long)s->drawn);
+    fputs(line, stderr);
 }
 
 static bool render(void *j, sr_scene *scene, sr_error *err)
@@ -164,6 +204,8 @@ static bool render(void *j, sr_scene *scene, sr_error *err)
     explain_nothing_drawn(&job->scene, scene, &stats);
     if (job->stats)
         print_stats(job->frames, &times, &stats, study.simd, &scene->mesh);
+    if (!job->quiet)
+        report_done(job, &scene->fb, &stats);
     return true;
 }
 

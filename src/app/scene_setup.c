@@ -1,3 +1,4 @@
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -92,6 +93,18 @@ static bool shade_uses_normals(sr_shade shade)
     return shade == SR_SHADE_NORMAL || shade == SR_SHADE_LAMBERT;
 }
 
+/* --texture must load; the mesh's own map_Kd may be missing or unreadable
+ * (a model shared without its textures): one warning, and it draws untextured. */
+static bool load_texture(const sr_scene_setup *s, sr_scene *scene, sr_error *err)
+{
+    if (s->texture_path)
+        return sr_texture_load(&scene->texture, s->texture_path, err);
+    sr_error why;
+    if (scene->mesh.texture_path && !sr_texture_load(&scene->texture, scene->mesh.texture_path, &why))
+        fprintf(stderr, "softrast: warning: %s; drawing the mesh untextured\n", why.message);
+    return true;
+}
+
 bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err)
 {
     *scene = (sr_scene){ 0 };
@@ -100,8 +113,7 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
     bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);
     if (s->texture_path || !wants_texture)
         sr_texture_free(&scene->texture); /* the file's own, embedded: replaced, or not needed */
-    const char *tex = s->texture_path ? s->texture_path : scene->texture.texels ? NULL : scene->mesh.texture_path;
-    if (tex && wants_texture && !sr_texture_load(&scene->texture, tex, err))
+    if (wants_texture && !scene->texture.texels && !load_texture(s, scene, err))
         return false;
     bool wants_normals = everything || shade_uses_normals((sr_shade)s->shade);
     if (wants_normals && !sr_mesh_compute_normals(&scene->mesh, err))

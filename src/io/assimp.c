@@ -20,10 +20,12 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "isolated_load.h"
 #include "mesh_loaders.h"
 #include "mesh_origin.h"

@@ -1,6 +1,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "mtl.h"
 
@@ -83,8 +84,29 @@ static bool read_library(sr_array *lib, sr_line_reader *in, sr_error *err)
     }
 }
 
-/* 1 loaded, 0 cannot open (*why says why), -1 error in the library (err set). */
-static int load_library(sr_array *lib, const sr_line_reader *obj, const char *name,
+/* Whether the open library is one read before; if not, it is noted as read. */
+static int already_read(sr_mtl_libs *libs, const sr_line_reader *in, const sr_line_reader *obj, sr_error *err)
+{
+    struct stat st;
+    if (fstat(fileno(in->file), &st) != 0)
+        return 0;
+    sr_mtl_file_id id = { (unsigned long long)st.st_dev, (unsigned long long)st.st_ino };
+    const sr_mtl_file_id *seen = libs->files.data;
+    for (size_t i = 0; i < libs->files.count; i++)
+        if (seen[i].dev == id.dev && seen[i].ino == id.ino)
+            return 1;
+    sr_mtl_file_id *slot = sr_array_push(&libs->files, sizeof *slot);
+    if (!slot) {
+        out_of_memory(obj, err);
+        return -1;
+    }
+    *slot = id;
+    return 0;
+}
+
+/* 1 loaded (or read before), 0 cannot open (*why says why), -1 error in the
+ * library (err set). */
+static int load_library(sr_mtl_libs *libs, const sr_line_reader *obj, const char *name,
                         const char **why, sr_error *err)
 {
     char *path = sr_obj_path_beside(obj->path, name);
@@ -95,7 +117,8 @@ static int load_library(sr_array *lib, const sr_line_reader *obj, const char *na
     sr_line_reader in;
     int status = 0;
     if (sr_line_reader_open(&in, path)) {
-        status = read_library(lib, &in, err) ? 1 : -1;
+        int seen = already_read(libs, &in, obj, err);
+        status = seen != 0 ? seen : read_library(&libs->materials, &in, err) ? 1 : -1;
         sr_line_reader_close(&in);
     } else {
         *why = in.why;
@@ -113,18 +136,18 @@ static bool cannot_open(const sr_line_reader *obj, const char *name, const char 
  * the OBJ); the format also allows several names separated by blanks, which
  * is tried when the whole rest is not a file. A missing library is an error:
  * softrast never drops a texture silently. */
-bool sr_mtl_load(sr_array *lib, const sr_line_reader *obj, char *names, sr_error *err)
+bool sr_mtl_load(sr_mtl_libs *libs, const sr_line_reader *obj, char *names, sr_error *err)
 {
     if (!*names)
         return sr_line_fail(obj, err, "'mtllib' needs a file name");
     const char *why = NULL;
-    int status = load_library(lib, obj, names, &why, err);
+    int status = load_library(libs, obj, names, &why, err);
     if (status != 0)
         return status > 0;
     if (!strpbrk(names, " \t"))
         return cannot_open(obj, names, why, err);
     for (char *name; (name = sr_obj_next_token(&names));) {
-        status = load_library(lib, obj, name, &why, err);
+        status = load_library(libs, obj, name, &why, err);
         if (status == 0)
             return cannot_open(obj, name, why, err);
         if (status < 0)
@@ -133,21 +156,22 @@ bool sr_mtl_load(sr_array *lib, const sr_line_reader *obj, char *names, sr_error
     return true;
 }
 
-ptrdiff_t sr_mtl_find(const sr_array *lib, const char *name)
+ptrdiff_t sr_mtl_find(const sr_mtl_libs *libs, const char *name)
 {
-    const sr_material *m = lib->data;
-    for (size_t i = 0; i < lib->count; i++)
+    const sr_material *m = libs->materials.data;
+    for (size_t i = 0; i < libs->materials.count; i++)
         if (strcmp(m[i].name, name) == 0)
             return (ptrdiff_t)i;
     return -1;
 }
 
-void sr_mtl_free(sr_array *lib)
+void sr_mtl_free(sr_mtl_libs *libs)
 {
-    sr_material *m = lib->data;
-    for (size_t i = 0; i < lib->count; i++) {
+    sr_material *m = libs->materials.data;
+    for (size_t i = 0; i < libs->materials.count; i++) {
         free(m[i].name);
         free(m[i].map_kd);
     }
-    sr_array_free(lib);
+    sr_array_free(&libs->materials);
+    sr_array_free(&libs->files);
 }

@@ -16,16 +16,29 @@ typedef struct sr_material {
     char *map_kd; /* resolved against the .mtl's folder; NULL if none */
 } sr_material;
 
+/* The materials of every library an OBJ names, and which files those were. */
+typedef struct sr_mtl_libs {
+    sr_array materials; /* sr_material */
+    sr_array files;     /* sr_mtl_file_id of each library read */
+} sr_mtl_libs;
+
+typedef struct sr_mtl_file_id {
+    unsigned long long dev, ino;
+} sr_mtl_file_id;
+
 /* Reads the libraries that an `mtllib` statement names (`names`: the rest of
  * its line, relative to the OBJ's folder; `obj` is at that line) and appends
- * their materials to `lib`, an sr_array of sr_material. Errors are
+ * their materials to libs. A library already read (the same file, by any
+ * name) is not read again: its materials are there, and a small OBJ
+ * repeating `mtllib big.mtl` would otherwise allocate the library's size
+ * once per line. Errors are
  * "OBJ:LINE: cannot open material library 'x.mtl': …" or "MTL:LINE: what".
  * `names` is tokenized in place. */
-bool sr_mtl_load(sr_array *lib, const sr_line_reader *obj, char *names, sr_error *err);
+bool sr_mtl_load(sr_mtl_libs *libs, const sr_line_reader *obj, char *names, sr_error *err);
 
 /* Index of the first material called `name`, or -1. */
-ptrdiff_t sr_mtl_find(const sr_array *lib, const char *name);
+ptrdiff_t sr_mtl_find(const sr_mtl_libs *libs, const char *name);
 
-void sr_mtl_free(sr_array *lib);
+void sr_mtl_free(sr_mtl_libs *libs);
 
 #endif

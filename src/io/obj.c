@@ -40,7 +40,7 @@ typedef struct obj_reader {
     uint32_t *map;                            /* open addressing: corner id + 1, 0 = free */
     size_t map_cap;                           /* a power of two, kept at least half free */
     bool any_uv, any_normal;
-    sr_array materials; /* sr_material */
+    sr_mtl_libs materials;
     bool has_mtllib;
     ptrdiff_t material;  /* selected by usemtl, or -1 */
     const char *texture; /* first map_Kd used by a face; owned by materials */
@@ -129,17 +129,34 @@ static bool parse_float_attribute(obj_reader *o, char *cursor, sr_array *g, size
 
 /* ---- corners: parse, resolve, intern ---- */
 
-/* "v", "v/vt", "v//vn" or "v/vt/vn"; has[1], has[2] say which were given. */
-static bool split_corner(const char *s, long idx[3], bool has[3])
+/* One index of a face corner: its value (clamped to long's range, still out
+ * of any range) and its text as written, for messages. */
+typedef struct face_index {
+    long value;
+    const char *text;
+    int length;
+} face_index;
+
+static bool parse_index(const char **s, face_index *idx)
 {
-    if (!sr_obj_parse_long(&s, &idx[0]))
+    idx->text = *s;
+    if (!sr_obj_parse_long(s, &idx->value))
+        return false;
+    idx->length = (int)(*s - idx->text);
+    return true;
+}
+
+/* "v", "v/vt", "v//vn" or "v/vt/vn"; has[1], has[2] say which were given. */
+static bool split_corner(const char *s, face_index idx[3], bool has[3])
+{
+    if (!parse_index(&s, &idx[0]))
         return false;
     if (*s == '\0')
         return true;
     if (*s++ != '/')
         return false;
     if (*s != '/') {
-        if (!sr_obj_parse_long(&s, &idx[1]))
+        if (!parse_index(&s, &idx[1]))
             return false;
         has[1] = true;
         if (*s == '\0')
@@ -148,7 +165,7 @@ static bool split_corner(const char *s, long idx[3], bool has[3])
             return false;
     }
     s++;
-    if (!sr_obj_parse_long(&s, &idx[2]))
+    if (!parse_index(&s, &idx[2]))
         return false;
     has[2] = true;
     return *s == '\0';
@@ -156,16 +173,16 @@ static bool split_corner(const char *s, long idx[3], bool has[3])
 
 /* OBJ counts from 1; a negative index counts back from the last element read
  * so far (-1 is the latest). Written so that no value of idx can overflow. */
-static bool resolve_index(obj_reader *o, long idx, size_t count, const char *what,
+static bool resolve_index(obj_reader *o, face_index idx, size_t count, const char *what,
                           uint32_t *out)
 {
-    if (idx == 0)
+    if (idx.value == 0)
         return sr_line_fail(&o->in, o->err, "%s index 0 is invalid (OBJ counts from 1)", what);
-    unsigned long magnitude = idx > 0 ? (unsigned long)idx : (unsigned long)-(idx + 1) + 1;
+    unsigned long magnitude = idx.value > 0 ? (unsigned long)idx.value : (unsigned long)-(idx.value + 1) + 1;
     if (magnitude > count)
-        return sr_line_fail(&o->in, o->err, "%s index %ld is out of range (%zu defined so far)",
-                            what, idx, count);
-    *out = (uint32_t)(idx > 0 ? magnitude - 1 : count - magnitude);
+        return sr_line_fail(&o->in, o->err, "%s index %.*s is out of range (%zu defined so far)",
+                            what, idx.length, idx.text, count);
+    *out = (uint32_t)(idx.value > 0 ? magnitude - 1 : count - magnitude);
     return true;
 }
 
@@ -230,7 +247,7 @@ static bool intern_corner(obj_reader *o, corner c, uint32_t *id)
 
 static bool parse_face_corner(obj_reader *o, const char *tok, uint32_t *id)
 {
-    long idx[3] = { 0, 0, 0 };
+    face_index idx[3] = { { 0 } };
     bool has[3] = { true, false, false };
     if (!split_corner(tok, idx, has))
         return sr_line_fail(&o->in, o->err,
@@ -282,7 +299,7 @@ static bool parse_face(obj_reader *o, char *cursor)
     if (n < 3)
         return sr_line_fail(&o->in, o->err, "a face needs at least 3 vertices, got %zu", n);
     if (!o->texture && o->material >= 0)
-        o->texture = ((const sr_material *)o->materials.data)[o->material].map_kd;
+        o->texture = ((const sr_material *)o->materials.materials.data)[o->material].map_kd;
     return true;
 }
 

@@ -1,6 +1,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include <SDL.h>
 #include <SDL_image.h>
@@ -125,8 +126,77 @@ static bool texels_from_surface(sr_texture *tex, SDL_Surface *loaded, const char
     return true;
 }
 
+/* n bytes at f's position into b; false at the end of the file. */
+static bool read_bytes(FILE *f, unsigned char *b, size_t n)
+{
+    return fread(b, 1, n, f) == n;
+}
+
+/* A JPEG's size from its first frame header (SOF0..SOF15 but DHT, JPG and
+ * DAC), walking the marker segments: false when there is none before the
+ * scan or the file ends (the decoder then says what is wrong). */
+static bool jpeg_size(FILE *f, unsigned long *width, unsigned long *height)
+{
+    unsigned char b[7];
+    if (!read_bytes(f, b, 2) || b[0] != 0xFF || b[1] != 0xD8)
+        return false;
+    for (;;) {
+        int c;
+        while ((c = fgetc(f)) == 0xFF) /* a marker, after any fill bytes */
+            ;
+        if (c == EOF || c == 0xDA || c == 0xD9)
+            return false;
+        if (c == 0x01 || (c >= 0xD0 && c <= 0xD7)) /* segments without a length */
+            continue;
+        if (!read_bytes(f, b, 2))
+            return false;
+        long length = (long)b[0] << 8 | b[1];
+        bool frame = c >= 0xC0 && c <= 0xCF && c != 0xC4 && c != 0xC8 && c != 0xCC;
+        if (frame) {
+            if (!read_bytes(f, b, 5))
+                return false;
+            *height = (unsigned long)b[1] << 8 | b[2];
+            *width = (unsigned long)b[3] << 8 | b[4];
+            return true;
+        }
+        if (length < 2 || fseek(f, length - 2, SEEK_CUR) != 0)
+            return false;
+    }
+}
+
+/* A TGA's size from its 18-byte header (little-endian at 12 and 14). */
+static bool tga_size(FILE *f, unsigned long *width, unsigned long *height)
+{
+    unsigned char h[18];
+    if (!read_bytes(f, h, sizeof h))
+        return false;
+    *width = (unsigned long)h[13] << 8 | h[12];
+    *height = (unsigned long)h[15] << 8 | h[14];
+    return true;
+}
+
+/* The size limits applied from the header, before SDL_image allocates the
+ * whole image, for the formats whose header this reads (JPEG, and TGA,
+ * which has no magic number and is known by its extension, as SDL_image
+ * knows it); other formats are checked once decoded. Leaves f rewound. */
+static bool header_size_allowed(FILE *f, const char *path, sr_error *err)
+{
+    unsigned long width = 0, height = 0;
+    const char *ext = file_extension(path);
+    bool known = jpeg_size(f, &width, &height);
+    rewind(f);
+    if (!known && ext && strcasecmp(ext, "tga") == 0)
+        known = tga_size(f, &width, &height);
+    rewind(f);
+    return !known || size_allowed(path, width, height, err);
+}
+
 static bool load_other(sr_texture *tex, FILE *f, const char *path, sr_error *err)
 {
+    if (!header_size_allowed(f, path, err)) {
+        fclose(f);
+        return false;
+    }
     SDL_Surface *loaded = load_surface(f, path, err);
     bool ok = loaded && texels_from_surface(tex, loaded, path, err);
     SDL_FreeSurface(loaded); /* NULL is fine */

@@ -91,7 +91,15 @@ static double box_corner(const float m[4][4], const float lo[3], const float hi[
 
 sr_clip_box sr_clip_classify_box(const float clip_from_object[4][4], const float lo[3], const float hi[3])
 {
+    unsigned outside;
+    return sr_clip_classify_box_planes(clip_from_object, lo, hi, &outside);
+}
+
+sr_clip_box sr_clip_classify_box_planes(const float clip_from_object[4][4], const float lo[3], const float hi[3],
+                                        unsigned *outside)
+{
     unsigned all_out = SR_OUT_PLANES, any_near = 0;
+    *outside = 0;
     for (int k = 0; k < 8; k++) {
         double c[4];
         double margin = SR_CLIP_BOX_MARGIN * box_corner(clip_from_object, lo, hi, k, c);
@@ -105,6 +113,7 @@ sr_clip_box sr_clip_classify_box(const float clip_from_object[4][4], const float
         }
         all_out &= out;
     }
+    *outside = all_out;
     if (all_out)
         return SR_BOX_OUTSIDE;
     return any_near ? SR_BOX_CROSSES : SR_BOX_INSIDE;

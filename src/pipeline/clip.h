@@ -135,6 +135,19 @@ unsigned sr_clip_outcode_with(const float *clip, const sr_clip_depth *depth);
 typedef enum sr_clip_box { SR_BOX_CROSSES = 0, SR_BOX_INSIDE, SR_BOX_OUTSIDE } sr_clip_box;
 #define SR_CLIP_BOX_MARGIN 1e-4
 sr_clip_box sr_clip_classify_box(const float clip_from_object[4][4], const float lo[3], const float hi[3]);
+/* The same, with the outcode bits of the planes the whole box is outside. */
+sr_clip_box sr_clip_classify_box_planes(const float clip_from_object[4][4], const float lo[3], const float hi[3],
+                                        unsigned *outside);
+
+/* n triangles rejected whole, all corners outside the planes whose bits are
+ * set in `planes` (at least one): counted under the first of them. */
+static inline void sr_clip_count_rejected(sr_stats *stats, unsigned planes, uint64_t n)
+{
+    _Static_assert(sizeof stats->rejected_by_plane / sizeof stats->rejected_by_plane[0] == SR_CLIP_PLANES,
+                   "one count per clip plane");
+    stats->rejected += n;
+    stats->rejected_by_plane[__builtin_ctz(planes)] += n;
+}
 
 /* The cut vertex of edge inside -> outside (d_in >= 0 > d_out) on a plane;
  * floats = 4 + number of varyings to interpolate. cfg may be NULL (adaptive,

@@ -149,13 +149,13 @@ static bool run_vertex_phase(const sr_draw_state *st, const vertex_phase *ph, sr
 
 /* A mesh outside the view: every assembled triangle is rejected, nothing
  * is transformed. */
-static void reject_all(const sr_draw_state *st)
+static void reject_all(const sr_draw_state *st, unsigned outside)
 {
     sr_stats *stats = &st->ws->threads[0].stats;
     uint32_t idx[3];
     for (uint32_t k = 0; k < st->slots; k++)
         stats->triangles += sr_assemble_triangle(st->desc->mesh, k, idx);
-    stats->rejected = stats->triangles;
+    sr_clip_count_rejected(stats, outside, stats->triangles);
 }
 
 /* The one-thread path: every fan triangle goes straight to the rasterizer,
@@ -199,6 +199,8 @@ static void add_stats(sr_stats *to, const sr_stats *from)
     to->cuts_float += from->cuts_float;
     to->cuts_double += from->cuts_double;
     to->cuts_exact += from->cuts_exact;
+    for (int p = 0; p < SR_CLIP_PLANES; p++)
+        to->rejected_by_plane[p] += from->rejected_by_plane[p];
 }
 
 static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
@@ -212,10 +214,13 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     make_transform(st, &ph.xf);
     const sr_mesh *mesh = st->desc->mesh;
     /* Bounds are of the positions: clip-space input is classified per vertex. */
-    sr_clip_box box = mesh->bounded && !mesh->clip_positions ? sr_clip_classify_box(ph.xf.clip_from_object, mesh->bounds_lo, mesh->bounds_hi)
+    unsigned outside = 0;
+    sr_clip_box box = mesh->bounded && !mesh->clip_positions
+                          ? sr_clip_classify_box_planes(ph.xf.clip_from_object, mesh->bounds_lo, mesh->bounds_hi,
+                                                        &outside)
                                     : SR_BOX_CROSSES;
     if (box == SR_BOX_OUTSIDE) {
-        reject_all(st);
+        reject_all(st, outside);
     } else if (st->vertex_count > 0) { /* an empty mesh (valid indices: none) has nothing to draw */
         ph.inside = box == SR_BOX_INSIDE;
         if (!run_vertex_phase(st, &ph, err))

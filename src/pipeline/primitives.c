@@ -65,9 +65,13 @@ static void emit_slot(sr_fan_sink *sink, uint32_t k)
         return;
     stats->triangles++;
     unsigned c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]], any = c0 | c1 | c2;
-    if ((any & SR_OUT_NONFINITE) || (c0 & c1 & c2)) {
+    if (any & SR_OUT_NONFINITE) {
         stats->rejected++;
-        stats->nonfinite += (any & SR_OUT_NONFINITE) != 0;
+        stats->nonfinite++;
+        return;
+    }
+    if (c0 & c1 & c2) {
+        sr_clip_count_rejected(stats, c0 & c1 & c2, 1);
         return;
     }
     if (!any) {

@@ -1,7 +1,9 @@
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bench_scenes.h"
+#include "data.h"
 
 #define FILL_QUADS 64
 #define CHECKER_SIDE 256
@@ -48,12 +50,20 @@ bool sr_bench_dense_default(sr_bench_scene *s, sr_error *err)
     return sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080, SR_SHADE_LAMBERT, err);
 }
 
+/* The room and its texture, wherever the program's data is (data.h). */
+static bool load_room(sr_bench_scene *s, sr_error *err)
+{
+    char obj[PATH_MAX], png[PATH_MAX];
+    return sr_data_find("assets/room.obj", obj, sizeof obj, err) && sr_data_find("assets/room.png", png, sizeof png, err) &&
+           sr_obj_load(&s->mesh, obj, err) && sr_texture_load(&s->texture, png, err);
+}
+
 bool sr_bench_fly(sr_bench_scene *s, sr_error *err)
 {
     scene_init(s, "fly", "the room on a path through walls and pillars, lambert + texture", SR_SHADE_LAMBERT,
                1920, 1080);
     s->path = (sr_flight){ .count = sizeof FLY_KEYS / sizeof FLY_KEYS[0], .keys = FLY_KEYS };
-    return sr_obj_load(&s->mesh, "assets/room.obj", err) && sr_texture_load(&s->texture, "assets/room.png", err);
+    return load_room(s, err);
 }
 
 bool sr_bench_stiff(sr_bench_scene *s, sr_error *err)
@@ -61,7 +71,7 @@ bool sr_bench_stiff(sr_bench_scene *s, sr_error *err)
     scene_init(s, "stiff", "the room with near 1e-6 and far 1e9, on and beside its walls and floor",
                SR_SHADE_LAMBERT, 1920, 1080);
     s->path = (sr_flight){ .count = sizeof STIFF_KEYS / sizeof STIFF_KEYS[0], .keys = STIFF_KEYS };
-    return sr_obj_load(&s->mesh, "assets/room.obj", err) && sr_texture_load(&s->texture, "assets/room.png", err);
+    return load_room(s, err);
 }
 
 /* A two-tone checker, so bilinear filtering has edges to blend. */

@@ -1,10 +1,12 @@
 /* softrast view — the fly-through window, and scripted flights. */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "app/app.h"
 #include "scene/flight.h"
+#include "studies/data.h"
 #include "softrast_private.h"
 #include "viewer.h"
 
@@ -24,6 +26,7 @@ typedef struct view_job {
     int frames;
     int range[2]; /* --frame-range A:B: frames A up to, not including, B */
     bool range_set, no_window, overlays;
+    char default_scene[PATH_MAX]; /* where the default scene was found */
 } view_job;
 
 /* The window and what presents the framebuffer in it (no GPU rendering of
@@ -65,11 +68,14 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
     return true;
 }
 
-static void use_default_scene(view_job *job)
+/* With no MESH, the room from the program's data (studies/data.h), into path. */
+static bool use_default_scene(view_job *job, sr_error *err)
 {
     if (job->scene.mesh_path)
-        return;
-    job->scene.mesh_path = DEFAULT_SCENE;
+        return true;
+    if (!sr_data_find(DEFAULT_SCENE, job->default_scene, sizeof job->default_scene, err))
+        return false;
+    job->scene.mesh_path = job->default_scene;
     if (!job->scene.eye_set && !job->scene.target_set) {
         for (int k = 0; k < 3; k++) {
             job->scene.eye[k] = ROOM_SPAWN.eye[k];
@@ -78,6 +84,7 @@ static void use_default_scene(view_job *job)
         job->scene.camera.fov_deg = ROOM_SPAWN.fov_deg;
         job->scene.eye_set = job->scene.target_set = true;
     }
+    return true;
 }
 
 static void window_close(window *w)
@@ -290,7 +297,8 @@ static bool run(void *j, sr_scene *unused, sr_error *err)
 {
     (void)unused;
     view_job *job = j;
-    use_default_scene(job);
+    if (!use_default_scene(job, err))
+        return false;
     sr_viewer v;
     window w = { 0 };
     bool windowed = !job->no_window;
