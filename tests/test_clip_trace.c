@@ -1,10 +1,11 @@
 /* The clipper's trace hook, and sr_clip_polygon against an independent
  * Sutherland–Hodgman walk: the walk keeps what each polygon edge runs along
  * (an edge of the triangle, or the cut line of an earlier plane) and cuts
- * each edge crossing a plane in the fixed plane order, inside end first:
- * on an edge of the triangle with sr_clip_intersect of that whole edge (of
- * the polygon edge where rounding left only that crossing the plane), on a
- * cut line with sr_clip_corner. It must give bit for bit what
+ * each edge crossing a plane in the fixed plane order, inside end first;
+ * adaptive and exact on an edge of the triangle with sr_clip_intersect of
+ * that whole edge (of the polygon edge where rounding left only that
+ * crossing the plane), on a cut line with sr_clip_corner; the fixed float
+ * and double knobs each polygon edge as it stands. It must give bit for bit what
  * sr_clip_polygon gives, while the hook must report exactly the walk's
  * cuts, in order. (The stability study used to check this at run time; it
  * now measures through the hook.) */
@@ -55,7 +56,7 @@ static void walk_cut(const sr_vertex_out tri[3], int line, sr_clip_plane plane, 
         c.first = (sr_clip_plane)(line - ON_CUT_LINE);
         c.precision = sr_clip_corner(tri, c.first, plane, inside, outside, FLOATS, cfg, cut);
         c.corner = c.precision != SR_CLIP_ADAPTIVE;
-    } else {
+    } else if (cfg->precision == SR_CLIP_ADAPTIVE || cfg->precision == SR_CLIP_EXACT) {
         const sr_vertex_out *start = &tri[line], *end = &tri[(line + 1) % 3];
         const sr_vertex_out *in = forward ? start : end, *out = forward ? end : start;
         if (ref_distance_f(plane, in) >= 0.0 && ref_distance_f(plane, out) < 0.0) {

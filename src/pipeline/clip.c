@@ -257,22 +257,25 @@ static double corner_double(const sr_vertex_out tri[3], sr_clip_plane first, sr_
     return fabs(sum) > sum_err && w_low > 0.0 && isfinite(ndc) ? ndc : INFINITY;
 }
 
+/* Whether cfg cuts from the triangle (adaptive and exact, which promise
+ * an error) or, as the fixed float and double knobs do, every polygon edge
+ * as it stands. */
+static bool from_triangle(const sr_clip_config *cfg)
+{
+    return !cfg || cfg->precision == SR_CLIP_ADAPTIVE || cfg->precision == SR_CLIP_EXACT;
+}
+
 /* The corner at the precision cfg asks for; SR_CLIP_ADAPTIVE when it made
- * none (float, or lines that may be parallel). */
+ * none (float or double, or lines that may be parallel). */
 static sr_clip_precision make_corner(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane, int floats,
                                      const sr_clip_config *cfg, sr_vertex_out *cut)
 {
-    sr_clip_precision p = cfg ? cfg->precision : SR_CLIP_ADAPTIVE;
     const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
-    if (p == SR_CLIP_FLOAT)
+    if (!from_triangle(cfg))
         return SR_CLIP_ADAPTIVE;
-    if (p != SR_CLIP_EXACT) {
-        double err = corner_double(tri, first, plane, floats, depth, cut);
-        if (p == SR_CLIP_DOUBLE)
-            return isfinite(err) ? SR_CLIP_DOUBLE : SR_CLIP_ADAPTIVE;
-        if (err <= clip_tolerance(cfg))
-            return SR_CLIP_DOUBLE;
-    }
+    if ((!cfg || cfg->precision == SR_CLIP_ADAPTIVE) &&
+        corner_double(tri, first, plane, floats, depth, cut) <= clip_tolerance(cfg))
+        return SR_CLIP_DOUBLE;
     return sr_clip_corner_exact(tri, first, plane, floats, depth, cut) ? SR_CLIP_EXACT : SR_CLIP_ADAPTIVE;
 }
 
@@ -298,8 +301,8 @@ enum { ON_PLANE = 3 };
 /* The cut of the polygon edge inside -> outside, which runs along `line`;
  * forward: inside is the edge's start. On a cut line it is the corner; on
  * an edge of the triangle the whole edge's cut when that crosses the plane,
- * so it never depends on earlier planes. Where neither is there (float, or
- * rounding of earlier cuts), the polygon edge's. */
+ * so it never depends on earlier planes. Where neither is there (the fixed
+ * float and double knobs, or rounding of earlier cuts), the polygon edge's. */
 static void cut_along(const sr_vertex_out tri[3], int line, sr_clip_plane plane, const sr_vertex_out *inside,
                       const sr_vertex_out *outside, bool forward, int floats, const sr_clip_config *cfg,
                       sr_vertex_out *cut)
@@ -308,7 +311,7 @@ static void cut_along(const sr_vertex_out tri[3], int line, sr_clip_plane plane,
         if (sr_clip_corner(tri, (sr_clip_plane)(line - ON_PLANE), plane, inside, outside, floats, cfg, cut) !=
             SR_CLIP_ADAPTIVE)
             return;
-    } else {
+    } else if (from_triangle(cfg)) {
         const sr_vertex_out *start = &tri[line], *end = &tri[(line + 1) % 3];
         const sr_vertex_out *in = forward ? start : end, *out = forward ? end : start;
         const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;

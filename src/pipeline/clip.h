@@ -15,8 +15,10 @@
  * or far cut gets z = a·w + b of its w, rounded once). Two triangles sharing an
  * edge therefore get bit-identical cut vertices whichever way they walk it.
  *
- * Every cut is made from the triangle, never from an earlier cut rounded to
- * float: a polygon edge lies on an edge of the triangle, and its cut is that
+ * Under adaptive and exact precision every cut is made from the triangle,
+ * never from an earlier cut rounded to float (the fixed float and double
+ * knobs cut each polygon edge as it stands, as plain Sutherland–Hodgman
+ * does): a polygon edge lies on an edge of the triangle, and its cut is that
  * whole edge's (the end points are the triangle's vertices, so a second or
  * third plane cuts a shared edge as the first does), or on the line of an
  * earlier plane, and its cut is the triangle's point on both planes
@@ -162,9 +164,10 @@ sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *in
  * vertex where the polygon edge inside -> outside, which runs along the cut
  * line of `first`, crosses `plane`. Adaptive takes it in double when an
  * error bound allows, else exactly. Placed on both planes. Returns the
- * precision it used, or SR_CLIP_ADAPTIVE when it made none (float asks for
- * none; the two planes' lines in the triangle may be parallel): the caller
- * then cuts the polygon edge with sr_clip_intersect. */
+ * precision it used, or SR_CLIP_ADAPTIVE when it made none (the fixed float
+ * and double knobs ask for none; the two planes' lines in the triangle may
+ * be parallel): the caller then cuts the polygon edge with
+ * sr_clip_intersect. */
 sr_clip_precision sr_clip_corner(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane,
                                  const sr_vertex_out *inside, const sr_vertex_out *outside, int floats,
                                  const sr_clip_config *cfg, sr_vertex_out *cut);
