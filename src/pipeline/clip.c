@@ -1,6 +1,7 @@
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "clip_exact.h"
 #include "expansion.h"
@@ -279,10 +280,31 @@ static sr_clip_precision make_corner(const sr_vertex_out tri[3], sr_clip_plane f
     return sr_clip_corner_exact(tri, first, plane, floats, depth, cut) ? SR_CLIP_EXACT : SR_CLIP_ADAPTIVE;
 }
 
+/* The triangle in an order of its own (its vertices' bits), so that its
+ * sums round alike and a corner is the same bits, signed zeros included,
+ * whichever vertex the triangle starts from and whichever way it winds. */
+static void canonical_order(const sr_vertex_out tri[3], int floats, sr_vertex_out ordered[3])
+{
+    static const int pairs[3][2] = { { 0, 1 }, { 1, 2 }, { 0, 1 } };
+    for (int k = 0; k < 3; k++)
+        ordered[k] = tri[k];
+    for (int s = 0; s < 3; s++) {
+        sr_vertex_out *a = &ordered[pairs[s][0]], *b = &ordered[pairs[s][1]];
+        if (memcmp(a->v, b->v, (size_t)floats * sizeof(float)) > 0) {
+            sr_vertex_out t = *a;
+            *a = *b;
+            *b = t;
+        }
+    }
+}
+
 sr_clip_precision sr_clip_corner(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane,
                                  const sr_vertex_out *inside, const sr_vertex_out *outside, int floats,
                                  const sr_clip_config *cfg, sr_vertex_out *cut)
 {
+    sr_vertex_out ordered[3];
+    canonical_order(tri, floats, ordered);
+    tri = ordered;
     sr_clip_precision p = make_corner(tri, first, plane, floats, cfg, cut);
     if (p == SR_CLIP_ADAPTIVE)
         return p;

@@ -163,7 +163,9 @@ sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *in
 /* The corner of a triangle on two planes (sr_clip_exact_corner_of): the
  * vertex where the polygon edge inside -> outside, which runs along the cut
  * line of `first`, crosses `plane`. Adaptive takes it in double when an
- * error bound allows, else exactly. Placed on both planes. Returns the
+ * error bound allows, else exactly, from the triangle's vertices in an
+ * order of their own bits, so the same bits whichever vertex the triangle
+ * starts from and whichever way it winds. Placed on both planes. Returns the
  * precision it used, or SR_CLIP_ADAPTIVE when it made none (the fixed float
  * and double knobs ask for none; the two planes' lines in the triangle may
  * be parallel): the caller then cuts the polygon edge with
