@@ -81,3 +81,56 @@ void sr_clip_intersect_exact(sr_clip_plane plane, const sr_vertex_out *inside, c
         cut->v[i] = (float)(expansion_value(num, n) / denominator);
     }
 }
+
+/* c_k = P_i·Q_j − P_j·Q_i, (i, j) = (k + 1, k + 2) mod 3: four exact
+ * products of expansions, compressed. */
+void sr_clip_exact_corner_of(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane,
+                             const sr_clip_depth *depth, sr_clip_exact_corner *corner)
+{
+    double p[3][SR_CLIP_DISTANCE_TERMS], q[3][SR_CLIP_DISTANCE_TERMS], neg_q[SR_CLIP_DISTANCE_TERMS];
+    int pn[3], qn[3];
+    for (int k = 0; k < 3; k++) {
+        pn[k] = sr_clip_distance_exact(first, tri[k].v, depth, p[k]);
+        qn[k] = sr_clip_distance_exact(plane, tri[k].v, depth, q[k]);
+    }
+    corner->denominator_terms = 0;
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3, n = 0;
+        double *c = corner->weight[k];
+        for (int t = 0; t < qn[i]; t++)
+            neg_q[t] = -q[i][t];
+        for (int t = 0; t < qn[j]; t++)
+            n = add_product(c, n, p[i], pn[i], q[j][t]);
+        for (int t = 0; t < qn[i]; t++)
+            n = add_product(c, n, p[j], pn[j], neg_q[t]);
+        corner->weight_terms[k] = n = compress(c, n);
+        for (int t = 0; t < n; t++)
+            corner->denominator_terms = grow(corner->denominator, corner->denominator_terms, c[t]);
+    }
+    corner->denominator_terms = compress(corner->denominator, corner->denominator_terms);
+}
+
+int sr_clip_exact_corner_numerator(const sr_clip_exact_corner *corner, const sr_vertex_out tri[3], int i,
+                                   double num[SR_CLIP_CORNER_NUMERATOR_TERMS])
+{
+    int n = 0;
+    for (int k = 0; k < 3; k++)
+        n = add_product(num, n, corner->weight[k], corner->weight_terms[k], tri[k].v[i]);
+    return n;
+}
+
+bool sr_clip_corner_exact(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane, int floats,
+                          const sr_clip_depth *depth, sr_vertex_out *cut)
+{
+    sr_clip_exact_corner corner;
+    sr_clip_exact_corner_of(tri, first, plane, depth, &corner);
+    double denominator = expansion_value(corner.denominator, corner.denominator_terms);
+    if (expansion_signed_value(corner.denominator, corner.denominator_terms) == 0.0)
+        return false;
+    for (int i = 0; i < floats; i++) {
+        double num[SR_CLIP_CORNER_NUMERATOR_TERMS];
+        int n = sr_clip_exact_corner_numerator(&corner, tri, i, num);
+        cut->v[i] = (float)(expansion_value(num, n) / denominator);
+    }
+    return true;
+}
