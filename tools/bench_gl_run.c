@@ -72,7 +72,8 @@ void bench_gl_frame_camera(const sr_bench_scene *s, int f, int n, mat4 view, mat
 static bool softrast_frame(softrast_side *sr, const sr_bench_scene *s, const bench_gl_run *run, int f,
                            sr_error *err)
 {
-    sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade, .threads = run->threads, .workspace = sr->ws,
+    sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade, .cull = s->cull, .threads = run->threads,
+                          .workspace = sr->ws,
                           .texture = s->texture.texels ? &s->texture : NULL,
                           .study = &(sr_draw_study){ .simd = run->simd } };
     bench_gl_frame_camera(s, f, run->frames, desc.view, desc.projection);

@@ -135,12 +135,13 @@ static void raster_tiles(void *ctx, int t)
 
 bool sr_draw_binned(sr_draw_state *st)
 {
-    sr_parallel_run(st->threads, setup_range, st);
+    sr_draw_times *times = st->study.times;
+    sr_parallel_run(st->threads, setup_range, st, times ? &times->primitives : NULL);
     for (int t = 0; t < st->threads; t++)
         if (st->ws->threads[t].out_of_memory)
             return false;
     raster_phase ph = { .st = st };
     atomic_init(&ph.next_tile, 0);
-    sr_parallel_run(st->threads, raster_tiles, &ph);
+    sr_parallel_run(st->threads, raster_tiles, &ph, times ? &times->raster : NULL);
     return true;
 }

@@ -83,8 +83,12 @@ struct sr_fan_sink {
  * clipping, fan, viewport (of cut vertices) and culling, into sink. */
 void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end);
 
-/* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread. */
-void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx);
+/* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread; adds
+ * the phase's wall time and its threads' CPU time to *time when given. */
+void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx, sr_phase_time *time);
+
+/* A monotonic clock in milliseconds, for sr_draw_times. */
+double sr_clock_ms(void);
 
 /* The binned path: primitives into per-thread tile bins, then each tile
  * rasterized by one thread in submission order. False when out of memory. */

@@ -165,7 +165,8 @@ static bool run_vertex_phase(const sr_draw_state *st, const vertex_phase *ph, sr
         !sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
         !sr_array_reserve(&ws->screen, n, sizeof(sr_screen_vertex)))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
-    sr_parallel_run(st->threads, vertex_range, (void *)ph);
+    sr_draw_times *times = st->study.times;
+    sr_parallel_run(st->threads, vertex_range, (void *)ph, times ? &times->vertex : NULL);
     return true;
 }
 
@@ -203,8 +204,10 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], 
     sink->work->simd_draws += simd;
 }
 
-static void draw_direct(sr_draw_state *st)
+static void draw_direct(void *ctx, int t)
 {
+    (void)t;
+    sr_draw_state *st = ctx;
     sr_fan_sink sink = { .store = store_in_place, .triangle = raster_now, .st = st, .work = &st->ws->threads[0] };
     sr_draw_primitives(&sink, 0, st->slots);
 }
@@ -242,7 +245,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         if (!run_vertex_phase(st, &ph, err))
             return false;
         if (st->threads == 1)
-            draw_direct(st);
+            sr_parallel_run(1, draw_direct, st, st->study.times ? &st->study.times->primitives : NULL);
         else if (!sr_draw_binned(st))
             return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
     }
@@ -269,6 +272,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
 {
     if (!desc)
         return sr_error_set(err, "draw without a description");
+    double start = sr_clock_ms();
     const sr_draw_study study = desc->study ? *desc->study : (sr_draw_study){ 0 };
     sr_shade mode = study.count_hits ? SR_RASTER_COUNT_HITS : desc->shade;
     sr_varying_layout layout = { .color = -1, .uv = -1, .normal = -1 };
@@ -295,5 +299,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     bool ok = draw_with(&st, stats ? stats : &scratch, err);
     if (!desc->workspace)
         sr_workspace_destroy(ws);
+    if (study.times)
+        study.times->total += sr_clock_ms() - start;
     return ok;
 }
