@@ -1,12 +1,21 @@
-/* The threaded path: set up triangles in slot ranges, bin the fan triangles
- * into tiles, draw each tile on one thread in submission order. A tile's
- * pixels see the same triangles in the same order with the same edge values
- * as in the one-thread path, so the image is bit-identical. */
+/* The threaded path: set up triangles in chunks of slots, bin the fan
+ * triangles into tiles, draw each tile on one thread in submission order. A
+ * tile's pixels see the same triangles in the same order with the same edge
+ * values as in the one-thread path, so the image is bit-identical. */
 #include <stdatomic.h>
 #include <stdlib.h>
 
 #include "draw_internal.h"
 #include "raster.h"
+
+/* Slots go to the threads in chunks of this many: a thread that waits for a
+ * core leaves its share to the others. */
+#define SETUP_CHUNK 1024
+
+typedef struct setup_phase {
+    sr_draw_state *st;
+    sr_chunks slots;
+} setup_phase;
 
 typedef struct raster_phase {
     sr_draw_state *st;
@@ -33,6 +42,10 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
     (void)clipped;
     sr_thread_work *w = sink->work;
     const sr_draw_state *st = sink->st;
+    sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
+    sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
+    if (box.x0 >= box.x1 || box.y0 >= box.y1)
+        return; /* covers no pixel centre: no record */
     sr_record *rec = sr_array_push(&w->records, sizeof *rec);
     if (!rec) {
         w->out_of_memory = true;
@@ -40,10 +53,6 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
     }
     *rec = (sr_record){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .area2 = area2 };
     uint32_t index = (uint32_t)(w->records.count - 1);
-    sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
-    sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
-    if (box.x0 >= box.x1 || box.y0 >= box.y1)
-        return; /* covers no pixel centre */
     int tx0 = box.x0 / SR_TILE_SIDE, tx1 = (box.x1 - 1) / SR_TILE_SIDE;
     int ty0 = box.y0 / SR_TILE_SIDE, ty1 = (box.y1 - 1) / SR_TILE_SIDE;
     for (int ty = ty0; ty <= ty1; ty++) {
@@ -77,18 +86,19 @@ static bool work_reset(sr_thread_work *w, size_t tiles)
     return true;
 }
 
-static void setup_range(void *ctx, int t)
+static void setup_chunks(void *ctx, int t)
 {
-    sr_draw_state *st = ctx;
+    setup_phase *ph = ctx;
+    sr_draw_state *st = ph->st;
     sr_thread_work *w = &st->ws->threads[t];
     if (!work_reset(w, (size_t)st->tiles_x * (size_t)st->tiles_y)) {
         w->out_of_memory = true;
         return;
     }
     sr_fan_sink sink = { .store = store_clip_verts, .triangle = bin_triangle, .st = st, .work = w };
-    uint32_t first = (uint32_t)((uint64_t)st->slots * t / st->threads);
-    uint32_t end = (uint32_t)((uint64_t)st->slots * (t + 1) / st->threads);
-    sr_draw_primitives(&sink, first, end);
+    uint32_t first, end;
+    while (sr_chunks_take(&ph->slots, &first, &end))
+        sr_draw_primitives(&sink, first, end);
 }
 
 static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_thread_work *binner, uint32_t ref)
@@ -98,29 +108,62 @@ static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_threa
     return &((const sr_screen_vertex *)binner->clip_verts.data)[ref - st->vertex_count];
 }
 
-/* Every binning thread's list for the tile, in thread order: thread t set up
- * the slots before thread t + 1's, so this is submission order. */
+/* sr_framebuffer_clear for the tile's pixels alone. */
+static void clear_tile(sr_framebuffer *fb, sr_raster_rect rect, uint32_t color)
+{
+    float depth = sr_framebuffer_depth_clear(fb);
+    for (int y = rect.y0; y < rect.y1; y++) {
+        size_t row = (size_t)y * (size_t)fb->width;
+        for (int x = rect.x0; x < rect.x1; x++) {
+            fb->color[row + (size_t)x] = color;
+            fb->depth[row + (size_t)x] = depth;
+        }
+    }
+}
+
+static const sr_record *record_at(const sr_thread_work *w, int tile, size_t i)
+{
+    return &((const sr_record *)w->records.data)[((const uint32_t *)w->bins[tile].data)[i]];
+}
+
+/* The binning threads' lists for the tile merged by slot: each thread took
+ * its chunks in increasing order and a slot's fan triangles are all one
+ * thread's, so the merge is submission order. */
 static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_draws)
 {
     int tx = tile % st->tiles_x, ty = tile / st->tiles_x;
     sr_raster_rect rect = { tx * SR_TILE_SIDE, ty * SR_TILE_SIDE, (tx + 1) * SR_TILE_SIDE, (ty + 1) * SR_TILE_SIDE };
     rect.x1 = rect.x1 < st->fb->width ? rect.x1 : st->fb->width;
     rect.y1 = rect.y1 < st->fb->height ? rect.y1 : st->fb->height;
+    if (st->desc->clear)
+        clear_tile(st->fb, rect, st->desc->clear_color);
     uint64_t fragments = 0;
-    for (int t = 0; t < st->threads; t++) {
-        const sr_thread_work *w = &st->ws->threads[t];
-        const uint32_t *list = w->bins[tile].data;
-        for (size_t i = 0; i < w->bins[tile].count; i++) {
-            const sr_record *rec = &((const sr_record *)w->records.data)[list[i]];
-            const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
-                                                     vertex_of(st, w, rec->ref[2]) };
-            bool simd = false;
-            fragments += sr_raster_triangle_on(st->fb, rect, st->vp.subpixel_bits, st->mode, &st->shade,
-                                               tri, rec->area2, rec->id, &simd);
-            *simd_draws += simd;
+    size_t next[SR_MAX_THREADS] = { 0 };
+    for (;;) {
+        const sr_thread_work *w = NULL;
+        const sr_record *rec = NULL;
+        int from = 0;
+        for (int t = 0; t < st->threads; t++) {
+            const sr_thread_work *u = &st->ws->threads[t];
+            if (next[t] == u->bins[tile].count)
+                continue;
+            const sr_record *head = record_at(u, tile, next[t]);
+            if (!rec || head->id < rec->id) {
+                w = u;
+                rec = head;
+                from = t;
+            }
         }
+        if (!rec)
+            return fragments;
+        next[from]++;
+        const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
+                                                 vertex_of(st, w, rec->ref[2]) };
+        bool simd = false;
+        fragments += sr_raster_triangle_on(st->fb, rect, st->vp.subpixel_bits, st->mode, &st->shade, tri,
+                                           rec->area2, rec->id, &simd);
+        *simd_draws += simd;
     }
-    return fragments;
 }
 
 static void raster_tiles(void *ctx, int t)
@@ -136,7 +179,9 @@ static void raster_tiles(void *ctx, int t)
 bool sr_draw_binned(sr_draw_state *st)
 {
     sr_draw_times *times = st->study.times;
-    sr_parallel_run(st->threads, setup_range, st, times ? &times->primitives : NULL);
+    setup_phase setup = { .st = st };
+    sr_chunks_init(&setup.slots, st->slots, SETUP_CHUNK);
+    sr_parallel_run(st->threads, setup_chunks, &setup, times ? &times->primitives : NULL);
     for (int t = 0; t < st->threads; t++)
         if (st->ws->threads[t].out_of_memory)
             return false;

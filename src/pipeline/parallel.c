@@ -15,6 +15,23 @@ double sr_clock_ms(void)
     return clock_ms(CLOCK_MONOTONIC);
 }
 
+void sr_chunks_init(sr_chunks *c, uint32_t count, uint32_t size)
+{
+    atomic_init(&c->next, 0);
+    c->count = count;
+    c->size = size;
+}
+
+bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end)
+{
+    uint64_t start = (uint64_t)atomic_fetch_add(&c->next, 1) * c->size;
+    if (start >= c->count)
+        return false;
+    *first = (uint32_t)start;
+    *end = start + c->size < c->count ? (uint32_t)(start + c->size) : c->count;
+    return true;
+}
+
 typedef struct job {
     void (*fn)(void *ctx, int t);
     void *ctx;

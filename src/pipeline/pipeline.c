@@ -81,8 +81,6 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
     const double *o = d->mesh->origin;
     if (!isfinite(o[0]) || !isfinite(o[1]) || !isfinite(o[2]))
         return sr_error_set(err, "mesh origin (%g, %g, %g) is not finite", o[0], o[1], o[2]);
-    if (!sr_assemble_indices_valid(d->mesh))
-        return sr_error_set(err, "mesh has an index past its %u vertices", d->mesh->vertex_count);
     if (d->mesh->vertex_count == 0)
         return true; /* nothing to shade: an empty mesh needs no attributes */
     if (l->normal >= 0 && !d->mesh->normals)
@@ -111,22 +109,24 @@ static void shade_context_make(const sr_draw_desc *d, sr_simd simd, const sr_var
     glm_vec3_copy(light, c->light_dir);
 }
 
+/* Vertices and indices go to the threads in chunks of these. */
+#define VERTEX_CHUNK 4096
+#define INDEX_CHUNK 65536
+
 typedef struct vertex_phase {
     const sr_draw_state *st;
     sr_vertex_transform xf;
     bool inside; /* the mesh's bounds are inside every plane: no classification */
+    sr_chunks vertices, indices;
 } vertex_phase;
 
 /* Stages 1 and 3 per unique vertex, and stage 6 for those inside every
  * plane, so an unclipped triangle maps none of its corners again. A vertex
  * inside whose divide fails (a non-finite varying, w below 2^-128) is marked
  * non-finite: the triangles that use it are dropped and counted. */
-static void vertex_range(void *ctx, int t)
+static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end)
 {
-    const vertex_phase *ph = ctx;
     const sr_draw_state *st = ph->st;
-    uint32_t first = (uint32_t)((uint64_t)st->vertex_count * t / st->threads);
-    uint32_t end = (uint32_t)((uint64_t)st->vertex_count * (t + 1) / st->threads);
     sr_vertex_out *verts = st->ws->verts.data;
     unsigned char *outcodes = st->ws->outcodes.data;
     sr_screen_vertex *screen = st->ws->screen.data;
@@ -140,6 +140,22 @@ static void vertex_range(void *ctx, int t)
             code = SR_OUT_NONFINITE;
         outcodes[i] = (unsigned char)code;
     }
+}
+
+/* The vertex chunks, then the check of the indices, which sr_draw would
+ * otherwise make serially before it starts (nothing is drawn before the
+ * verdict). */
+static void vertex_phase_run(void *ctx, int t)
+{
+    vertex_phase *ph = ctx;
+    const sr_draw_state *st = ph->st;
+    uint32_t first, end;
+    while (sr_chunks_take(&ph->vertices, &first, &end))
+        vertex_chunk(ph, first, end);
+    bool past_end = false;
+    while (sr_chunks_take(&ph->indices, &first, &end))
+        past_end = past_end || !sr_assemble_indices_valid_in(st->desc->mesh, first, end);
+    st->ws->threads[t].index_past_end = past_end;
 }
 
 static void make_transform(const sr_draw_state *st, sr_vertex_transform *xf)
@@ -157,7 +173,12 @@ static void make_transform(const sr_draw_state *st, sr_vertex_transform *xf)
     sr_vertex_make_transform_d(&world, &view, &projection, d->mesh->origin, xf);
 }
 
-static bool run_vertex_phase(const sr_draw_state *st, const vertex_phase *ph, sr_error *err)
+static bool index_error(const sr_draw_state *st, sr_error *err)
+{
+    return sr_error_set(err, "mesh has an index past its %u vertices", st->vertex_count);
+}
+
+static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error *err)
 {
     uint32_t n = st->vertex_count;
     sr_workspace *ws = st->ws;
@@ -166,7 +187,12 @@ static bool run_vertex_phase(const sr_draw_state *st, const vertex_phase *ph, sr
         !sr_array_reserve(&ws->screen, n, sizeof(sr_screen_vertex)))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
     sr_draw_times *times = st->study.times;
-    sr_parallel_run(st->threads, vertex_range, (void *)ph, times ? &times->vertex : NULL);
+    sr_chunks_init(&ph->vertices, n, VERTEX_CHUNK);
+    sr_chunks_init(&ph->indices, st->desc->mesh->index_count, INDEX_CHUNK);
+    sr_parallel_run(st->threads, vertex_phase_run, ph, times ? &times->vertex : NULL);
+    for (int t = 0; t < st->threads; t++)
+        if (st->ws->threads[t].index_past_end)
+            return index_error(st, err);
     return true;
 }
 
@@ -238,13 +264,23 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     const sr_mesh *mesh = st->desc->mesh;
     sr_clip_box box = mesh->bounded ? sr_clip_classify_box(ph.xf.clip_from_object, mesh->bounds_lo, mesh->bounds_hi)
                                     : SR_BOX_CROSSES;
-    if (box == SR_BOX_OUTSIDE) {
-        reject_all(st);
-    } else if (st->vertex_count > 0) { /* an empty mesh (valid indices: none) has nothing to draw */
+    /* An empty mesh (valid indices: none) has nothing to draw. */
+    bool draws = box != SR_BOX_OUTSIDE && st->vertex_count > 0, binned = draws && st->threads > 1;
+    if (!draws && !sr_assemble_indices_valid(mesh)) /* else the vertex phase checks them */
+        return index_error(st, err);
+    if (draws) {
         ph.inside = box == SR_BOX_INSIDE;
         if (!run_vertex_phase(st, &ph, err))
             return false;
-        if (st->threads == 1)
+    }
+    /* Nothing is written before every check has passed; the binned path
+     * clears each tile as it draws it. */
+    if (st->desc->clear && !binned)
+        sr_framebuffer_clear(st->fb, st->desc->clear_color);
+    if (box == SR_BOX_OUTSIDE) {
+        reject_all(st);
+    } else if (draws) {
+        if (!binned)
             sr_parallel_run(1, draw_direct, st, st->study.times ? &st->study.times->primitives : NULL);
         else if (!sr_draw_binned(st))
             return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
