@@ -51,7 +51,8 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
         w->out_of_memory = true;
         return;
     }
-    *rec = (sr_record){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .area2 = area2 };
+    *rec = (sr_record){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .area2 = area2, .x0 = (int16_t)box.x0,
+                        .y0 = (int16_t)box.y0, .x1 = (int16_t)box.x1, .y1 = (int16_t)box.y1 };
     uint32_t index = (uint32_t)(w->records.count - 1);
     int tx0 = box.x0 / SR_TILE_SIDE, tx1 = (box.x1 - 1) / SR_TILE_SIDE;
     int ty0 = box.y0 / SR_TILE_SIDE, ty1 = (box.y1 - 1) / SR_TILE_SIDE;
@@ -121,6 +122,19 @@ static void clear_tile(sr_framebuffer *fb, sr_raster_rect rect, uint32_t color)
     }
 }
 
+static int clamp_to(int v, int lo, int hi)
+{
+    return v < lo ? lo : v > hi ? hi : v;
+}
+
+/* The record's scan box clamped to the tile: what sr_raster_scan_box_of
+ * gives on the tile, since the tile lies inside the framebuffer. */
+static sr_raster_rect box_in(const sr_record *rec, sr_raster_rect tile)
+{
+    return (sr_raster_rect){ clamp_to(rec->x0, tile.x0, tile.x1), clamp_to(rec->y0, tile.y0, tile.y1),
+                             clamp_to(rec->x1, tile.x0, tile.x1), clamp_to(rec->y1, tile.y0, tile.y1) };
+}
+
 static const sr_record *record_at(const sr_thread_work *w, int tile, size_t i)
 {
     return &((const sr_record *)w->records.data)[((const uint32_t *)w->bins[tile].data)[i]];
@@ -140,29 +154,37 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
     uint64_t fragments = 0;
     size_t next[SR_MAX_THREADS] = { 0 };
     for (;;) {
-        const sr_thread_work *w = NULL;
-        const sr_record *rec = NULL;
-        int from = 0;
+        /* The thread whose next record comes first, drawn up to the first
+         * record of the others'. */
+        int from = -1;
+        uint32_t first_id = 0, others_id = UINT32_MAX;
         for (int t = 0; t < st->threads; t++) {
             const sr_thread_work *u = &st->ws->threads[t];
             if (next[t] == u->bins[tile].count)
                 continue;
-            const sr_record *head = record_at(u, tile, next[t]);
-            if (!rec || head->id < rec->id) {
-                w = u;
-                rec = head;
+            uint32_t id = record_at(u, tile, next[t])->id;
+            if (from < 0 || id < first_id) {
+                others_id = from < 0 ? others_id : first_id;
                 from = t;
+                first_id = id;
+            } else if (id < others_id) {
+                others_id = id;
             }
         }
-        if (!rec)
+        if (from < 0)
             return fragments;
-        next[from]++;
-        const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
-                                                 vertex_of(st, w, rec->ref[2]) };
-        bool simd = false;
-        fragments += sr_raster_triangle_on(st->fb, rect, st->vp.subpixel_bits, st->mode, &st->shade, tri,
-                                           rec->area2, rec->id, &simd);
-        *simd_draws += simd;
+        const sr_thread_work *w = &st->ws->threads[from];
+        for (; next[from] < w->bins[tile].count; next[from]++) {
+            const sr_record *rec = record_at(w, tile, next[from]);
+            if (rec->id > others_id)
+                break;
+            const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
+                                                     vertex_of(st, w, rec->ref[2]) };
+            bool simd = false;
+            fragments += sr_raster_triangle_in_box(st->fb, box_in(rec, rect), st->vp.subpixel_bits, st->mode,
+                                                   &st->shade, tri, rec->area2, rec->id, &simd);
+            *simd_draws += simd;
+        }
     }
 }
 

@@ -23,11 +23,13 @@
 
 /* A fan triangle in a bin: its three vertices as references (below the mesh's
  * vertex count: the shared screen vertex; from there on: the binning
- * thread's clip vertices), its exact area and its id. */
+ * thread's clip vertices), its exact area, its id and its scan box on the
+ * framebuffer (sides up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits). */
 typedef struct sr_record {
     uint32_t ref[3];
     uint32_t id;
     int64_t area2;
+    int16_t x0, y0, x1, y1;
 } sr_record;
 
 /* One thread's share of a draw: its counts, and in the binned path the clip
