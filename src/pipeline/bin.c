@@ -8,9 +8,20 @@
 #include "draw_internal.h"
 #include "raster.h"
 
-/* Slots go to the threads in chunks of this many: a thread that waits for a
- * core leaves its share to the others. */
-#define SETUP_CHUNK 1024
+/* Slots go to the threads in chunks, about 8 a thread, so one that waits
+ * for a core leaves its share to the others, but no smaller than the first
+ * bound nor larger than the second: a thread walks the vertices of its
+ * chunk in order, and measured on the dense torus at 2 threads, chunks of
+ * 16384 slots cost 13.7 ms of set-up CPU a frame and of 1024 slots 15.2. */
+#define SETUP_CHUNKS_PER_THREAD 8
+#define SETUP_CHUNK_MIN 256
+#define SETUP_CHUNK_MAX 16384
+
+static uint32_t setup_chunk(const sr_draw_state *st)
+{
+    uint32_t size = st->slots / (SETUP_CHUNKS_PER_THREAD * (uint32_t)st->threads);
+    return size < SETUP_CHUNK_MIN ? SETUP_CHUNK_MIN : size > SETUP_CHUNK_MAX ? SETUP_CHUNK_MAX : size;
+}
 
 typedef struct setup_phase {
     sr_draw_state *st;
@@ -202,7 +213,7 @@ bool sr_draw_binned(sr_draw_state *st)
 {
     sr_draw_times *times = st->study.times;
     setup_phase setup = { .st = st };
-    sr_chunks_init(&setup.slots, st->slots, SETUP_CHUNK);
+    sr_chunks_init(&setup.slots, st->slots, setup_chunk(st));
     sr_parallel_run(st->threads, setup_chunks, &setup, times ? &times->primitives : NULL);
     for (int t = 0; t < st->threads; t++)
         if (st->ws->threads[t].out_of_memory)
