@@ -185,3 +185,30 @@ Test(threads, clear_inside_the_draw_matches_clear_before_it)
     }
     sr_mesh_free(&torus);
 }
+
+/* sr_draw_study.times: every draw adds its phases (never clears them); one
+ * thread has no tile phase, several do; the draw's whole time holds its
+ * phases. Which is faster is the bench's business, not a test's. */
+Test(threads, draw_times_add_up_per_phase)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    for (int threads = 1; threads <= 2; threads++) {
+        sr_draw_times times = { { 0 } };
+        sr_draw_desc desc = { .mesh = &torus, .threads = threads, .study = &(sr_draw_study){ .times = &times } };
+        look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+        drawn out;
+        draw_with_threads(&desc, 301, 173, false, threads, &out);
+        sr_draw_times once = times;
+        sr_framebuffer_destroy(&out.fb);
+        draw_with_threads(&desc, 301, 173, false, threads, &out);
+        sr_framebuffer_destroy(&out.fb);
+        cr_assert_gt(once.vertex.wall, 0.0);
+        cr_assert_gt(once.primitives.cpu, 0.0);
+        cr_assert(threads == 1 ? once.raster.wall == 0.0 : once.raster.wall > 0.0, "tile phase on %d threads", threads);
+        cr_assert_geq(once.total, once.vertex.wall + once.primitives.wall + once.raster.wall);
+        cr_assert_gt(times.total, once.total, "a second draw adds to the times");
+    }
+    sr_mesh_free(&torus);
+}

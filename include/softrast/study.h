@@ -7,7 +7,8 @@
  * their cost and their error can be measured (docs/report.md); every zero
  * field is the default that the conventions pin, so a zeroed study draws
  * exactly what no study draws. The trace sees the fan triangles the
- * rasterizer gets; count_hits counts how many cover each pixel.
+ * rasterizer gets; count_hits counts how many cover each pixel; times
+ * says where the draw's time went, phase by phase (docs/performance.md).
  */
 #ifndef SOFTRAST_STUDY_H
 #define SOFTRAST_STUDY_H
