@@ -147,3 +147,68 @@ Test(threads, observer_sees_every_drawn_triangle_once_in_order)
     sr_framebuffer_destroy(&out.fb);
     sr_mesh_free(&torus);
 }
+
+/* desc.clear into a framebuffer holding another picture: the same pixels,
+ * depths and counts as sr_framebuffer_clear then the draw, on one thread
+ * (one clear up front) and on several (each tile cleared by its thread). */
+Test(threads, clear_inside_the_draw_matches_clear_before_it)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    size_t n = (size_t)301 * 173;
+    for (int reversed = 0; reversed < 2; reversed++) {
+        sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT, .clear_color = 0x123456 };
+        look_reversed(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f, reversed);
+        drawn before;
+        draw_with_threads(&desc, 301, 173, reversed, 1, &before);
+        for (int threads = 1; threads <= 4; threads += 3) {
+            drawn inside = { .fb = { 0 } };
+            cr_assert(sr_framebuffer_create(&inside.fb, 301, 173, &err), "%s", err.message);
+            inside.fb.reversed_z = reversed;
+            for (size_t i = 0; i < n; i++) { /* another picture, nearer than most of the torus */
+                inside.fb.color[i] = 0xABCDEF;
+                inside.fb.depth[i] = 0.5f;
+            }
+            sr_draw_desc clearing = desc;
+            clearing.clear = true;
+            clearing.threads = threads;
+            cr_assert(sr_draw(&inside.fb, &clearing, &inside.stats, &err), "%s", err.message);
+            cr_assert_eq(memcmp(before.fb.color, inside.fb.color, n * sizeof *before.fb.color), 0,
+                         "color differs, %d threads", threads);
+            cr_assert_eq(memcmp(before.fb.depth, inside.fb.depth, n * sizeof *before.fb.depth), 0,
+                         "depth differs, %d threads", threads);
+            cr_assert_eq(memcmp(&before.stats, &inside.stats, sizeof before.stats), 0, "stats differ");
+            sr_framebuffer_destroy(&inside.fb);
+        }
+        sr_framebuffer_destroy(&before.fb);
+    }
+    sr_mesh_free(&torus);
+}
+
+/* sr_draw_study.times: every draw adds its phases (never clears them); one
+ * thread has no tile phase, several do; the draw's whole time holds its
+ * phases. Which is faster is the bench's business, not a test's. */
+Test(threads, draw_times_add_up_per_phase)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    for (int threads = 1; threads <= 2; threads++) {
+        sr_draw_times times = { { 0 } };
+        sr_draw_desc desc = { .mesh = &torus, .threads = threads, .study = &(sr_draw_study){ .times = &times } };
+        look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+        drawn out;
+        draw_with_threads(&desc, 301, 173, false, threads, &out);
+        sr_draw_times once = times;
+        sr_framebuffer_destroy(&out.fb);
+        draw_with_threads(&desc, 301, 173, false, threads, &out);
+        sr_framebuffer_destroy(&out.fb);
+        cr_assert_gt(once.vertex.wall, 0.0);
+        cr_assert_gt(once.primitives.cpu, 0.0);
+        cr_assert(threads == 1 ? once.raster.wall == 0.0 : once.raster.wall > 0.0, "tile phase on %d threads", threads);
+        cr_assert_geq(once.total, once.vertex.wall + once.primitives.wall + once.raster.wall);
+        cr_assert_gt(times.total, once.total, "a second draw adds to the times");
+    }
+    sr_mesh_free(&torus);
+}

@@ -15,8 +15,8 @@
 #define MAX_FRAMES 10000
 #define MAX_THREADS 64
 
-static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", NULL };
-enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_KINDS };
+static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", "inside", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_INSIDE, SCENE_KINDS };
 
 typedef struct job {
     int scene, frames, fill_frames, threads, simd;
@@ -68,6 +68,8 @@ static bool make_scene(int kind, sr_bench_scene *s, sr_error *err)
         return sr_bench_fly(s, err);
     case SCENE_FILL:
         return sr_bench_fill(s, err);
+    case SCENE_INSIDE:
+        return sr_bench_inside(s, err);
     default:
         return sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080, SR_SHADE_DEPTH, err);
     }
@@ -133,7 +135,7 @@ static bool print_renderer(sr_error *err)
 static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|depth", "which scenes (default all)",
+        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|depth|inside", "which scenes (default all)",
           .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &j->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N", "at most N timed frames for fill (default 3)", 1,

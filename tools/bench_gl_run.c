@@ -68,17 +68,18 @@ void bench_gl_frame_camera(const sr_bench_scene *s, int f, int n, mat4 view, mat
     sr_camera_projection(&cam, (float)s->width / (float)s->height, projection);
 }
 
-/* A frame as `softrast bench` times it: clear color and depth, draw. */
+/* A frame as `softrast bench` times it: clear color and depth, draw (the clear
+ * inside the draw: sr_draw_desc.clear). */
 static bool softrast_frame(softrast_side *sr, const sr_bench_scene *s, const bench_gl_run *run, int f,
                            sr_error *err)
 {
-    sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade, .threads = run->threads, .workspace = sr->ws,
+    sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade, .cull = s->cull, .threads = run->threads,
+                          .workspace = sr->ws,
                           .texture = s->texture.texels ? &s->texture : NULL,
-                          .study = &(sr_draw_study){ .simd = run->simd } };
+                          .study = &(sr_draw_study){ .simd = run->simd }, .clear = true };
     bench_gl_frame_camera(s, f, run->frames, desc.view, desc.projection);
     clock_mark start = clock_now();
     sr->stats = (sr_stats){ 0 };
-    sr_framebuffer_clear(&sr->fb, 0);
     bool ok = sr_draw(&sr->fb, &desc, &sr->stats, err);
     clock_record(&sr->clock, f, start);
     return ok;

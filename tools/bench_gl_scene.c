@@ -1,6 +1,6 @@
 /* bench_gl_scene.c — a bench scene on llvmpipe: uploaded once, then drawn
  * per frame with the matrices softrast uses and the same fixed-function
- * conventions (z in [0, 1], LESS, clear to 1, back faces culled). */
+ * conventions (z in [0, 1], LESS, clear to 1, the scene's face culling). */
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 #include <stdio.h>
@@ -216,7 +216,7 @@ static bool make_framebuffer(bench_gl_scene *g, sr_error *err)
  * row 0 at the top: both flip together, the picture is the same way up in
  * both, and a triangle clockwise in one is clockwise in the other. So GL_CW
  * is front (GL_CCW culls the torus's outside: other depths, ~all colors off). */
-static bool set_fixed_state(bench_gl_scene *g, sr_error *err)
+static bool set_fixed_state(bench_gl_scene *g, const sr_bench_scene *s, sr_error *err)
 {
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE); /* clip volume 0 <= z <= w, depth = z_ndc */
     glViewport(0, 0, g->width, g->height);
@@ -224,8 +224,11 @@ static bool set_fixed_state(bench_gl_scene *g, sr_error *err)
     glDepthFunc(GL_LESS);
     glClearDepth(1.0);
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
+    if (s->cull == SR_CULL_NONE)
+        glDisable(GL_CULL_FACE);
+    else
+        glEnable(GL_CULL_FACE);
+    glCullFace(s->cull == SR_CULL_FRONT ? GL_FRONT : GL_BACK);
     glFrontFace(GL_CW);
     glDisable(GL_DITHER);
     glDisable(GL_MULTISAMPLE);
@@ -246,7 +249,7 @@ bool bench_gl_scene_create(bench_gl_scene **out, const sr_bench_scene *s, sr_err
     *g = (bench_gl_scene){ .width = s->width, .height = s->height, .depth_only = s->shade == SR_SHADE_DEPTH };
     bool ok = make_program(g, s, &layout, err) && upload_mesh(g, &s->mesh, &layout, err) &&
               (!textured || upload_texture(g, &s->texture, err)) && make_framebuffer(g, err) &&
-              set_fixed_state(g, err);
+              set_fixed_state(g, s, err);
     if (!ok) {
         bench_gl_scene_destroy(g);
         return false;

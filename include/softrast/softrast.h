@@ -304,9 +304,14 @@ typedef struct sr_draw_desc {
     int threads;               /* threads in all, the caller's included; 0 or 1: one */
     sr_workspace *workspace;   /* optional */
     const sr_draw_study *study; /* optional measurement knobs (softrast/study.h); NULL: the defaults */
+    /* true: the draw first clears fb as sr_framebuffer_clear(fb, clear_color)
+     * would, with threads each tile just before its triangles (while it is
+     * in cache, and in parallel). */
+    bool clear;
+    uint32_t clear_color;
 } sr_draw_desc;
 
-/* Draws the mesh into fb (which the caller clears). False, with a message,
+/* Draws the mesh into fb (which the caller clears, or desc->clear). False, with a message,
  * for a desc that cannot be drawn: no mesh, an index out of range, a shading
  * mode whose inputs the mesh lacks (normals, uvs, colors, texture), a
  * non-finite mesh origin. Bad geometry (NaN, inf, anything behind the eye)

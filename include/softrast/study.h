@@ -7,7 +7,8 @@
  * their cost and their error can be measured (docs/report.md); every zero
  * field is the default that the conventions pin, so a zeroed study draws
  * exactly what no study draws. The trace sees the fan triangles the
- * rasterizer gets; count_hits counts how many cover each pixel.
+ * rasterizer gets; count_hits counts how many cover each pixel; times
+ * says where the draw's time went, phase by phase (docs/performance.md).
  */
 #ifndef SOFTRAST_STUDY_H
 #define SOFTRAST_STUDY_H
@@ -67,6 +68,25 @@ typedef struct sr_screen_vertex {
  * one runs on one thread and calls it in submission order. */
 typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id);
 
+/* Where a draw's time goes, added to by every draw whose study points at
+ * an sr_draw_times (the caller zeroes it first). Per phase: milliseconds of
+ * wall time, and of CPU time summed over the phase's threads (on a shared
+ * machine a thread may wait for a core: cpu / wall is the parallelism the
+ * phase got, cpu against the one-thread draw's is the threads' overhead).
+ * Two clock reads per phase and thread, never per triangle: on one thread,
+ * where set-up and rasterization interleave per triangle, both count under
+ * `primitives` (perf splits them: docs/performance.md). */
+typedef struct sr_phase_time {
+    double wall, cpu;
+} sr_phase_time;
+
+typedef struct sr_draw_times {
+    sr_phase_time vertex;     /* stage 1, outcodes, mapping of the inside vertices */
+    sr_phase_time primitives; /* stages 2-7; threads: and binning; one thread: and rasterization */
+    sr_phase_time raster;     /* threads: the tiles */
+    double total;             /* wall ms of the whole sr_draw, its serial checks and set-up included */
+} sr_draw_times;
+
 typedef struct sr_draw_study {
     int subpixel_bits;                /* 0: SR_SUBPIXEL_BITS; else SR_MIN..SR_MAX_SUBPIXEL_BITS */
     sr_clip_precision clip_precision; /* SR_CLIP_ADAPTIVE: per edge, within half a subpixel step */
@@ -75,6 +95,7 @@ typedef struct sr_draw_study {
     sr_triangle_observer observer;    /* optional */
     void *observer_user;
     bool count_hits;                  /* count coverage instead of shading: see below */
+    sr_draw_times *times;             /* optional: the phases' wall time is added here */
 } sr_draw_study;
 
 /* count_hits: every pixel a fan triangle covers gets color += 1 (the caller

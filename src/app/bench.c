@@ -18,12 +18,12 @@
 #define MAX_FRAMES 10000
 #define SCALING_POINTS 4
 
-static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", "scaling", NULL };
-enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_SCALING };
+static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", "inside", "scaling", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_INSIDE, SCENE_SCALING };
 
 typedef struct bench_job {
     int scene, frames, threads, simd;
-    bool report, stability;
+    bool report, stability, stages;
     const char *report_dir;
 } bench_job;
 
@@ -38,10 +38,11 @@ static const char USAGE[] =
 static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|depth|scaling", "which scenes (default all)", .choices = SCENE_NAMES },
+        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|depth|inside|scaling", "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--simd", SR_OPT_CHOICE, &job->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
+        { "--stages", SR_OPT_FLAG, &job->stages, NULL, "print where a frame's time goes, per phase of the draw, as a Markdown table (docs/performance.md)" },
         { "--report", SR_OPT_FLAG, &job->report, NULL, "measure error against time for every accuracy knob instead" },
         { "--stability", SR_OPT_FLAG, &job->stability, NULL, "measure clipping error, cracks and depth precision under stiff cameras instead (docs/stability.md)" },
         { "--report-dir", SR_OPT_STRING, &job->report_dir, "DIR", "where --report and --stability write their .md and .svg (default docs)" },
@@ -51,8 +52,13 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
     return sr_options_parse(table, USAGE, argc, argv, 2, NULL, 0, &positional, help, err);
 }
 
-static void print_header(void)
+static void print_header(const bench_job *job)
 {
+    if (job->stages) {
+        printf("| scene | threads | frame | clear | vertex wall / cpu | primitives wall / cpu | raster wall / cpu "
+               "| serial rest |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        return;
+    }
     printf("%-8s %10s %11s %10s %10s %10s %12s\n", "scene", "triangles", "size", "ms median", "ms min",
            "Mtri/s", "Mfragment/s");
 }
@@ -66,11 +72,32 @@ static void print_row(const char *name, const sr_bench_scene *s, const bench_res
     fflush(stdout);
 }
 
+/* Mean ms per frame of each phase (sr_draw_times), wall / CPU summed over
+ * threads; the clear is the frame's time outside the draw, the serial rest
+ * the draw's outside its phases. */
+static void print_stages(const char *name, const bench_job *job, const bench_result *r, const sr_draw_times *t)
+{
+    double n = job->frames, draw = t->total / n;
+    const sr_phase_time *phases[] = { &t->vertex, &t->primitives, &t->raster };
+    printf("| %s | %d | %.2f | %.2f |", name, job->threads, r->mean, r->mean - draw);
+    double walls = 0.0;
+    for (int i = 0; i < 3; i++) {
+        printf(" %.2f / %.2f |", phases[i]->wall / n, phases[i]->cpu / n);
+        walls += phases[i]->wall / n;
+    }
+    printf(" %.2f |\n", draw - walls);
+    fflush(stdout);
+}
+
 static bool run_scene(sr_bench_scene *s, bool made, const bench_job *job, bench_result *r, sr_error *err)
 {
-    sr_bench_run how = { .frames = job->frames, .threads = job->threads, .simd = (sr_simd)job->simd };
+    sr_draw_times times = { 0 };
+    sr_bench_run how = { .frames = job->frames, .threads = job->threads, .simd = (sr_simd)job->simd,
+                         .times = job->stages ? &times : NULL };
     bool ok = made && sr_bench_time(s, &how, NULL, r, err);
-    if (ok)
+    if (ok && job->stages)
+        print_stages(s->name, job, r, &times);
+    else if (ok)
         print_row(s->name, s, r);
     sr_bench_scene_free(s);
     return ok;
@@ -125,7 +152,7 @@ static bool run(const bench_job *job, sr_error *err)
 {
     sr_bench_scene s;
     bench_result r;
-    print_header();
+    print_header(job);
     if (wants(job, SCENE_DENSE) && !run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080,
                                                                  SR_SHADE_LAMBERT, err), job, &r, err))
         return false;
@@ -135,6 +162,8 @@ static bool run(const bench_job *job, sr_error *err)
         return false;
     if (wants(job, SCENE_DEPTH) && !run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080,
                                                                  SR_SHADE_DEPTH, err), job, &r, err))
+        return false;
+    if (wants(job, SCENE_INSIDE) && !run_scene(&s, sr_bench_inside(&s, err), job, &r, err))
         return false;
     return !wants(job, SCENE_SCALING) || run_scaling(job, err);
 }

@@ -15,10 +15,15 @@ bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3])
     return out[0] != out[1] && out[1] != out[2] && out[0] != out[2];
 }
 
-bool sr_assemble_indices_valid(const sr_mesh *mesh)
+bool sr_assemble_indices_valid_in(const sr_mesh *mesh, uint32_t first, uint32_t end)
 {
-    for (uint32_t i = 0; i < mesh->index_count; i++)
+    for (uint32_t i = first; i < end; i++)
         if (mesh->indices[i] >= mesh->vertex_count)
             return false;
     return true;
+}
+
+bool sr_assemble_indices_valid(const sr_mesh *mesh)
+{
+    return sr_assemble_indices_valid_in(mesh, 0, mesh->index_count);
 }

@@ -21,4 +21,7 @@ bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3]);
 /* True if every index is below vertex_count (checked once per draw). */
 bool sr_assemble_indices_valid(const sr_mesh *mesh);
 
+/* The same for indices [first, end): a draw's threads check a share each. */
+bool sr_assemble_indices_valid_in(const sr_mesh *mesh, uint32_t first, uint32_t end);
+
 #endif

@@ -1,16 +1,36 @@
-/* The threaded path: set up triangles in slot ranges, bin the fan triangles
- * into tiles, draw each tile on one thread in submission order. A tile's
- * pixels see the same triangles in the same order with the same edge values
- * as in the one-thread path, so the image is bit-identical. */
+/* The threaded path: set up triangles in chunks of slots, bin the fan
+ * triangles into tiles, draw each tile on one thread in submission order. A
+ * tile's pixels see the same triangles in the same order with the same edge
+ * values as in the one-thread path, so the image is bit-identical. */
 #include <stdatomic.h>
 #include <stdlib.h>
 
 #include "draw_internal.h"
 #include "raster.h"
 
+/* Slots go to the threads in chunks, about 8 a thread, so one that waits
+ * for a core leaves its share to the others, but no smaller than the first
+ * bound nor larger than the second: a thread walks the vertices of its
+ * chunk in order, and measured on the dense torus at 2 threads, chunks of
+ * 16384 slots cost 13.7 ms of set-up CPU a frame and of 1024 slots 15.2. */
+#define SETUP_CHUNKS_PER_THREAD 8
+#define SETUP_CHUNK_MIN 256
+#define SETUP_CHUNK_MAX 16384
+
+static uint32_t setup_chunk(const sr_draw_state *st)
+{
+    uint32_t size = st->slots / (SETUP_CHUNKS_PER_THREAD * (uint32_t)st->threads);
+    return size < SETUP_CHUNK_MIN ? SETUP_CHUNK_MIN : size > SETUP_CHUNK_MAX ? SETUP_CHUNK_MAX : size;
+}
+
+typedef struct setup_phase {
+    sr_draw_state *st;
+    sr_chunks slots;
+} setup_phase;
+
 typedef struct raster_phase {
     sr_draw_state *st;
-    atomic_int next_tile;
+    atomic_int next_tile; /* the next turn: tile_of_turn */
 } raster_phase;
 
 static uint32_t store_clip_verts(sr_fan_sink *sink, const sr_screen_vertex *v, int n)
@@ -33,17 +53,18 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
     (void)clipped;
     sr_thread_work *w = sink->work;
     const sr_draw_state *st = sink->st;
+    sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
+    sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
+    if (box.x0 >= box.x1 || box.y0 >= box.y1)
+        return; /* covers no pixel centre: no record */
     sr_record *rec = sr_array_push(&w->records, sizeof *rec);
     if (!rec) {
         w->out_of_memory = true;
         return;
     }
-    *rec = (sr_record){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .area2 = area2 };
+    *rec = (sr_record){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .area2 = area2, .x0 = (int16_t)box.x0,
+                        .y0 = (int16_t)box.y0, .x1 = (int16_t)box.x1, .y1 = (int16_t)box.y1 };
     uint32_t index = (uint32_t)(w->records.count - 1);
-    sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
-    sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
-    if (box.x0 >= box.x1 || box.y0 >= box.y1)
-        return; /* covers no pixel centre */
     int tx0 = box.x0 / SR_TILE_SIDE, tx1 = (box.x1 - 1) / SR_TILE_SIDE;
     int ty0 = box.y0 / SR_TILE_SIDE, ty1 = (box.y1 - 1) / SR_TILE_SIDE;
     for (int ty = ty0; ty <= ty1; ty++) {
@@ -77,18 +98,19 @@ static bool work_reset(sr_thread_work *w, size_t tiles)
     return true;
 }
 
-static void setup_range(void *ctx, int t)
+static void setup_chunks(void *ctx, int t)
 {
-    sr_draw_state *st = ctx;
+    setup_phase *ph = ctx;
+    sr_draw_state *st = ph->st;
     sr_thread_work *w = &st->ws->threads[t];
     if (!work_reset(w, (size_t)st->tiles_x * (size_t)st->tiles_y)) {
         w->out_of_memory = true;
         return;
     }
     sr_fan_sink sink = { .store = store_clip_verts, .triangle = bin_triangle, .st = st, .work = w };
-    uint32_t first = (uint32_t)((uint64_t)st->slots * t / st->threads);
-    uint32_t end = (uint32_t)((uint64_t)st->slots * (t + 1) / st->threads);
-    sr_draw_primitives(&sink, first, end);
+    uint32_t first, end;
+    while (sr_chunks_take(&ph->slots, &first, &end))
+        sr_draw_primitives(&sink, first, end);
 }
 
 static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_thread_work *binner, uint32_t ref)
@@ -98,49 +120,122 @@ static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_threa
     return &((const sr_screen_vertex *)binner->clip_verts.data)[ref - st->vertex_count];
 }
 
-/* Every binning thread's list for the tile, in thread order: thread t set up
- * the slots before thread t + 1's, so this is submission order. */
+/* sr_framebuffer_clear for the tile's pixels alone. */
+static void clear_tile(sr_framebuffer *fb, sr_raster_rect rect, uint32_t color)
+{
+    float depth = sr_framebuffer_depth_clear(fb);
+    for (int y = rect.y0; y < rect.y1; y++) {
+        size_t row = (size_t)y * (size_t)fb->width;
+        for (int x = rect.x0; x < rect.x1; x++) {
+            fb->color[row + (size_t)x] = color;
+            fb->depth[row + (size_t)x] = depth;
+        }
+    }
+}
+
+static int clamp_to(int v, int lo, int hi)
+{
+    return v < lo ? lo : v > hi ? hi : v;
+}
+
+/* The record's scan box clamped to the tile: what sr_raster_scan_box_of
+ * gives on the tile, since the tile lies inside the framebuffer. */
+static sr_raster_rect box_in(const sr_record *rec, sr_raster_rect tile)
+{
+    return (sr_raster_rect){ clamp_to(rec->x0, tile.x0, tile.x1), clamp_to(rec->y0, tile.y0, tile.y1),
+                             clamp_to(rec->x1, tile.x0, tile.x1), clamp_to(rec->y1, tile.y0, tile.y1) };
+}
+
+static const sr_record *record_at(const sr_thread_work *w, int tile, size_t i)
+{
+    return &((const sr_record *)w->records.data)[((const uint32_t *)w->bins[tile].data)[i]];
+}
+
+/* The binning threads' lists for the tile merged by slot: each thread took
+ * its chunks in increasing order and a slot's fan triangles are all one
+ * thread's, so the merge is submission order. */
 static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_draws)
 {
     int tx = tile % st->tiles_x, ty = tile / st->tiles_x;
     sr_raster_rect rect = { tx * SR_TILE_SIDE, ty * SR_TILE_SIDE, (tx + 1) * SR_TILE_SIDE, (ty + 1) * SR_TILE_SIDE };
     rect.x1 = rect.x1 < st->fb->width ? rect.x1 : st->fb->width;
     rect.y1 = rect.y1 < st->fb->height ? rect.y1 : st->fb->height;
+    if (st->desc->clear)
+        clear_tile(st->fb, rect, st->desc->clear_color);
     uint64_t fragments = 0;
-    for (int t = 0; t < st->threads; t++) {
-        const sr_thread_work *w = &st->ws->threads[t];
-        const uint32_t *list = w->bins[tile].data;
-        for (size_t i = 0; i < w->bins[tile].count; i++) {
-            const sr_record *rec = &((const sr_record *)w->records.data)[list[i]];
+    size_t next[SR_MAX_THREADS] = { 0 };
+    for (;;) {
+        /* The thread whose next record comes first, drawn up to the first
+         * record of the others'. */
+        int from = -1;
+        uint32_t first_id = 0, others_id = UINT32_MAX;
+        for (int t = 0; t < st->threads; t++) {
+            const sr_thread_work *u = &st->ws->threads[t];
+            if (next[t] == u->bins[tile].count)
+                continue;
+            uint32_t id = record_at(u, tile, next[t])->id;
+            if (from < 0 || id < first_id) {
+                others_id = from < 0 ? others_id : first_id;
+                from = t;
+                first_id = id;
+            } else if (id < others_id) {
+                others_id = id;
+            }
+        }
+        if (from < 0)
+            return fragments;
+        const sr_thread_work *w = &st->ws->threads[from];
+        for (; next[from] < w->bins[tile].count; next[from]++) {
+            const sr_record *rec = record_at(w, tile, next[from]);
+            if (rec->id > others_id)
+                break;
             const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
                                                      vertex_of(st, w, rec->ref[2]) };
             bool simd = false;
-            fragments += sr_raster_triangle_on(st->fb, rect, st->vp.subpixel_bits, st->mode, &st->shade,
-                                               tri, rec->area2, rec->id, &simd);
+            fragments += sr_raster_triangle_in_box(st->fb, box_in(rec, rect), st->vp.subpixel_bits, st->mode,
+                                                   &st->shade, tri, rec->area2, rec->id, &simd);
             *simd_draws += simd;
         }
     }
-    return fragments;
+}
+
+/* Tiles go out from one counter, but not in screen order: the screen is cut
+ * into one band of consecutive tiles per thread and turn k is tile k / T of
+ * band k % T. Handed out in screen order, the tile one thread draws is the
+ * right neighbour of another's, and the hardware prefetcher of one core
+ * keeps reading the rows the other core is writing: measured on fill at 2
+ * threads, 496 ms of CPU a frame in screen order, 454 in bands (448 for the
+ * binned path on one thread); fly 18.1 -> 16.8. */
+static int tile_of_turn(const sr_draw_state *st, int turn, int band_tiles)
+{
+    return turn % st->threads * band_tiles + turn / st->threads;
 }
 
 static void raster_tiles(void *ctx, int t)
 {
     raster_phase *ph = ctx;
     const sr_draw_state *st = ph->st;
-    int tiles = st->tiles_x * st->tiles_y;
+    int tiles = st->tiles_x * st->tiles_y, band_tiles = (tiles + st->threads - 1) / st->threads;
     sr_thread_work *w = &st->ws->threads[t];
-    for (int tile = atomic_fetch_add(&ph->next_tile, 1); tile < tiles; tile = atomic_fetch_add(&ph->next_tile, 1))
-        w->stats.fragments += raster_tile(st, tile, &w->simd_draws);
+    for (int turn = atomic_fetch_add(&ph->next_tile, 1); turn < band_tiles * st->threads;
+         turn = atomic_fetch_add(&ph->next_tile, 1)) {
+        int tile = tile_of_turn(st, turn, band_tiles);
+        if (tile < tiles) /* the last band may be short */
+            w->stats.fragments += raster_tile(st, tile, &w->simd_draws);
+    }
 }
 
 bool sr_draw_binned(sr_draw_state *st)
 {
-    sr_parallel_run(st->threads, setup_range, st);
+    sr_draw_times *times = st->study.times;
+    setup_phase setup = { .st = st };
+    sr_chunks_init(&setup.slots, st->slots, setup_chunk(st));
+    sr_parallel_run(st->threads, setup_chunks, &setup, times ? &times->primitives : NULL);
     for (int t = 0; t < st->threads; t++)
         if (st->ws->threads[t].out_of_memory)
             return false;
     raster_phase ph = { .st = st };
     atomic_init(&ph.next_tile, 0);
-    sr_parallel_run(st->threads, raster_tiles, &ph);
+    sr_parallel_run(st->threads, raster_tiles, &ph, times ? &times->raster : NULL);
     return true;
 }

@@ -5,6 +5,7 @@
 #ifndef SOFTRAST_DRAW_INTERNAL_H
 #define SOFTRAST_DRAW_INTERNAL_H
 
+#include <stdatomic.h>
 #include <stddef.h>
 
 #include "clip.h"
@@ -22,11 +23,13 @@
 
 /* A fan triangle in a bin: its three vertices as references (below the mesh's
  * vertex count: the shared screen vertex; from there on: the binning
- * thread's clip vertices), its exact area and its id. */
+ * thread's clip vertices), its exact area, its id and its scan box on the
+ * framebuffer (sides up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits). */
 typedef struct sr_record {
     uint32_t ref[3];
     uint32_t id;
     int64_t area2;
+    int16_t x0, y0, x1, y1;
 } sr_record;
 
 /* One thread's share of a draw: its counts, and in the binned path the clip
@@ -42,6 +45,7 @@ typedef struct sr_thread_work {
     sr_array *bins;      /* one sr_array of uint32_t per tile */
     size_t bin_count;
     bool out_of_memory;
+    bool index_past_end; /* in the thread's share of the indices */
 } sr_thread_work;
 
 struct sr_workspace {
@@ -83,8 +87,25 @@ struct sr_fan_sink {
  * clipping, fan, viewport (of cut vertices) and culling, into sink. */
 void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end);
 
-/* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread. */
-void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx);
+/* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread; adds
+ * the phase's wall time and its threads' CPU time to *time when given. */
+void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx, sr_phase_time *time);
+
+/* Work handed out in chunks to whichever thread asks next, so a thread that
+ * is slow (or waits for a core) leaves its share to the others. Each thread
+ * gets its chunks in increasing order. */
+typedef struct sr_chunks {
+    atomic_uint next; /* chunk index */
+    uint32_t count, size;
+} sr_chunks;
+
+void sr_chunks_init(sr_chunks *c, uint32_t count, uint32_t size);
+
+/* The next chunk's items [first, end); false when none is left. */
+bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end);
+
+/* A monotonic clock in milliseconds, for sr_draw_times. */
+double sr_clock_ms(void);
 
 /* The binned path: primitives into per-thread tile bins, then each tile
  * rasterized by one thread in submission order. False when out of memory. */

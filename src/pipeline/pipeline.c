@@ -57,8 +57,6 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
     const double *o = d->mesh->origin;
     if (!isfinite(o[0]) || !isfinite(o[1]) || !isfinite(o[2]))
         return sr_error_set(err, "mesh origin (%g, %g, %g) is not finite", o[0], o[1], o[2]);
-    if (!sr_assemble_indices_valid(d->mesh))
-        return sr_error_set(err, "mesh has an index past its %u vertices", d->mesh->vertex_count);
     if (d->mesh->vertex_count == 0)
         return true; /* nothing to shade: an empty mesh needs no attributes */
     if (!d->mesh->positions && !d->mesh->clip_positions)
@@ -89,22 +87,24 @@ static void shade_context_make(const sr_draw_desc *d, sr_simd simd, const sr_var
     glm_vec3_copy(light, c->light_dir);
 }
 
+/* Vertices and indices go to the threads in chunks of these. */
+#define VERTEX_CHUNK 4096
+#define INDEX_CHUNK 65536
+
 typedef struct vertex_phase {
     const sr_draw_state *st;
     sr_vertex_transform xf;
     bool inside; /* the mesh's bounds are inside every plane: no classification */
+    sr_chunks vertices, indices;
 } vertex_phase;
 
 /* Stages 1 and 3 per unique vertex, and stage 6 for those inside every
  * plane, so an unclipped triangle maps none of its corners again. A vertex
  * inside whose divide fails (a non-finite varying, w below 2^-128) is marked
  * non-finite: the triangles that use it are dropped and counted. */
-static void vertex_range(void *ctx, int t)
+static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end)
 {
-    const vertex_phase *ph = ctx;
     const sr_draw_state *st = ph->st;
-    uint32_t first = (uint32_t)((uint64_t)st->vertex_count * t / st->threads);
-    uint32_t end = (uint32_t)((uint64_t)st->vertex_count * (t + 1) / st->threads);
     sr_vertex_out *verts = st->ws->verts.data;
     unsigned char *outcodes = st->ws->outcodes.data;
     sr_screen_vertex *screen = st->ws->screen.data;
@@ -118,6 +118,22 @@ static void vertex_range(void *ctx, int t)
             code = SR_OUT_NONFINITE;
         outcodes[i] = (unsigned char)code;
     }
+}
+
+/* The vertex chunks, then the check of the indices, which sr_draw would
+ * otherwise make serially before it starts (nothing is drawn before the
+ * verdict). */
+static void vertex_phase_run(void *ctx, int t)
+{
+    vertex_phase *ph = ctx;
+    const sr_draw_state *st = ph->st;
+    uint32_t first, end;
+    while (sr_chunks_take(&ph->vertices, &first, &end))
+        vertex_chunk(ph, first, end);
+    bool past_end = false;
+    while (sr_chunks_take(&ph->indices, &first, &end))
+        past_end = past_end || !sr_assemble_indices_valid_in(st->desc->mesh, first, end);
+    st->ws->threads[t].index_past_end = past_end;
 }
 
 static void make_transform(const sr_draw_state *st, sr_vertex_transform *xf)
@@ -135,7 +151,12 @@ static void make_transform(const sr_draw_state *st, sr_vertex_transform *xf)
     sr_vertex_make_transform_d(&world, &view, &projection, d->mesh->origin, xf);
 }
 
-static bool run_vertex_phase(const sr_draw_state *st, const vertex_phase *ph, sr_error *err)
+static bool index_error(const sr_draw_state *st, sr_error *err)
+{
+    return sr_error_set(err, "mesh has an index past its %u vertices", st->vertex_count);
+}
+
+static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error *err)
 {
     uint32_t n = st->vertex_count;
     sr_workspace *ws = st->ws;
@@ -143,7 +164,13 @@ static bool run_vertex_phase(const sr_draw_state *st, const vertex_phase *ph, sr
         !sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
         !sr_array_reserve(&ws->screen, n, sizeof(sr_screen_vertex)))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
-    sr_parallel_run(st->threads, vertex_range, (void *)ph);
+    sr_draw_times *times = st->study.times;
+    sr_chunks_init(&ph->vertices, n, VERTEX_CHUNK);
+    sr_chunks_init(&ph->indices, st->desc->mesh->index_count, INDEX_CHUNK);
+    sr_parallel_run(st->threads, vertex_phase_run, ph, times ? &times->vertex : NULL);
+    for (int t = 0; t < st->threads; t++)
+        if (st->ws->threads[t].index_past_end)
+            return index_error(st, err);
     return true;
 }
 
@@ -181,8 +208,10 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], 
     sink->work->simd_draws += simd;
 }
 
-static void draw_direct(sr_draw_state *st)
+static void draw_direct(void *ctx, int t)
 {
+    (void)t;
+    sr_draw_state *st = ctx;
     sr_fan_sink sink = { .store = store_in_place, .triangle = raster_now, .st = st, .work = &st->ws->threads[0] };
     sr_draw_primitives(&sink, 0, st->slots);
 }
@@ -218,15 +247,25 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     sr_clip_box box = mesh->bounded && !mesh->clip_positions
                           ? sr_clip_classify_box_planes(ph.xf.clip_from_object, mesh->bounds_lo, mesh->bounds_hi,
                                                         &outside)
-                                    : SR_BOX_CROSSES;
-    if (box == SR_BOX_OUTSIDE) {
-        reject_all(st, outside);
-    } else if (st->vertex_count > 0) { /* an empty mesh (valid indices: none) has nothing to draw */
+                          : SR_BOX_CROSSES;
+    /* An empty mesh (valid indices: none) has nothing to draw. */
+    bool draws = box != SR_BOX_OUTSIDE && st->vertex_count > 0, binned = draws && st->threads > 1;
+    if (!draws && !sr_assemble_indices_valid(mesh)) /* else the vertex phase checks them */
+        return index_error(st, err);
+    if (draws) {
         ph.inside = box == SR_BOX_INSIDE;
         if (!run_vertex_phase(st, &ph, err))
             return false;
-        if (st->threads == 1)
-            draw_direct(st);
+    }
+    /* Nothing is written before every check has passed; the binned path
+     * clears each tile as it draws it. */
+    if (st->desc->clear && !binned)
+        sr_framebuffer_clear(st->fb, st->desc->clear_color);
+    if (box == SR_BOX_OUTSIDE) {
+        reject_all(st, outside);
+    } else if (draws) {
+        if (!binned)
+            sr_parallel_run(1, draw_direct, st, st->study.times ? &st->study.times->primitives : NULL);
         else if (!sr_draw_binned(st))
             return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
     }
@@ -262,6 +301,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
 {
     if (!desc)
         return sr_error_set(err, "draw without a description");
+    double start = sr_clock_ms();
     const sr_draw_study study = desc->study ? *desc->study : (sr_draw_study){ 0 };
     sr_shade mode = study.count_hits ? SR_RASTER_COUNT_HITS : desc->shade;
     sr_varying_layout layout = { .color = -1, .uv = -1, .normal = -1 };
@@ -288,5 +328,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     bool ok = draw_with(&st, stats ? stats : &scratch, err);
     if (!desc->workspace)
         sr_workspace_destroy(ws);
+    if (study.times)
+        study.times->total += sr_clock_ms() - start;
     return ok;
 }

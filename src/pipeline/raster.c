@@ -290,10 +290,17 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                                const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                                uint32_t triangle_id, bool *simd)
 {
+    return sr_raster_triangle_in_box(fb, sr_raster_scan_box_of(tri, rect, subpixel_bits), subpixel_bits, mode, shade,
+                                     tri, area2, triangle_id, simd);
+}
+
+uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
+                                   const sr_shade_context *shade, const sr_screen_vertex *const tri[3],
+                                   int64_t area2, uint32_t triangle_id, bool *simd)
+{
     *simd = false;
     /* Most triangles of a dense mesh cover no pixel centre: find that out
      * before any setup. */
-    sr_raster_rect box = sr_raster_scan_box_of(tri, rect, subpixel_bits);
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return 0;
     const sr_screen_vertex *v[3];

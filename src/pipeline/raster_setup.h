@@ -110,6 +110,13 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                                uint32_t triangle_id, bool *simd);
 sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const tri[3], sr_raster_rect rect, int subpixel_bits);
 
+/* sr_raster_triangle_on with the scan box already found (sr_raster_scan_box_of
+ * clamped to the rectangle drawn): the binned path finds it once per
+ * triangle, not once per tile. */
+uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
+                                   const sr_shade_context *shade, const sr_screen_vertex *const tri[3],
+                                   int64_t area2, uint32_t triangle_id, bool *simd);
+
 /* The kernel for a shading mode, depth test and varying layout (each kernel
  * is compiled for one layout, so its varyings stay in registers), or NULL
  * where the instruction set is not built in (AVX2 and AVX-512 off x86-64)

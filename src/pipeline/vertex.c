@@ -79,6 +79,21 @@ static void copy_varying(float *dst, int slot, const float *src, int size)
         memcpy(dst + SR_VARYINGS_AT + slot, src, (size_t)size * sizeof(float));
 }
 
+/* The position with w = 1, written as one 16-byte store where the compiler
+ * has vector types: built by scalar stores, it reached the matrix product's
+ * 16-byte load through a failed store forwarding, half the time of this loop
+ * in perf (docs/performance.md). */
+static inline void position_w1(const float *xyz, vec4 out)
+{
+#if defined(__GNUC__)
+    typedef float four_floats __attribute__((vector_size(16)));
+    four_floats p = { xyz[0], xyz[1], xyz[2], 1.0f };
+    memcpy(out, &p, sizeof p);
+#else
+    glm_vec4((float *)xyz, 1.0f, out);
+#endif
+}
+
 void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
                    uint32_t first, uint32_t count, sr_vertex_out *out)
 {
@@ -88,7 +103,8 @@ void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_
         if (mesh->clip_positions) {
             glm_vec4_copy(mesh->clip_positions[i], v);
         } else {
-            vec4 p = { mesh->positions[i][0], mesh->positions[i][1], mesh->positions[i][2], 1.0f };
+            CGLM_ALIGN(16) vec4 p;
+            position_w1(mesh->positions[i], p);
             glm_mat4_mulv((vec4 *)xf->clip_from_object, p, v);
         }
         if (layout->normal >= 0) {

@@ -7,6 +7,17 @@ static bool within_slack(double ndc, double lo)
     return ndc >= lo - SR_NDC_SLACK && ndc <= 1.0 + SR_NDC_SLACK;
 }
 
+/* llrint without the library call (a call through the PLT per coordinate),
+ * for |v| < 2^51, which a snapped coordinate is (below 2^SR_FIXED_POINT_BITS
+ * after the slack test): adding 1.5 * 2^52 leaves no bits for a fraction,
+ * so the sum rounds v to an integer as llrint does (to nearest, ties to
+ * even), and taking 1.5 * 2^52 away again is exact. */
+static int64_t round_to_integer(double v)
+{
+    const double no_fraction = 6755399441055744.0;
+    return (int64_t)((v + no_fraction) - no_fraction);
+}
+
 bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp, sr_screen_vertex *out)
 {
     double w = v->v[SR_W];
@@ -20,8 +31,8 @@ bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp
     if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(z, 0.0))
         return false;
     double scale = (double)((int64_t)1 << vp->subpixel_bits), guard = vp->guard;
-    out->x = llrint((guard * x + 1.0) * 0.5 * vp->width * scale);
-    out->y = llrint((1.0 - guard * y) * 0.5 * vp->height * scale);
+    out->x = round_to_integer((guard * x + 1.0) * 0.5 * vp->width * scale);
+    out->y = round_to_integer((1.0 - guard * y) * 0.5 * vp->height * scale);
     out->z = (float)z;
     out->inv_w = (float)inv_w;
     bool finite = isfinite(out->inv_w); /* 1/w overflows float for w < 2^-128 */

@@ -34,15 +34,21 @@ static void scene_init(sr_bench_scene *s, const char *name, const char *what, sr
                            .camera = sr_camera_default() };
 }
 
-bool sr_bench_dense(sr_bench_scene *s, uint64_t triangles, int width, int height, sr_shade shade, sr_error *err)
+/* The torus of the dense scenes: radius 1, tube 0.4, about `triangles`. */
+static bool make_torus(sr_bench_scene *s, uint64_t triangles, sr_error *err)
 {
     uint32_t segments, sides;
+    sr_shape_torus_grid(triangles, &segments, &sides);
+    return sr_shape_torus(&s->mesh, 1.0f, 0.4f, segments, sides, err);
+}
+
+bool sr_bench_dense(sr_bench_scene *s, uint64_t triangles, int width, int height, sr_shade shade, sr_error *err)
+{
     scene_init(s, shade == SR_SHADE_DEPTH ? "depth" : "dense", "closed torus, lambert", shade, width, height);
     if (shade == SR_SHADE_DEPTH)
         s->what = "the dense torus in the depth view: no varyings";
-    sr_shape_torus_grid(triangles, &segments, &sides);
     glm_vec3_copy((vec3){ 0.0f, 1.1f, -1.9f }, s->camera.eye);
-    return sr_shape_torus(&s->mesh, 1.0f, 0.4f, segments, sides, err);
+    return make_torus(s, triangles, err);
 }
 
 bool sr_bench_dense_default(sr_bench_scene *s, sr_error *err)
@@ -56,6 +62,18 @@ static bool load_room(sr_bench_scene *s, sr_error *err)
     char obj[PATH_MAX], png[PATH_MAX];
     return sr_data_find("assets/room.obj", obj, sizeof obj, err) && sr_data_find("assets/room.png", png, sizeof png, err) &&
            sr_obj_load(&s->mesh, obj, err) && sr_texture_load(&s->texture, png, err);
+}
+
+bool sr_bench_inside(sr_bench_scene *s, sr_error *err)
+{
+    scene_init(s, "inside", "inside the dense torus's tube, near 0.01, no culling, lambert", SR_SHADE_LAMBERT,
+               1920, 1080);
+    s->cull = SR_CULL_NONE;
+    /* Off the tube's centre line (radius 1, tube 0.4), looking along it. */
+    glm_vec3_copy((vec3){ 1.1f, 0.1f, 0.0f }, s->camera.eye);
+    glm_vec3_copy((vec3){ 0.9f, 0.0f, 1.0f }, s->camera.target);
+    s->camera.near = 0.01f;
+    return make_torus(s, SR_BENCH_DENSE_TRIANGLES, err);
 }
 
 bool sr_bench_fly(sr_bench_scene *s, sr_error *err)

@@ -1,6 +1,6 @@
 /* bench_scenes.h — the benchmark's scenes, made in memory so the numbers do
- * not depend on files: a dense torus, a flight through the room, full-screen
- * textured quads. */
+ * not depend on files: a dense torus seen from outside and from inside its
+ * tube, a flight through the room, full-screen textured quads. */
 #ifndef SOFTRAST_APP_BENCH_SCENES_H
 #define SOFTRAST_APP_BENCH_SCENES_H
 
@@ -14,6 +14,7 @@ typedef struct sr_bench_scene {
     sr_mesh mesh;
     sr_texture texture;
     sr_shade shade;
+    sr_cull cull; /* 0: back faces culled */
     int width, height;
     sr_camera camera;  /* the fixed camera, when path.count is 0 */
     sr_flight path;    /* a camera path over the timed frames */
@@ -24,6 +25,11 @@ bool sr_bench_dense(sr_bench_scene *s, uint64_t triangles, int width, int height
 
 /* The dense scene as the benchmark times it: 1M triangles at 1920x1080. */
 bool sr_bench_dense_default(sr_bench_scene *s, sr_error *err);
+
+/* The camera inside the dense torus's tube, near 0.01, no culling: most
+ * triangles are behind the camera or cut by the near plane, and the walls
+ * ahead overlap many times. */
+bool sr_bench_inside(sr_bench_scene *s, sr_error *err);
 
 /* The room from assets/, on a path through its walls and pillars. */
 bool sr_bench_fly(sr_bench_scene *s, sr_error *err);

@@ -9,18 +9,23 @@ static bool time_frames(const sr_bench_scene *s, const sr_bench_run *run, sr_fra
     bool ok = true;
     for (int f = -1; ok && f < run->frames; f++) { /* frame -1 is the warm-up */
         sr_camera cam;
-        sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade,
+        sr_draw_study study = { .simd = run->simd, .times = f < 0 ? NULL : run->times };
+        sr_draw_desc desc = { .mesh = &s->mesh, .shade = s->shade, .cull = s->cull,
                               .texture = s->texture.texels ? &s->texture : NULL, .threads = run->threads,
-                              .workspace = ws, .study = &(sr_draw_study){ .simd = run->simd } };
+                              .workspace = ws, .study = &study };
         sr_bench_scene_camera(s, f < 0 ? 0 : f, run->frames, &cam);
         sr_camera_view(&cam, desc.view);
         sr_camera_projection(&cam, (float)s->width / (float)s->height, desc.projection);
         double warm_up;
         ok = sr_study_draw_frame(fb, &desc, &r->stats, f < 0 ? &warm_up : &ms[f], err);
     }
-    if (ok)
-        sr_study_median_min(ms, run->frames, &r->median, &r->min);
-    return ok;
+    if (!ok)
+        return false;
+    r->mean = 0.0;
+    for (int f = 0; f < run->frames; f++)
+        r->mean += ms[f] / run->frames;
+    sr_study_median_min(ms, run->frames, &r->median, &r->min);
+    return true;
 }
 
 bool sr_bench_time(const sr_bench_scene *s, const sr_bench_run *run, sr_framebuffer *fb, sr_bench_result *r,

@@ -8,10 +8,11 @@
 typedef struct sr_bench_run {
     int frames, threads;
     sr_simd simd;
+    sr_draw_times *times; /* optional: the timed frames' draws add their phases here */
 } sr_bench_run;
 
 typedef struct sr_bench_result {
-    double median, min; /* ms per frame */
+    double median, min, mean; /* ms per frame */
     sr_stats stats;     /* of the last frame */
 } sr_bench_result;
 

@@ -17,8 +17,9 @@ bool sr_study_draw_frame(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats 
     double start = sr_study_now_ms();
     if (stats)
         *stats = (sr_stats){ 0 };
-    sr_framebuffer_clear(fb, 0);
-    bool ok = sr_draw(fb, desc, stats, err);
+    sr_draw_desc clearing = *desc;
+    clearing.clear = true; /* to color 0, inside the draw (each tile by its thread) */
+    bool ok = sr_draw(fb, &clearing, stats, err);
     *ms = sr_study_now_ms() - start;
     return ok;
 }
