@@ -30,7 +30,7 @@ static void mesh_of(sr_mesh *mesh, const ref_point (*tris)[3], uint32_t n)
 static sr_stats count_hits(sr_framebuffer *fb, const sr_mesh *mesh, int threads)
 {
     sr_draw_desc desc = { .mesh = mesh, .cull = SR_CULL_NONE, .threads = threads,
-                          .study = &(sr_draw_study){ .count_hits = true } };
+                          .study = &(sr_draw_study){ .count_hits = true, .force_tiles = true } };
     scene_pixel_ortho(&desc, fb->width, fb->height);
     sr_framebuffer_clear(fb, 0);
     sr_stats stats = { 0 };

@@ -56,7 +56,7 @@ static uint64_t draw_with(const sr_draw_desc *base, sr_simd simd, int threads, b
     sr_workspace *ws = sr_workspace_create();
     cr_assert_not_null(ws);
     sr_draw_desc desc = *base;
-    desc.study = &(sr_draw_study){ .simd = simd };
+    desc.study = &(sr_draw_study){ .simd = simd, .force_tiles = true };
     desc.threads = threads;
     desc.workspace = ws;
     *stats = (sr_stats){ 0 };

@@ -19,6 +19,9 @@ static void draw_with_threads(const sr_draw_desc *base, int width, int height, b
     out->fb.reversed_z = reversed;
     sr_framebuffer_clear(&out->fb, 0x123456);
     sr_draw_desc desc = *base;
+    sr_draw_study study = base->study ? *base->study : (sr_draw_study){ 0 };
+    study.force_tiles = true; /* the tiles even where one thread would be cheaper */
+    desc.study = &study;
     desc.threads = threads;
     out->stats = (sr_stats){ 0 };
     cr_assert(sr_draw(&out->fb, &desc, &out->stats, &err), "%s", err.message);
@@ -173,6 +176,7 @@ Test(threads, clear_inside_the_draw_matches_clear_before_it)
             sr_draw_desc clearing = desc;
             clearing.clear = true;
             clearing.threads = threads;
+            clearing.study = &(sr_draw_study){ .force_tiles = true };
             cr_assert(sr_draw(&inside.fb, &clearing, &inside.stats, &err), "%s", err.message);
             cr_assert_eq(memcmp(before.fb.color, inside.fb.color, n * sizeof *before.fb.color), 0,
                          "color differs, %d threads", threads);

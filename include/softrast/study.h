@@ -96,7 +96,14 @@ typedef struct sr_draw_study {
     void *observer_user;
     bool count_hits;                  /* count coverage instead of shading: see below */
     sr_draw_times *times;             /* optional: the phases' wall time is added here */
+    bool force_tiles;                 /* with threads > 1: the tiles whatever the cost estimate */
 } sr_draw_study;
+
+/* force_tiles: a draw with several threads takes them, and the tiled path,
+ * only when its cost estimate says they pay (many triangle slots or a large
+ * framebuffer, and not every vertex outside one plane: docs/performance.md);
+ * force_tiles skips the estimate, so tests keep the tiled path exercised on
+ * small scenes. Both paths draw the same pixels. */
 
 /* count_hits: every pixel a fan triangle covers gets color += 1 (the caller
  * clears color to 0 first), so after the draw each pixel holds the number of

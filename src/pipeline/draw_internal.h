@@ -46,6 +46,7 @@ typedef struct sr_thread_work {
     size_t bin_count;
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
+    unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
 } sr_thread_work;
 
 struct sr_workspace {

@@ -102,7 +102,7 @@ typedef struct vertex_phase {
  * plane, so an unclipped triangle maps none of its corners again. A vertex
  * inside whose divide fails (a non-finite varying, w below 2^-128) is marked
  * non-finite: the triangles that use it are dropped and counted. */
-static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end)
+static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, unsigned *outcodes_and)
 {
     const sr_draw_state *st = ph->st;
     sr_vertex_out *verts = st->ws->verts.data;
@@ -117,6 +117,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end)
         if (code == 0 && !sr_viewport_map(&verts[i], st->shade.layout.count, &st->vp, &screen[i]))
             code = SR_OUT_NONFINITE;
         outcodes[i] = (unsigned char)code;
+        *outcodes_and &= code;
     }
 }
 
@@ -128,8 +129,10 @@ static void vertex_phase_run(void *ctx, int t)
     vertex_phase *ph = ctx;
     const sr_draw_state *st = ph->st;
     uint32_t first, end;
+    unsigned outcodes_and = ~0u;
     while (sr_chunks_take(&ph->vertices, &first, &end))
-        vertex_chunk(ph, first, end);
+        vertex_chunk(ph, first, end, &outcodes_and);
+    st->ws->threads[t].outcodes_and = outcodes_and;
     bool past_end = false;
     while (sr_chunks_take(&ph->indices, &first, &end))
         past_end = past_end || !sr_assemble_indices_valid_in(st->desc->mesh, first, end);
@@ -172,6 +175,30 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
         if (st->ws->threads[t].index_past_end)
             return index_error(st, err);
     return true;
+}
+
+/* The cost estimate that picks one thread or the tiles (docs/performance.md,
+ * "One thread or tiles"). Before the vertex phase: a draw of fewer slots
+ * into fewer pixels than these ran faster on one thread at every size
+ * measured (thread start-up and per-tile costs outweigh the split). */
+#define TILES_MIN_SLOTS 32768u
+#define TILES_MIN_PIXELS (1280 * 720)
+
+static bool worth_tiles(const sr_draw_state *st)
+{
+    return st->study.force_tiles || st->slots >= TILES_MIN_SLOTS ||
+           (int64_t)st->fb->width * st->fb->height >= TILES_MIN_PIXELS;
+}
+
+/* After it: every vertex outside one plane (a view that looks away from the
+ * mesh while its bounds straddle the camera) leaves every triangle
+ * rejected, which one thread does faster than the tiles clear the screen. */
+static bool all_outside_one_plane(const sr_draw_state *st)
+{
+    unsigned outcodes_and = ~0u;
+    for (int t = 0; t < st->threads; t++)
+        outcodes_and &= st->ws->threads[t].outcodes_and;
+    return outcodes_and != 0 && !st->study.force_tiles;
 }
 
 /* A mesh outside the view: every assembled triangle is rejected, nothing
@@ -249,14 +276,17 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
                                                         &outside)
                           : SR_BOX_CROSSES;
     /* An empty mesh (valid indices: none) has nothing to draw. */
-    bool draws = box != SR_BOX_OUTSIDE && st->vertex_count > 0, binned = draws && st->threads > 1;
+    bool draws = box != SR_BOX_OUTSIDE && st->vertex_count > 0;
     if (!draws && !sr_assemble_indices_valid(mesh)) /* else the vertex phase checks them */
         return index_error(st, err);
+    if (!worth_tiles(st))
+        st->threads = 1;
     if (draws) {
         ph.inside = box == SR_BOX_INSIDE;
         if (!run_vertex_phase(st, &ph, err))
             return false;
     }
+    bool binned = draws && st->threads > 1 && !all_outside_one_plane(st);
     /* Nothing is written before every check has passed; the binned path
      * clears each tile as it draws it. */
     if (st->desc->clear && !binned)
