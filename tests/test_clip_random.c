@@ -71,32 +71,25 @@ static unsigned mask_for(const sr_polygon *p, bool outcode_mask)
     return sr_clip_outcode(p->vert[0].v) | sr_clip_outcode(p->vert[1].v) | sr_clip_outcode(p->vert[2].v);
 }
 
-/* The default precision, which cuts from the triangle (every kind of cut:
- * float, double and exact edges, corners). */
-static const sr_clip_config SHARED_EDGE_CLIP = { .precision = SR_CLIP_ADAPTIVE };
-
 /* What survives of segment a-b after the planes in `mask`, in the fixed
  * plane order, each cut made by sr_clip_intersect from the inside end toward
- * the outside one, as the contract says: of the whole segment, or of the
- * piece left where rounding of earlier cuts left that crossing the plane and
- * not the whole. Returns 0 (nothing left) or 2. */
+ * the outside one, as the contract says. Returns 0 (nothing left) or 2. */
 static int clip_segment(sr_vertex_out a, sr_vertex_out b, unsigned mask, sr_vertex_out ends[2])
 {
-    const sr_vertex_out whole[2] = { a, b };
     for (int p = 0; p < SR_CLIP_PLANES; p++) {
         if (!(mask & (1u << p)))
             continue;
         bool a_in = ref_distance_f(p, &a) >= 0, b_in = ref_distance_f(p, &b) >= 0;
         if (!a_in && !b_in)
             return 0;
-        if (a_in == b_in)
-            continue;
-        sr_vertex_out *piece[2] = { &a, &b }, cut;
-        int in = a_in ? 0 : 1;
-        bool crosses = ref_distance_f(p, &whole[in]) >= 0 && ref_distance_f(p, &whole[1 - in]) < 0;
-        sr_clip_intersect((sr_clip_plane)p, crosses ? &whole[in] : piece[in], crosses ? &whole[1 - in] : piece[1 - in],
-                          SR_VARYINGS_AT + 1, &SHARED_EDGE_CLIP, &cut);
-        *piece[1 - in] = cut;
+        sr_vertex_out cut;
+        if (a_in && !b_in) {
+            sr_clip_intersect((sr_clip_plane)p, &a, &b, SR_VARYINGS_AT + 1, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE }, &cut);
+            b = cut;
+        } else if (!a_in && b_in) {
+            sr_clip_intersect((sr_clip_plane)p, &b, &a, SR_VARYINGS_AT + 1, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE }, &cut);
+            a = cut;
+        }
     }
     ends[0] = a;
     ends[1] = b;
@@ -127,7 +120,7 @@ static int check_shared_edge(sr_vertex_out a, sr_vertex_out b, sr_vertex_out c, 
                        sr_clip_outcode(p[s].vert[2].v);
         if (outcode_mask && (mask[s] & SR_OUT_NONFINITE || all))
             return -1; /* the pipeline rejects it before clipping */
-        sr_clip_polygon(&p[s], mask[s], SR_VARYINGS_AT + 1, &SHARED_EDGE_CLIP);
+        sr_clip_polygon(&p[s], mask[s], SR_VARYINGS_AT + 1, &(sr_clip_config){ .precision = SR_CLIP_DOUBLE });
     }
     int cuts = 0;
     for (int s = 0; s < 2; s++) {

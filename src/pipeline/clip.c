@@ -1,7 +1,6 @@
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
-#include <string.h>
 
 #include "clip_exact.h"
 #include "expansion.h"
@@ -123,17 +122,15 @@ sr_clip_box sr_clip_classify_box_planes(const float clip_from_object[4][4], cons
 /* Puts the cut vertex exactly on the plane, so its distance is 0 and later
  * planes, the divide and the viewport see a point that is inside. Under the
  * depth model near and far are planes in w alone: the interpolated w is the
- * cut. Every point then has z = a·w + b, and z follows the cut's w on every
- * plane, rounded once: the float z of a vertex far from the eye cannot hold
- * b, and a cut interpolated from it would carry that (the viewport's z_ndc
- * comes from w too, so this z is for the record). */
+ * cut, and z follows it, a·w + b rounded once (the viewport's z_ndc comes
+ * from w too, so this z is for the record). */
 static void place_on_plane(sr_clip_plane plane, const sr_clip_depth *depth, float *c)
 {
-    bool model = depth && depth->on;
-    if (model)
+    if (depth && depth->on && sr_clip_plane_in_depth_model(plane)) {
         c[SR_Z] = (float)((double)depth->a * c[SR_W] + depth->b);
-    if (!model || !sr_clip_plane_in_depth_model(plane))
-        c[sr_clip_plane_table[plane].axis] = sr_clip_plane_coordinate_at(plane, c[SR_W]);
+        return;
+    }
+    c[sr_clip_plane_table[plane].axis] = sr_clip_plane_coordinate_at(plane, c[SR_W]);
 }
 
 static void intersect_double(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
@@ -191,27 +188,15 @@ static sr_clip_precision choose_precision(sr_clip_plane plane, const sr_vertex_o
     return SR_CLIP_EXACT;
 }
 
-static double clip_tolerance(const sr_clip_config *cfg)
-{
-    return cfg && cfg->ndc_tolerance > 0.0 ? cfg->ndc_tolerance : SR_CLIP_DEFAULT_TOLERANCE;
-}
-
-/* Counts the cut and hands it to the trace hook. */
-static void report(const sr_clip_config *cfg, const sr_clip_cut *cut)
-{
-    if (cfg && cfg->counts)
-        cfg->counts->cuts[cut->precision]++;
-    if (cfg && cfg->trace)
-        cfg->trace(cfg->trace_context, cut);
-}
-
 sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
                                     int floats, const sr_clip_config *cfg, sr_vertex_out *cut)
 {
     sr_clip_precision p = cfg ? cfg->precision : SR_CLIP_ADAPTIVE;
     const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
-    if (p == SR_CLIP_ADAPTIVE)
-        p = choose_precision(plane, inside, outside, depth, clip_tolerance(cfg));
+    if (p == SR_CLIP_ADAPTIVE) {
+        double tolerance = cfg && cfg->ndc_tolerance > 0.0 ? cfg->ndc_tolerance : SR_CLIP_DEFAULT_TOLERANCE;
+        p = choose_precision(plane, inside, outside, depth, tolerance);
+    }
     if (p == SR_CLIP_FLOAT)
         intersect_float(plane, inside, outside, floats, depth, cut);
     else if (p == SR_CLIP_DOUBLE)
@@ -219,148 +204,19 @@ sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *in
     else
         sr_clip_intersect_exact(plane, inside, outside, floats, depth, cut);
     place_on_plane(plane, depth, cut->v);
-    report(cfg, &(sr_clip_cut){ .plane = plane, .inside = inside, .outside = outside, .cut = cut, .precision = p });
+    if (cfg && cfg->counts)
+        cfg->counts->cuts[p]++;
+    if (cfg && cfg->trace)
+        cfg->trace(cfg->trace_context,
+                   &(sr_clip_cut){ .plane = plane, .inside = inside, .outside = outside, .cut = cut, .precision = p });
     return p;
 }
 
-/* The corner in double: the weights c_k = P_i·Q_j − P_j·Q_i from the
- * distances (each within one rounding), then Σ c_k·v_k / Σ c_k. Returns an
- * a-priori bound on its error in NDC, as choose_precision's: each weight
- * within 4·DBL_EPSILON of |P_i·Q_j| + |P_j·Q_i| (three roundings in the
- * products, one in the difference, doubled), each sum within DBL_EPSILON per
- * term of its terms' sizes, the quotient (|ΔN| + |v|·|ΔD|) / (|D| − |ΔD|);
- * infinite when Σ c_k may be 0, w may be <= 0, or anything overflowed. */
-static double corner_double(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane, int floats,
-                            const sr_clip_depth *depth, sr_vertex_out *cut)
-{
-    double p[3], q[3], c[3], c_err[3], sum = 0.0, sum_err = 0.0;
-    for (int k = 0; k < 3; k++) {
-        p[k] = sr_clip_distance_with(first, tri[k].v, depth);
-        q[k] = sr_clip_distance_with(plane, tri[k].v, depth);
-    }
-    for (int k = 0; k < 3; k++) {
-        int i = (k + 1) % 3, j = (k + 2) % 3;
-        double a = p[i] * q[j], b = p[j] * q[i];
-        c[k] = a - b;
-        c_err[k] = 4.0 * DBL_EPSILON * (fabs(a) + fabs(b));
-        sum += c[k];
-        sum_err += c_err[k] + 2.0 * DBL_EPSILON * fabs(c[k]);
-    }
-    double err = 0.0, m = 0.0, w = 0.0;
-    for (int i = 0; i < floats; i++) {
-        double num = 0.0, num_err = 0.0;
-        for (int k = 0; k < 3; k++) {
-            double x = tri[k].v[i];
-            num += c[k] * x;
-            num_err += (c_err[k] + 3.0 * DBL_EPSILON * fabs(c[k])) * fabs(x);
-        }
-        double v = num / sum;
-        cut->v[i] = (float)v;
-        if (i >= SR_VARYINGS_AT)
-            continue;
-        double e = (num_err + fabs(v) * sum_err) / (fabs(sum) - sum_err) + DBL_EPSILON * fabs(v);
-        err = e > err ? e : err;
-        m = fabs(v) > m ? fabs(v) : m;
-        w = i == SR_W ? v : w;
-    }
-    double w_low = w - err, ndc = err * (1.0 + m / w_low) / w_low;
-    return fabs(sum) > sum_err && w_low > 0.0 && isfinite(ndc) ? ndc : INFINITY;
-}
-
-/* Whether cfg cuts from the triangle (adaptive and exact, which promise
- * an error) or, as the fixed float and double knobs do, every polygon edge
- * as it stands. */
-static bool from_triangle(const sr_clip_config *cfg)
-{
-    return !cfg || cfg->precision == SR_CLIP_ADAPTIVE || cfg->precision == SR_CLIP_EXACT;
-}
-
-/* The corner at the precision cfg asks for; SR_CLIP_ADAPTIVE when it made
- * none (float or double, or lines that may be parallel). */
-static sr_clip_precision make_corner(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane, int floats,
-                                     const sr_clip_config *cfg, sr_vertex_out *cut)
-{
-    const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
-    if (!from_triangle(cfg))
-        return SR_CLIP_ADAPTIVE;
-    if ((!cfg || cfg->precision == SR_CLIP_ADAPTIVE) &&
-        corner_double(tri, first, plane, floats, depth, cut) <= clip_tolerance(cfg))
-        return SR_CLIP_DOUBLE;
-    return sr_clip_corner_exact(tri, first, plane, floats, depth, cut) ? SR_CLIP_EXACT : SR_CLIP_ADAPTIVE;
-}
-
-/* The triangle in an order of its own (its vertices' bits), so that its
- * sums round alike and a corner is the same bits, signed zeros included,
- * whichever vertex the triangle starts from and whichever way it winds. */
-static void canonical_order(const sr_vertex_out tri[3], int floats, sr_vertex_out ordered[3])
-{
-    static const int pairs[3][2] = { { 0, 1 }, { 1, 2 }, { 0, 1 } };
-    for (int k = 0; k < 3; k++)
-        ordered[k] = tri[k];
-    for (int s = 0; s < 3; s++) {
-        sr_vertex_out *a = &ordered[pairs[s][0]], *b = &ordered[pairs[s][1]];
-        if (memcmp(a->v, b->v, (size_t)floats * sizeof(float)) > 0) {
-            sr_vertex_out t = *a;
-            *a = *b;
-            *b = t;
-        }
-    }
-}
-
-sr_clip_precision sr_clip_corner(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane,
-                                 const sr_vertex_out *inside, const sr_vertex_out *outside, int floats,
-                                 const sr_clip_config *cfg, sr_vertex_out *cut)
-{
-    sr_vertex_out ordered[3];
-    canonical_order(tri, floats, ordered);
-    tri = ordered;
-    sr_clip_precision p = make_corner(tri, first, plane, floats, cfg, cut);
-    if (p == SR_CLIP_ADAPTIVE)
-        return p;
-    const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
-    place_on_plane(first, depth, cut->v);
-    place_on_plane(plane, depth, cut->v);
-    report(cfg, &(sr_clip_cut){ .plane = plane, .inside = inside, .outside = outside, .cut = cut, .precision = p,
-                                .corner = true, .first = first, .triangle = tri });
-    return p;
-}
-
-/* What a polygon edge runs along: edge k of the triangle (vertex k to
- * k + 1, k < ON_PLANE), or the cut line of plane line − ON_PLANE. */
-enum { ON_PLANE = 3 };
-
-/* The cut of the polygon edge inside -> outside, which runs along `line`;
- * forward: inside is the edge's start. On a cut line it is the corner; on
- * an edge of the triangle the whole edge's cut when that crosses the plane,
- * so it never depends on earlier planes. Where neither is there (the fixed
- * float and double knobs, or rounding of earlier cuts), the polygon edge's. */
-static void cut_along(const sr_vertex_out tri[3], int line, sr_clip_plane plane, const sr_vertex_out *inside,
-                      const sr_vertex_out *outside, bool forward, int floats, const sr_clip_config *cfg,
-                      sr_vertex_out *cut)
-{
-    if (line >= ON_PLANE) {
-        if (sr_clip_corner(tri, (sr_clip_plane)(line - ON_PLANE), plane, inside, outside, floats, cfg, cut) !=
-            SR_CLIP_ADAPTIVE)
-            return;
-    } else if (from_triangle(cfg)) {
-        const sr_vertex_out *start = &tri[line], *end = &tri[(line + 1) % 3];
-        const sr_vertex_out *in = forward ? start : end, *out = forward ? end : start;
-        const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
-        if (sr_clip_distance_with(plane, in->v, depth) >= 0.0 && sr_clip_distance_with(plane, out->v, depth) < 0.0) {
-            inside = in;
-            outside = out;
-        }
-    }
-    sr_clip_intersect(plane, inside, outside, floats, cfg, cut);
-}
-
-/* One Sutherland–Hodgman pass; line[i] is what edge i (vertex i to i + 1)
- * runs along. Returns the output count, or -1 if rounding made the polygon
- * cross the plane more than twice and the output would pass the bound (only
- * slivers thinner than float precision do that). */
-static int clip_against_plane(const sr_vertex_out tri[3], const sr_vertex_out *in, const unsigned char *in_line, int n,
-                              sr_clip_plane plane, int floats, const sr_clip_config *cfg, sr_vertex_out *out,
-                              unsigned char *out_line)
+/* One Sutherland–Hodgman pass. Returns the output count, or -1 if rounding
+ * made the polygon cross the plane more than twice and the output would pass
+ * the bound (only slivers thinner than float precision do that). */
+static int clip_against_plane(const sr_vertex_out *in, int n, sr_clip_plane plane, int floats,
+                              const sr_clip_config *cfg, sr_vertex_out *out)
 {
     int m = 0;
     for (int i = 0; i < n; i++) {
@@ -370,33 +226,26 @@ static int clip_against_plane(const sr_vertex_out tri[3], const sr_vertex_out *i
         bool b_in = sr_clip_distance_with(plane, b->v, depth) >= 0.0;
         if (m + (a_in) + (a_in != b_in) > SR_MAX_CLIP_VERTS)
             return -1;
-        if (a_in) {
-            out_line[m] = in_line[i];
+        if (a_in)
             out[m++] = *a;
-        }
-        if (a_in != b_in) {
-            cut_along(tri, in_line[i], plane, a_in ? a : b, a_in ? b : a, a_in, floats, cfg, &out[m]);
-            out_line[m++] = a_in ? (unsigned char)(ON_PLANE + plane) : in_line[i];
-        }
+        if (a_in && !b_in)
+            sr_clip_intersect(plane, a, b, floats, cfg, &out[m++]);
+        else if (!a_in && b_in)
+            sr_clip_intersect(plane, b, a, floats, cfg, &out[m++]);
     }
     return m;
 }
 
 int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
 {
-    const sr_vertex_out tri[3] = { poly->vert[0], poly->vert[1], poly->vert[2] };
     sr_vertex_out scratch[SR_MAX_CLIP_VERTS];
-    unsigned char line[SR_MAX_CLIP_VERTS] = { 0, 1, 2 }, scratch_line[SR_MAX_CLIP_VERTS];
     for (int p = 0; p < SR_CLIP_PLANES && poly->count >= 3; p++) {
         if (!(planes & (1u << p)))
             continue;
-        int n = clip_against_plane(tri, poly->vert, line, poly->count, (sr_clip_plane)p, floats, cfg, scratch,
-                                   scratch_line);
+        int n = clip_against_plane(poly->vert, poly->count, (sr_clip_plane)p, floats, cfg, scratch);
         poly->count = n < 3 ? 0 : n;
-        for (int i = 0; i < poly->count; i++) {
+        for (int i = 0; i < poly->count; i++)
             poly->vert[i] = scratch[i];
-            line[i] = scratch_line[i];
-        }
     }
     if (poly->count < 3)
         poly->count = 0;

@@ -14,15 +14,6 @@
  * the plane (x = -w for left, z = 0 for near, ...; under a depth model a near
  * or far cut gets z = a·w + b of its w, rounded once). Two triangles sharing an
  * edge therefore get bit-identical cut vertices whichever way they walk it.
- *
- * Under adaptive and exact precision every cut is made from the triangle,
- * never from an earlier cut rounded to float (the fixed float and double
- * knobs cut each polygon edge as it stands, as plain Sutherland–Hodgman
- * does): a polygon edge lies on an edge of the triangle, and its cut is that
- * whole edge's (the end points are the triangle's vertices, so a second or
- * third plane cuts a shared edge as the first does), or on the line of an
- * earlier plane, and its cut is the triangle's point on both planes
- * (sr_clip_corner), rounded once.
  */
 #ifndef SOFTRAST_PIPELINE_CLIP_H
 #define SOFTRAST_PIPELINE_CLIP_H
@@ -94,21 +85,12 @@ typedef struct sr_clip_counts {
  * given: half a 1/256-pixel step on a 16384-pixel side. */
 #define SR_CLIP_DEFAULT_TOLERANCE (1.0 / (256.0 * 16384.0))
 
-/* One cut vertex as the clipper made it, for a trace hook. A cut of an
- * edge: inside and outside are the end points it was interpolated between
- * (the triangle's vertices, or the rounded polygon edge's where rounding
- * left that crossing the plane and not the triangle's edge). A corner: the
- * triangle's point on `plane` and on `first`, the earlier plane whose cut
- * line the polygon edge inside -> outside runs along (`triangle`: the three
- * vertices it is made from). */
+/* One cut vertex as the clipper made it, for a trace hook. */
 typedef struct sr_clip_cut {
     sr_clip_plane plane;
     const sr_vertex_out *inside, *outside; /* the edge's end points */
     const sr_vertex_out *cut;              /* the cut vertex, placed on the plane */
     sr_clip_precision precision;           /* the precision it was made in */
-    bool corner;                           /* true: on `first` too */
-    sr_clip_plane first;
-    const sr_vertex_out *triangle; /* a corner's triangle; NULL for an edge cut */
 } sr_clip_cut;
 
 typedef void sr_clip_trace(void *context, const sr_clip_cut *cut);
@@ -173,21 +155,7 @@ static inline void sr_clip_count_rejected(sr_stats *stats, unsigned planes, uint
 sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
                                     int floats, const sr_clip_config *cfg, sr_vertex_out *cut);
 
-/* The corner of a triangle on two planes (sr_clip_exact_corner_of): the
- * vertex where the polygon edge inside -> outside, which runs along the cut
- * line of `first`, crosses `plane`. Adaptive takes it in double when an
- * error bound allows, else exactly, from the triangle's vertices in an
- * order of their own bits, so the same bits whichever vertex the triangle
- * starts from and whichever way it winds. Placed on both planes. Returns the
- * precision it used, or SR_CLIP_ADAPTIVE when it made none (the fixed float
- * and double knobs ask for none; the two planes' lines in the triangle may
- * be parallel): the caller then cuts the polygon edge with
- * sr_clip_intersect. */
-sr_clip_precision sr_clip_corner(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane,
-                                 const sr_vertex_out *inside, const sr_vertex_out *outside, int floats,
-                                 const sr_clip_config *cfg, sr_vertex_out *cut);
-
-/* Clips the triangle poly (count 3) in place against the planes whose bits are set in `planes`.
+/* Clips poly in place against the planes whose bits are set in `planes`.
  * Returns the vertex count (0: nothing left, or a degenerate sliver whose
  * rounding made it non-convex past the bound; never more than
  * SR_MAX_CLIP_VERTS). */
