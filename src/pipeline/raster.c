@@ -81,8 +81,10 @@ static void plane_points(const sr_screen_vertex *const v[3], bool unsnapped, dou
     }
 }
 
-/* The depth plane through the unsnapped vertices, in double: the z gradient
- * solves a 2×2 system whose determinant is the unsnapped area2. Where
+/* The depth plane through the unsnapped vertices, in double, and 1/area2
+ * for the barycentrics: the z gradient solves a 2×2 system whose
+ * determinant is the unsnapped area2 (one division gives both
+ * reciprocals). Where
  * snapping turned a sliver over or grew it more than SLIVER_GROWTH times,
  * the snapped vertices give the plane, with their exact integer area2 >= 1:
  * the gradient stays far inside float range (|z| <= 1, positions below 2^35
@@ -100,7 +102,8 @@ static void depth_plane(const sr_screen_vertex *const v[3], int64_t area2, setup
         det = (double)area2;
     }
     double dz1 = (double)v[1]->z - (double)v[0]->z, dz2 = (double)v[2]->z - (double)v[0]->z;
-    double inv_det = 1.0 / det;
+    double inv_both = 1.0 / (det * (double)area2), inv_det = (double)area2 * inv_both;
+    s->inv_area2 = (float)(det * inv_both);
     double gx = (dz1 * y2 - dz2 * y1) * inv_det, gy = (dz2 * x1 - dz1 * x2) * inv_det;
     s->ref_x = floor_shift(v[0]->x, s->bits);
     s->ref_y = floor_shift(v[0]->y, s->bits);
@@ -112,15 +115,20 @@ static void depth_plane(const sr_screen_vertex *const v[3], int64_t area2, setup
     s->dz_pixel = (float)(gx * (double)one);
 }
 
-static void setup_make(const sr_screen_vertex *const v[3], int64_t area2, int varyings, sr_raster_rect box,
-                       int bits, setup *s)
+/* What coverage needs: the edges within the scan box. */
+static void setup_make(const sr_screen_vertex *const v[3], sr_raster_rect box, int bits, setup *s)
 {
     s->bits = bits;
     s->box = box;
     edges_make(v, s->e);
     for (int k = 0; k < 3; k++)
         s->step_x[k] = s->e[k].a * ((int64_t)1 << bits); /* a multiply: a may be negative */
-    s->inv_area2 = (float)(1.0 / (double)area2);
+}
+
+/* What shading needs, for a box that may draw: depth, 1/w, the varyings. */
+static void interpolants_make(const sr_screen_vertex *const v[3], int64_t area2, int varyings, setup *s)
+{
+    depth_plane(v, area2, s);
     s->iw0 = v[0]->inv_w;
     s->diw1 = v[1]->inv_w - v[0]->inv_w;
     s->diw2 = v[2]->inv_w - v[0]->inv_w;
@@ -340,13 +348,12 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
         return 0;
     const sr_screen_vertex *v[3];
     setup s;
-    int64_t area2_cw = area2 > 0 ? area2 : -area2;
     order_clockwise(tri, area2, v);
-    setup_make(v, area2_cw, mode_reads_varyings(mode) ? shade->layout.count : 0, box, subpixel_bits, &s);
+    setup_make(v, box, subpixel_bits, &s);
     box_class c = classify_box(&s);
     if (c == BOX_OUTSIDE)
         return 0;
-    depth_plane(v, area2_cw, &s); /* only for a box that may draw */
+    interpolants_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, &s);
     s.covered = c == BOX_COVERED;
     sr_span_kernel kernel = s.box.x1 - s.box.x0 >= SIMD_MIN_WIDTH ? span_kernel(shade, mode, fb->reversed_z) : NULL;
     *simd = kernel && edges_fit_double(&s);
