@@ -2,8 +2,11 @@
  * pixels of the reference in raster_reference.h, on thousands of random,
  * tiny, sliver and grid-aligned triangles of either winding, within any
  * rect, up to the largest framebuffer side. test_raster_draw.c checks the
- * same through sr_draw.
+ * same through sr_draw. Depth comes from the plane through the unsnapped
+ * vertices (x_off, y_off), finite and in [0, 1] even where snapping turned
+ * a sliver over.
  */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -164,4 +167,104 @@ Test(raster, matches_reference_at_maximum_framebuffer_side)
         free(want);
         sr_framebuffer_destroy(&fb);
     }
+}
+
+#define STEEP_TRIANGLES 2000
+#define STEEP_REACH (6 * ONE) /* vertices within 6 px: depth slopes of ~0.3 per pixel, far more on slivers */
+/* The drawn depth is the row's z, rounded to float at the pixel of vertex 0,
+ * plus a float step times the columns from there: a few float roundings of
+ * values up to 1 + the slope times the box's width (measured worst 4.1e-7,
+ * on a sliver). The snapped plane was off by up to half a subpixel step
+ * times the slope, ~6e-4 on these. */
+#define ROUNDINGS_ALLOWED 4.0
+
+/* The plane through the unsnapped points (subpixel units) at pixel (i, j)'s
+ * centre; *slope: its |dz/dx| + |dz/dy| per pixel. */
+static double unsnapped_plane_at(const sr_screen_vertex s[3], int i, int j, double *slope)
+{
+    double x[3], y[3];
+    for (int k = 0; k < 3; k++) {
+        x[k] = (double)s[k].x + s[k].x_off;
+        y[k] = (double)s[k].y + s[k].y_off;
+    }
+    double px = (double)(i * ONE + HALF), py = (double)(j * ONE + HALF);
+    double det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+    double l1 = ((px - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (py - y[0])) / det;
+    double l2 = ((x[1] - x[0]) * (py - y[0]) - (px - x[0]) * (y[1] - y[0])) / det;
+    double dz1 = (double)s[1].z - s[0].z, dz2 = (double)s[2].z - s[0].z;
+    *slope = (fabs(dz1 * (y[2] - y[0]) - dz2 * (y[1] - y[0])) + fabs(dz2 * (x[1] - x[0]) - dz1 * (x[2] - x[0]))) *
+             ONE / fabs(det);
+    return s[0].z + l1 * ((double)s[1].z - s[0].z) + l2 * ((double)s[2].z - s[0].z);
+}
+
+static uint64_t raster_depth(sr_framebuffer *fb, const sr_screen_vertex s[3])
+{
+    int64_t area2 = sr_cull_area2(&s[0], &s[1], &s[2]);
+    cr_assert_neq(area2, 0);
+    sr_framebuffer_clear(fb, SCENE_BACKGROUND);
+    return sr_raster_triangle(fb, full_rect, SR_SUBPIXEL_BITS, SR_SHADE_DEPTH, &id_shade, s, area2, 0);
+}
+
+Test(raster, depth_is_the_plane_through_the_unsnapped_vertices_on_steep_triangles)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, FB_W, FB_H);
+    test_rng rng = { RANDOM_SEED + 5 };
+    int checked = 0;
+    double worst = 0.0;
+    for (int t = 0; t < STEEP_TRIANGLES; t++) {
+        sr_screen_vertex s[3];
+        int64_t x0 = (int64_t)rng_uniform(&rng, 0, FB_W * ONE), y0 = (int64_t)rng_uniform(&rng, 0, FB_H * ONE);
+        for (int k = 0; k < 3; k++)
+            s[k] = (sr_screen_vertex){ .x = x0 + (k ? (int64_t)rng_uniform(&rng, -STEEP_REACH, STEEP_REACH) : 0),
+                                       .y = y0 + (k ? (int64_t)rng_uniform(&rng, -STEEP_REACH, STEEP_REACH) : 0),
+                                       .x_off = (float)rng_uniform(&rng, -0.5, 0.5),
+                                       .y_off = (float)rng_uniform(&rng, -0.5, 0.5),
+                                       .z = (float)rng_uniform(&rng, 0.05, 0.95),
+                                       .inv_w = 1.0f };
+        if (sr_cull_area2(&s[0], &s[1], &s[2]) == 0)
+            continue;
+        raster_depth(&fb, s);
+        for (int j = 0; j < FB_H; j++)
+            for (int i = 0; i < FB_W; i++) {
+                float got = fb.depth[j * FB_W + i];
+                if (got == 1.0f) /* the clear value: not drawn */
+                    continue;
+                double slope, err = fabs(got - unsnapped_plane_at(s, i, j, &slope));
+                double tolerance = ROUNDINGS_ALLOWED * 0x1p-24 * (1.0 + slope * 2.0 * STEEP_REACH / ONE);
+                worst = fmax(worst, err);
+                checked++;
+                cr_expect_leq(err, tolerance, "triangle %d, pixel (%d, %d): depth %.9g, plane off by %.3g (slope %.3g)",
+                              t, i, j, got, err, slope);
+            }
+    }
+    cr_expect_gt(checked, STEEP_TRIANGLES, "only %d pixels checked", checked);
+    cr_log_info("unsnapped plane: %d pixels, worst %.3g", checked, worst);
+    sr_framebuffer_destroy(&fb);
+}
+
+/* A sliver one subpixel high on a row of pixel centres (its top edge on
+ * them), whose unsnapped points lie on a line, turned over, or all but on a
+ * line: depth stays finite and in [0, 1] at every pixel it draws. */
+Test(raster, slivers_that_snapping_turned_over_draw_finite_depth_in_unit_range)
+{
+    static const float apex_off[] = { -0.5f, -0.5f + 1e-6f, -0.5f + 1e-3f };
+    static const float base_off[] = { 0.5f, 0.5f - 1e-6f };
+    sr_framebuffer fb;
+    scene_fb_make(&fb, FB_W, FB_H);
+    for (size_t a = 0; a < sizeof apex_off / sizeof apex_off[0]; a++)
+        for (size_t b = 0; b < sizeof base_off / sizeof base_off[0]; b++) {
+            sr_screen_vertex s[3] = {
+                { .x = 0, .y = HALF, .y_off = base_off[b], .z = 0.0f, .inv_w = 1.0f },
+                { .x = FB_W * ONE, .y = HALF, .y_off = base_off[b], .z = 1.0f, .inv_w = 1.0f },
+                { .x = FB_W * ONE / 2, .y = HALF + 1, .y_off = apex_off[a], .z = 0.9f, .inv_w = 1.0f },
+            };
+            cr_expect_eq(raster_depth(&fb, s), FB_W, "apex %g, base %g", apex_off[a], base_off[b]);
+            for (int i = 0; i < FB_W; i++) {
+                float z = fb.depth[HALF / ONE * FB_W + i];
+                cr_expect(isfinite(z) && z >= 0.0f && z <= 1.0f, "apex %g, base %g, pixel %d: depth %g", apex_off[a],
+                          base_off[b], i, z);
+            }
+        }
+    sr_framebuffer_destroy(&fb);
 }

@@ -70,18 +70,65 @@ sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_rast
     };
 }
 
-static void setup_make(const sr_screen_vertex *const v[3], int64_t area2, int varyings, sr_raster_rect box,
-                       int bits, setup *s)
+/* The vertices relative to vertex 0's snapped point, in subpixel units,
+ * before snapping (unsnapped) or after: the integer differences are exact in
+ * double, the offsets add their 24 bits. */
+static void plane_points(const sr_screen_vertex *const v[3], bool unsnapped, double p[3][2])
+{
+    for (int k = 0; k < 3; k++) {
+        p[k][0] = (double)(v[k]->x - v[0]->x) + (unsnapped ? (double)v[k]->x_off : 0.0);
+        p[k][1] = (double)(v[k]->y - v[0]->y) + (unsnapped ? (double)v[k]->y_off : 0.0);
+    }
+}
+
+/* The depth plane through the unsnapped vertices, in double, and 1/area2
+ * for the barycentrics: the z gradient solves a 2×2 system whose
+ * determinant is the unsnapped area2 (one division gives both
+ * reciprocals). Where
+ * snapping turned a sliver over or grew it more than SLIVER_GROWTH times,
+ * the snapped vertices give the plane, with their exact integer area2 >= 1:
+ * the gradient stays far inside float range (|z| <= 1, positions below 2^35
+ * subpixels), so depth stays finite. */
+#define SLIVER_GROWTH 65536.0
+static void depth_plane(const sr_screen_vertex *const v[3], int64_t area2, setup *s)
+{
+    double p[3][2];
+    plane_points(v, true, p);
+    double x1 = p[1][0] - p[0][0], y1 = p[1][1] - p[0][1], x2 = p[2][0] - p[0][0], y2 = p[2][1] - p[0][1];
+    double det = x1 * y2 - x2 * y1;
+    if (!(det * SLIVER_GROWTH >= (double)area2)) {
+        plane_points(v, false, p);
+        x1 = p[1][0], y1 = p[1][1], x2 = p[2][0], y2 = p[2][1];
+        det = (double)area2;
+    }
+    double dz1 = (double)v[1]->z - (double)v[0]->z, dz2 = (double)v[2]->z - (double)v[0]->z;
+    double inv_both = 1.0 / (det * (double)area2), inv_det = (double)area2 * inv_both;
+    s->inv_area2 = (float)(det * inv_both);
+    double gx = (dz1 * y2 - dz2 * y1) * inv_det, gy = (dz2 * x1 - dz1 * x2) * inv_det;
+    s->ref_x = floor_shift(v[0]->x, s->bits);
+    s->ref_y = floor_shift(v[0]->y, s->bits);
+    int64_t one = (int64_t)1 << s->bits; /* a multiply below: ref_x may be negative */
+    double ox = (double)(s->ref_x * one + one / 2 - v[0]->x) - p[0][0],
+           oy = (double)(s->ref_y * one + one / 2 - v[0]->y) - p[0][1];
+    s->z_ref = (double)v[0]->z + gx * ox + gy * oy;
+    s->dz_row = gy * (double)one;
+    s->dz_pixel = (float)(gx * (double)one);
+}
+
+/* What coverage needs: the edges within the scan box. */
+static void setup_make(const sr_screen_vertex *const v[3], sr_raster_rect box, int bits, setup *s)
 {
     s->bits = bits;
     s->box = box;
     edges_make(v, s->e);
     for (int k = 0; k < 3; k++)
         s->step_x[k] = s->e[k].a * ((int64_t)1 << bits); /* a multiply: a may be negative */
-    s->inv_area2 = (float)(1.0 / (double)area2);
-    s->z0 = v[0]->z;
-    s->dz1 = v[1]->z - v[0]->z;
-    s->dz2 = v[2]->z - v[0]->z;
+}
+
+/* What shading needs, for a box that may draw: depth, 1/w, the varyings. */
+static void interpolants_make(const sr_screen_vertex *const v[3], int64_t area2, int varyings, setup *s)
+{
+    depth_plane(v, area2, s);
     s->iw0 = v[0]->inv_w;
     s->diw1 = v[1]->inv_w - v[0]->inv_w;
     s->diw2 = v[2]->inv_w - v[0]->inv_w;
@@ -93,10 +140,13 @@ static void setup_make(const sr_screen_vertex *const v[3], int64_t area2, int va
     }
 }
 
-static inline float depth_at(const setup *s, float l1, float l2)
+/* z at the pixel k pixels right of the row's reference pixel, clamped: the
+ * unsnapped triangle's plane may step a hair outside [0, 1] at a pixel the
+ * snapped triangle covers and the unsnapped one does not, and rounding may. */
+static inline float depth_at(const setup *s, float z_row, float k)
 {
-    float z = s->z0 + l1 * s->dz1 + l2 * s->dz2;
-    return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f; /* rounding may step a hair outside [0, 1] */
+    float z = z_row + s->dz_pixel * k;
+    return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;
 }
 
 static inline void varyings_at(const setup *s, float l1, float l2, float *var)
@@ -121,21 +171,20 @@ static inline bool depth_passes(float z, float stored, bool greater)
  * 1 if the fragment passed. Counting hits, the pixel only counts one more. */
 static inline __attribute__((always_inline)) uint64_t
 fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, const sr_shade_context *shade,
-           uint32_t id, size_t at, int64_t e1, int64_t e2)
+           uint32_t id, size_t at, float z_row, float k, int64_t e1, int64_t e2)
 {
     if (mode == SR_RASTER_COUNT_HITS) {
         fb->color[at]++;
         return 1;
     }
-    float l1 = (float)e1 * s->inv_area2, l2 = (float)e2 * s->inv_area2;
-    float z = depth_at(s, l1, l2);
+    float z = depth_at(s, z_row, k);
     if (!depth_passes(z, fb->depth[at], greater))
         return 0;
     fb->depth[at] = z;
     if (mode != SR_SHADE_DEPTH) {
         float var[SR_MAX_VARYINGS];
         if (mode_reads_varyings(mode))
-            varyings_at(s, l1, l2, var);
+            varyings_at(s, (float)e1 * s->inv_area2, (float)e2 * s->inv_area2, var);
         fb->color[at] = sr_shade_fragment(mode, shade, var, id);
     }
     return 1;
@@ -164,9 +213,10 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, con
     for (int j = s->box.y0; j < s->box.y1; j++) {
         sr_row_range r = sr_row_make(s, fb, spans, j);
         int64_t e0 = r.e[0], e1 = r.e[1], e2 = r.e[2];
-        for (int d = 0; d < r.count; d++, e0 += step[0], e1 += step[1], e2 += step[2])
+        float k = r.k;
+        for (int d = 0; d < r.count; d++, e0 += step[0], e1 += step[1], e2 += step[2], k += 1.0f)
             if (spans || s->covered || (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias))
-                fragments += fill_pixel(s, fb, mode, greater, shade, id, r.at + (size_t)d, e1, e2);
+                fragments += fill_pixel(s, fb, mode, greater, shade, id, r.at + (size_t)d, r.z, k, e1, e2);
     }
     return fragments;
 }
@@ -306,11 +356,11 @@ uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int s
     const sr_screen_vertex *v[3];
     setup s;
     order_clockwise(tri, area2, v);
-    setup_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, box,
-               subpixel_bits, &s);
+    setup_make(v, box, subpixel_bits, &s);
     box_class c = classify_box(&s);
     if (c == BOX_OUTSIDE)
         return 0;
+    interpolants_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, &s);
     s.covered = c == BOX_COVERED;
     sr_span_kernel kernel = s.box.x1 - s.box.x0 >= SIMD_MIN_WIDTH ? span_kernel(shade, mode, fb->reversed_z) : NULL;
     *simd = kernel && edges_fit_double(&s);

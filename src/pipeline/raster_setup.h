@@ -2,8 +2,12 @@
  * scalar loop (raster.c) and the SIMD span kernels (span_*.c). Not public API.
  *
  * Edge k is the one opposite vertex k, so E_k / area2 is barycentric λ_k;
- * attributes are a0 + λ1·d1 + λ2·d2 with λ from the exact edge values. Every
- * path evaluates these in the same float operations in the same order, so a
+ * attributes are a0 + λ1·d1 + λ2·d2 with λ from the exact edge values.
+ * Depth is not: it comes from the plane through the unsnapped vertices
+ * (snapping moves a steep triangle's plane by up to half a subpixel step
+ * times its slope), fitted in double per triangle, taken in double at each
+ * row's reference pixel and stepped along the row in float. Every path
+ * evaluates these in the same float operations in the same order, so a
  * pixel comes out bit-identical whichever path draws it. */
 #ifndef SOFTRAST_RASTER_SETUP_H
 #define SOFTRAST_RASTER_SETUP_H
@@ -22,7 +26,12 @@ typedef struct sr_tri_setup {
     sr_edge e[3];
     int64_t step_x[3]; /* E's change from one pixel to the next on a row */
     float inv_area2;
-    float z0, dz1, dz2;
+    /* The depth plane: z at the centre of pixel (ref_x, ref_y), the pixel of
+     * vertex 0 (so every tile of a triangle steps from the same point), its
+     * change per row and per pixel. */
+    int64_t ref_x, ref_y;
+    double z_ref, dz_row;
+    float dz_pixel;
     float iw0, diw1, diw2;
     int varyings;
     float var0[SR_MAX_VARYINGS], dvar1[SR_MAX_VARYINGS], dvar2[SR_MAX_VARYINGS];
@@ -71,6 +80,7 @@ typedef struct sr_row_range {
     size_t at;
     int64_t e[3];
     int count;
+    float z, k; /* z at the row's pixel ref_x; `at`'s pixel is k pixels right of it */
 } sr_row_range;
 
 static SR_ALWAYS_INLINE sr_row_range sr_row_make(const sr_tri_setup *s, const sr_framebuffer *fb, bool spans, int j)
@@ -89,6 +99,8 @@ static SR_ALWAYS_INLINE sr_row_range sr_row_make(const sr_tri_setup *s, const sr
     for (int k = 0; k < 3; k++)
         r.e[k] += lo * s->step_x[k];
     r.at = (size_t)j * (size_t)fb->width + (size_t)s->box.x0 + (size_t)lo;
+    r.z = (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
+    r.k = (float)(s->box.x0 + lo - s->ref_x); /* exact: boxes are far narrower than 2^24 pixels */
     return r;
 }
 

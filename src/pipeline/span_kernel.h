@@ -11,8 +11,9 @@
  * shade.h, in the same order and without fused multiply-adds (the Makefile
  * passes -ffp-contract=off: clang would fuse where AVX-512 offers FMA), so the colors
  * and depths are bit-identical to the scalar path (tests/test_simd.c):
- * λ = (float)E · inv_area2 with E exact in double, depth and 1/w from λ,
- * the varyings divided by 1/w, then the mode's shading. Lanes past the row
+ * depth from the row's z and the per-pixel step (the pixel's column as an
+ * exact float), λ = (float)E · inv_area2 with E exact in double, 1/w from
+ * λ, the varyings divided by 1/w, then the mode's shading. Lanes past the row
  * or outside the triangle are masked; memory is read and written only for
  * the row's pixels (a neighbouring tile belongs to another thread). */
 #include <math.h>
@@ -119,9 +120,9 @@ typedef struct lanes {
     vf var[SR_MAX_VARYINGS];
 } lanes;
 
-static inline __attribute__((always_inline)) vf depth_lanes(const sr_tri_setup *s, vf l1, vf l2)
+static inline __attribute__((always_inline)) vf depth_lanes(const sr_tri_setup *s, float z_row, vf k)
 {
-    vf z = s->z0 + l1 * s->dz1 + l2 * s->dz2;
+    vf z = z_row + s->dz_pixel * k;
     vf zero = { 0 };
     vf one = zero + 1.0f;
     return select_f(z > zero, select_f(z < one, z, one), zero);
@@ -318,12 +319,9 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
  * `live` marks the lanes within the row. */
 static inline __attribute__((always_inline)) uint64_t
 fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-           bool greater, uint32_t id, size_t at, int n, vi live, const edge_lanes e[3])
+           bool greater, uint32_t id, size_t at, int n, vi live, float z_row, vf k, const edge_lanes e[3])
 {
-    lanes p;
-    p.l1 = edge_to_float(e[1]) * s->inv_area2;
-    p.l2 = edge_to_float(e[2]) * s->inv_area2;
-    vf z = depth_lanes(s, p.l1, p.l2);
+    vf z = depth_lanes(s, z_row, k);
     vf stored = load_f(fb->depth + at, n);
     vi pass = live & (greater ? z > stored : z < stored);
     unsigned passed = lane_bits(pass);
@@ -332,6 +330,9 @@ fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb,
     stored = select_f(pass, z, stored);
     store_f(fb->depth + at, stored, n);
     if (mode != SR_SHADE_DEPTH) {
+        lanes p;
+        p.l1 = edge_to_float(e[1]) * s->inv_area2;
+        p.l2 = edge_to_float(e[2]) * s->inv_area2;
         varyings_lanes(s, varying_count(mode, a), &p);
         vi color = select_i(pass, shade_lanes(mode, a, c, p.var, id), load_i(fb->color + at, n));
         store_i(fb->color + at, color, n);
@@ -354,9 +355,10 @@ static inline __attribute__((always_inline)) void prefetch_ahead(const sr_frameb
 
 static inline __attribute__((always_inline)) uint64_t
 span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-         bool greater, uint32_t id, size_t at, int count, const int64_t e_first[3])
+         bool greater, uint32_t id, const sr_row_range *r)
 {
     vi lane = lanes_index();
+    vf column = r->k + __builtin_convertvector(lane, vf); /* exact: small integers */
     vdh lane_lo, lane_hi;
     for (int l = 0; l < SPAN_LANES / 2; l++) {
         lane_lo[l] = l;
@@ -365,15 +367,15 @@ span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, s
     edge_lanes e[3] = { { { 0 } } }; /* e[0] unused: λ needs edges 1 and 2 only */
     vdh step[3] = { { 0 } };
     for (int k = 1; k < 3; k++) {
-        double first = (double)e_first[k], per_pixel = (double)s->step_x[k];
+        double first = (double)r->e[k], per_pixel = (double)s->step_x[k];
         e[k] = (edge_lanes){ first + lane_lo * per_pixel, first + lane_hi * per_pixel };
         step[k] = (vdh){ 0 } + per_pixel * SPAN_LANES;
     }
     uint64_t fragments = 0;
-    for (int d = 0; d < count; d += SPAN_LANES) {
-        int n = count - d < SPAN_LANES ? count - d : SPAN_LANES;
-        prefetch_ahead(fb, at + (size_t)d);
-        fragments += fill_group(s, c, fb, mode, a, greater, id, at + (size_t)d, n, lane < n, e);
+    for (int d = 0; d < r->count; d += SPAN_LANES, column += (float)SPAN_LANES) {
+        int n = r->count - d < SPAN_LANES ? r->count - d : SPAN_LANES;
+        prefetch_ahead(fb, r->at + (size_t)d);
+        fragments += fill_group(s, c, fb, mode, a, greater, id, r->at + (size_t)d, n, lane < n, r->z, column, e);
         for (int k = 1; k < 3; k++) {
             e[k].lo += step[k];
             e[k].hi += step[k];
@@ -390,7 +392,7 @@ span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *
     for (int j = s->box.y0; j < s->box.y1; j++) {
         sr_row_range r = sr_row_make(s, fb, true, j);
         if (r.count > 0)
-            fragments += span_row(s, c, fb, mode, a, greater, id, r.at, r.count, r.e);
+            fragments += span_row(s, c, fb, mode, a, greater, id, &r);
     }
     return fragments;
 }

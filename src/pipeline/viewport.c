@@ -31,8 +31,11 @@ bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp
     if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(z, 0.0))
         return false;
     double scale = (double)((int64_t)1 << vp->subpixel_bits), guard = vp->guard;
-    out->x = round_to_integer((guard * x + 1.0) * 0.5 * vp->width * scale);
-    out->y = round_to_integer((1.0 - guard * y) * 0.5 * vp->height * scale);
+    double sx = (guard * x + 1.0) * 0.5 * vp->width * scale, sy = (1.0 - guard * y) * 0.5 * vp->height * scale;
+    out->x = round_to_integer(sx);
+    out->y = round_to_integer(sy);
+    out->x_off = (float)(sx - (double)out->x); /* the difference exact, then 24 bits of it */
+    out->y_off = (float)(sy - (double)out->y);
     out->z = (float)z;
     out->inv_w = (float)inv_w;
     bool finite = isfinite(out->inv_w); /* 1/w overflows float for w < 2^-128 */
