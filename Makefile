@@ -33,8 +33,11 @@ TEST_SRC    := $(wildcard tests/*.c)
 ALL_SRC     := $(LIB_SRC) $(STUDIES_SRC) $(APP_SRC) src/app/main.c $(TEST_SRC)
 
 # What the program, the tests and the tools link, in build $(1) (build/ or
-# build/san/): every room, internal symbols included.
-APP_LIBS = $(1)/libsoftrast-app.a $(1)/libsoftrast-studies.a $(1)/libsoftrast-files.a $(1)/libsoftrast-core.a
+# build/san/): every room's archive under $(1)/rooms/, internal symbols
+# included. The archives build/libsoftrast.a and build/libsoftrast-files.a
+# are the installed ones, which export the public API alone.
+APP_LIBS = $(1)/rooms/libapp.a $(1)/rooms/libstudies.a $(1)/rooms/libfiles.a $(1)/rooms/libcore.a
+PUBLIC_LIBS := build/libsoftrast.a build/libsoftrast-files.a
 
 # The 8-lane span kernels are built for AVX2 (chosen at run time when the
 # CPU has it); never -mfma, which would round differently from the scalar path.
@@ -51,7 +54,7 @@ endif
 .PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-assets test-install install assets docs-images bench report stability clean
 .DEFAULT_GOAL := all
 
-all: deps build/softrast
+all: deps build/softrast $(PUBLIC_LIBS)
 
 deps:
 	@sh tools/deps.sh
@@ -80,7 +83,7 @@ $(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden
 # files library carries its own local copies of the core's error formatting
 # input checks and growable array.
 define public_archive
-build/public/$(1): $(patsubst %.c,build/%.o,$(2))
+build/$(1): $(patsubst %.c,build/%.o,$(2))
 	@mkdir -p $$(@D)
 	@echo "  PUBLIC  $$@"
 	@ld -r $$^ -o $$(@:.a=.o)
@@ -93,14 +96,15 @@ $(eval $(call public_archive,libsoftrast-files.a,$(FILES_SRC) src/core/error.c s
 # One archive per room, in both builds: $(1) is build or build/san.
 define room_archive
 $(1)/$(2): $(patsubst %.c,$(1)/%.o,$(3))
+	@mkdir -p $$(@D)
 	@rm -f $$@
 	@echo "  AR      $$@"
 	@ar rcs $$@ $$^
 endef
-$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-core.a,$(CORE_SRC))))
-$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-files.a,$(FILES_SRC))))
-$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-studies.a,$(STUDIES_SRC))))
-$(foreach b,build build/san,$(eval $(call room_archive,$(b),libsoftrast-app.a,$(APP_SRC))))
+$(foreach b,build build/san,$(eval $(call room_archive,$(b),rooms/libcore.a,$(CORE_SRC))))
+$(foreach b,build build/san,$(eval $(call room_archive,$(b),rooms/libfiles.a,$(FILES_SRC))))
+$(foreach b,build build/san,$(eval $(call room_archive,$(b),rooms/libstudies.a,$(STUDIES_SRC))))
+$(foreach b,build build/san,$(eval $(call room_archive,$(b),rooms/libapp.a,$(APP_SRC))))
 
 build/softrast: build/src/app/main.o $(call APP_LIBS,build)
 	@echo "  LINK    $@"
@@ -190,7 +194,6 @@ VERSION := 0.1.0
 
 # The libraries (core, and files on SDL2_image), their three headers, the
 # program with its data, and a pkg-config file per library, under PREFIX.
-PUBLIC_LIBS := build/public/libsoftrast.a build/public/libsoftrast-files.a
 install: build/softrast $(PUBLIC_LIBS)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/softrast
 	install -m 755 build/softrast $(DESTDIR)$(PREFIX)/bin/softrast
