@@ -32,16 +32,9 @@ typedef struct llvmpipe_side {
     frame_clock clock;
 } llvmpipe_side;
 
-static double ms_of(clockid_t id)
-{
-    struct timespec t;
-    clock_gettime(id, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
-
 static clock_mark clock_now(void)
 {
-    return (clock_mark){ ms_of(CLOCK_MONOTONIC), ms_of(CLOCK_PROCESS_CPUTIME_ID) };
+    return (clock_mark){ sr_clock_ms(CLOCK_MONOTONIC), sr_clock_ms(CLOCK_PROCESS_CPUTIME_ID) };
 }
 
 static void clock_record(frame_clock *c, int f, clock_mark start)

@@ -49,7 +49,7 @@ static bool wait_done(mesh_load *l, double ms)
 bool sr_app_load_mesh(const char *path, sr_mesh *mesh, sr_texture *texture, double quiet_ms, sr_error *err)
 {
     mesh_load l = { path, mesh, texture, err, false, false, PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER };
-    double start = sr_study_now_ms();
+    double start = sr_now_ms();
     pthread_t thread;
     if (pthread_create(&thread, NULL, load_in_thread, &l) != 0)
         return sr_mesh_load(mesh, texture, path, err);
@@ -62,6 +62,6 @@ bool sr_app_load_mesh(const char *path, sr_mesh *mesh, sr_texture *texture, doub
     pthread_join(thread, NULL);
     if (!quiet && l.ok)
         fprintf(stderr, "softrast: loaded %s in %.1f s: %u vertices, %u triangles\n", path,
-                (sr_study_now_ms() - start) / 1e3, mesh->vertex_count, sr_mesh_triangle_slots(mesh));
+                (sr_now_ms() - start) / 1e3, mesh->vertex_count, sr_mesh_triangle_slots(mesh));
     return l.ok;
 }

@@ -105,9 +105,6 @@ void sr_chunks_init(sr_chunks *c, uint32_t count, uint32_t size);
 /* The next chunk's items [first, end); false when none is left. */
 bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end);
 
-/* A monotonic clock in milliseconds, for sr_draw_times. */
-double sr_clock_ms(void);
-
 /* The binned path: primitives into per-thread tile bins, then each tile
  * rasterized by one thread in submission order. False when out of memory. */
 bool sr_draw_binned(sr_draw_state *st);

@@ -1,19 +1,7 @@
 #include <pthread.h>
-#include <time.h>
 
+#include "core/clock.h"
 #include "draw_internal.h"
-
-static double clock_ms(clockid_t clock)
-{
-    struct timespec t;
-    clock_gettime(clock, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
-
-double sr_clock_ms(void)
-{
-    return clock_ms(CLOCK_MONOTONIC);
-}
 
 void sr_chunks_init(sr_chunks *c, uint32_t count, uint32_t size)
 {
@@ -43,10 +31,10 @@ typedef struct job {
 static void *run_job(void *arg)
 {
     job *j = arg;
-    double start = j->timed ? clock_ms(CLOCK_THREAD_CPUTIME_ID) : 0.0;
+    double start = j->timed ? sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) : 0.0;
     j->fn(j->ctx, j->t);
     if (j->timed)
-        j->cpu_ms = clock_ms(CLOCK_THREAD_CPUTIME_ID) - start;
+        j->cpu_ms = sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) - start;
     return NULL;
 }
 
@@ -58,7 +46,7 @@ void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx, sr_ph
     pthread_t ids[SR_MAX_THREADS];
     job jobs[SR_MAX_THREADS];
     bool started[SR_MAX_THREADS] = { false };
-    double start = time ? sr_clock_ms() : 0.0;
+    double start = time ? sr_now_ms() : 0.0;
     for (int t = 0; t < threads; t++)
         jobs[t] = (job){ fn, ctx, t, time != NULL, 0.0 };
     for (int t = 1; t < threads; t++)
@@ -72,7 +60,7 @@ void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx, sr_ph
     }
     if (!time)
         return;
-    time->wall += sr_clock_ms() - start;
+    time->wall += sr_now_ms() - start;
     for (int t = 0; t < threads; t++)
         time->cpu += jobs[t].cpu_ms;
 }

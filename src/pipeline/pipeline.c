@@ -8,6 +8,7 @@
 #include "vertex.h"
 #include "viewport.h"
 #include "core/error.h"
+#include "core/clock.h"
 #include "core/dmat4.h"
 #include "raster.h"
 
@@ -331,7 +332,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
 {
     if (!desc)
         return sr_error_set(err, "draw without a description");
-    double start = sr_clock_ms();
+    double start = sr_now_ms();
     const sr_draw_study study = desc->study ? *desc->study : (sr_draw_study){ 0 };
     sr_shade mode = study.count_hits ? SR_RASTER_COUNT_HITS : desc->shade;
     sr_varying_layout layout = { .color = -1, .uv = -1, .normal = -1 };
@@ -359,6 +360,6 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     if (!desc->workspace)
         sr_workspace_destroy(ws);
     if (study.times)
-        study.times->total += sr_clock_ms() - start;
+        study.times->total += sr_now_ms() - start;
     return ok;
 }

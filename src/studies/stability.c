@@ -41,14 +41,14 @@ static bool run_cases(sr_stability_report *r, sr_error *err)
 bool sr_stability_write(const char *dir, sr_error *err)
 {
     static sr_stability_report r; /* large; one run at a time */
-    double start = sr_study_now_ms();
+    double start = sr_now_ms();
     r = (sr_stability_report){ 0 };
     if (!run_cases(&r, err))
         return false;
     fprintf(stderr, "stability: depth table\n");
     if (!sr_stability_depth_table(&r.depth, err))
         return false;
-    r.seconds = (sr_study_now_ms() - start) * 1e-3;
+    r.seconds = (sr_now_ms() - start) * 1e-3;
     fprintf(stderr, "stability: %.1f s\n", r.seconds);
     return sr_stability_files(dir, &r, err);
 }

@@ -1,26 +1,18 @@
-/* timing.c — the clock, one timed frame, medians. */
+/* timing.c — one timed frame, medians. */
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "timing.h"
 
-double sr_study_now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
-
 bool sr_study_draw_frame(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err)
 {
-    double start = sr_study_now_ms();
+    double start = sr_now_ms();
     if (stats)
         *stats = (sr_stats){ 0 };
     sr_draw_desc clearing = *desc;
     clearing.clear = true; /* to color 0, inside the draw (each tile by its thread) */
     bool ok = sr_draw(fb, &clearing, stats, err);
-    *ms = sr_study_now_ms() - start;
+    *ms = sr_now_ms() - start;
     return ok;
 }
 

@@ -1,15 +1,14 @@
-/* timing.h — how the studies and the program time a frame: a monotonic
- * clock, one frame as a viewer pays for it, and the median of repeated runs. */
+/* timing.h — how the studies and the program time a frame: the clock
+ * (core/clock.h), one frame as a viewer pays for it, and the median of
+ * repeated runs. */
 #ifndef SOFTRAST_STUDIES_TIMING_H
 #define SOFTRAST_STUDIES_TIMING_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "core/clock.h" /* sr_now_ms */
 #include "softrast_private.h"
-
-/* A monotonic clock in milliseconds. */
-double sr_study_now_ms(void);
 
 /* One frame as a viewer pays for it, timed into *ms: clear color (to 0) and
  * depth, then the draw. stats, when given, is zeroed first. */

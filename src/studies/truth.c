@@ -368,7 +368,7 @@ static void trace(const truth_scene *s, sr_truth_image *out, double start_ms)
                 for (int x = tx * TILE; x < (tx + 1) * TILE && x < s->width; x++)
                     trace_pixel(s, list, count, x, y, out);
         }
-        double now = sr_study_now_ms();
+        double now = sr_now_ms();
         if (now - last_ms >= PROGRESS_MS) {
             fprintf(stderr, "truth: %d of %d rows, %.1f s\n", (ty + 1) * TILE < s->height ? (ty + 1) * TILE : s->height,
                     s->height, (now - start_ms) / 1000.0);
@@ -391,7 +391,7 @@ static bool image_alloc(sr_truth_image *t, int width, int height, sr_error *err)
 
 bool sr_truth_render(const sr_draw_desc *desc, int width, int height, sr_truth_image *out, sr_error *err)
 {
-    double start_ms = sr_study_now_ms();
+    double start_ms = sr_now_ms();
     truth_scene s = { .width = width, .height = height };
     *out = (sr_truth_image){ 0 };
     if (width < 1 || height < 1 || width > SR_MAX_FRAMEBUFFER_SIDE || height > SR_MAX_FRAMEBUFFER_SIDE)
@@ -400,7 +400,7 @@ bool sr_truth_render(const sr_draw_desc *desc, int width, int height, sr_truth_i
               image_alloc(out, width, height, err);
     if (ok)
         trace(&s, out, start_ms);
-    double total_ms = sr_study_now_ms() - start_ms;
+    double total_ms = sr_now_ms() - start_ms;
     if (ok && total_ms >= PROGRESS_MS)
         fprintf(stderr, "truth: %u triangles in view, %dx%d, %.1f s\n", s.tri_count, width, height, total_ms / 1000.0);
     scene_free(&s);
