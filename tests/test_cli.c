@@ -347,6 +347,7 @@ Test(cli, missing_report_dir_fails_before_measuring)
 {
     assert_one_error("bench --stability --report-dir %s/none", "none: cannot write the report there");
     assert_one_error("bench --report --report-dir %s/tri.obj", "tri.obj: cannot write the report there: not a directory");
+    assert_one_error("bench --cost-model --report-dir %s/none", "none: cannot write the report there");
 }
 
 /* A model shared without its textures used to stop the render at the
