@@ -403,3 +403,17 @@ Test(cli, render_says_what_it_wrote_in_one_line)
     cr_expect_eq(r.status, 0);
     cr_expect_str_eq(r.err, "");
 }
+
+/* bench --shade draws every scene in one mode (the issue's "every shading
+ * mode"): the fly scene, lambert + texture of its own, runs in id, and a
+ * mode it lacks the attributes of is a skipped line, not an error. */
+Test(cli, bench_shade_replaces_the_scenes_shading_or_skips)
+{
+    run_result r = run_softrast_env(temp_dir, "timeout -s KILL 60", "bench --scene fly --frames 1 --shade id");
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_not_null(strstr(r.out, "fly "), "%s", r.out);
+    cr_expect_null(strstr(r.out, "skipped"), "%s", r.out);
+    r = run_softrast_env(temp_dir, "timeout -s KILL 60", "bench --scene fly --frames 1 --shade color");
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_not_null(strstr(r.out, "fly      skipped: it lacks what --shade color reads"), "%s", r.out);
+}

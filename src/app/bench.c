@@ -21,7 +21,7 @@ static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth
 enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_INSIDE };
 
 typedef struct bench_job {
-    int scene, frames, threads, simd;
+    int scene, frames, threads, simd, shade; /* shade: -1 for each scene's own */
     bool report, stability, cost_model, stages;
     const char *report_dir;
 } bench_job;
@@ -41,6 +41,7 @@ static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_erro
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--simd", SR_OPT_CHOICE, &job->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
+        { "--shade", SR_OPT_CHOICE, &job->shade, "lambert|id|color|normal|texture|depth", "draw every scene in this shading mode instead of its own (a scene without what the mode reads is skipped)", .choices = SR_SHADE_NAMES },
         { "--stages", SR_OPT_FLAG, &job->stages, NULL, "print where a frame's time goes, per phase of the draw, as a Markdown table (docs/performance.md)" },
         { "--report", SR_OPT_FLAG, &job->report, NULL, "measure error against time for every accuracy knob instead" },
         { "--stability", SR_OPT_FLAG, &job->stability, NULL, "measure clipping error, cracks and depth precision under stiff cameras instead (docs/stability.md)" },
@@ -94,6 +95,13 @@ static bool run_scene(sr_bench_scene *s, bool made, const bench_job *job, bench_
     sr_draw_times times = { 0 };
     sr_bench_run how = { .frames = job->frames, .threads = job->threads, .simd = (sr_simd)job->simd,
                          .times = job->stages ? &times : NULL };
+    if (made && job->shade >= 0 && !sr_shade_supported(&s->mesh, &s->texture, (sr_shade)job->shade)) {
+        printf("%-8s skipped: it lacks what --shade %s reads\n", s->name, SR_SHADE_NAMES[job->shade]);
+        sr_bench_scene_free(s);
+        return true;
+    }
+    if (made && job->shade >= 0)
+        s->shade = (sr_shade)job->shade;
     bool ok = made && sr_bench_time(s, &how, NULL, r, err);
     if (ok && job->stages)
         print_stages(s->name, job, r, &times);
@@ -140,7 +148,7 @@ static bool report_dir_ok(const char *dir, sr_error *err)
 
 int sr_app_bench(int argc, char **argv)
 {
-    bench_job job = { .frames = 10 };
+    bench_job job = { .frames = 10, .shade = -1 };
     sr_error err = { { 0 } };
     bool help = false;
     job.threads = sr_scene_default_threads();
