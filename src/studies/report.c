@@ -39,6 +39,10 @@ static const knob KNOBS[SR_REPORT_KNOBS] = {
 static const knob REFERENCE = { "reference: 16 bits, exact clip, reversed z", REFERENCE_BITS, SR_CLIP_EXACT, 0.0f,
                                 true, 1 };
 
+const sr_report_scene_make sr_report_scene_makers[SR_REPORT_SCENES] = {
+    sr_bench_dense_default, sr_bench_fly, sr_bench_stiff, sr_bench_scan_dragon, sr_bench_scan_close, sr_bench_scan_stiff,
+};
+
 int sr_report_scene_frames(const sr_bench_scene *s)
 {
     return s->path.count ? (s->path.count < MAX_PATH_FRAMES ? s->path.count : MAX_PATH_FRAMES) : 1;
@@ -173,10 +177,8 @@ bool sr_report_write(const char *dir, int frames, sr_error *err)
 {
     sr_report_scene scenes[SR_REPORT_SCENES];
     sr_bench_scene s;
-    bool (*make[SR_REPORT_SCENES])(sr_bench_scene *, sr_error *) = { sr_bench_dense_default, sr_bench_fly,
-                                                                      sr_bench_stiff };
     for (int i = 0; i < SR_REPORT_SCENES; i++) {
-        bool ok = make[i](&s, err) && measure_scene(&s, frames, &scenes[i], err);
+        bool ok = sr_report_scene_makers[i](&s, err) && measure_scene(&s, frames, &scenes[i], err);
         sr_bench_scene_free(&s);
         if (!ok)
             return false;
