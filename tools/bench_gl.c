@@ -104,18 +104,19 @@ static bool run_scene(const job *j, int kind, sr_error *err)
 static bool run_truth(const job *j, sr_error *err)
 {
     bool (*make[])(sr_bench_scene *, sr_error *) = { sr_bench_dense_default, sr_bench_fly, sr_bench_stiff };
-    printf("\n| llvmpipe | wrong triangle | ties | coverage | \\|z − truth\\| max | p99.9 | median |\n"
-           "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    printf("\n");
+    sr_truth_errors_write_header(stdout, "llvmpipe");
     bool ok = true;
     for (size_t i = 0; ok && i < sizeof make / sizeof *make; i++) {
         sr_bench_scene s;
         sr_truth_errors e;
         ok = make[i](&s, err) && bench_gl_truth(&s, j->lp_raster_all ? j->threads : j->threads - 1, &e, err);
-        if (ok)
-            printf("| %s (%d camera%s) | %llu | %llu | %llu | %.3g | %.3g | %.3g |\n", s.name,
-                   sr_report_scene_frames(&s), sr_report_scene_frames(&s) > 1 ? "s" : "",
-                   (unsigned long long)e.wrong_triangle, (unsigned long long)e.ties,
-                   (unsigned long long)e.coverage, e.z_max, e.z_p999, e.z_median);
+        if (ok) {
+            char label[64];
+            int n = sr_report_scene_frames(&s);
+            snprintf(label, sizeof label, "%s (%d camera%s)", s.name, n, n > 1 ? "s" : "");
+            sr_truth_errors_write_row(stdout, label, &e);
+        }
         sr_bench_scene_free(&s);
     }
     return ok;

@@ -38,7 +38,7 @@ bool bench_gl_truth(sr_bench_scene *s, int lp_threads, sr_truth_errors *out, sr_
     bench_gl_context *ctx = NULL;
     bench_gl_scene *g = NULL;
     sr_framebuffer fb = { 0 };
-    sr_truth_tally tally = { 0 };
+    sr_truth_tally tally = { .coverage_tolerance = sr_truth_coverage_tolerance(SR_SUBPIXEL_BITS) };
     s->shade = SR_SHADE_ID;
     bool ok = sr_framebuffer_create(&fb, s->width, s->height, err) &&
               bench_gl_context_create(&ctx, lp_threads, err) && bench_gl_scene_create(&g, s, err) &&

@@ -28,14 +28,9 @@ static void write_table(FILE *f, const sr_report_scene *s)
 static void write_truth_table(FILE *f, const sr_report_scene *s)
 {
     fprintf(f, "\n### %s against the truth (%d camera%s)\n\n", s->name, s->frames, s->frames > 1 ? "s" : "");
-    fprintf(f, "| knob | wrong triangle | ties | coverage | \\|z − truth\\| max | p99.9 | median |\n");
-    fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-    for (int k = 0; k < SR_REPORT_KNOBS; k++) {
-        const sr_truth_errors *e = &s->points[k].truth;
-        fprintf(f, "| %s | %llu | %llu | %llu | %.3g | %.3g | %.3g |\n", s->points[k].knob,
-                (unsigned long long)e->wrong_triangle, (unsigned long long)e->ties, (unsigned long long)e->coverage,
-                e->z_max, e->z_p999, e->z_median);
-    }
+    sr_truth_errors_write_header(f, "knob");
+    for (int k = 0; k < SR_REPORT_KNOBS; k++)
+        sr_truth_errors_write_row(f, s->points[k].knob, &s->points[k].truth);
 }
 
 static bool write_markdown(const char *path, const sr_report_scene *scenes, const sr_report_simd_scene *loops,
@@ -56,15 +51,7 @@ static bool write_markdown(const char *path, const sr_report_scene *scenes, cons
     for (int i = 0; i < SR_REPORT_SCENES; i++)
         write_table(f, &scenes[i]);
     fprintf(f, "\n![id error against time](report.svg)\n");
-    fprintf(f, "\n## Against the truth\n\n"
-               "The same draws against the truth image (`softrast truth`, src/studies/truth.c): for each pixel\n"
-               "centre the triangle exact arithmetic says is nearest and its z_ndc, for the knob's own camera\n"
-               "(standard or reversed z). Counts of pixels over all cameras. *wrong triangle*: both drew, but\n"
-               "a different triangle, and the truth's runner-up at that pixel lies more than the tie tolerance\n"
-               "%g (in the knob's z_ndc) behind its nearest; *ties*: the same within it; *coverage*: drawn by\n"
-               "one and not the other; *|z − truth|*: in the knob's z_ndc, over the pixels where both drew\n"
-               "the same triangle. llvmpipe's rows, on the same cameras: docs/bench-compare.md\n"
-               "(`./build/bench-gl --truth`).\n", SR_REPORT_TIE_TOLERANCE);
+    sr_report_truth_intro(f);
     for (int i = 0; i < SR_REPORT_SCENES; i++)
         write_truth_table(f, &scenes[i]);
     sr_report_simd_write(f, loops);
