@@ -72,6 +72,24 @@ Test(truth_judge, a_centre_a_sub_snap_distance_inside_the_front_triangle_is_an_e
     sr_mesh_free(&mesh);
 }
 
+Test(truth_judge, the_other_of_two_coincident_triangles_is_a_depth_tie)
+{
+    const float pos[][3] = { { -1.5f, -1.5f, 2.0f }, { 0.0f, 1.5f, 2.0f }, { 1.5f, -1.5f, 2.0f } };
+    const uint32_t idx[] = { 0, 1, 2, 0, 1, 2 };
+    sr_mesh mesh;
+    sr_draw_desc desc;
+    sr_truth_image t;
+    scene_mesh_make(&mesh, &(scene_mesh_arrays){ .vertex_count = 3, .positions = pos, .index_count = 6, .indices = idx });
+    unit_lens(&desc, &mesh);
+    truth_of(&desc, &t);
+    uint32_t shown = t.ids[32 * SIDE + 32], other = 3 - shown;
+    cr_assert(shown == 1 || shown == 2);
+    double distance = -1.0;
+    cr_assert_eq(sr_truth_judge(&t, desc.projection, other, 32, 32, 0.0, &distance), SR_TRUTH_DEPTH_TIE);
+    sr_truth_image_free(&t);
+    sr_mesh_free(&mesh);
+}
+
 Test(truth_judge, the_tally_counts_each_verdict_and_the_largest_edge_distance)
 {
     sr_mesh mesh;
