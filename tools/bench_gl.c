@@ -116,20 +116,20 @@ static bool run_truth(const job *j, const char *renderer, sr_error *err)
     snprintf(peer.renderer, sizeof peer.renderer, "%.*s, %d thread%s in all (LP_NUM_THREADS %d)",
              GL_NAME_CHARS - 1, renderer,
              j->threads, j->threads > 1 ? "s" : "", lp_threads(j, j->threads));
-    printf("\n| llvmpipe | ms | wrong triangle | ties | coverage | \\|z − truth\\| max | p99.9 | median |\n"
-           "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    printf("\n");
+    sr_truth_errors_write_header(stdout, "llvmpipe (ms per frame)");
     bool ok = true;
     for (int i = 0; ok && i < SR_REPORT_SCENES; i++) {
         sr_bench_scene s;
         sr_report_peer_row *r = &peer.rows[i];
-        const sr_truth_errors *e = &r->truth;
         ok = sr_report_scene_makers[i](&s, err) &&
              bench_gl_truth(&s, lp_threads(j, j->threads), j->frames, r, err);
-        if (ok)
-            printf("| %s (%d camera%s) | %.2f | %llu | %llu | %llu | %.3g | %.3g | %.3g |\n", s.name,
-                   sr_report_scene_frames(&s), sr_report_scene_frames(&s) > 1 ? "s" : "", r->ms,
-                   (unsigned long long)e->wrong_triangle, (unsigned long long)e->ties,
-                   (unsigned long long)e->coverage, e->z_max, e->z_p999, e->z_median);
+        if (ok) {
+            char label[96];
+            int n = sr_report_scene_frames(&s);
+            snprintf(label, sizeof label, "%s (%d camera%s, %.2f ms)", s.name, n, n > 1 ? "s" : "", r->ms);
+            sr_truth_errors_write_row(stdout, label, &r->truth);
+        }
         sr_bench_scene_free(&s);
     }
     if (ok)

@@ -48,7 +48,7 @@ bool bench_gl_truth(sr_bench_scene *s, int lp_threads, int frames, sr_report_pee
     bench_gl_context *ctx = NULL;
     bench_gl_scene *g = NULL;
     sr_framebuffer fb = { 0 };
-    sr_truth_tally tally = { 0 };
+    sr_truth_tally tally = { .coverage_tolerance = sr_truth_coverage_tolerance(SR_SUBPIXEL_BITS) };
     int timed = sr_report_scene_frames(s) * frames;
     double *ms = malloc((size_t)timed * sizeof *ms), min;
     s->shade = SR_SHADE_ID;

@@ -122,7 +122,7 @@ static bool measure_knob(const sr_bench_scene *s, const sr_framebuffer *refs, co
     double *ms = malloc((size_t)timed * sizeof *ms);
     bool ok = ws && ms && sr_framebuffer_create(&fb, s->width, s->height, err);
     uint64_t differ = 0;
-    sr_truth_tally tally = { 0 };
+    sr_truth_tally tally = { .coverage_tolerance = sr_truth_coverage_tolerance(k->subpixel_bits) };
     *out = (sr_report_point){ .knob = k->name };
     for (int f = 0; ok && f < scene_n; f++) {
         for (int r = 0; ok && r < frames; r++)

@@ -2,39 +2,45 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "doc_file.h"
 #include "report_peer.h"
 
 #define LINE_MAX_CHARS 512
 
-static const char HEADER[] = "scene\tms\twrong_triangle\tties\tcoverage\tz_max\tz_p999\tz_median\n";
+static const char HEADER[] =
+    "scene\tms\tdepth_ties\tedge_ties\twrong_triangle\tcoverage\tedge_distance_max\tz_max\tz_p999\tz_median\n";
 
 bool sr_report_peer_write(const char *path, const sr_report_peer *peer, sr_error *err)
 {
-    FILE *f = fopen(path, "w");
+    FILE *f = sr_doc_open(path, err);
     if (!f)
-        return sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+        return false;
     fprintf(f, "# A peer against the truth on softrast's report scenes, written by ./build/bench-gl --truth\n"
                "# (docs/bench-compare.md) and read by softrast bench --report (docs/report.md).\n"
                "renderer\t%s\n%s", peer->renderer, HEADER);
     for (int i = 0; i < peer->count; i++) {
         const sr_report_peer_row *r = &peer->rows[i];
-        fprintf(f, "%s\t%.4g\t%llu\t%llu\t%llu\t%.3g\t%.3g\t%.3g\n", r->scene, r->ms,
-                (unsigned long long)r->truth.wrong_triangle, (unsigned long long)r->truth.ties,
-                (unsigned long long)r->truth.coverage, r->truth.z_max, r->truth.z_p999, r->truth.z_median);
+        const sr_truth_errors *e = &r->truth;
+        fprintf(f, "%s\t%.4g\t%llu\t%llu\t%llu\t%llu\t%.3g\t%.3g\t%.3g\t%.3g\n", r->scene, r->ms,
+                (unsigned long long)e->depth_ties, (unsigned long long)e->edge_ties,
+                (unsigned long long)e->wrong_triangle, (unsigned long long)e->coverage, e->edge_distance_max,
+                e->z_max, e->z_p999, e->z_median);
     }
-    return fclose(f) == 0 ? true : sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    return sr_doc_close(f, path, err);
 }
 
 static bool parse_row(const char *line, sr_report_peer_row *r)
 {
-    unsigned long long wrong, ties, coverage;
+    unsigned long long depth_ties, edge_ties, wrong, coverage;
+    sr_truth_errors *e = &r->truth;
     *r = (sr_report_peer_row){ 0 };
-    if (sscanf(line, "%31[^\t]\t%lf\t%llu\t%llu\t%llu\t%lf\t%lf\t%lf", r->scene, &r->ms, &wrong, &ties, &coverage,
-               &r->truth.z_max, &r->truth.z_p999, &r->truth.z_median) != 8)
+    if (sscanf(line, "%31[^\t]\t%lf\t%llu\t%llu\t%llu\t%llu\t%lf\t%lf\t%lf\t%lf", r->scene, &r->ms, &depth_ties,
+               &edge_ties, &wrong, &coverage, &e->edge_distance_max, &e->z_max, &e->z_p999, &e->z_median) != 10)
         return false;
-    r->truth.wrong_triangle = wrong;
-    r->truth.ties = ties;
-    r->truth.coverage = coverage;
+    e->depth_ties = depth_ties;
+    e->edge_ties = edge_ties;
+    e->wrong_triangle = wrong;
+    e->coverage = coverage;
     return true;
 }
 

@@ -4,8 +4,9 @@
  * for `softrast bench --report` to put in its truth tables and its plot.
  *
  * The file: '#' comment lines, a line "renderer<TAB>what drew it", a header
- * line starting "scene<TAB>", then one line per scene: name, ms, wrong
- * triangle, ties, coverage, |z − truth| max, p99.9, median, tab-separated. */
+ * line starting "scene<TAB>", then one line per scene: name, ms, depth ties,
+ * edge ties, wrong triangles, coverage, edge distance max, |z − truth| max,
+ * p99.9, median, tab-separated. */
 #ifndef SOFTRAST_STUDIES_REPORT_PEER_H
 #define SOFTRAST_STUDIES_REPORT_PEER_H
 

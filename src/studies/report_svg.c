@@ -66,22 +66,15 @@ static void write_table(FILE *f, const sr_report_scene *s)
     }
 }
 
-static void write_truth_row(FILE *f, const char *name, const sr_truth_errors *e)
-{
-    fprintf(f, "| %s | %llu | %llu | %llu | %.3g | %.3g | %.3g |\n", name, (unsigned long long)e->wrong_triangle,
-            (unsigned long long)e->ties, (unsigned long long)e->coverage, e->z_max, e->z_p999, e->z_median);
-}
-
 static void write_truth_table(FILE *f, const sr_report_scene *s, const sr_report_peer *peer)
 {
     fprintf(f, "\n### %s against the truth (%d camera%s)\n\n", s->name, s->frames, s->frames > 1 ? "s" : "");
-    fprintf(f, "| knob | wrong triangle | ties | coverage | \\|z − truth\\| max | p99.9 | median |\n");
-    fprintf(f, "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    sr_truth_errors_write_header(f, "knob");
     for (int k = 0; k < SR_REPORT_KNOBS; k++)
-        write_truth_row(f, s->points[k].knob, &s->points[k].truth);
+        sr_truth_errors_write_row(f, s->points[k].knob, &s->points[k].truth);
     const sr_report_peer_row *r = sr_report_peer_find(peer, s->name);
     if (r)
-        write_truth_row(f, "*llvmpipe* (bench-gl --truth, standard z)", &r->truth);
+        sr_truth_errors_write_row(f, "*llvmpipe* (bench-gl --truth, standard z)", &r->truth);
 }
 
 static bool write_markdown(const char *path, const sr_report_scene *scenes, const sr_report_simd_scene *loops,
@@ -112,22 +105,15 @@ static bool write_markdown(const char *path, const sr_report_scene *scenes, cons
     for (int i = 0; i < SR_REPORT_SCENES; i++)
         write_table(f, &scenes[i]);
     fprintf(f, "\n![id error against time](report.svg)\n");
-    fprintf(f, "\n## Against the truth\n\n"
-               "The same draws against the truth image (`softrast truth`, src/studies/truth.c): for each pixel\n"
-               "centre the triangle exact arithmetic says is nearest and its z_ndc, for the knob's own camera\n"
-               "(standard or reversed z). Counts of pixels over all cameras. *wrong triangle*: both drew, but\n"
-               "a different triangle, and the truth's runner-up at that pixel lies more than the tie tolerance\n"
-               "%g (in the knob's z_ndc) behind its nearest; *ties*: the same within it; *coverage*: drawn by\n"
-               "one and not the other; *|z − truth|*: in the knob's z_ndc, over the pixels where both drew\n"
-               "the same triangle.\n\n", SR_REPORT_TIE_TOLERANCE);
+    sr_report_truth_intro(f);
     if (peer->count)
-        fprintf(f, "The *llvmpipe* rows (%s) are read from [" SR_REPORT_PEER_FILE "](" SR_REPORT_PEER_FILE "),\n"
+        fprintf(f, "\nThe *llvmpipe* rows (%s) are read from [" SR_REPORT_PEER_FILE "](" SR_REPORT_PEER_FILE "),\n"
                    "which `./build/bench-gl --truth --threads 1 --frames %d` writes (docs/bench-compare.md): the same\n"
                    "cameras, ids from gl_PrimitiveID, float32 depth, tallied by the same code. The second plot puts\n"
                    "llvmpipe's |z − truth| max and median ms per frame (id shading, 1 thread) beside every knob's.\n",
                 peer->renderer, frames);
     else
-        fprintf(f, "No " SR_REPORT_PEER_FILE " was found beside this file, so llvmpipe's rows are missing:\n"
+        fprintf(f, "\nNo " SR_REPORT_PEER_FILE " was found beside this file, so llvmpipe's rows are missing:\n"
                    "`./build/bench-gl --truth --threads 1` writes it (docs/bench-compare.md).\n");
     for (int i = 0; i < SR_REPORT_SCENES; i++)
         write_truth_table(f, &scenes[i], peer);
