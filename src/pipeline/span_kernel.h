@@ -145,9 +145,16 @@ static inline __attribute__((always_inline)) int varying_count(sr_shade mode, al
     }
 }
 
-static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, int count, lanes *p)
+/* What a triangle's kernel computes once instead of per pixel (sr_interp),
+ * held in registers across its rows. */
+typedef struct triangle_lanes {
+    vf w; /* when not SR_INTERP_PERSPECTIVE */
+} triangle_lanes;
+
+static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, const triangle_lanes *t,
+                                                                 sr_interp interp, int count, lanes *p)
 {
-    vf w = 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2);
+    vf w = interp == SR_INTERP_PERSPECTIVE ? 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2) : t->w;
     for (int k = 0; k < count; k++)
         p->var[k] = (s->var0[k] + p->l1 * s->dvar1[k] + p->l2 * s->dvar2[k]) * w;
 }
@@ -318,8 +325,9 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
 /* Depth test, depth write and shading of up to SPAN_LANES pixels at `at`:
  * `live` marks the lanes within the row. */
 static inline __attribute__((always_inline)) uint64_t
-fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-           bool greater, uint32_t id, size_t at, int n, vi live, float z_row, vf k, const edge_lanes e[3])
+fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, sr_framebuffer *fb,
+           sr_shade mode, albedo a, sr_interp interp, bool greater, uint32_t id, size_t at, int n, vi live,
+           float z_row, vf k, const edge_lanes e[3])
 {
     vf z = depth_lanes(s, z_row, k);
     vf stored = load_f(fb->depth + at, n);
@@ -333,7 +341,7 @@ fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb,
         lanes p;
         p.l1 = edge_to_float(e[1]) * s->inv_area2;
         p.l2 = edge_to_float(e[2]) * s->inv_area2;
-        varyings_lanes(s, varying_count(mode, a), &p);
+        varyings_lanes(s, t, interp, varying_count(mode, a), &p);
         vi color = select_i(pass, shade_lanes(mode, a, c, p.var, id), load_i(fb->color + at, n));
         store_i(fb->color + at, color, n);
     }
@@ -354,8 +362,8 @@ static inline __attribute__((always_inline)) void prefetch_ahead(const sr_frameb
 }
 
 static inline __attribute__((always_inline)) uint64_t
-span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-         bool greater, uint32_t id, const sr_row_range *r)
+span_row(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, sr_framebuffer *fb,
+         sr_shade mode, albedo a, sr_interp interp, bool greater, uint32_t id, const sr_row_range *r)
 {
     vi lane = lanes_index();
     vf column = r->k + __builtin_convertvector(lane, vf); /* exact: small integers */
@@ -375,7 +383,8 @@ span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, s
     for (int d = 0; d < r->count; d += SPAN_LANES, column += (float)SPAN_LANES) {
         int n = r->count - d < SPAN_LANES ? r->count - d : SPAN_LANES;
         prefetch_ahead(fb, r->at + (size_t)d);
-        fragments += fill_group(s, c, fb, mode, a, greater, id, r->at + (size_t)d, n, lane < n, r->z, column, e);
+        fragments += fill_group(s, t, c, fb, mode, a, interp, greater, id, r->at + (size_t)d, n, lane < n, r->z,
+                                column, e);
         for (int k = 1; k < 3; k++) {
             e[k].lo += step[k];
             e[k].hi += step[k];
@@ -385,16 +394,27 @@ span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, s
 }
 
 static inline __attribute__((always_inline)) uint64_t
-span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-              bool greater, uint32_t id)
+span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
+          sr_interp interp, bool greater, uint32_t id)
 {
+    triangle_lanes t = { .w = (vf){ 0 } + s->w };
     uint64_t fragments = 0;
     for (int j = s->box.y0; j < s->box.y1; j++) {
         sr_row_range r = sr_row_make(s, fb, true, j);
         if (r.count > 0)
-            fragments += span_row(s, c, fb, mode, a, greater, id, &r);
+            fragments += span_row(s, &t, c, fb, mode, a, interp, greater, id, &r);
     }
     return fragments;
+}
+
+/* One loop per interp for the modes that read varyings. */
+static inline __attribute__((always_inline)) uint64_t
+span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
+              bool greater, uint32_t id)
+{
+    if (varying_count(mode, a) > 0 && s->interp != SR_INTERP_PERSPECTIVE)
+        return span_rows(s, c, fb, mode, a, SR_INTERP_AFFINE, greater, id);
+    return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, id);
 }
 
 #define SPAN_KERNEL(mode, a, greater, name)                                                                   \
