@@ -185,7 +185,9 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_i
         float var[SR_MAX_VARYINGS];
         if (mode_reads_varyings(mode))
             varyings_at(s, interp, (float)e1 * s->inv_area2, (float)e2 * s->inv_area2, var);
-        fb->color[at] = sr_shade_fragment(mode, shade, var, id);
+        fb->color[at] = mode == SR_SHADE_LAMBERT && interp == SR_INTERP_FLAT_NORMAL
+                            ? sr_shade_lit(shade, var, s->lambert)
+                            : sr_shade_fragment(mode, shade, var, id);
     }
     return 1;
 }
@@ -332,19 +334,34 @@ raster_interp(const setup *s, sr_framebuffer *fb, sr_shade mode, sr_interp inter
 static inline __attribute__((always_inline)) uint64_t
 raster_mode(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade, uint32_t id)
 {
+    if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_FLAT_NORMAL)
+        return raster_interp(s, fb, mode, SR_INTERP_FLAT_NORMAL, shade, id);
     if (mode_reads_varyings(mode) && s->interp != SR_INTERP_PERSPECTIVE)
         return raster_interp(s, fb, mode, SR_INTERP_AFFINE, shade, id);
     return raster_interp(s, fb, mode, SR_INTERP_PERSPECTIVE, shade, id);
 }
 
 /* What the triangle lets the loops leave out per pixel (sr_interp). */
-static void interp_choose(setup *s)
+static void interp_choose(setup *s, sr_shade mode, const sr_shade_context *shade)
 {
     s->interp = SR_INTERP_PERSPECTIVE;
     if (s->varyings == 0 || s->diw1 != 0.0f || s->diw2 != 0.0f)
         return;
     s->interp = SR_INTERP_AFFINE;
     s->w = 1.0f / s->iw0;
+    int at = shade->layout.normal;
+    if (mode != SR_SHADE_LAMBERT || at < 0)
+        return;
+    float n[3];
+    for (int k = 0; k < 3; k++) {
+        if (s->dvar1[at + k] != 0.0f || s->dvar2[at + k] != 0.0f)
+            return;
+        /* var0 + λ1·0 + λ2·0 is var0 up to the sign of a zero, which the
+         * intensity does not see. */
+        n[k] = s->var0[at + k] * s->w;
+    }
+    s->interp = SR_INTERP_FLAT_NORMAL;
+    s->lambert = sr_shade_lambert_intensity(shade, n);
 }
 
 uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
@@ -383,7 +400,7 @@ uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int s
         return 0;
     interpolants_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, &s);
     s.covered = c == BOX_COVERED;
-    interp_choose(&s);
+    interp_choose(&s, mode, shade);
     sr_span_kernel kernel = s.box.x1 - s.box.x0 >= SIMD_MIN_WIDTH ? span_kernel(shade, mode, fb->reversed_z) : NULL;
     *simd = kernel && edges_fit_double(&s);
     if (*simd)

@@ -148,14 +148,21 @@ static inline __attribute__((always_inline)) int varying_count(sr_shade mode, al
 /* What a triangle's kernel computes once instead of per pixel (sr_interp),
  * held in registers across its rows. */
 typedef struct triangle_lanes {
-    vf w; /* when not SR_INTERP_PERSPECTIVE */
+    vf w;       /* when not SR_INTERP_PERSPECTIVE */
+    vf lambert; /* when SR_INTERP_FLAT_NORMAL */
 } triangle_lanes;
+
+/* The varyings a kernel interpolates: with a flat normal, only those after it. */
+static inline __attribute__((always_inline)) int first_varying(sr_interp interp)
+{
+    return interp == SR_INTERP_FLAT_NORMAL ? SECOND_VARYING : 0;
+}
 
 static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, const triangle_lanes *t,
                                                                  sr_interp interp, int count, lanes *p)
 {
     vf w = interp == SR_INTERP_PERSPECTIVE ? 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2) : t->w;
-    for (int k = 0; k < count; k++)
+    for (int k = first_varying(interp); k < count; k++)
         p->var[k] = (s->var0[k] + p->l1 * s->dvar1[k] + p->l2 * s->dvar2[k]) * w;
 }
 
@@ -297,7 +304,8 @@ static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(albedo a, co
 }
 
 /* sr_shade_fragment per lane. */
-static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albedo a, const sr_shade_context *c,
+static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albedo a, sr_interp interp,
+                                                            const triangle_lanes *t, const sr_shade_context *c,
                                                             const vf *var, uint32_t id)
 {
     vi zero = { 0 };
@@ -311,7 +319,7 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     case SR_SHADE_TEXTURE:
         return sample_lanes(c, var[0], var[1]);
     case SR_SHADE_LAMBERT: {
-        vf k = lambert_lanes(c, var);
+        vf k = interp == SR_INTERP_FLAT_NORMAL ? t->lambert : lambert_lanes(c, var);
         if (a == ALBEDO_TEXTURE)
             return lit_texel_lanes(sample_lanes(c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
         rgb_lanes base = albedo_lanes(a, var);
@@ -342,7 +350,7 @@ fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_contex
         p.l1 = edge_to_float(e[1]) * s->inv_area2;
         p.l2 = edge_to_float(e[2]) * s->inv_area2;
         varyings_lanes(s, t, interp, varying_count(mode, a), &p);
-        vi color = select_i(pass, shade_lanes(mode, a, c, p.var, id), load_i(fb->color + at, n));
+        vi color = select_i(pass, shade_lanes(mode, a, interp, t, c, p.var, id), load_i(fb->color + at, n));
         store_i(fb->color + at, color, n);
     }
     return (uint64_t)__builtin_popcount(passed);
@@ -397,7 +405,7 @@ static inline __attribute__((always_inline)) uint64_t
 span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
           sr_interp interp, bool greater, uint32_t id)
 {
-    triangle_lanes t = { .w = (vf){ 0 } + s->w };
+    triangle_lanes t = { .w = (vf){ 0 } + s->w, .lambert = (vf){ 0 } + s->lambert };
     uint64_t fragments = 0;
     for (int j = s->box.y0; j < s->box.y1; j++) {
         sr_row_range r = sr_row_make(s, fb, true, j);
@@ -412,6 +420,8 @@ static inline __attribute__((always_inline)) uint64_t
 span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
               bool greater, uint32_t id)
 {
+    if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_FLAT_NORMAL)
+        return span_rows(s, c, fb, mode, a, SR_INTERP_FLAT_NORMAL, greater, id);
     if (varying_count(mode, a) > 0 && s->interp != SR_INTERP_PERSPECTIVE)
         return span_rows(s, c, fb, mode, a, SR_INTERP_AFFINE, greater, id);
     return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, id);
