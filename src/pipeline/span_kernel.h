@@ -55,30 +55,43 @@ static inline __attribute__((always_inline)) vf select_f(vi mask, vf a, vf b)
     return (vf)select_i(mask, (vi)a, (vi)b);
 }
 
-/* load_<suffix>: n values from p (a whole vector when n is SPAN_LANES),
- * zeros past n; store_<suffix>: v's first n lanes to p. Made for the depths
- * (float) and the packed colors (uint32_t in memory, int32_t in lanes). */
-#define SPAN_LOAD_STORE(suffix, vec, elem, lane)                                            \
-    static inline __attribute__((always_inline)) vec load_##suffix(const elem *p, int n)    \
-    {                                                                                       \
-        vec v = { 0 };                                                                      \
-        if (n == SPAN_LANES)                                                                \
-            memcpy(&v, p, sizeof v);                                                        \
-        else                                                                                \
-            for (int l = 0; l < n; l++)                                                     \
-                v[l] = (lane)p[l];                                                          \
-        return v;                                                                           \
-    }                                                                                       \
-    static inline __attribute__((always_inline)) void store_##suffix(elem *p, vec v, int n) \
-    {                                                                                       \
-        if (n == SPAN_LANES)                                                                \
-            memcpy(p, &v, sizeof v);                                                        \
-        else                                                                                \
-            for (int l = 0; l < n; l++)                                                     \
-                p[l] = (elem)v[l];                                                          \
-    }
-SPAN_LOAD_STORE(f, vf, float, float)
-SPAN_LOAD_STORE(i, vi, uint32_t, int32_t)
+/* The first n 32-bit values at p (depths or packed colors) as lanes, zeros
+ * past n: a masked load where the instruction set has one (SPAN_LOAD_FIRST),
+ * else a vector load of a whole group and a lane loop for a row's last. */
+static inline __attribute__((always_inline)) vi load_lanes(const void *p, int n)
+{
+#ifdef SPAN_LOAD_FIRST
+    return SPAN_LOAD_FIRST(p, n);
+#else
+    vi v = { 0 };
+    if (n == SPAN_LANES)
+        memcpy(&v, p, sizeof v);
+    else
+        for (int l = 0; l < n; l++)
+            memcpy((char *)&v + 4 * l, (const char *)p + 4 * l, 4);
+    return v;
+#endif
+}
+
+/* v's lanes where mask is set (a subset of the first n) to p, the rest of
+ * p untouched: a masked store where the instruction set has one
+ * (SPAN_STORE_WHERE: no load of what stays), else load, select and store of
+ * the n values. Memory past n is never written: it may be another thread's
+ * tile. */
+static inline __attribute__((always_inline)) void store_where(void *p, vi mask, vi v, int n)
+{
+#ifdef SPAN_STORE_WHERE
+    (void)n;
+    SPAN_STORE_WHERE(p, mask, v);
+#else
+    vi out = select_i(mask, v, load_lanes(p, n));
+    if (n == SPAN_LANES)
+        memcpy(p, &out, sizeof out);
+    else
+        for (int l = 0; l < n; l++)
+            memcpy((char *)p + 4 * l, (const char *)&out + 4 * l, 4);
+#endif
+}
 
 static inline __attribute__((always_inline)) vf edge_to_float(edge_lanes e)
 {
@@ -150,7 +163,14 @@ static inline __attribute__((always_inline)) int varying_count(sr_shade mode, al
 typedef struct triangle_lanes {
     vf w;       /* when not SR_INTERP_PERSPECTIVE */
     vf lambert; /* when SR_INTERP_FLAT_NORMAL */
+    vi color;   /* when color_per_triangle */
 } triangle_lanes;
+
+/* Gray lambert with a flat normal is one color over the whole triangle. */
+static inline __attribute__((always_inline)) bool color_per_triangle(sr_shade mode, albedo a, sr_interp interp)
+{
+    return mode == SR_SHADE_LAMBERT && a == ALBEDO_GRAY && interp == SR_INTERP_FLAT_NORMAL;
+}
 
 /* The varyings a kernel interpolates: with a flat normal, only those after it. */
 static inline __attribute__((always_inline)) int first_varying(sr_interp interp)
@@ -338,20 +358,20 @@ fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_contex
            float z_row, vf k, const edge_lanes e[3])
 {
     vf z = depth_lanes(s, z_row, k);
-    vf stored = load_f(fb->depth + at, n);
+    vf stored = (vf)load_lanes(fb->depth + at, n);
     vi pass = live & (greater ? z > stored : z < stored);
     unsigned passed = lane_bits(pass);
     if (!passed)
         return 0;
-    stored = select_f(pass, z, stored);
-    store_f(fb->depth + at, stored, n);
-    if (mode != SR_SHADE_DEPTH) {
+    store_where(fb->depth + at, pass, (vi)z, n);
+    if (color_per_triangle(mode, a, interp)) {
+        store_where(fb->color + at, pass, t->color, n);
+    } else if (mode != SR_SHADE_DEPTH) {
         lanes p;
         p.l1 = edge_to_float(e[1]) * s->inv_area2;
         p.l2 = edge_to_float(e[2]) * s->inv_area2;
         varyings_lanes(s, t, interp, varying_count(mode, a), &p);
-        vi color = select_i(pass, shade_lanes(mode, a, interp, t, c, p.var, id), load_i(fb->color + at, n));
-        store_i(fb->color + at, color, n);
+        store_where(fb->color + at, pass, shade_lanes(mode, a, interp, t, c, p.var, id), n);
     }
     return (uint64_t)__builtin_popcount(passed);
 }
@@ -406,6 +426,8 @@ span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, 
           sr_interp interp, bool greater, uint32_t id)
 {
     triangle_lanes t = { .w = (vf){ 0 } + s->w, .lambert = (vf){ 0 } + s->lambert };
+    if (color_per_triangle(mode, a, interp))
+        t.color = shade_lanes(mode, a, interp, &t, c, (vf[SR_MAX_VARYINGS]){ { 0 } }, id);
     uint64_t fragments = 0;
     for (int j = s->box.y0; j < s->box.y1; j++) {
         sr_row_range r = sr_row_make(s, fb, true, j);
