@@ -138,11 +138,11 @@ static bool print_renderer(sr_error *err)
 static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|fill-flat|depth|inside", "which scenes (default all)",
-          .choices = SCENE_NAMES },
+        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|fill-flat|depth|inside",
+          "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &j->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
-        { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N", "at most N timed frames for fill and fill-flat (default 3)", 1,
-          MAX_FRAMES },
+        { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N",
+          "at most N timed frames for fill and fill-flat (default 3)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &j->threads, "N", "run at 1 and at N threads in all (default 2)", 1,
           MAX_THREADS },
         { "--lp-raster-all", SR_OPT_FLAG, &j->lp_raster_all, NULL,

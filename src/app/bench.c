@@ -18,7 +18,8 @@
 #define MAX_FRAMES 10000
 #define SCALING_POINTS 4
 
-static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "fill-flat", "depth", "inside", "scaling", NULL };
+static const char *const SCENE_NAMES[] = { "all",   "dense",  "fly",     "fill", "fill-flat",
+                                           "depth", "inside", "scaling", NULL };
 enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE, SCENE_SCALING };
 
 typedef struct bench_job {

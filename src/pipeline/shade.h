@@ -174,9 +174,10 @@ static inline uint32_t sr_shade_lit_texel(uint32_t t, float k)
 /* A lambert fragment lit by intensity k: its texel or albedo times k. */
 static SR_ALWAYS_INLINE uint32_t sr_shade_lit(const sr_shade_context *c, const float *var, float k)
 {
-    if (c->layout.uv >= 0)
-        return sr_shade_lit_texel(sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]),
-                                  k);
+    if (c->layout.uv >= 0) {
+        uint32_t texel = sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]);
+        return sr_shade_lit_texel(texel, k);
+    }
     float rgb[3];
     sr_shade_albedo(c, var, rgb);
     return sr_shade_pack(k * rgb[0], k * rgb[1], k * rgb[2]);
