@@ -350,28 +350,28 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     }
 }
 
-/* Depth test, depth write and shading of up to SPAN_LANES pixels at `at`:
- * `live` marks the lanes within the row. */
+/* Depth test, depth write and shading of up to SPAN_LANES pixels at depth
+ * and color: `live` marks the lanes within the row. */
 static inline __attribute__((always_inline)) uint64_t
-fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, sr_framebuffer *fb,
-           sr_shade mode, albedo a, sr_interp interp, bool greater, uint32_t id, size_t at, int n, vi live,
+fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, float *depth, uint32_t *color,
+           sr_shade mode, albedo a, sr_interp interp, bool greater, uint32_t id, int n, vi live,
            float z_row, vf k, const edge_lanes e[3])
 {
     vf z = depth_lanes(s, z_row, k);
-    vf stored = (vf)load_lanes(fb->depth + at, n);
+    vf stored = (vf)load_lanes(depth, n);
     vi pass = live & (greater ? z > stored : z < stored);
     unsigned passed = lane_bits(pass);
     if (!passed)
         return 0;
-    store_where(fb->depth + at, pass, (vi)z, n);
+    store_where(depth, pass, (vi)z, n);
     if (color_per_triangle(mode, a, interp)) {
-        store_where(fb->color + at, pass, t->color, n);
+        store_where(color, pass, t->color, n);
     } else if (mode != SR_SHADE_DEPTH) {
         lanes p;
         p.l1 = edge_to_float(e[1]) * s->inv_area2;
         p.l2 = edge_to_float(e[2]) * s->inv_area2;
         varyings_lanes(s, t, interp, varying_count(mode, a), &p);
-        store_where(fb->color + at, pass, shade_lanes(mode, a, interp, t, c, p.var, id), n);
+        store_where(color, pass, shade_lanes(mode, a, interp, t, c, p.var, id), n);
     }
     return (uint64_t)__builtin_popcount(passed);
 }
@@ -383,10 +383,10 @@ fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_contex
  * prefetch is harmless but a pointer would be undefined. */
 #define PREFETCH_BYTES 512
 
-static inline __attribute__((always_inline)) void prefetch_ahead(const sr_framebuffer *fb, size_t at)
+static inline __attribute__((always_inline)) void prefetch_ahead(const float *depth, const uint32_t *color)
 {
-    __builtin_prefetch((const void *)((uintptr_t)(fb->depth + at) + PREFETCH_BYTES), 1);
-    __builtin_prefetch((const void *)((uintptr_t)(fb->color + at) + PREFETCH_BYTES), 1);
+    __builtin_prefetch((const void *)((uintptr_t)depth + PREFETCH_BYTES), 1);
+    __builtin_prefetch((const void *)((uintptr_t)color + PREFETCH_BYTES), 1);
 }
 
 static inline __attribute__((always_inline)) uint64_t
@@ -407,11 +407,15 @@ span_row(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context 
         e[k] = (edge_lanes){ first + lane_lo * per_pixel, first + lane_hi * per_pixel };
         step[k] = (vdh){ 0 } + per_pixel * SPAN_LANES;
     }
+    /* The row's pixels, held apart from fb, so the compiler need not load
+     * fb->depth and fb->color again after each store. */
+    float *depth = fb->depth + r->at;
+    uint32_t *color = fb->color + r->at;
     uint64_t fragments = 0;
     for (int d = 0; d < r->count; d += SPAN_LANES, column += (float)SPAN_LANES) {
         int n = r->count - d < SPAN_LANES ? r->count - d : SPAN_LANES;
-        prefetch_ahead(fb, r->at + (size_t)d);
-        fragments += fill_group(s, t, c, fb, mode, a, interp, greater, id, r->at + (size_t)d, n, lane < n, r->z,
+        prefetch_ahead(depth + d, color + d);
+        fragments += fill_group(s, t, c, depth + d, color + d, mode, a, interp, greater, id, n, lane < n, r->z,
                                 column, e);
         for (int k = 1; k < 3; k++) {
             e[k].lo += step[k];
