@@ -51,7 +51,7 @@ $(AVX512_OBJ): ALL_CFLAGS += $(AVX512_FLAGS)
 $(AVX512_OBJ): FUZZ_CFLAGS += $(AVX512_FLAGS)
 endif
 
-.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-assets test-install install assets docs-images bench report stability clean
+.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-assets test-install install assets docs-images bench report stability cost-model clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast $(PUBLIC_LIBS)
@@ -238,6 +238,9 @@ report: all
 
 stability: all
 	./build/softrast bench --stability
+
+cost-model: all
+	./build/softrast bench --cost-model --frames 5
 
 clean:
 	rm -rf build

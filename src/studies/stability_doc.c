@@ -1,9 +1,8 @@
 /* Writes docs/stability.md from a run's numbers, and the plot beside it. */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <string.h>
 
+#include "doc_file.h"
 #include "timing.h"
 #include "stability.h"
 
@@ -323,14 +322,14 @@ static void write_depth_section(FILE *f, const sr_stability_depth *d)
 
 static bool write_markdown(const char *path, const sr_stability_report *r, sr_error *err)
 {
-    FILE *f = fopen(path, "w");
+    FILE *f = sr_doc_open(path, err);
     if (!f)
-        return sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+        return false;
     write_intro(f, r);
     write_clip_section(f, r);
     write_hits_section(f, r);
     write_depth_section(f, &r->depth);
-    return fclose(f) == 0 ? true : sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    return sr_doc_close(f, path, err);
 }
 
 bool sr_stability_files(const char *dir, const sr_stability_report *r, sr_error *err)
