@@ -10,14 +10,14 @@
 #include "studies/report.h"
 
 #define DEFAULT_FRAMES 10
-#define DEFAULT_FILL_FRAMES 3 /* fill takes llvmpipe 0.7 s a frame */
+#define DEFAULT_FILL_FRAMES 3 /* fill takes llvmpipe 0.7 s a frame, fill-flat 0.4 */
 #define DEFAULT_THREADS 2
 #define MAX_FRAMES 10000
 #define MAX_THREADS 64
 #define GL_NAME_CHARS 100 /* GL_RENDERER, GL_VERSION: llvmpipe's are 66 */
 
-static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", "inside", NULL };
-enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_INSIDE, SCENE_KINDS };
+static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "fill-flat", "depth", "inside", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE, SCENE_KINDS };
 
 typedef struct job {
     int scene, frames, fill_frames, threads, simd;
@@ -76,6 +76,8 @@ static bool make_scene(int kind, sr_bench_scene *s, sr_error *err)
         return sr_bench_fly(s, err);
     case SCENE_FILL:
         return sr_bench_fill(s, err);
+    case SCENE_FILL_FLAT:
+        return sr_bench_fill_flat(s, err);
     case SCENE_INSIDE:
         return sr_bench_inside(s, err);
     default:
@@ -88,7 +90,8 @@ static bool run_scene(const job *j, int kind, sr_error *err)
     sr_bench_scene s;
     if (!make_scene(kind, &s, err))
         return false;
-    int frames = kind == SCENE_FILL && j->fill_frames < j->frames ? j->fill_frames : j->frames;
+    bool fill = kind == SCENE_FILL || kind == SCENE_FILL_FLAT;
+    int frames = fill && j->fill_frames < j->frames ? j->fill_frames : j->frames;
     printf("\n%s: %s; %u triangle slots, %dx%d, %d timed frames%s\n", s.name, s.what,
            sr_mesh_triangle_slots(&s.mesh), s.width, s.height, frames,
            frames < j->frames ? " (capped by --fill-frames)" : "");
@@ -153,11 +156,11 @@ static bool print_renderer(char *renderer, size_t cap, sr_error *err)
 static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|depth|inside", "which scenes (default all)",
-          .choices = SCENE_NAMES },
+        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|fill-flat|depth|inside",
+          "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &j->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
-        { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N", "at most N timed frames for fill (default 3)", 1,
-          MAX_FRAMES },
+        { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N",
+          "at most N timed frames for fill and fill-flat (default 3)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &j->threads, "N", "run at 1 and at N threads in all (default 2)", 1,
           MAX_THREADS },
         { "--lp-raster-all", SR_OPT_FLAG, &j->lp_raster_all, NULL,

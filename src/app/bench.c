@@ -17,8 +17,8 @@
 
 #define MAX_FRAMES 10000
 
-static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", "inside", NULL };
-enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_INSIDE };
+static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "fill-flat", "depth", "inside", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE };
 
 typedef struct bench_job {
     int scene, frames, threads, simd, shade; /* shade: -1 for each scene's own */
@@ -37,7 +37,7 @@ static const char USAGE[] =
 static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|depth|inside", "which scenes (default all)", .choices = SCENE_NAMES },
+        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|fill-flat|depth|inside", "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--simd", SR_OPT_CHOICE, &job->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
@@ -60,16 +60,19 @@ static void print_header(const bench_job *job)
                "| serial rest |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         return;
     }
-    printf("%-8s %10s %11s %10s %10s %10s %12s\n", "scene", "triangles", "size", "ms median", "ms min",
-           "Mtri/s", "Mfragment/s");
+    printf("%-9s %10s %11s %10s %10s %10s %12s %8s\n", "scene", "triangles", "size", "ms median", "ms min",
+           "Mtri/s", "Mfragment/s", "Gpix/s");
 }
 
 static void print_row(const char *name, const sr_bench_scene *s, const bench_result *r)
 {
     char size[32];
     snprintf(size, sizeof size, "%dx%d", s->width, s->height);
-    printf("%-8s %10llu %11s %10.2f %10.2f %10.2f %12.1f\n", name, (unsigned long long)r->stats.triangles, size,
-           r->median, r->min, r->stats.triangles / r->median / 1e3, r->stats.fragments / r->median / 1e3);
+    /* Gpix/s: fragments that passed the depth test, each shaded and written,
+     * per second at the median frame. */
+    double mfragments = r->stats.fragments / r->median / 1e3;
+    printf("%-9s %10llu %11s %10.2f %10.2f %10.2f %12.1f %8.3f\n", name, (unsigned long long)r->stats.triangles,
+           size, r->median, r->min, r->stats.triangles / r->median / 1e3, mfragments, mfragments / 1e3);
     fflush(stdout);
 }
 
@@ -127,6 +130,8 @@ static bool run(const bench_job *job, sr_error *err)
     if (wants(job, SCENE_FLY) && !run_scene(&s, sr_bench_fly(&s, err), job, &r, err))
         return false;
     if (wants(job, SCENE_FILL) && !run_scene(&s, sr_bench_fill(&s, err), job, &r, err))
+        return false;
+    if (wants(job, SCENE_FILL_FLAT) && !run_scene(&s, sr_bench_fill_flat(&s, err), job, &r, err))
         return false;
     if (wants(job, SCENE_DEPTH) && !run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080,
                                                                  SR_SHADE_DEPTH, err), job, &r, err))

@@ -151,14 +151,27 @@ static bool make_checker(sr_texture *t, sr_error *err)
     return true;
 }
 
-bool sr_bench_fill(sr_bench_scene *s, sr_error *err)
+/* FILL_QUADS full-screen quads under an orthographic camera, far to near,
+ * so every quad passes the depth test over the last. */
+static bool make_fill(sr_bench_scene *s, sr_error *err)
 {
-    scene_init(s, "fill", "64 full-screen textured quads back to front, bilinear", SR_SHADE_TEXTURE, 1920, 1080);
     glm_vec3_copy((vec3){ 0.0f, 0.0f, 0.0f }, s->camera.eye);
     glm_vec3_copy((vec3){ 0.0f, 0.0f, 1.0f }, s->camera.target);
     s->camera.ortho_height = 2.0f;
-    /* Far to near, so every quad passes the depth test over the last. */
-    return sr_shape_quads(&s->mesh, FILL_QUADS, 4.0f, 64.0f, -0.5f, err) && make_checker(&s->texture, err);
+    return sr_shape_quads(&s->mesh, FILL_QUADS, 4.0f, 64.0f, -0.5f, err);
+}
+
+bool sr_bench_fill(sr_bench_scene *s, sr_error *err)
+{
+    scene_init(s, "fill", "64 full-screen textured quads back to front, bilinear", SR_SHADE_TEXTURE, 1920, 1080);
+    return make_fill(s, err) && make_checker(&s->texture, err);
+}
+
+bool sr_bench_fill_flat(sr_bench_scene *s, sr_error *err)
+{
+    scene_init(s, "fill-flat", "64 full-screen untextured quads back to front, lambert", SR_SHADE_LAMBERT, 1920,
+               1080);
+    return make_fill(s, err);
 }
 
 void sr_bench_scene_free(sr_bench_scene *s)

@@ -1,6 +1,6 @@
 /* bench_scenes.h — the benchmark's scenes, made in memory so the numbers do
  * not depend on files: a dense torus seen from outside and from inside its
- * tube, a flight through the room, full-screen textured quads. */
+ * tube, a flight through the room, full-screen quads textured and untextured. */
 #ifndef SOFTRAST_APP_BENCH_SCENES_H
 #define SOFTRAST_APP_BENCH_SCENES_H
 
@@ -54,6 +54,10 @@ bool sr_bench_scan_stiff(sr_bench_scene *s, sr_error *err);
 
 /* 64 full-screen textured quads drawn back to front, bilinear. */
 bool sr_bench_fill(sr_bench_scene *s, sr_error *err);
+
+/* The same quads untextured, lambert: the per-pixel loop's peak rate, every
+ * pixel shaded 64 times (bench prints it in Gpix/s). */
+bool sr_bench_fill_flat(sr_bench_scene *s, sr_error *err);
 
 void sr_bench_scene_free(sr_bench_scene *s);
 
