@@ -99,6 +99,19 @@ typedef struct vertex_phase {
     sr_chunks vertices, indices;
 } vertex_phase;
 
+/* Stage 6 for vertex i, inside every plane: its unsnapped point and depth
+ * from the clip position in double (clip-space input is exact as given). */
+static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t i, sr_screen_vertex *out)
+{
+    const sr_draw_state *st = ph->st;
+    const sr_mesh *mesh = st->desc->mesh;
+    if (mesh->clip_positions)
+        return sr_viewport_map(v, st->shade.layout.count, &st->vp, out);
+    double clip_d[4];
+    sr_vertex_clip_d(mesh->positions[i], &ph->xf, clip_d);
+    return sr_viewport_map_d(v, clip_d, st->shade.layout.count, &st->vp, out);
+}
+
 /* Stages 1 and 3 per unique vertex, and stage 6 for those inside every
  * plane, so an unclipped triangle maps none of its corners again. A vertex
  * inside whose divide fails (a non-finite varying, w below 2^-128) is marked
@@ -115,7 +128,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
         for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
             if (!isfinite(verts[i].v[SR_VARYINGS_AT + k]))
                 code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
-        if (code == 0 && !sr_viewport_map(&verts[i], st->shade.layout.count, &st->vp, &screen[i]))
+        if (code == 0 && !map_inside(ph, &verts[i], i, &screen[i]))
             code = SR_OUT_NONFINITE;
         outcodes[i] = (unsigned char)code;
         *outcodes_and &= code;

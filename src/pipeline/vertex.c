@@ -58,8 +58,8 @@ void sr_vertex_make_transform_d(const sr_dmat4 *world, const sr_dmat4 *view, con
 {
     sr_dmat4 placed = sr_dmat4_translate(world, origin);
     sr_dmat4 vw = sr_dmat4_mul(view, &placed);
-    sr_dmat4 clip = sr_dmat4_mul(projection, &vw);
-    sr_dmat4_to_mat4(&clip, xf->clip_from_object);
+    xf->clip_from_object_d = sr_dmat4_mul(projection, &vw);
+    sr_dmat4_to_mat4(&xf->clip_from_object_d, xf->clip_from_object);
     mat4 world_f;
     sr_dmat4_to_mat4(world, world_f);
     normal_matrix(world_f, xf->normal_matrix);

@@ -19,6 +19,7 @@
 
 typedef struct sr_vertex_transform {
     mat4 clip_from_object; /* P · V · W · T(origin), rounded from double once */
+    sr_dmat4 clip_from_object_d; /* the same before the rounding */
     mat3 normal_matrix;    /* cofactors of W's upper 3x3: a positive multiple of the inverse transpose */
 } sr_vertex_transform;
 
@@ -36,6 +37,18 @@ void sr_vertex_make_transform_d(const sr_dmat4 *world, const sr_dmat4 *view, con
 /* The same for float matrices and a mesh whose origin is zero. */
 void sr_vertex_make_transform(const mat4 world, const mat4 view, const mat4 projection,
                               sr_vertex_transform *xf);
+
+/* A position's clip coordinates in double, through clip_from_object_d:
+ * the vertex phase takes the unsnapped screen point and depth of a vertex
+ * inside every plane from them (sr_viewport_map_d), since the float
+ * product is off by up to about 1e-4 px (docs/precision.md, "Depth from the
+ * unsnapped vertices"). Inline: it runs once per vertex. */
+static inline void sr_vertex_clip_d(const float p[3], const sr_vertex_transform *xf, double out[4])
+{
+    const sr_dmat4 *m = &xf->clip_from_object_d;
+    for (int r = 0; r < 4; r++)
+        out[r] = m->m[0][r] * p[0] + m->m[1][r] * p[1] + m->m[2][r] * p[2] + m->m[3][r];
+}
 
 /* Runs vertices [first, first + count) of mesh into out[0 .. count). */
 void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,

@@ -35,4 +35,14 @@ typedef struct sr_viewport {
  * varyings that the clipper left inside. */
 bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp, sr_screen_vertex *out);
 
+/* sr_viewport_map for a vertex of the mesh, whose clip position the vertex
+ * stage can give in double as well (clip_d, sr_vertex_clip_d): the
+ * unsnapped point and z come from it, since the float position is off by up
+ * to about 1e-4 px, enough to tilt a steep sliver's depth plane past 1e-6
+ * (docs/precision.md, "Depth from the unsnapped vertices"). The snapped
+ * point, so coverage, is the float position's, as sr_viewport_map makes it
+ * for the clipper's copy of the same vertex. */
+bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
+                       sr_screen_vertex *out);
+
 #endif
