@@ -1,3 +1,4 @@
+#include <float.h>
 #include <math.h>
 
 #include "clip_exact.h"
@@ -128,10 +129,50 @@ void sr_clip_exact_corner_of(const sr_vertex_out tri[3], sr_clip_plane first, sr
     lines_cross(tri, SR_CLIP_ON_PLANE + (int)first, SR_CLIP_ON_PLANE + (int)plane, depth, corner);
 }
 
-/* Σ_k c_k·R_k, exactly, over Σ c_k: the sign of the point's distance. */
+/* A line's vector in double: each distance within 2 roundings of its
+ * exact value (clip.h), the unit vector of an edge exact. */
+static void line_vector_double(const sr_vertex_out tri[3], int line, const sr_clip_depth *depth, double v[3])
+{
+    for (int k = 0; k < 3; k++)
+        v[k] = line >= SR_CLIP_ON_PLANE ? sr_clip_distance_with((sr_clip_plane)(line - SR_CLIP_ON_PLANE), tri[k].v, depth)
+                                        : (double)(k == (line + 2) % 3);
+}
+
+/* The side from doubles where an error bound decides it (1 or 0), else -1.
+ * Every input is within 2ε of its own value; a triple product of them
+ * with two roundings is within 8ε, and the difference in each weight and
+ * the sum of three add 4 more roundings of the terms' sizes: 16ε of the
+ * sum of the terms' magnitudes bounds the error of Σ c_k·R_k and of Σ c_k. */
+#define SIDE_ROUNDING (16.0 * DBL_EPSILON)
+static int side_double(const sr_vertex_out tri[3], int line1, int line2, sr_clip_plane plane,
+                       const sr_clip_depth *depth)
+{
+    double p[3], q[3], r[3], distance = 0.0, distance_size = 0.0, sum = 0.0, sum_size = 0.0;
+    line_vector_double(tri, line1, depth, p);
+    line_vector_double(tri, line2, depth, q);
+    for (int k = 0; k < 3; k++)
+        r[k] = sr_clip_distance_with(plane, tri[k].v, depth);
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        double c = p[i] * q[j] - p[j] * q[i], size = fabs(p[i] * q[j]) + fabs(p[j] * q[i]);
+        distance += c * r[k];
+        distance_size += size * fabs(r[k]);
+        sum += c;
+        sum_size += size;
+    }
+    if (!(fabs(sum) > SIDE_ROUNDING * sum_size) || !(fabs(distance) > SIDE_ROUNDING * distance_size))
+        return -1;
+    return (distance > 0.0) == (sum > 0.0);
+}
+
+/* Σ_k c_k·R_k over Σ c_k: the sign of the point's distance, from doubles
+ * where their error bound decides it, else exactly. */
 int sr_clip_exact_side(const sr_vertex_out tri[3], int line1, int line2, sr_clip_plane plane,
                        const sr_clip_depth *depth)
 {
+    int side = side_double(tri, line1, line2, plane, depth);
+    if (side >= 0)
+        return side;
     sr_clip_exact_corner point;
     lines_cross(tri, line1, line2, depth, &point);
     double sum = expansion_signed_value(point.denominator, point.denominator_terms);
