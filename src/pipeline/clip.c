@@ -302,9 +302,9 @@ static void keep(triangle_clip *tc, const sr_clip_cut *made, const sr_vertex_out
 /* The cut of the polygon edge inside -> outside, which runs along `line`:
  * on a triangle edge the whole edge's cut (its end points are the
  * triangle's vertices, so a shared edge cuts alike after any planes), on a
- * cut line the corner. False where there is none: rounding of earlier cuts
- * left the piece and not the whole edge crossing the plane, or
- * sr_clip_corner found no corner. */
+ * cut line the corner. False where there is none: the whole edge does not
+ * cross the plane, or sr_clip_corner found no corner (with every side
+ * decided exactly, neither happens on a triangle that is not degenerate). */
 static bool cut_from_triangle(triangle_clip *tc, int line, sr_clip_plane plane, const sr_vertex_out *inside,
                               const sr_vertex_out *outside, sr_vertex_out *cut)
 {
@@ -384,7 +384,12 @@ static int pass_from_triangle(triangle_clip *tc, const sr_vertex_out *in, const 
 static bool clip_from_triangle(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
 {
     const sr_vertex_out tri[3] = { poly->vert[0], poly->vert[1], poly->vert[2] };
-    triangle_clip tc = { .tri = tri, .floats = floats, .cfg = cfg };
+    triangle_clip tc; /* not zeroed: its cuts are written before they are read */
+    tc.tri = tri;
+    tc.floats = floats;
+    tc.cfg = cfg;
+    tc.failed = false;
+    tc.kept = 0;
     sr_polygon clipped = *poly;
     sr_vertex_out scratch[SR_MAX_CLIP_VERTS];
     unsigned char line[SR_MAX_CLIP_VERTS] = { 0, 1, 2 }, scratch_line[SR_MAX_CLIP_VERTS];

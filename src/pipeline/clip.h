@@ -21,9 +21,11 @@
  * (the end points are the triangle's vertices, so a shared edge cuts alike
  * after any planes), one on an earlier plane's cut line at the triangle's
  * point on both planes (clip_corner.h), rounded once. Where that cannot be
- * done (a degenerate triangle, or rounding that put a polygon edge across a
- * plane its line does not cross) the triangle is clipped edge by edge, as
- * the fixed float and double knobs always do, and counted.
+ * done (no corner: a degenerate triangle, or lines parallel in it) the
+ * triangle is clipped edge by edge, as the fixed float and double knobs
+ * always do, and counted. Every polygon vertex is classified against the
+ * next plane by the exact point it was rounded from (sr_clip_exact_side), so
+ * the polygon is the exact one.
  */
 #ifndef SOFTRAST_PIPELINE_CLIP_H
 #define SOFTRAST_PIPELINE_CLIP_H
