@@ -72,6 +72,14 @@ static int walk_plane(const sr_vertex_out *in, int n, sr_clip_plane plane, const
 static void walk_polygon(sr_polygon *poly, unsigned planes, const sr_clip_config *cfg, cut_log *log)
 {
     sr_vertex_out scratch[SR_MAX_CLIP_VERTS];
+    /* A triangle wholly outside one plane is dropped before any cut. */
+    for (int p = 0; p < SR_CLIP_PLANES; p++) {
+        bool outside = planes & (1u << p);
+        for (int i = 0; i < poly->count; i++)
+            outside = outside && sr_clip_distance((sr_clip_plane)p, poly->vert[i].v) < 0.0;
+        if (outside)
+            poly->count = 0;
+    }
     for (int p = 0; p < SR_CLIP_PLANES && poly->count >= 3; p++) {
         if (!(planes & (1u << p)))
             continue;

@@ -429,6 +429,16 @@ static bool cuts_from_triangle(const sr_polygon *poly, unsigned planes, const sr
 int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
 {
     planes &= SR_OUT_PLANES;
+    /* Wholly outside one of the planes: nothing is left, at every precision
+     * (float cuts against the other planes could round a sliver back inside
+     * it). The draw rejects these before clipping; a direct call may not. */
+    unsigned outside_all = SR_OUT_PLANES;
+    for (int i = 0; i < poly->count; i++)
+        outside_all &= sr_clip_outcode_with(poly->vert[i].v, cfg ? &cfg->depth : NULL);
+    if (outside_all & planes) {
+        poly->count = 0;
+        return 0;
+    }
     if (!cuts_from_triangle(poly, planes, cfg))
         clip_edge_by_edge(poly, planes, floats, cfg);
     else if (!clip_from_triangle(poly, planes, floats, cfg)) {
