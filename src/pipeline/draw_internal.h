@@ -23,26 +23,38 @@
 
 /* A fan triangle in a bin: its three vertices as references (below the mesh's
  * vertex count: the shared screen vertex; from there on: the binning
- * thread's clip vertices), its exact area, its id and its scan box on the
- * framebuffer (sides up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits). */
+ * thread's clip vertices), its exact area, its id, its scan box on the
+ * framebuffer (sides up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits) and, for a
+ * triangle whose box spans several tiles, its set-up in the binning
+ * thread's `setups` (SR_NO_SETUP for one within a tile: the tile sets it
+ * up, with the vertices still at hand, and no set-up is stored). */
 typedef struct sr_record {
     uint32_t ref[3];
     uint32_t id;
     int64_t area2;
     int16_t x0, y0, x1, y1;
+    uint32_t setup;
 } sr_record;
+
+#define SR_NO_SETUP UINT32_MAX
 
 /* One thread's share of a draw: its counts, and in the binned path the clip
  * vertices, records and per-tile lists of record indices it made. Aligned
  * apart so one thread's counters never share a cache line with another's. */
 #define SR_CACHE_LINE 128
+/* A bin entry's flag: the tile's share of the record's set-up triangle is
+ * covered whole (sr_raster_classify), so its rows need no solving. */
+#define SR_BIN_COVERED 0x80000000u
+#define SR_BIN_RECORD 0x7FFFFFFFu
+
 typedef struct sr_thread_work {
     _Alignas(SR_CACHE_LINE) sr_stats stats;
     sr_clip_counts cuts;
     uint64_t simd_draws; /* rasterizer calls a SIMD kernel made */
     sr_array clip_verts; /* sr_screen_vertex */
     sr_array records;    /* sr_record */
-    sr_array *bins;      /* one sr_array of uint32_t per tile */
+    sr_array setups;     /* sr_tri_setup, of the records that span tiles */
+    sr_array *bins;      /* one sr_array per tile of record indices, SR_BIN_COVERED or'd in */
     size_t bin_count;
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */

@@ -25,6 +25,7 @@ static void thread_work_free(sr_thread_work *w)
 {
     sr_array_free(&w->clip_verts);
     sr_array_free(&w->records);
+    sr_array_free(&w->setups);
     for (size_t i = 0; i < w->bin_count; i++)
         sr_array_free(&w->bins[i]);
     free(w->bins);
