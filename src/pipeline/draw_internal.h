@@ -47,6 +47,13 @@ typedef struct sr_record {
 #define SR_BIN_COVERED 0x80000000u
 #define SR_BIN_RECORD 0x7FFFFFFFu
 
+/* One thread's list of a tile: bin entries, and the estimated cost of
+ * drawing them (bin.c, tile_cost), which orders the tiles. */
+typedef struct sr_bin {
+    sr_array entries; /* uint32_t */
+    uint64_t cost;
+} sr_bin;
+
 typedef struct sr_thread_work {
     _Alignas(SR_CACHE_LINE) sr_stats stats;
     sr_clip_counts cuts;
@@ -54,7 +61,7 @@ typedef struct sr_thread_work {
     sr_array clip_verts; /* sr_screen_vertex */
     sr_array records;    /* sr_record */
     sr_array setups;     /* sr_tri_setup, of the records that span tiles */
-    sr_array *bins;      /* one sr_array per tile of record indices, SR_BIN_COVERED or'd in */
+    sr_bin *bins;        /* one per tile: record indices, SR_BIN_COVERED or'd in */
     size_t bin_count;
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
@@ -65,6 +72,7 @@ struct sr_workspace {
     sr_array verts;    /* sr_vertex_out, one per mesh vertex */
     sr_array outcodes; /* unsigned char */
     sr_array screen;   /* sr_screen_vertex, valid where the outcode is 0 */
+    sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
     sr_thread_work threads[SR_MAX_THREADS];
 };
 
