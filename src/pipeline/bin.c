@@ -79,6 +79,31 @@ static uint64_t entry_cost(sr_raster_rect share, sr_box_cover c)
     return SETUP_PIXELS + (c == SR_COVER_ALL ? area : area / 2);
 }
 
+/* Appends an entry to a tile's bin with its estimated cost. */
+static void bin_push(sr_thread_work *w, sr_bin *bin, uint32_t entry, uint64_t cost)
+{
+    uint32_t *slot = sr_array_push(&bin->entries, sizeof *slot);
+    if (!slot) {
+        w->out_of_memory = true;
+        return;
+    }
+    *slot = entry;
+    bin->cost += cost;
+}
+
+/* A new record's index, or SR_BIN_RECORD + 1 when out of memory or past
+ * what an entry can name. */
+static uint32_t record_push(sr_thread_work *w, const sr_record *rec)
+{
+    sr_record *to = w->records.count < SR_BIN_RECORD ? sr_array_push(&w->records, sizeof *to) : NULL;
+    if (!to) {
+        w->out_of_memory = true;
+        return SR_BIN_RECORD + 1;
+    }
+    *to = *rec;
+    return (uint32_t)(w->records.count - 1);
+}
+
 /* A triangle whose scan box spans several tiles is set up here, once (as
  * llvmpipe's set-up does before binning), and goes only to the tiles whose
  * share of the box its edges reach, each entry saying whether the share is
@@ -93,46 +118,36 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
     sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return; /* covers no pixel centre: no record */
+    sr_record rec = { .id = id, .area2 = area2, .x0 = (int16_t)box.x0, .y0 = (int16_t)box.y0,
+                      .x1 = (int16_t)box.x1, .y1 = (int16_t)box.y1 };
     int tx0 = box.x0 / SR_TILE_SIDE, tx1 = (box.x1 - 1) / SR_TILE_SIDE;
     int ty0 = box.y0 / SR_TILE_SIDE, ty1 = (box.y1 - 1) / SR_TILE_SIDE;
-    const sr_tri_setup *setup = NULL;
-    if (tx0 != tx1 || ty0 != ty1) {
-        sr_tri_setup *s = sr_array_push(&w->setups, sizeof *s);
-        if (!s) {
-            w->out_of_memory = true;
-            return;
-        }
-        if (!sr_raster_setup(tri, area2, box, st->vp.subpixel_bits, st->mode, &st->shade, s)) {
-            w->setups.count--; /* no pixel of the box is inside: no record */
-            return;
-        }
-        setup = s;
+    if (tx0 == tx1 && ty0 == ty1) {
+        memcpy(rec.ref, ref, sizeof rec.ref);
+        uint32_t index = record_push(w, &rec);
+        if (index <= SR_BIN_RECORD)
+            bin_push(w, &w->bins[ty0 * st->tiles_x + tx0], index, entry_cost(box, SR_COVER_PARTIAL));
+        return;
     }
-    sr_record *rec = w->records.count <= SR_BIN_RECORD ? sr_array_push(&w->records, sizeof *rec) : NULL;
-    if (!rec) {
+    sr_tri_setup *setup = sr_array_push(&w->setups, sizeof *setup);
+    if (!setup) {
         w->out_of_memory = true;
         return;
     }
-    *rec = (sr_record){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .area2 = area2, .x0 = (int16_t)box.x0,
-                        .y0 = (int16_t)box.y0, .x1 = (int16_t)box.x1, .y1 = (int16_t)box.y1,
-                        .setup = setup ? (uint32_t)(w->setups.count - 1) : SR_NO_SETUP };
-    uint32_t index = (uint32_t)(w->records.count - 1);
-    for (int ty = ty0; ty <= ty1; ty++) {
+    if (!sr_raster_setup(tri, area2, box, st->vp.subpixel_bits, st->mode, &st->shade, setup)) {
+        w->setups.count--; /* no pixel of the box is inside: no record */
+        return;
+    }
+    rec.area2 = 0;
+    rec.setup = (uint32_t)(w->setups.count - 1);
+    uint32_t index = record_push(w, &rec);
+    for (int ty = ty0; ty <= ty1 && index <= SR_BIN_RECORD; ty++) {
         for (int tx = tx0; tx <= tx1; tx++) {
-            uint32_t entry = index;
             sr_raster_rect share = box_in(box, tile_rect(st, tx, ty));
-            sr_box_cover c = setup ? sr_raster_classify(setup, share) : SR_COVER_PARTIAL;
-            if (c == SR_COVER_NONE)
-                continue;
-            entry |= c == SR_COVER_ALL ? SR_BIN_COVERED : 0;
-            sr_bin *bin = &w->bins[ty * st->tiles_x + tx];
-            uint32_t *slot = sr_array_push(&bin->entries, sizeof *slot);
-            if (!slot) {
-                w->out_of_memory = true;
-                return;
-            }
-            *slot = entry;
-            bin->cost += entry_cost(share, c);
+            sr_box_cover c = sr_raster_classify(setup, share);
+            if (c != SR_COVER_NONE)
+                bin_push(w, &w->bins[ty * st->tiles_x + tx], index | (c == SR_COVER_ALL ? SR_BIN_COVERED : 0),
+                         entry_cost(share, c));
         }
     }
 }
@@ -217,7 +232,7 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, u
 {
     const sr_record *rec = record_of(w, entry);
     sr_raster_rect share = box_in((sr_raster_rect){ rec->x0, rec->y0, rec->x1, rec->y1 }, tile);
-    if (rec->setup != SR_NO_SETUP) {
+    if (rec->area2 == 0) {
         sr_tri_setup s = ((const sr_tri_setup *)w->setups.data)[rec->setup];
         s.box = share;
         s.covered = entry & SR_BIN_COVERED;

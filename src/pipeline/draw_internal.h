@@ -21,22 +21,22 @@
  * functions cannot overflow whatever the precision asked for. */
 #define SR_FIXED_POINT_BITS 30
 
-/* A fan triangle in a bin: its three vertices as references (below the mesh's
- * vertex count: the shared screen vertex; from there on: the binning
- * thread's clip vertices), its exact area, its id, its scan box on the
- * framebuffer (sides up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits) and, for a
- * triangle whose box spans several tiles, its set-up in the binning
- * thread's `setups` (SR_NO_SETUP for one within a tile: the tile sets it
- * up, with the vertices still at hand, and no set-up is stored). */
+/* A fan triangle in a bin: its id, its scan box on the framebuffer (sides
+ * up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits) and either, for one within a
+ * tile, its exact area and its three vertices as references (below the
+ * mesh's vertex count: the shared screen vertex; from there on: the binning
+ * thread's clip vertices), which the tile sets it up from, or, for one
+ * whose box spans tiles (area2 0: a drawn triangle never has zero area), its
+ * set-up in the binning thread's `setups`. */
 typedef struct sr_record {
-    uint32_t ref[3];
+    union {
+        uint32_t ref[3];
+        uint32_t setup;
+    };
     uint32_t id;
     int64_t area2;
     int16_t x0, y0, x1, y1;
-    uint32_t setup;
 } sr_record;
-
-#define SR_NO_SETUP UINT32_MAX
 
 /* One thread's share of a draw: its counts, and in the binned path the clip
  * vertices, records and per-tile lists of record indices it made. Aligned
