@@ -91,17 +91,21 @@ static void bin_push(sr_thread_work *w, sr_bin *bin, uint32_t entry, uint64_t co
     bin->cost += cost;
 }
 
-/* A new record's index, or SR_BIN_RECORD + 1 when out of memory or past
- * what an entry can name. */
-static uint32_t record_push(sr_thread_work *w, const sr_record *rec)
+/* A new record, with its id and scan box set; NULL when out of memory or
+ * past what a bin entry can name. */
+static sr_record *record_new(sr_thread_work *w, uint32_t id, sr_raster_rect box)
 {
-    sr_record *to = w->records.count < SR_BIN_RECORD ? sr_array_push(&w->records, sizeof *to) : NULL;
-    if (!to) {
+    sr_record *rec = w->records.count < SR_BIN_RECORD ? sr_array_push(&w->records, sizeof *rec) : NULL;
+    if (!rec) {
         w->out_of_memory = true;
-        return SR_BIN_RECORD + 1;
+        return NULL;
     }
-    *to = *rec;
-    return (uint32_t)(w->records.count - 1);
+    rec->id = id;
+    rec->x0 = (int16_t)box.x0;
+    rec->y0 = (int16_t)box.y0;
+    rec->x1 = (int16_t)box.x1;
+    rec->y1 = (int16_t)box.y1;
+    return rec;
 }
 
 /* A triangle whose scan box spans several tiles is set up here, once (as
@@ -118,15 +122,16 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
     sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return; /* covers no pixel centre: no record */
-    sr_record rec = { .id = id, .area2 = area2, .x0 = (int16_t)box.x0, .y0 = (int16_t)box.y0,
-                      .x1 = (int16_t)box.x1, .y1 = (int16_t)box.y1 };
     int tx0 = box.x0 / SR_TILE_SIDE, tx1 = (box.x1 - 1) / SR_TILE_SIDE;
     int ty0 = box.y0 / SR_TILE_SIDE, ty1 = (box.y1 - 1) / SR_TILE_SIDE;
     if (tx0 == tx1 && ty0 == ty1) {
-        memcpy(rec.ref, ref, sizeof rec.ref);
-        uint32_t index = record_push(w, &rec);
-        if (index <= SR_BIN_RECORD)
-            bin_push(w, &w->bins[ty0 * st->tiles_x + tx0], index, entry_cost(box, SR_COVER_PARTIAL));
+        sr_record *rec = record_new(w, id, box);
+        if (!rec)
+            return;
+        memcpy(rec->ref, ref, sizeof rec->ref);
+        rec->area2 = area2;
+        bin_push(w, &w->bins[ty0 * st->tiles_x + tx0], (uint32_t)(w->records.count - 1),
+                 entry_cost(box, SR_COVER_PARTIAL));
         return;
     }
     sr_tri_setup *setup = sr_array_push(&w->setups, sizeof *setup);
@@ -138,10 +143,13 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
         w->setups.count--; /* no pixel of the box is inside: no record */
         return;
     }
-    rec.area2 = 0;
-    rec.setup = (uint32_t)(w->setups.count - 1);
-    uint32_t index = record_push(w, &rec);
-    for (int ty = ty0; ty <= ty1 && index <= SR_BIN_RECORD; ty++) {
+    sr_record *rec = record_new(w, id, box);
+    if (!rec)
+        return;
+    rec->setup = (uint32_t)(w->setups.count - 1);
+    rec->area2 = 0;
+    uint32_t index = (uint32_t)(w->records.count - 1);
+    for (int ty = ty0; ty <= ty1; ty++) {
         for (int tx = tx0; tx <= tx1; tx++) {
             sr_raster_rect share = box_in(box, tile_rect(st, tx, ty));
             sr_box_cover c = sr_raster_classify(setup, share);
