@@ -38,14 +38,10 @@ typedef struct sr_record {
     int16_t x0, y0, x1, y1;
 } sr_record;
 
-/* One thread's share of a draw: its counts, and in the binned path the clip
- * vertices, records and per-tile lists of record indices it made. Aligned
- * apart so one thread's counters never share a cache line with another's. */
-#define SR_CACHE_LINE 128
 /* A bin entry's flag: the tile's share of the record's set-up triangle is
  * covered whole (sr_raster_classify), so its rows need no solving. */
 #define SR_BIN_COVERED 0x80000000u
-#define SR_BIN_RECORD 0x7FFFFFFFu
+#define SR_BIN_RECORD 0x7FFFFFFFu /* the record index's bits */
 
 /* One thread's list of a tile: bin entries, and the estimated cost of
  * drawing them (bin.c, tile_cost), which orders the tiles. */
@@ -54,6 +50,10 @@ typedef struct sr_bin {
     uint64_t cost;
 } sr_bin;
 
+/* One thread's share of a draw: its counts, and in the binned path the clip
+ * vertices, records and per-tile lists of record indices it made. Aligned
+ * apart so one thread's counters never share a cache line with another's. */
+#define SR_CACHE_LINE 128
 typedef struct sr_thread_work {
     _Alignas(SR_CACHE_LINE) sr_stats stats;
     sr_clip_counts cuts;
