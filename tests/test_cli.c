@@ -347,6 +347,7 @@ Test(cli, missing_report_dir_fails_before_measuring)
 {
     assert_one_error("bench --stability --report-dir %s/none", "none: cannot write the report there");
     assert_one_error("bench --report --report-dir %s/tri.obj", "tri.obj: cannot write the report there: not a directory");
+    assert_one_error("bench --cost-model --report-dir %s/none", "none: cannot write the report there");
 }
 
 /* A model shared without its textures used to stop the render at the
@@ -401,4 +402,18 @@ Test(cli, render_says_what_it_wrote_in_one_line)
     r = run_softrast(temp_dir, args);
     cr_expect_eq(r.status, 0);
     cr_expect_str_eq(r.err, "");
+}
+
+/* bench --shade draws every scene in one mode (the issue's "every shading
+ * mode"): the fly scene, lambert + texture of its own, runs in id, and a
+ * mode it lacks the attributes of is a skipped line, not an error. */
+Test(cli, bench_shade_replaces_the_scenes_shading_or_skips)
+{
+    run_result r = run_softrast_env(temp_dir, "timeout -s KILL 60", "bench --scene fly --frames 1 --shade id");
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_not_null(strstr(r.out, "fly "), "%s", r.out);
+    cr_expect_null(strstr(r.out, "skipped"), "%s", r.out);
+    r = run_softrast_env(temp_dir, "timeout -s KILL 60", "bench --scene fly --frames 1 --shade color");
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    cr_expect_not_null(strstr(r.out, "fly      skipped: it lacks what --shade color reads"), "%s", r.out);
 }

@@ -184,3 +184,19 @@ Test(flights, three_shards_through_parallel_equal_one_run)
     cr_assert_eq(status, 0, "the shards differ from one run, or a run failed: %s", err_text);
     cr_assert_str_empty(err_text, "a run wrote on stderr: %s", err_text);
 }
+
+/* Frame numbers of a flight past 10000 frames widen to its last frame's
+ * digits, so `ls` lists frame-09999 before frame-10000 (with four digits
+ * 10000 sorted before 9999); flights up to 10000 frames keep four. */
+Test(flights, frame_numbers_widen_to_the_last_frame)
+{
+    char cmd[2048];
+    const char *fly = "view assets/room.obj --size 8x8 --script tests/flights/room_walls.txt --no-window";
+    snprintf(cmd, sizeof cmd,
+             "D=%s && %s %s --frames 10001 --frame-range 9999:10001 --shots $D >$D/out.txt && "
+             "test \"$(cd $D && ls frame-*.png | tr '\\n' ' ')\" = 'frame-09999.png frame-10000.png ' && "
+             "grep -q '^frame 09999: ' $D/out.txt && "
+             "%s %s --frames 10000 --frame-range 9999:10000 --shots $D >/dev/null && test -f $D/frame-9999.png",
+             temp_dir, softrast_bin(), fly, softrast_bin(), fly);
+    cr_assert_eq(system(cmd), 0, "%s", cmd);
+}

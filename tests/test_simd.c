@@ -20,10 +20,12 @@
 
 static const sr_simd vector_loops[] = { SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX512 };
 
-/* Random triangles in front of a perspective camera, many wider than the
- * span threshold, with random normals (some zero), uvs well outside [0, 1]
- * (wrapping) and colors outside [0, 1] (clamping). */
-static void soup_make(sr_mesh *mesh)
+/* Random triangles in front of the camera, many wider than the span
+ * threshold, with random normals (some zero; with `flat`, every other
+ * triangle has one normal at its three vertices, which an orthographic camera
+ * shades once per triangle), uvs well outside [0, 1] (wrapping) and colors
+ * outside [0, 1] (clamping). */
+static void soup_make(sr_mesh *mesh, bool flat)
 {
     sr_error err;
     cr_assert(sr_mesh_alloc(mesh, 3 * SOUP_TRIANGLES, 3 * SOUP_TRIANGLES, true, true, true, &err), "%s",
@@ -41,6 +43,8 @@ static void soup_make(sr_mesh *mesh)
         mesh->uvs[i][0] = i % 23 == 0 ? HUGE_UV : (float)rng_uniform(&rng, -3.0, 3.0);
         mesh->uvs[i][1] = i % 29 == 0 ? -HUGE_UV : (float)rng_uniform(&rng, -3.0, 3.0);
         mesh->indices[i] = i;
+        if (flat && i % 6 >= 3 && i % 3 > 0)
+            glm_vec3_copy(mesh->normals[i - i % 3], mesh->normals[i]);
     }
 }
 
@@ -96,6 +100,15 @@ static void assert_vector_loops_match_scalar(const sr_draw_desc *desc, bool reve
         }
     }
     sr_framebuffer_destroy(&scalar);
+}
+
+/* A perspective camera, or with ortho_height > 0 an orthographic one. */
+static void look_ortho(sr_draw_desc *desc, const float e[6], float fov, float ortho_height, bool reversed)
+{
+    sr_camera cam = scene_camera(e[0], e[1], e[2], e[3], e[4], e[5], fov, SR_CAMERA_NEAR, SR_CAMERA_FAR);
+    cam.reversed_z = reversed;
+    cam.ortho_height = ortho_height;
+    scene_camera_desc(desc, &cam, FB_SIDE, FB_SIDE);
 }
 
 static void look(sr_draw_desc *desc, const float e[6], float fov, bool reversed)
@@ -159,7 +172,7 @@ Test(simd, random_triangles_match_the_scalar_loop_in_every_mode)
     sr_texture tex = { .width = 5, .height = 3, .texels = (uint32_t *)texels };
     sr_texture tiny = { .width = 1, .height = 1, .texels = (uint32_t *)&one_texel };
     sr_mesh soup;
-    soup_make(&soup);
+    soup_make(&soup, false);
     const struct {
         sr_shade shade;
         sr_filter filter;
@@ -200,4 +213,69 @@ Test(simd, the_textured_room_through_its_walls_matches_the_scalar_loop)
     }
     sr_texture_free(&tex);
     sr_mesh_free(&room);
+}
+
+/* The per-triangle shortcuts (sr_interp): constant 1/w under an orthographic
+ * camera, and a flat normal there, against the scalar loop taking the same
+ * shortcuts, in every mode that reads varyings; under a perspective camera
+ * flat normals take the general loop. */
+Test(simd, flat_normals_and_orthographic_triangles_match_the_scalar_loop)
+{
+    static const uint32_t texels[6] = { 0xFF0000, 0x00FF00, 0x0000FF, 0xFFFFFF, 0x123456, 0xABCDEF };
+    sr_texture tex = { .width = 3, .height = 2, .texels = (uint32_t *)texels };
+    sr_mesh soup, no_colors;
+    soup_make(&soup, true);
+    no_colors = soup;
+    no_colors.colors = NULL;
+    const struct {
+        sr_shade shade;
+        const sr_mesh *mesh;
+        const sr_texture *texture;
+    } modes[] = {
+        { SR_SHADE_LAMBERT, &no_colors, NULL }, { SR_SHADE_LAMBERT, &soup, NULL }, { SR_SHADE_LAMBERT, &soup, &tex },
+        { SR_SHADE_NORMAL, &soup, NULL },       { SR_SHADE_COLOR, &soup, NULL },   { SR_SHADE_TEXTURE, &soup, &tex },
+    };
+    for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {
+        for (int ortho = 0; ortho < 2; ortho++) {
+            for (int reversed = 0; reversed < 2; reversed++) {
+                sr_draw_desc desc = { .mesh = modes[m].mesh, .shade = modes[m].shade, .texture = modes[m].texture,
+                                      .filter = SR_FILTER_BILINEAR, .cull = SR_CULL_NONE };
+                look_ortho(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, ortho ? 12.0f : 0.0f, reversed);
+                char what[64];
+                snprintf(what, sizeof what, "flat normals, mode %d%s%s%s", modes[m].shade,
+                         modes[m].mesh->colors ? "" : " no colors", ortho ? " orthographic" : "",
+                         reversed ? " reversed" : "");
+                assert_vector_loops_match_scalar(&desc, reversed, what);
+            }
+        }
+    }
+    sr_mesh_free(&soup);
+}
+
+/* Gray lambert quads facing an orthographic camera come out one color per
+ * quad, the intensity of their normal, in every loop and on tiles: the
+ * per-triangle intensity is the value the per-pixel one would have been. */
+Test(simd, orthographic_flat_lambert_is_the_intensity_of_the_normal)
+{
+    sr_mesh quads;
+    sr_error err;
+    cr_assert(sr_shape_quads(&quads, 3, 4.0f, 3.0f, -0.5f, &err), "%s", err.message);
+    sr_shade_context c = { .light_dir = { 0.6f, 0.0f, -0.8f } };
+    float k = sr_shade_lambert_intensity(&c, (const float[3]){ 0.0f, 0.0f, -1.0f });
+    uint32_t want = sr_shade_pack(k * SR_LAMBERT_GRAY, k * SR_LAMBERT_GRAY, k * SR_LAMBERT_GRAY);
+    sr_draw_desc desc = { .mesh = &quads, .shade = SR_SHADE_LAMBERT, .light_dir = { 0.6f, 0.0f, -0.8f } };
+    look_ortho(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, 2.0f, false);
+    const sr_simd loops[] = { SR_SIMD_SCALAR, SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX512 };
+    for (size_t i = 0; i < sizeof loops / sizeof *loops; i++) {
+        for (int threads = 1; threads <= TILED_THREADS; threads += TILED_THREADS - 1) {
+            sr_framebuffer fb;
+            sr_stats stats;
+            draw_with(&desc, loops[i], threads, false, &fb, &stats);
+            size_t right = scene_count_color(&fb, want);
+            cr_assert_eq(right, scene_pixel_count(&fb), "%s on %d threads: %zu of %zu pixels are 0x%06X",
+                         sr_simd_name(sr_raster_simd_resolve(loops[i])), threads, right, scene_pixel_count(&fb), want);
+            sr_framebuffer_destroy(&fb);
+        }
+    }
+    sr_mesh_free(&quads);
 }

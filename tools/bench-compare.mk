@@ -27,7 +27,8 @@ build/bench-gl: $(BENCH_GL_OBJ) $(call APP_LIBS,build)
 	@echo "  LINK    $@"
 	@$(CC) $(CFLAGS) $^ $(LIBS) $(GL_LIBS) -o $@
 
-bench-compare: deps deps-gl build/bench-gl
+# --truth draws the report's scenes, the scanned meshes among them.
+bench-compare: deps deps-gl build/bench-gl $(if $(findstring --truth,$(BENCH_COMPARE_ARGS)),scans)
 	./build/bench-gl $(BENCH_COMPARE_ARGS)
 
 -include $(BENCH_GL_OBJ:.o=.d)

@@ -10,20 +10,28 @@
 #include "studies/report.h"
 
 #define DEFAULT_FRAMES 10
-#define DEFAULT_FILL_FRAMES 3 /* fill takes llvmpipe 0.7 s a frame */
+#define DEFAULT_FILL_FRAMES 3 /* fill takes llvmpipe 0.7 s a frame, fill-flat 0.4 */
 #define DEFAULT_THREADS 2
 #define MAX_FRAMES 10000
 #define MAX_THREADS 64
+#define GL_NAME_CHARS 100 /* GL_RENDERER, GL_VERSION: llvmpipe's are 66 */
 
-static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", "inside", NULL };
-enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_INSIDE, SCENE_KINDS };
+static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "fill-flat", "depth", "inside", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE, SCENE_KINDS };
 
 typedef struct job {
     int scene, frames, fill_frames, threads, simd;
     bool lp_raster_all; /* LP_NUM_THREADS = threads, not threads - 1 */
     bool sequential;
     bool truth; /* llvmpipe against the truth image on the report's scenes, instead of timing */
+    const char *truth_file; /* where --truth writes its rows */
 } job;
+
+/* LP_NUM_THREADS for `threads` threads in all. */
+static int lp_threads(const job *j, int threads)
+{
+    return j->lp_raster_all ? threads : threads - 1;
+}
 
 static const char USAGE[] =
     "usage: bench-gl [options]\n"
@@ -68,6 +76,8 @@ static bool make_scene(int kind, sr_bench_scene *s, sr_error *err)
         return sr_bench_fly(s, err);
     case SCENE_FILL:
         return sr_bench_fill(s, err);
+    case SCENE_FILL_FLAT:
+        return sr_bench_fill_flat(s, err);
     case SCENE_INSIDE:
         return sr_bench_inside(s, err);
     default:
@@ -80,7 +90,8 @@ static bool run_scene(const job *j, int kind, sr_error *err)
     sr_bench_scene s;
     if (!make_scene(kind, &s, err))
         return false;
-    int frames = kind == SCENE_FILL && j->fill_frames < j->frames ? j->fill_frames : j->frames;
+    bool fill = kind == SCENE_FILL || kind == SCENE_FILL_FLAT;
+    int frames = fill && j->fill_frames < j->frames ? j->fill_frames : j->frames;
     printf("\n%s: %s; %u triangle slots, %dx%d, %d timed frames%s\n", s.name, s.what,
            sr_mesh_triangle_slots(&s.mesh), s.width, s.height, frames,
            frames < j->frames ? " (capped by --fill-frames)" : "");
@@ -89,7 +100,7 @@ static bool run_scene(const job *j, int kind, sr_error *err)
     bool ok = true;
     for (int i = 0; ok && i < (j->threads > 1 ? 2 : 1); i++) {
         int t = thread_counts[i];
-        bench_gl_run run = { .frames = frames, .threads = t, .lp_threads = j->lp_raster_all ? t : t - 1,
+        bench_gl_run run = { .frames = frames, .threads = t, .lp_threads = lp_threads(j, t),
                              .sequential = j->sequential, .simd = (sr_simd)j->simd };
         bench_gl_result r;
         ok = bench_gl_compare(&s, &run, &r, err);
@@ -100,34 +111,44 @@ static bool run_scene(const job *j, int kind, sr_error *err)
     return ok;
 }
 
-/* llvmpipe's row of docs/report.md's "Against the truth", one per report scene. */
-static bool run_truth(const job *j, sr_error *err)
+/* llvmpipe's rows of docs/report.md's "Against the truth", one per report
+ * scene, printed and written to j->truth_file for the report to read. */
+static bool run_truth(const job *j, const char *renderer, sr_error *err)
 {
-    bool (*make[])(sr_bench_scene *, sr_error *) = { sr_bench_dense_default, sr_bench_fly, sr_bench_stiff };
-    printf("\n| llvmpipe | wrong triangle | ties | coverage | \\|z − truth\\| max | p99.9 | median |\n"
-           "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    sr_report_peer peer = { .count = SR_REPORT_SCENES };
+    snprintf(peer.renderer, sizeof peer.renderer, "%.*s, %d thread%s in all (LP_NUM_THREADS %d)",
+             GL_NAME_CHARS - 1, renderer,
+             j->threads, j->threads > 1 ? "s" : "", lp_threads(j, j->threads));
+    printf("\n");
+    sr_truth_errors_write_header(stdout, "llvmpipe (ms per frame)");
     bool ok = true;
-    for (size_t i = 0; ok && i < sizeof make / sizeof *make; i++) {
+    for (int i = 0; ok && i < SR_REPORT_SCENES; i++) {
         sr_bench_scene s;
-        sr_truth_errors e;
-        ok = make[i](&s, err) && bench_gl_truth(&s, j->lp_raster_all ? j->threads : j->threads - 1, &e, err);
-        if (ok)
-            printf("| %s (%d camera%s) | %llu | %llu | %llu | %.3g | %.3g | %.3g |\n", s.name,
-                   sr_report_scene_frames(&s), sr_report_scene_frames(&s) > 1 ? "s" : "",
-                   (unsigned long long)e.wrong_triangle, (unsigned long long)e.ties,
-                   (unsigned long long)e.coverage, e.z_max, e.z_p999, e.z_median);
+        sr_report_peer_row *r = &peer.rows[i];
+        ok = sr_report_scene_makers[i](&s, err) &&
+             bench_gl_truth(&s, lp_threads(j, j->threads), j->frames, r, err);
+        if (ok) {
+            char label[96];
+            int n = sr_report_scene_frames(&s);
+            snprintf(label, sizeof label, "%s (%d camera%s, %.2f ms)", s.name, n, n > 1 ? "s" : "", r->ms);
+            sr_truth_errors_write_row(stdout, label, &r->truth);
+        }
         sr_bench_scene_free(&s);
     }
-    return ok;
+    if (ok)
+        printf("\n%s: %s\n", j->truth_file, peer.renderer);
+    return ok && sr_report_peer_write(j->truth_file, &peer, err);
 }
 
-/* A first context proves llvmpipe runs here before any scene is built. */
-static bool print_renderer(sr_error *err)
+/* A first context proves llvmpipe runs here before any scene is built;
+ * renderer gets its GL_RENDERER and GL_VERSION. */
+static bool print_renderer(char *renderer, size_t cap, sr_error *err)
 {
     bench_gl_context *ctx = NULL;
     if (!bench_gl_context_create(&ctx, 0, err))
         return false;
     printf("GL_RENDERER: %s\nGL_VERSION:  %s\n", bench_gl_context_renderer(ctx), bench_gl_context_version(ctx));
+    snprintf(renderer, cap, "%s, %s", bench_gl_context_renderer(ctx), bench_gl_context_version(ctx));
     bench_gl_context_destroy(ctx);
     return true;
 }
@@ -135,11 +156,11 @@ static bool print_renderer(sr_error *err)
 static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|depth|inside", "which scenes (default all)",
-          .choices = SCENE_NAMES },
+        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|fill-flat|depth|inside",
+          "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &j->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
-        { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N", "at most N timed frames for fill (default 3)", 1,
-          MAX_FRAMES },
+        { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N",
+          "at most N timed frames for fill and fill-flat (default 3)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &j->threads, "N", "run at 1 and at N threads in all (default 2)", 1,
           MAX_THREADS },
         { "--lp-raster-all", SR_OPT_FLAG, &j->lp_raster_all, NULL,
@@ -147,7 +168,10 @@ static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
         { "--sequential", SR_OPT_FLAG, &j->sequential, NULL,
           "all softrast frames, then all llvmpipe frames (default: alternate frame by frame)" },
         { "--truth", SR_OPT_FLAG, &j->truth, NULL,
-          "instead of timing: llvmpipe's errors against the truth image on the report's scenes" },
+          "instead of the comparison: llvmpipe's errors against the truth image and its ms on the report's "
+          "scenes, at --threads threads in all" },
+        { "--truth-file", SR_OPT_STRING, &j->truth_file, "FILE",
+          "where --truth writes its rows for the report (default docs/" SR_REPORT_PEER_FILE ")" },
         { "--simd", SR_OPT_CHOICE, &j->simd, SR_SIMD_CHOICES,
           "softrast's per-pixel loop (default auto: the best the CPU has)", .choices = sr_simd_names },
         { 0 },
@@ -158,10 +182,11 @@ static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
 
 static bool run(const job *j, sr_error *err)
 {
-    if (!print_renderer(err))
+    char renderer[GL_NAME_CHARS];
+    if (!print_renderer(renderer, sizeof renderer, err))
         return false;
     if (j->truth)
-        return run_truth(j, err);
+        return run_truth(j, renderer, err);
     printf("softrast per-pixel loop: %s\n", sr_simd_name(sr_raster_simd_resolve((sr_simd)j->simd)));
     printf(LEGEND, BENCH_GL_COLOR_TOLERANCE,
            j->sequential ? "all softrast frames, then all llvmpipe frames (--sequential)"
@@ -174,7 +199,8 @@ static bool run(const job *j, sr_error *err)
 
 int main(int argc, char **argv)
 {
-    job j = { .frames = DEFAULT_FRAMES, .fill_frames = DEFAULT_FILL_FRAMES, .threads = DEFAULT_THREADS };
+    job j = { .frames = DEFAULT_FRAMES, .fill_frames = DEFAULT_FILL_FRAMES, .threads = DEFAULT_THREADS,
+              .truth_file = "docs/" SR_REPORT_PEER_FILE };
     sr_error err = { { 0 } };
     bool help = false;
     if (!parse_job(&j, argc, argv, &help, &err) || (!help && !run(&j, &err))) {

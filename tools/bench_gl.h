@@ -21,6 +21,7 @@
 #include <stdint.h>
 
 #include "studies/bench_scenes.h"
+#include "studies/report_peer.h"
 #include "studies/report_truth.h"
 #include "softrast_private.h"
 
@@ -113,8 +114,10 @@ void bench_gl_frame_camera(const sr_bench_scene *s, int f, int n, mat4 view, mat
 /* --- bench_gl_truth.c: llvmpipe against the truth image --- */
 
 /* Draws the scene's report cameras (sr_report_scene_frames) with llvmpipe in
- * id shading (s->shade becomes SR_SHADE_ID) and tallies them against the
- * truth of each camera, as the report tallies softrast's knobs. */
-bool bench_gl_truth(sr_bench_scene *s, int lp_threads, sr_truth_errors *out, sr_error *err);
+ * id shading (s->shade becomes SR_SHADE_ID), tallies them against the truth
+ * of each camera as the report tallies softrast's knobs, and times `frames`
+ * more draws of each (clear, draw, glFinish): out gets the scene's name,
+ * the median ms and the errors. */
+bool bench_gl_truth(sr_bench_scene *s, int lp_threads, int frames, sr_report_peer_row *out, sr_error *err);
 
 #endif

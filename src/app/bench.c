@@ -1,6 +1,5 @@
 /* softrast bench — the benchmark scenes, timed as a viewer pays for a frame. */
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,20 +9,20 @@
 #include "app.h"
 #include "studies/bench_scenes.h"
 #include "studies/bench_time.h"
+#include "studies/cost_model.h"
 #include "options.h"
 #include "studies/report.h"
 #include "scene_setup.h"
 #include "studies/stability.h"
 
 #define MAX_FRAMES 10000
-#define SCALING_POINTS 4
 
-static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "depth", "inside", "scaling", NULL };
-enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_DEPTH, SCENE_INSIDE, SCENE_SCALING };
+static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "fill-flat", "depth", "inside", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE };
 
 typedef struct bench_job {
-    int scene, frames, threads, simd;
-    bool report, stability, stages;
+    int scene, frames, threads, simd, shade; /* shade: -1 for each scene's own */
+    bool report, stability, cost_model, stages;
     const char *report_dir;
 } bench_job;
 
@@ -38,14 +37,16 @@ static const char USAGE[] =
 static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|depth|inside|scaling", "which scenes (default all)", .choices = SCENE_NAMES },
+        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|fill-flat|depth|inside", "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--simd", SR_OPT_CHOICE, &job->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
+        { "--shade", SR_OPT_CHOICE, &job->shade, "lambert|id|color|normal|texture|depth", "draw every scene in this shading mode instead of its own (a scene without what the mode reads is skipped)", .choices = SR_SHADE_NAMES },
         { "--stages", SR_OPT_FLAG, &job->stages, NULL, "print where a frame's time goes, per phase of the draw, as a Markdown table (docs/performance.md)" },
         { "--report", SR_OPT_FLAG, &job->report, NULL, "measure error against time for every accuracy knob instead" },
         { "--stability", SR_OPT_FLAG, &job->stability, NULL, "measure clipping error, cracks and depth precision under stiff cameras instead (docs/stability.md)" },
-        { "--report-dir", SR_OPT_STRING, &job->report_dir, "DIR", "where --report and --stability write their .md and .svg (default docs)" },
+        { "--cost-model", SR_OPT_FLAG, &job->cost_model, NULL, "time the dense torus against 10k … 10M triangles and 640x360 … 3840x2160 pixels, at 1 thread and at --threads, instead (docs/cost-model.md)" },
+        { "--report-dir", SR_OPT_STRING, &job->report_dir, "DIR", "where --report, --stability and --cost-model write their .md and .svg (default docs)" },
         { 0 },
     };
     int positional = 0;
@@ -59,16 +60,19 @@ static void print_header(const bench_job *job)
                "| serial rest |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         return;
     }
-    printf("%-8s %10s %11s %10s %10s %10s %12s\n", "scene", "triangles", "size", "ms median", "ms min",
-           "Mtri/s", "Mfragment/s");
+    printf("%-9s %10s %11s %10s %10s %10s %12s %8s\n", "scene", "triangles", "size", "ms median", "ms min",
+           "Mtri/s", "Mfragment/s", "Gpix/s");
 }
 
 static void print_row(const char *name, const sr_bench_scene *s, const bench_result *r)
 {
     char size[32];
     snprintf(size, sizeof size, "%dx%d", s->width, s->height);
-    printf("%-8s %10llu %11s %10.2f %10.2f %10.2f %12.1f\n", name, (unsigned long long)r->stats.triangles, size,
-           r->median, r->min, r->stats.triangles / r->median / 1e3, r->stats.fragments / r->median / 1e3);
+    /* Gpix/s: fragments that passed the depth test, each shaded and written,
+     * per second at the median frame. */
+    double mfragments = r->stats.fragments / r->median / 1e3;
+    printf("%-9s %10llu %11s %10.2f %10.2f %10.2f %12.1f %8.3f\n", name, (unsigned long long)r->stats.triangles,
+           size, r->median, r->min, r->stats.triangles / r->median / 1e3, mfragments, mfragments / 1e3);
     fflush(stdout);
 }
 
@@ -94,6 +98,13 @@ static bool run_scene(sr_bench_scene *s, bool made, const bench_job *job, bench_
     sr_draw_times times = { 0 };
     sr_bench_run how = { .frames = job->frames, .threads = job->threads, .simd = (sr_simd)job->simd,
                          .times = job->stages ? &times : NULL };
+    if (made && job->shade >= 0 && !sr_shade_supported(&s->mesh, &s->texture, (sr_shade)job->shade)) {
+        printf("%-8s skipped: it lacks what --shade %s reads\n", s->name, SR_SHADE_NAMES[job->shade]);
+        sr_bench_scene_free(s);
+        return true;
+    }
+    if (made && job->shade >= 0)
+        s->shade = (sr_shade)job->shade;
     bool ok = made && sr_bench_time(s, &how, NULL, r, err);
     if (ok && job->stages)
         print_stages(s->name, job, r, &times);
@@ -101,46 +112,6 @@ static bool run_scene(sr_bench_scene *s, bool made, const bench_job *job, bench_
         print_row(s->name, s, r);
     sr_bench_scene_free(s);
     return ok;
-}
-
-/* Least-squares slope of log(ms) against log(work): 1 is linear. */
-static double log_slope(const double *work, const double *ms, int n)
-{
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (int i = 0; i < n; i++) {
-        double x = log(work[i]), y = log(ms[i]);
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
-    }
-    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
-static bool run_scaling(const bench_job *job, sr_error *err)
-{
-    static const uint64_t tris[SCALING_POINTS] = { 10000, 100000, 1000000, 4000000 };
-    static const int sizes[SCALING_POINTS][2] = { { 640, 360 }, { 1280, 720 }, { 1920, 1080 }, { 3840, 2160 } };
-    double work[SCALING_POINTS], ms[SCALING_POINTS];
-    bench_result r;
-    sr_bench_scene s;
-    for (int i = 0; i < SCALING_POINTS; i++) {
-        if (!run_scene(&s, sr_bench_dense(&s, tris[i], 1920, 1080, SR_SHADE_LAMBERT, err), job, &r, err))
-            return false;
-        work[i] = (double)r.stats.triangles;
-        ms[i] = r.median;
-    }
-    printf("scaling: time ~ triangles^%.2f (1.00 is linear)\n", log_slope(work, ms, SCALING_POINTS));
-    for (int i = 0; i < SCALING_POINTS; i++) {
-        if (!run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, sizes[i][0], sizes[i][1], SR_SHADE_LAMBERT,
-                                          err), job, &r, err))
-            return false;
-        work[i] = (double)sizes[i][0] * sizes[i][1];
-        ms[i] = r.median;
-    }
-    printf("scaling: time ~ pixels^%.2f at %u triangles (1.00 is linear)\n", log_slope(work, ms, SCALING_POINTS),
-           SR_BENCH_DENSE_TRIANGLES);
-    return true;
 }
 
 static bool wants(const bench_job *job, int scene)
@@ -160,16 +131,16 @@ static bool run(const bench_job *job, sr_error *err)
         return false;
     if (wants(job, SCENE_FILL) && !run_scene(&s, sr_bench_fill(&s, err), job, &r, err))
         return false;
+    if (wants(job, SCENE_FILL_FLAT) && !run_scene(&s, sr_bench_fill_flat(&s, err), job, &r, err))
+        return false;
     if (wants(job, SCENE_DEPTH) && !run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080,
                                                                  SR_SHADE_DEPTH, err), job, &r, err))
         return false;
-    if (wants(job, SCENE_INSIDE) && !run_scene(&s, sr_bench_inside(&s, err), job, &r, err))
-        return false;
-    return !wants(job, SCENE_SCALING) || run_scaling(job, err);
+    return !wants(job, SCENE_INSIDE) || run_scene(&s, sr_bench_inside(&s, err), job, &r, err);
 }
 
-/* The folder --report and --stability write to, checked before the seconds
- * of measuring rather than after. */
+/* The folder --report, --stability and --cost-model write to, checked
+ * before the seconds of measuring rather than after. */
 static bool report_dir_ok(const char *dir, sr_error *err)
 {
     struct stat st;
@@ -182,7 +153,7 @@ static bool report_dir_ok(const char *dir, sr_error *err)
 
 int sr_app_bench(int argc, char **argv)
 {
-    bench_job job = { .frames = 10 };
+    bench_job job = { .frames = 10, .shade = -1 };
     sr_error err = { { 0 } };
     bool help = false;
     job.threads = sr_scene_default_threads();
@@ -191,10 +162,11 @@ int sr_app_bench(int argc, char **argv)
     if (help)
         return 0;
     const char *dir = job.report_dir ? job.report_dir : "docs";
-    if ((job.stability || job.report) && !report_dir_ok(dir, &err))
+    if ((job.stability || job.report || job.cost_model) && !report_dir_ok(dir, &err))
         return sr_app_fail(err.message);
     bool ok = job.stability ? sr_stability_write(dir, &err)
-              : job.report  ? sr_report_write(dir, job.frames, &err)
-                            : run(&job, &err);
+              : job.report     ? sr_report_write(dir, job.frames, &err)
+              : job.cost_model ? sr_cost_model_write(dir, job.frames, job.threads, &err)
+                               : run(&job, &err);
     return ok ? 0 : sr_app_fail(err.message);
 }

@@ -201,13 +201,13 @@ bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc 
     return true;
 }
 
-bool sr_scene_supports(const sr_scene *scene, sr_shade shade)
+bool sr_shade_supported(const sr_mesh *mesh, const sr_texture *texture, sr_shade shade)
 {
     switch (shade) {
-    case SR_SHADE_COLOR:   return scene->mesh.colors != NULL;
-    case SR_SHADE_NORMAL:  return scene->mesh.normals != NULL;
-    case SR_SHADE_TEXTURE: return scene->mesh.uvs && scene->texture.texels;
-    case SR_SHADE_LAMBERT: return scene->mesh.normals != NULL;
+    case SR_SHADE_COLOR:   return mesh->colors != NULL;
+    case SR_SHADE_NORMAL:  return mesh->normals != NULL;
+    case SR_SHADE_TEXTURE: return mesh->uvs && texture->texels;
+    case SR_SHADE_LAMBERT: return mesh->normals != NULL;
     default:               return true;
     }
 }

@@ -65,7 +65,8 @@ void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene);
 bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc *desc, sr_draw_study *study,
                    sr_error *err);
 
-/* True if the scene has what `shade` reads (normals, uvs + texture, colors). */
-bool sr_scene_supports(const sr_scene *scene, sr_shade shade);
+/* True if the mesh and texture have what `shade` reads (normals, uvs and
+ * texels, colors). */
+bool sr_shade_supported(const sr_mesh *mesh, const sr_texture *texture, sr_shade shade);
 
 #endif

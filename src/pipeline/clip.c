@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "clip_corner.h"
 #include "clip_exact.h"
 #include "expansion.h"
 #include "clip.h"
@@ -119,15 +120,21 @@ sr_clip_box sr_clip_classify_box_planes(const float clip_from_object[4][4], cons
     return any_near ? SR_BOX_CROSSES : SR_BOX_INSIDE;
 }
 
+/* Under the depth model z is a·w + b of the vertex's w, rounded once. */
+static void z_from_w(const sr_clip_depth *depth, float *c)
+{
+    c[SR_Z] = (float)((double)depth->a * c[SR_W] + depth->b);
+}
+
 /* Puts the cut vertex exactly on the plane, so its distance is 0 and later
  * planes, the divide and the viewport see a point that is inside. Under the
  * depth model near and far are planes in w alone: the interpolated w is the
- * cut, and z follows it, a·w + b rounded once (the viewport's z_ndc comes
- * from w too, so this z is for the record). */
-static void place_on_plane(sr_clip_plane plane, const sr_clip_depth *depth, float *c)
+ * cut, and z follows it (the viewport's z_ndc comes from w too, so this z
+ * is for the record). */
+void sr_clip_place_on_plane(sr_clip_plane plane, const sr_clip_depth *depth, float *c)
 {
     if (depth && depth->on && sr_clip_plane_in_depth_model(plane)) {
-        c[SR_Z] = (float)((double)depth->a * c[SR_W] + depth->b);
+        z_from_w(depth, c);
         return;
     }
     c[sr_clip_plane_table[plane].axis] = sr_clip_plane_coordinate_at(plane, c[SR_W]);
@@ -188,27 +195,43 @@ static sr_clip_precision choose_precision(sr_clip_plane plane, const sr_vertex_o
     return SR_CLIP_EXACT;
 }
 
-sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
-                                    int floats, const sr_clip_config *cfg, sr_vertex_out *cut)
+static double clip_tolerance(const sr_clip_config *cfg)
+{
+    return cfg && cfg->ndc_tolerance > 0.0 ? cfg->ndc_tolerance : SR_CLIP_DEFAULT_TOLERANCE;
+}
+
+/* The cut vertex, neither counted nor traced. */
+static sr_clip_precision intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                                   int floats, const sr_clip_config *cfg, sr_vertex_out *cut)
 {
     sr_clip_precision p = cfg ? cfg->precision : SR_CLIP_ADAPTIVE;
     const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
-    if (p == SR_CLIP_ADAPTIVE) {
-        double tolerance = cfg && cfg->ndc_tolerance > 0.0 ? cfg->ndc_tolerance : SR_CLIP_DEFAULT_TOLERANCE;
-        p = choose_precision(plane, inside, outside, depth, tolerance);
-    }
+    if (p == SR_CLIP_ADAPTIVE)
+        p = choose_precision(plane, inside, outside, depth, clip_tolerance(cfg));
     if (p == SR_CLIP_FLOAT)
         intersect_float(plane, inside, outside, floats, depth, cut);
     else if (p == SR_CLIP_DOUBLE)
         intersect_double(plane, inside, outside, floats, depth, cut);
     else
         sr_clip_intersect_exact(plane, inside, outside, floats, depth, cut);
-    place_on_plane(plane, depth, cut->v);
+    sr_clip_place_on_plane(plane, depth, cut->v);
+    return p;
+}
+
+/* Counts the cut and hands it to the trace hook. */
+static void report(const sr_clip_config *cfg, const sr_clip_cut *cut)
+{
     if (cfg && cfg->counts)
-        cfg->counts->cuts[p]++;
+        cfg->counts->cuts[cut->precision]++;
     if (cfg && cfg->trace)
-        cfg->trace(cfg->trace_context,
-                   &(sr_clip_cut){ .plane = plane, .inside = inside, .outside = outside, .cut = cut, .precision = p });
+        cfg->trace(cfg->trace_context, cut);
+}
+
+sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
+                                    int floats, const sr_clip_config *cfg, sr_vertex_out *cut)
+{
+    sr_clip_precision p = intersect(plane, inside, outside, floats, cfg, cut);
+    report(cfg, &(sr_clip_cut){ .plane = plane, .inside = inside, .outside = outside, .cut = cut, .precision = p });
     return p;
 }
 
@@ -236,7 +259,8 @@ static int clip_against_plane(const sr_vertex_out *in, int n, sr_clip_plane plan
     return m;
 }
 
-int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
+/* Plain Sutherland–Hodgman: every polygon edge cut as it stands. */
+static void clip_edge_by_edge(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
 {
     sr_vertex_out scratch[SR_MAX_CLIP_VERTS];
     for (int p = 0; p < SR_CLIP_PLANES && poly->count >= 3; p++) {
@@ -246,6 +270,171 @@ int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, const sr_clip
         poly->count = n < 3 ? 0 : n;
         for (int i = 0; i < poly->count; i++)
             poly->vert[i] = scratch[i];
+    }
+}
+
+/* ---- cutting from the triangle (adaptive and exact, two planes or more) ---- */
+
+/* A cut kept until the whole triangle is clipped, so a triangle that falls
+ * back to clipping edge by edge counts and traces only those cuts. */
+typedef struct kept_cut {
+    sr_clip_cut cut;
+    sr_vertex_out inside, outside, vertex;
+} kept_cut;
+
+#define MAX_KEPT_CUTS (SR_CLIP_PLANES * SR_MAX_CLIP_VERTS)
+
+typedef struct triangle_clip {
+    const sr_vertex_out *tri; /* the triangle's three vertices */
+    int floats;
+    const sr_clip_config *cfg;
+    bool failed; /* a cut could not be made from the triangle */
+    int kept;
+    kept_cut cuts[MAX_KEPT_CUTS];
+} triangle_clip;
+
+static void keep(triangle_clip *tc, const sr_clip_cut *made, const sr_vertex_out *vertex)
+{
+    kept_cut *k = &tc->cuts[tc->kept++];
+    *k = (kept_cut){ .cut = *made, .inside = *made->inside, .outside = *made->outside, .vertex = *vertex };
+}
+
+/* The cut of the polygon edge inside -> outside, which runs along `line`:
+ * on a triangle edge the whole edge's cut (its end points are the
+ * triangle's vertices, so a shared edge cuts alike after any planes), on a
+ * cut line the corner. False where there is none: the whole edge does not
+ * cross the plane, or sr_clip_corner found no corner (with every side
+ * decided exactly, neither happens on a triangle that is not degenerate). */
+static bool cut_from_triangle(triangle_clip *tc, int line, sr_clip_plane plane, const sr_vertex_out *inside,
+                              const sr_vertex_out *outside, sr_vertex_out *cut)
+{
+    const sr_clip_config *cfg = tc->cfg;
+    const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
+    sr_clip_cut made = { .plane = plane, .inside = inside, .outside = outside, .cut = cut };
+    if (line >= SR_CLIP_ON_PLANE) {
+        made.corner = true;
+        made.first = (sr_clip_plane)(line - SR_CLIP_ON_PLANE);
+        made.triangle = tc->tri;
+        made.precision = sr_clip_corner(tc->tri, made.first, plane, tc->floats, cfg ? cfg->precision : SR_CLIP_ADAPTIVE,
+                                        clip_tolerance(cfg), depth, cut);
+        if (made.precision == SR_CLIP_ADAPTIVE)
+            return false;
+    } else {
+        const sr_vertex_out *a = &tc->tri[line], *b = &tc->tri[(line + 1) % 3];
+        bool a_in = sr_clip_distance_with(plane, a->v, depth) >= 0.0;
+        if (a_in == (sr_clip_distance_with(plane, b->v, depth) >= 0.0))
+            return false;
+        made.inside = a_in ? a : b;
+        made.outside = a_in ? b : a;
+        made.precision = intersect(plane, made.inside, made.outside, tc->floats, cfg, cut);
+    }
+    /* A cut from the triangle may come from vertices far off, whose float z
+     * (a·w + b rounded at their w) cannot carry b: under the depth model z
+     * follows the cut's own w. */
+    if (depth && depth->on)
+        z_from_w(depth, cut->v);
+    keep(tc, &made, cut);
+    return true;
+}
+
+/* Whether polygon vertex v, on lines `before` and `after`, is inside the
+ * plane: a vertex of the triangle by its own distance, a cut vertex by the
+ * exact point it was rounded from (so rounding never puts a vertex on the
+ * wrong side and the polygon is the exact one); -1 when the lines do not
+ * meet in one point. */
+static int vertex_side(const triangle_clip *tc, int before, int after, sr_clip_plane plane, const sr_vertex_out *v)
+{
+    const sr_clip_depth *depth = tc->cfg ? &tc->cfg->depth : NULL;
+    if (before < SR_CLIP_ON_PLANE && after < SR_CLIP_ON_PLANE && before != after)
+        return sr_clip_distance_with(plane, v->v, depth) >= 0.0;
+    return sr_clip_exact_side(tc->tri, before, after, plane, depth);
+}
+
+/* One pass; line[i] is what edge i (vertex i to i + 1) runs along, so
+ * vertex i lies on lines i − 1 and i. Returns the output count, or -1 as
+ * clip_against_plane does. */
+static int pass_from_triangle(triangle_clip *tc, const sr_vertex_out *in, const unsigned char *in_line, int n,
+                              sr_clip_plane plane, sr_vertex_out *out, unsigned char *out_line)
+{
+    int side[SR_MAX_CLIP_VERTS];
+    for (int i = 0; i < n; i++) {
+        side[i] = vertex_side(tc, in_line[i > 0 ? i - 1 : n - 1], in_line[i], plane, &in[i]);
+        tc->failed = tc->failed || side[i] < 0;
+    }
+    int m = 0;
+    for (int i = 0; i < n && !tc->failed; i++) {
+        const sr_vertex_out *a = &in[i], *b = &in[i + 1 < n ? i + 1 : 0];
+        bool a_in = side[i], b_in = side[i + 1 < n ? i + 1 : 0];
+        if (m + (a_in) + (a_in != b_in) > SR_MAX_CLIP_VERTS)
+            return -1;
+        if (a_in) {
+            out_line[m] = in_line[i];
+            out[m++] = *a;
+        }
+        if (a_in != b_in) {
+            tc->failed = !cut_from_triangle(tc, in_line[i], plane, a_in ? a : b, a_in ? b : a, &out[m]);
+            out_line[m++] = a_in ? (unsigned char)(SR_CLIP_ON_PLANE + plane) : in_line[i];
+        }
+    }
+    return m;
+}
+
+/* Clips the triangle poly from its own vertices; false (poly untouched,
+ * nothing counted) where a cut could not be made so. */
+static bool clip_from_triangle(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
+{
+    const sr_vertex_out tri[3] = { poly->vert[0], poly->vert[1], poly->vert[2] };
+    triangle_clip tc; /* not zeroed: its cuts are written before they are read */
+    tc.tri = tri;
+    tc.floats = floats;
+    tc.cfg = cfg;
+    tc.failed = false;
+    tc.kept = 0;
+    sr_polygon clipped = *poly;
+    sr_vertex_out scratch[SR_MAX_CLIP_VERTS];
+    unsigned char line[SR_MAX_CLIP_VERTS] = { 0, 1, 2 }, scratch_line[SR_MAX_CLIP_VERTS];
+    for (int p = 0; p < SR_CLIP_PLANES && clipped.count >= 3; p++) {
+        if (!(planes & (1u << p)))
+            continue;
+        int n = pass_from_triangle(&tc, clipped.vert, line, clipped.count, (sr_clip_plane)p, scratch, scratch_line);
+        if (tc.failed)
+            return false;
+        clipped.count = n < 3 ? 0 : n;
+        for (int i = 0; i < clipped.count; i++) {
+            clipped.vert[i] = scratch[i];
+            line[i] = scratch_line[i];
+        }
+    }
+    for (int i = 0; i < tc.kept; i++) {
+        kept_cut *k = &tc.cuts[i];
+        if (k->cut.corner) {
+            k->cut.inside = &k->inside;
+            k->cut.outside = &k->outside;
+        }
+        k->cut.cut = &k->vertex;
+        report(cfg, &k->cut);
+    }
+    *poly = clipped;
+    return true;
+}
+
+/* Adaptive and exact promise an error, and more than one plane may leave a
+ * corner: those cut from the triangle. */
+static bool cuts_from_triangle(const sr_polygon *poly, unsigned planes, const sr_clip_config *cfg)
+{
+    bool promised = !cfg || cfg->precision == SR_CLIP_ADAPTIVE || cfg->precision == SR_CLIP_EXACT;
+    return promised && poly->count == 3 && (planes & (planes - 1u)) != 0;
+}
+
+int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
+{
+    planes &= SR_OUT_PLANES;
+    if (!cuts_from_triangle(poly, planes, cfg))
+        clip_edge_by_edge(poly, planes, floats, cfg);
+    else if (!clip_from_triangle(poly, planes, floats, cfg)) {
+        if (cfg && cfg->counts)
+            cfg->counts->edge_by_edge++;
+        clip_edge_by_edge(poly, planes, floats, cfg);
     }
     if (poly->count < 3)
         poly->count = 0;

@@ -14,6 +14,18 @@
  * the plane (x = -w for left, z = 0 for near, ...; under a depth model a near
  * or far cut gets z = a·w + b of its w, rounded once). Two triangles sharing an
  * edge therefore get bit-identical cut vertices whichever way they walk it.
+ *
+ * Under adaptive and exact precision a triangle that crosses two planes or
+ * more is cut from its own vertices, never from an earlier cut rounded to
+ * float: a polygon edge on an edge of the triangle is cut as that whole edge
+ * (the end points are the triangle's vertices, so a shared edge cuts alike
+ * after any planes), one on an earlier plane's cut line at the triangle's
+ * point on both planes (clip_corner.h), rounded once. Where that cannot be
+ * done (no corner: a degenerate triangle, or lines parallel in it) the
+ * triangle is clipped edge by edge, as the fixed float and double knobs
+ * always do, and counted. Every polygon vertex is classified against the
+ * next plane by the exact point it was rounded from (sr_clip_exact_side), so
+ * the polygon is the exact one.
  */
 #ifndef SOFTRAST_PIPELINE_CLIP_H
 #define SOFTRAST_PIPELINE_CLIP_H
@@ -79,18 +91,27 @@ static inline bool sr_clip_plane_in_depth_model(sr_clip_plane plane)
 /* How many cut vertices each precision made (index: sr_clip_precision). */
 typedef struct sr_clip_counts {
     uint64_t cuts[SR_CLIP_PRECISIONS];
+    uint64_t edge_by_edge; /* triangles on two planes or more not cut from the triangle (clip.h's head) */
 } sr_clip_counts;
 
 /* The error a cut vertex may carry, in NDC units, when no tolerance is
  * given: half a 1/256-pixel step on a 16384-pixel side. */
 #define SR_CLIP_DEFAULT_TOLERANCE (1.0 / (256.0 * 16384.0))
 
-/* One cut vertex as the clipper made it, for a trace hook. */
+/* One cut vertex as the clipper made it, for a trace hook. A cut of an
+ * edge: inside and outside are the end points it was interpolated between.
+ * A corner: the triangle's point on `plane` and on `first`, the earlier
+ * plane whose cut line the polygon edge inside -> outside runs along
+ * (`triangle`: the three vertices it is made from); its precision is its
+ * position's, double or exact. */
 typedef struct sr_clip_cut {
     sr_clip_plane plane;
     const sr_vertex_out *inside, *outside; /* the edge's end points */
     const sr_vertex_out *cut;              /* the cut vertex, placed on the plane */
     sr_clip_precision precision;           /* the precision it was made in */
+    bool corner;                           /* true: on `first` too */
+    sr_clip_plane first;
+    const sr_vertex_out *triangle; /* a corner's triangle; NULL for an edge cut */
 } sr_clip_cut;
 
 typedef void sr_clip_trace(void *context, const sr_clip_cut *cut);
@@ -154,6 +175,11 @@ static inline void sr_clip_count_rejected(sr_stats *stats, unsigned planes, uint
  * default tolerance). Returns the precision it used. */
 sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
                                     int floats, const sr_clip_config *cfg, sr_vertex_out *cut);
+
+/* Sets the cut vertex's coordinate for the plane exactly on it (x = −w for
+ * left, z = 0 for near, ...; under the depth model near and far are planes
+ * in w alone and z follows w, a·w + b rounded once). */
+void sr_clip_place_on_plane(sr_clip_plane plane, const sr_clip_depth *depth, float *clip);
 
 /* Clips poly in place against the planes whose bits are set in `planes`.
  * Returns the vertex count (0: nothing left, or a degenerate sliver whose

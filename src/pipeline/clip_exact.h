@@ -43,4 +43,39 @@ int sr_clip_exact_numerator(const sr_clip_exact_edge *edge, float a, float b, do
 void sr_clip_intersect_exact(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
                              int floats, const sr_clip_depth *depth, sr_vertex_out *cut);
 
+/* The triangle's point on two planes, for a vertex cut by both: with P_k
+ * and Q_k its vertices' distances to the planes, the weights c = P × Q
+ * (c_0 = P_1·Q_2 − P_2·Q_1, ...) give the point Σ c_k·v_k / Σ c_k, whose
+ * distance to either plane is 0. The weights and their sum are exact
+ * expansions; Σ c_k is 0 when the planes' lines in the triangle are
+ * parallel. */
+#define SR_CLIP_CORNER_WEIGHT_TERMS (2 * 2 * SR_CLIP_DISTANCE_TERMS * SR_CLIP_DISTANCE_TERMS)
+#define SR_CLIP_CORNER_NUMERATOR_TERMS (3 * 2 * SR_CLIP_CORNER_WEIGHT_TERMS)
+
+typedef struct sr_clip_exact_corner {
+    double weight[3][SR_CLIP_CORNER_WEIGHT_TERMS];
+    int weight_terms[3];
+    double denominator[3 * SR_CLIP_CORNER_WEIGHT_TERMS];
+    int denominator_terms;
+} sr_clip_exact_corner;
+
+void sr_clip_exact_corner_of(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane,
+                             const sr_clip_depth *depth, sr_clip_exact_corner *corner);
+
+/* Σ c_k·v_k of coordinate i as an expansion num[0..n); returns n. */
+int sr_clip_exact_corner_numerator(const sr_clip_exact_corner *corner, const sr_vertex_out tri[3], int i,
+                                   double num[SR_CLIP_CORNER_NUMERATOR_TERMS]);
+
+/* A line in the triangle: its edge k (vertex k to k + 1, where the
+ * weight of vertex k + 2 is 0) for k < SR_CLIP_ON_PLANE, or the cut line of
+ * plane l − SR_CLIP_ON_PLANE (where that plane's distance is 0). */
+enum { SR_CLIP_ON_PLANE = 3 };
+#define SR_CLIP_SIDE_TERMS (3 * SR_CLIP_CORNER_WEIGHT_TERMS * 2 * SR_CLIP_DISTANCE_TERMS)
+
+/* Whether the triangle's point on two of its lines is inside `plane`
+ * (distance >= 0), decided exactly: 1 inside, 0 outside, -1 when the lines
+ * do not meet in one point (parallel in the triangle, or it is degenerate). */
+int sr_clip_exact_side(const sr_vertex_out tri[3], int line1, int line2, sr_clip_plane plane,
+                       const sr_clip_depth *depth);
+
 #endif

@@ -22,6 +22,13 @@ static inline void two_product(double a, double b, double *p, double *e)
     *e = fma(a, b, -*p);
 }
 
+/* s + e = a + b exactly, given |a| >= |b| or a = 0 (Dekker). */
+static inline void fast_two_sum(double a, double b, double *s, double *e)
+{
+    *s = a + b;
+    *e = b - (*s - a);
+}
+
 /* Adds b to the expansion e[0..n), exactly: Grow-Expansion, in place.
  * Returns the new length. */
 static inline int grow(double *e, int n, double b)
@@ -35,6 +42,37 @@ static inline int grow(double *e, int n, double b)
     }
     e[n] = q;
     return n + 1;
+}
+
+/* The same value in as few parts as it needs, in place (Shewchuk's
+ * Compress; the zeros Grow-Expansion leaves go with it). Returns the new
+ * length. */
+static inline int compress(double *e, int n)
+{
+    if (n == 0)
+        return 0;
+    int bottom = n - 1;
+    double q = e[bottom];
+    for (int i = n - 2; i >= 0; i--) {
+        double s, err;
+        fast_two_sum(q, e[i], &s, &err);
+        if (err != 0.0) {
+            e[bottom--] = s;
+            q = err;
+        } else {
+            q = s;
+        }
+    }
+    int top = 0;
+    for (int i = bottom + 1; i < n; i++) {
+        double s, err;
+        fast_two_sum(e[i], q, &s, &err);
+        if (err != 0.0)
+            e[top++] = err;
+        q = s;
+    }
+    e[top] = q;
+    return top + 1;
 }
 
 /* The expansion's value to about one rounding: smallest parts first. */

@@ -149,9 +149,9 @@ static inline float depth_at(const setup *s, float z_row, float k)
     return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;
 }
 
-static inline void varyings_at(const setup *s, float l1, float l2, float *var)
+static inline void varyings_at(const setup *s, sr_interp interp, float l1, float l2, float *var)
 {
-    float w = 1.0f / (s->iw0 + l1 * s->diw1 + l2 * s->diw2);
+    float w = interp == SR_INTERP_PERSPECTIVE ? 1.0f / (s->iw0 + l1 * s->diw1 + l2 * s->diw2) : s->w;
     for (int k = 0; k < s->varyings; k++)
         var[k] = (s->var0[k] + l1 * s->dvar1[k] + l2 * s->dvar2[k]) * w;
 }
@@ -170,8 +170,8 @@ static inline bool depth_passes(float z, float stored, bool greater)
 /* Depth test, depth write and shading of covered pixel i of a row; returns
  * 1 if the fragment passed. Counting hits, the pixel only counts one more. */
 static inline __attribute__((always_inline)) uint64_t
-fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, const sr_shade_context *shade,
-           uint32_t id, size_t at, float z_row, float k, int64_t e1, int64_t e2)
+fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
+           const sr_shade_context *shade, uint32_t id, size_t at, float z_row, float k, int64_t e1, int64_t e2)
 {
     if (mode == SR_RASTER_COUNT_HITS) {
         fb->color[at]++;
@@ -184,8 +184,10 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, cons
     if (mode != SR_SHADE_DEPTH) {
         float var[SR_MAX_VARYINGS];
         if (mode_reads_varyings(mode))
-            varyings_at(s, (float)e1 * s->inv_area2, (float)e2 * s->inv_area2, var);
-        fb->color[at] = sr_shade_fragment(mode, shade, var, id);
+            varyings_at(s, interp, (float)e1 * s->inv_area2, (float)e2 * s->inv_area2, var);
+        fb->color[at] = mode == SR_SHADE_LAMBERT && interp == SR_INTERP_FLAT_NORMAL
+                            ? sr_shade_lit(shade, var, s->lambert)
+                            : sr_shade_fragment(mode, shade, var, id);
     }
     return 1;
 }
@@ -204,8 +206,8 @@ static inline bool wide(const setup *s)
 /* The scalar per-pixel loop; always inlined with a constant mode and depth
  * test so each combination gets its own loop with those branches folded away. */
 static inline __attribute__((always_inline)) uint64_t
-raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, const sr_shade_context *shade,
-            uint32_t id)
+raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
+            const sr_shade_context *shade, uint32_t id)
 {
     uint64_t fragments = 0;
     const int64_t *step = s->step_x;
@@ -216,7 +218,7 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, con
         float k = r.k;
         for (int d = 0; d < r.count; d++, e0 += step[0], e1 += step[1], e2 += step[2], k += 1.0f)
             if (spans || s->covered || (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias))
-                fragments += fill_pixel(s, fb, mode, greater, shade, id, r.at + (size_t)d, r.z, k, e1, e2);
+                fragments += fill_pixel(s, fb, mode, greater, interp, shade, id, r.at + (size_t)d, r.z, k, e1, e2);
     }
     return fragments;
 }
@@ -315,9 +317,45 @@ sr_box_cover sr_raster_classify(const setup *s, sr_raster_rect b)
 }
 
 static inline __attribute__((always_inline)) uint64_t
+raster_interp(const setup *s, sr_framebuffer *fb, sr_shade mode, sr_interp interp, const sr_shade_context *shade,
+              uint32_t id)
+{
+    return fb->reversed_z ? raster_loop(s, fb, mode, true, interp, shade, id)
+                          : raster_loop(s, fb, mode, false, interp, shade, id);
+}
+
+/* One loop per interp for the modes that read varyings. */
+static inline __attribute__((always_inline)) uint64_t
 raster_mode(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade, uint32_t id)
 {
-    return fb->reversed_z ? raster_loop(s, fb, mode, true, shade, id) : raster_loop(s, fb, mode, false, shade, id);
+    if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_FLAT_NORMAL)
+        return raster_interp(s, fb, mode, SR_INTERP_FLAT_NORMAL, shade, id);
+    if (mode_reads_varyings(mode) && s->interp != SR_INTERP_PERSPECTIVE)
+        return raster_interp(s, fb, mode, SR_INTERP_AFFINE, shade, id);
+    return raster_interp(s, fb, mode, SR_INTERP_PERSPECTIVE, shade, id);
+}
+
+/* What the triangle lets the loops leave out per pixel (sr_interp). */
+static void interp_choose(setup *s, sr_shade mode, const sr_shade_context *shade)
+{
+    s->interp = SR_INTERP_PERSPECTIVE;
+    if (s->varyings == 0 || s->diw1 != 0.0f || s->diw2 != 0.0f)
+        return;
+    s->interp = SR_INTERP_AFFINE;
+    s->w = 1.0f / s->iw0;
+    int at = shade->layout.normal;
+    if (mode != SR_SHADE_LAMBERT || at < 0)
+        return;
+    float n[3];
+    for (int k = 0; k < 3; k++) {
+        if (s->dvar1[at + k] != 0.0f || s->dvar2[at + k] != 0.0f)
+            return;
+        /* var0 + λ1·0 + λ2·0 is var0 up to the sign of a zero, which the
+         * intensity does not see. */
+        n[k] = s->var0[at + k] * s->w;
+    }
+    s->interp = SR_INTERP_FLAT_NORMAL;
+    s->lambert = sr_shade_lambert_intensity(shade, n);
 }
 
 uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
@@ -364,6 +402,7 @@ bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_ras
         return false;
     interpolants_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, s);
     s->covered = c == SR_COVER_ALL;
+    interp_choose(s, mode, shade);
     return true;
 }
 
@@ -375,7 +414,7 @@ uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
     if (*simd)
         return kernel(s, shade, fb, triangle_id);
     if (mode == SR_RASTER_COUNT_HITS) /* past the enum's cases, so not in the switch */
-        return raster_loop(s, fb, SR_RASTER_COUNT_HITS, false, shade, triangle_id);
+        return raster_loop(s, fb, SR_RASTER_COUNT_HITS, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(s, fb, SR_SHADE_ID, shade, triangle_id);
     case SR_SHADE_COLOR:   return raster_mode(s, fb, SR_SHADE_COLOR, shade, triangle_id);

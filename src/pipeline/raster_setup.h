@@ -22,6 +22,22 @@ typedef struct sr_edge {
     int64_t a, b, c, bias;
 } sr_edge;
 
+/* What a triangle lets the per-pixel loops leave out, chosen once per
+ * triangle (sr_raster_triangle_in_box). Each choice computes per triangle
+ * exactly the float values the general loop would compute per pixel, so the
+ * image does not depend on it. */
+typedef enum sr_interp {
+    SR_INTERP_PERSPECTIVE, /* 1/w varies: one division per pixel */
+    /* The three 1/w equal (an orthographic camera, or a triangle facing the
+     * camera square-on): 1/w interpolates to exactly iw0 everywhere (the
+     * differences are 0), so w = 1/iw0 once per triangle. */
+    SR_INTERP_AFFINE,
+    /* Affine, lambert, and the normal's varyings equal at the three vertices:
+     * the interpolated normal is var0 · w at every pixel, so its lambert
+     * intensity is computed once per triangle. */
+    SR_INTERP_FLAT_NORMAL,
+} sr_interp;
+
 typedef struct sr_tri_setup {
     sr_edge e[3];
     int64_t step_x[3]; /* E's change from one pixel to the next on a row */
@@ -38,6 +54,9 @@ typedef struct sr_tri_setup {
     sr_raster_rect box;
     int bits;     /* subpixel bits of the vertices */
     bool covered; /* every pixel centre of the box is inside: rows need no solving or tests */
+    sr_interp interp;
+    float w;       /* 1/iw0, when interp is not SR_INTERP_PERSPECTIVE */
+    float lambert; /* the intensity, when interp is SR_INTERP_FLAT_NORMAL */
 } sr_tri_setup;
 
 static inline int64_t sr_edge_at(const sr_edge *e, int64_t px, int64_t py)

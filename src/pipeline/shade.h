@@ -171,11 +171,22 @@ static inline uint32_t sr_shade_lit_texel(uint32_t t, float k)
     return out;
 }
 
+/* A lambert fragment lit by intensity k: its texel or albedo times k. */
+static SR_ALWAYS_INLINE uint32_t sr_shade_lit(const sr_shade_context *c, const float *var, float k)
+{
+    if (c->layout.uv >= 0) {
+        uint32_t texel = sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]);
+        return sr_shade_lit_texel(texel, k);
+    }
+    float rgb[3];
+    sr_shade_albedo(c, var, rgb);
+    return sr_shade_pack(k * rgb[0], k * rgb[1], k * rgb[2]);
+}
+
 /* The color of one fragment; `var` holds the perspective-correct varyings. */
 static SR_ALWAYS_INLINE uint32_t sr_shade_fragment(sr_shade mode, const sr_shade_context *c, const float *var,
                                                     uint32_t triangle_id)
 {
-    float rgb[3];
     switch (mode) {
     case SR_SHADE_ID:
         return (triangle_id + 1u) & 0xFFFFFFu;
@@ -187,14 +198,8 @@ static SR_ALWAYS_INLINE uint32_t sr_shade_fragment(sr_shade mode, const sr_shade
     }
     case SR_SHADE_TEXTURE:
         return sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]);
-    case SR_SHADE_LAMBERT: {
-        float k = sr_shade_lambert_intensity(c, var + c->layout.normal);
-        if (c->layout.uv >= 0)
-            return sr_shade_lit_texel(
-                sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]), k);
-        sr_shade_albedo(c, var, rgb);
-        return sr_shade_pack(k * rgb[0], k * rgb[1], k * rgb[2]);
-    }
+    case SR_SHADE_LAMBERT:
+        return sr_shade_lit(c, var, sr_shade_lambert_intensity(c, var + c->layout.normal));
     default:
         return 0;
     }

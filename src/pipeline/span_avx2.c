@@ -10,6 +10,7 @@
 #define SPAN_GATHER(texels, index) ((vi)_mm256_i32gather_epi32((const int *)(texels), (__m256i)(index), 4))
 #define SPAN_LANE_INDICES 0, 1, 2, 3, 4, 5, 6, 7
 #define SPAN_FLOOR(x) ((vf)_mm256_floor_ps((__m256)(x)))
+#define SPAN_STORE_WHERE(p, mask, v) _mm256_maskstore_epi32((int *)(p), (__m256i)(mask), (__m256i)(v))
 #define SPAN_LANES 8
 #define SPAN_KERNEL_GETTER sr_span_kernel_avx2
 #include "span_kernel.h"

@@ -55,30 +55,43 @@ static inline __attribute__((always_inline)) vf select_f(vi mask, vf a, vf b)
     return (vf)select_i(mask, (vi)a, (vi)b);
 }
 
-/* load_<suffix>: n values from p (a whole vector when n is SPAN_LANES),
- * zeros past n; store_<suffix>: v's first n lanes to p. Made for the depths
- * (float) and the packed colors (uint32_t in memory, int32_t in lanes). */
-#define SPAN_LOAD_STORE(suffix, vec, elem, lane)                                            \
-    static inline __attribute__((always_inline)) vec load_##suffix(const elem *p, int n)    \
-    {                                                                                       \
-        vec v = { 0 };                                                                      \
-        if (n == SPAN_LANES)                                                                \
-            memcpy(&v, p, sizeof v);                                                        \
-        else                                                                                \
-            for (int l = 0; l < n; l++)                                                     \
-                v[l] = (lane)p[l];                                                          \
-        return v;                                                                           \
-    }                                                                                       \
-    static inline __attribute__((always_inline)) void store_##suffix(elem *p, vec v, int n) \
-    {                                                                                       \
-        if (n == SPAN_LANES)                                                                \
-            memcpy(p, &v, sizeof v);                                                        \
-        else                                                                                \
-            for (int l = 0; l < n; l++)                                                     \
-                p[l] = (elem)v[l];                                                          \
-    }
-SPAN_LOAD_STORE(f, vf, float, float)
-SPAN_LOAD_STORE(i, vi, uint32_t, int32_t)
+/* The first n 32-bit values at p (depths or packed colors) as lanes, zeros
+ * past n: a masked load where the instruction set has one (SPAN_LOAD_FIRST),
+ * else a vector load of a whole group and a lane loop for a row's last. */
+static inline __attribute__((always_inline)) vi load_lanes(const void *p, int n)
+{
+#ifdef SPAN_LOAD_FIRST
+    return SPAN_LOAD_FIRST(p, n);
+#else
+    vi v = { 0 };
+    if (n == SPAN_LANES)
+        memcpy(&v, p, sizeof v);
+    else
+        for (int l = 0; l < n; l++)
+            memcpy((char *)&v + 4 * l, (const char *)p + 4 * l, 4);
+    return v;
+#endif
+}
+
+/* v's lanes where mask is set (a subset of the first n) to p, the rest of
+ * p untouched: a masked store where the instruction set has one
+ * (SPAN_STORE_WHERE: no load of what stays), else load, select and store of
+ * the n values. Memory past n is never written: it may be another thread's
+ * tile. */
+static inline __attribute__((always_inline)) void store_where(void *p, vi mask, vi v, int n)
+{
+#ifdef SPAN_STORE_WHERE
+    (void)n;
+    SPAN_STORE_WHERE(p, mask, v);
+#else
+    vi out = select_i(mask, v, load_lanes(p, n));
+    if (n == SPAN_LANES)
+        memcpy(p, &out, sizeof out);
+    else
+        for (int l = 0; l < n; l++)
+            memcpy((char *)p + 4 * l, (const char *)&out + 4 * l, 4);
+#endif
+}
 
 static inline __attribute__((always_inline)) vf edge_to_float(edge_lanes e)
 {
@@ -145,10 +158,31 @@ static inline __attribute__((always_inline)) int varying_count(sr_shade mode, al
     }
 }
 
-static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, int count, lanes *p)
+/* What a triangle's kernel computes once instead of per pixel (sr_interp),
+ * held in registers across its rows. */
+typedef struct triangle_lanes {
+    vf w;       /* when not SR_INTERP_PERSPECTIVE */
+    vf lambert; /* when SR_INTERP_FLAT_NORMAL */
+    vi color;   /* when color_per_triangle */
+} triangle_lanes;
+
+/* Gray lambert with a flat normal is one color over the whole triangle. */
+static inline __attribute__((always_inline)) bool color_per_triangle(sr_shade mode, albedo a, sr_interp interp)
 {
-    vf w = 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2);
-    for (int k = 0; k < count; k++)
+    return mode == SR_SHADE_LAMBERT && a == ALBEDO_GRAY && interp == SR_INTERP_FLAT_NORMAL;
+}
+
+/* The varyings a kernel interpolates: with a flat normal, only those after it. */
+static inline __attribute__((always_inline)) int first_varying(sr_interp interp)
+{
+    return interp == SR_INTERP_FLAT_NORMAL ? SECOND_VARYING : 0;
+}
+
+static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, const triangle_lanes *t,
+                                                                 sr_interp interp, int count, lanes *p)
+{
+    vf w = interp == SR_INTERP_PERSPECTIVE ? 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2) : t->w;
+    for (int k = first_varying(interp); k < count; k++)
         p->var[k] = (s->var0[k] + p->l1 * s->dvar1[k] + p->l2 * s->dvar2[k]) * w;
 }
 
@@ -290,7 +324,8 @@ static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(albedo a, co
 }
 
 /* sr_shade_fragment per lane. */
-static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albedo a, const sr_shade_context *c,
+static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albedo a, sr_interp interp,
+                                                            const triangle_lanes *t, const sr_shade_context *c,
                                                             const vf *var, uint32_t id)
 {
     vi zero = { 0 };
@@ -304,7 +339,7 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     case SR_SHADE_TEXTURE:
         return sample_lanes(c, var[0], var[1]);
     case SR_SHADE_LAMBERT: {
-        vf k = lambert_lanes(c, var);
+        vf k = interp == SR_INTERP_FLAT_NORMAL ? t->lambert : lambert_lanes(c, var);
         if (a == ALBEDO_TEXTURE)
             return lit_texel_lanes(sample_lanes(c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
         rgb_lanes base = albedo_lanes(a, var);
@@ -315,27 +350,28 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     }
 }
 
-/* Depth test, depth write and shading of up to SPAN_LANES pixels at `at`:
- * `live` marks the lanes within the row. */
+/* Depth test, depth write and shading of up to SPAN_LANES pixels at depth
+ * and color: `live` marks the lanes within the row. */
 static inline __attribute__((always_inline)) uint64_t
-fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-           bool greater, uint32_t id, size_t at, int n, vi live, float z_row, vf k, const edge_lanes e[3])
+fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, float *depth, uint32_t *color,
+           sr_shade mode, albedo a, sr_interp interp, bool greater, uint32_t id, int n, vi live,
+           float z_row, vf k, const edge_lanes e[3])
 {
     vf z = depth_lanes(s, z_row, k);
-    vf stored = load_f(fb->depth + at, n);
+    vf stored = (vf)load_lanes(depth, n);
     vi pass = live & (greater ? z > stored : z < stored);
     unsigned passed = lane_bits(pass);
     if (!passed)
         return 0;
-    stored = select_f(pass, z, stored);
-    store_f(fb->depth + at, stored, n);
-    if (mode != SR_SHADE_DEPTH) {
+    store_where(depth, pass, (vi)z, n);
+    if (color_per_triangle(mode, a, interp)) {
+        store_where(color, pass, t->color, n);
+    } else if (mode != SR_SHADE_DEPTH) {
         lanes p;
         p.l1 = edge_to_float(e[1]) * s->inv_area2;
         p.l2 = edge_to_float(e[2]) * s->inv_area2;
-        varyings_lanes(s, varying_count(mode, a), &p);
-        vi color = select_i(pass, shade_lanes(mode, a, c, p.var, id), load_i(fb->color + at, n));
-        store_i(fb->color + at, color, n);
+        varyings_lanes(s, t, interp, varying_count(mode, a), &p);
+        store_where(color, pass, shade_lanes(mode, a, interp, t, c, p.var, id), n);
     }
     return (uint64_t)__builtin_popcount(passed);
 }
@@ -347,15 +383,15 @@ fill_group(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb,
  * prefetch is harmless but a pointer would be undefined. */
 #define PREFETCH_BYTES 512
 
-static inline __attribute__((always_inline)) void prefetch_ahead(const sr_framebuffer *fb, size_t at)
+static inline __attribute__((always_inline)) void prefetch_ahead(const float *depth, const uint32_t *color)
 {
-    __builtin_prefetch((const void *)((uintptr_t)(fb->depth + at) + PREFETCH_BYTES), 1);
-    __builtin_prefetch((const void *)((uintptr_t)(fb->color + at) + PREFETCH_BYTES), 1);
+    __builtin_prefetch((const void *)((uintptr_t)depth + PREFETCH_BYTES), 1);
+    __builtin_prefetch((const void *)((uintptr_t)color + PREFETCH_BYTES), 1);
 }
 
 static inline __attribute__((always_inline)) uint64_t
-span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-         bool greater, uint32_t id, const sr_row_range *r)
+span_row(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, sr_framebuffer *fb,
+         sr_shade mode, albedo a, sr_interp interp, bool greater, uint32_t id, const sr_row_range *r)
 {
     vi lane = lanes_index();
     vf column = r->k + __builtin_convertvector(lane, vf); /* exact: small integers */
@@ -371,11 +407,16 @@ span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, s
         e[k] = (edge_lanes){ first + lane_lo * per_pixel, first + lane_hi * per_pixel };
         step[k] = (vdh){ 0 } + per_pixel * SPAN_LANES;
     }
+    /* The row's pixels, held apart from fb, so the compiler need not load
+     * fb->depth and fb->color again after each store. */
+    float *depth = fb->depth + r->at;
+    uint32_t *color = fb->color + r->at;
     uint64_t fragments = 0;
     for (int d = 0; d < r->count; d += SPAN_LANES, column += (float)SPAN_LANES) {
         int n = r->count - d < SPAN_LANES ? r->count - d : SPAN_LANES;
-        prefetch_ahead(fb, r->at + (size_t)d);
-        fragments += fill_group(s, c, fb, mode, a, greater, id, r->at + (size_t)d, n, lane < n, r->z, column, e);
+        prefetch_ahead(depth + d, color + d);
+        fragments += fill_group(s, t, c, depth + d, color + d, mode, a, interp, greater, id, n, lane < n, r->z,
+                                column, e);
         for (int k = 1; k < 3; k++) {
             e[k].lo += step[k];
             e[k].hi += step[k];
@@ -385,16 +426,31 @@ span_row(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, s
 }
 
 static inline __attribute__((always_inline)) uint64_t
-span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-              bool greater, uint32_t id)
+span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
+          sr_interp interp, bool greater, uint32_t id)
 {
+    triangle_lanes t = { .w = (vf){ 0 } + s->w, .lambert = (vf){ 0 } + s->lambert };
+    if (color_per_triangle(mode, a, interp))
+        t.color = shade_lanes(mode, a, interp, &t, c, (vf[SR_MAX_VARYINGS]){ { 0 } }, id);
     uint64_t fragments = 0;
     for (int j = s->box.y0; j < s->box.y1; j++) {
         sr_row_range r = sr_row_make(s, fb, true, j);
         if (r.count > 0)
-            fragments += span_row(s, c, fb, mode, a, greater, id, &r);
+            fragments += span_row(s, &t, c, fb, mode, a, interp, greater, id, &r);
     }
     return fragments;
+}
+
+/* One loop per interp for the modes that read varyings. */
+static inline __attribute__((always_inline)) uint64_t
+span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
+              bool greater, uint32_t id)
+{
+    if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_FLAT_NORMAL)
+        return span_rows(s, c, fb, mode, a, SR_INTERP_FLAT_NORMAL, greater, id);
+    if (varying_count(mode, a) > 0 && s->interp != SR_INTERP_PERSPECTIVE)
+        return span_rows(s, c, fb, mode, a, SR_INTERP_AFFINE, greater, id);
+    return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, id);
 }
 
 #define SPAN_KERNEL(mode, a, greater, name)                                                                   \

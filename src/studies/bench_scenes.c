@@ -28,6 +28,23 @@ static float STIFF_KEYS[][SR_FLIGHT_NUMBERS] = {
     { 0.0f, 1e-6f, 0.0f, 5.0f, 0.0f, 5.0f, 0, 1, 0, 120, 1e-6f, 1e9f },
 };
 
+/* The scanned meshes' views (eye, target, fov, near, far), in the mesh's
+ * loaded coordinates (OBJ's z negated); bench_scenes.h says what each shows. */
+typedef struct scan_view {
+    const char *name, *what, *file;
+    vec3 eye, target;
+    float fov, near, far;
+} scan_view;
+
+static const scan_view SCAN_VIEWS[] = {
+    { "dragon", "the Stanford dragon, 202k triangles, near 0.1, far 100, steep silhouettes", "build/scans/dragon.obj",
+      { -0.12f, 0.15f, 0.14f }, { -0.005f, 0.125f, 0.0f }, 60, 0.1f, 100 },
+    { "dragon-close", "the dragon at 48k triangles, camera a hair off its back, fov 100, near 1e-3, far 10",
+      "build/scans/dragon-48k.obj", { 0.03f, 0.15f, -0.012f }, { -0.1f, 0.13f, 0.0f }, 100, 1e-3f, 10 },
+    { "bunny-stiff", "the Stanford bunny (3674 triangles), its head close by, fov 90, near 1e-3, far 1e6, standard z",
+      "build/scans/bunny.obj", { -4.5f, 5.5f, -4.0f }, { 0.0f, 4.3f, 0.0f }, 90, 1e-3f, 1e6f },
+};
+
 static void scene_init(sr_bench_scene *s, const char *name, const char *what, sr_shade shade, int w, int h)
 {
     *s = (sr_bench_scene){ .name = name, .what = what, .shade = shade, .width = w, .height = h,
@@ -92,6 +109,35 @@ bool sr_bench_stiff(sr_bench_scene *s, sr_error *err)
     return load_room(s, err);
 }
 
+static bool load_scan(sr_bench_scene *s, const scan_view *v, sr_error *err)
+{
+    scene_init(s, v->name, v->what, SR_SHADE_LAMBERT, 1920, 1080);
+    memcpy(s->camera.eye, v->eye, sizeof(vec3));
+    memcpy(s->camera.target, v->target, sizeof(vec3));
+    s->camera.fov_deg = v->fov;
+    s->camera.near = v->near;
+    s->camera.far = v->far;
+    char obj[PATH_MAX];
+    if (!sr_data_find(v->file, obj, sizeof obj, err))
+        return sr_error_set(err, "%s is missing: `make scans` fetches it (tools/fetch-scans, with npm)", v->file);
+    return sr_obj_load(&s->mesh, obj, err);
+}
+
+bool sr_bench_scan_dragon(sr_bench_scene *s, sr_error *err)
+{
+    return load_scan(s, &SCAN_VIEWS[0], err);
+}
+
+bool sr_bench_scan_close(sr_bench_scene *s, sr_error *err)
+{
+    return load_scan(s, &SCAN_VIEWS[1], err);
+}
+
+bool sr_bench_scan_stiff(sr_bench_scene *s, sr_error *err)
+{
+    return load_scan(s, &SCAN_VIEWS[2], err);
+}
+
 /* A two-tone checker, so bilinear filtering has edges to blend. */
 static bool make_checker(sr_texture *t, sr_error *err)
 {
@@ -105,14 +151,27 @@ static bool make_checker(sr_texture *t, sr_error *err)
     return true;
 }
 
-bool sr_bench_fill(sr_bench_scene *s, sr_error *err)
+/* FILL_QUADS full-screen quads under an orthographic camera, far to near,
+ * so every quad passes the depth test over the last. */
+static bool make_fill(sr_bench_scene *s, sr_error *err)
 {
-    scene_init(s, "fill", "64 full-screen textured quads back to front, bilinear", SR_SHADE_TEXTURE, 1920, 1080);
     glm_vec3_copy((vec3){ 0.0f, 0.0f, 0.0f }, s->camera.eye);
     glm_vec3_copy((vec3){ 0.0f, 0.0f, 1.0f }, s->camera.target);
     s->camera.ortho_height = 2.0f;
-    /* Far to near, so every quad passes the depth test over the last. */
-    return sr_shape_quads(&s->mesh, FILL_QUADS, 4.0f, 64.0f, -0.5f, err) && make_checker(&s->texture, err);
+    return sr_shape_quads(&s->mesh, FILL_QUADS, 4.0f, 64.0f, -0.5f, err);
+}
+
+bool sr_bench_fill(sr_bench_scene *s, sr_error *err)
+{
+    scene_init(s, "fill", "64 full-screen textured quads back to front, bilinear", SR_SHADE_TEXTURE, 1920, 1080);
+    return make_fill(s, err) && make_checker(&s->texture, err);
+}
+
+bool sr_bench_fill_flat(sr_bench_scene *s, sr_error *err)
+{
+    scene_init(s, "fill-flat", "64 full-screen untextured quads back to front, lambert", SR_SHADE_LAMBERT, 1920,
+               1080);
+    return make_fill(s, err);
 }
 
 void sr_bench_scene_free(sr_bench_scene *s)

@@ -1,6 +1,6 @@
 /* bench_scenes.h — the benchmark's scenes, made in memory so the numbers do
  * not depend on files: a dense torus seen from outside and from inside its
- * tube, a flight through the room, full-screen textured quads. */
+ * tube, a flight through the room, full-screen quads textured and untextured. */
 #ifndef SOFTRAST_APP_BENCH_SCENES_H
 #define SOFTRAST_APP_BENCH_SCENES_H
 
@@ -37,8 +37,27 @@ bool sr_bench_fly(sr_bench_scene *s, sr_error *err);
 /* The room with near 1e-6 and far 1e9, on and beside its walls. */
 bool sr_bench_stiff(sr_bench_scene *s, sr_error *err);
 
+/* Scanned meshes (build/scans/, fetched by `make scans`: tools/fetch-scans),
+ * one camera each, id-comparable by the report and bench-gl --truth:
+ * the 202k-triangle dragon whole, near 0.1, far 100, its horns, claws and
+ * body edge-on at the silhouettes; */
+bool sr_bench_scan_dragon(sr_bench_scene *s, sr_error *err);
+
+/* the 48k-triangle dragon with the camera a hair off its back, fov 100,
+ * near 1e-3, far 10: the body's surface fills half the frame at grazing
+ * angles, the head and horns behind it; */
+bool sr_bench_scan_close(sr_bench_scene *s, sr_error *err);
+
+/* the bunny (3674 triangles) with stiff planes, near 1e-3, far 1e6,
+ * standard z: its head from close by, fov 90, edge-on against its back. */
+bool sr_bench_scan_stiff(sr_bench_scene *s, sr_error *err);
+
 /* 64 full-screen textured quads drawn back to front, bilinear. */
 bool sr_bench_fill(sr_bench_scene *s, sr_error *err);
+
+/* The same quads untextured, lambert: the per-pixel loop's peak rate, every
+ * pixel shaded 64 times (bench prints it in Gpix/s). */
+bool sr_bench_fill_flat(sr_bench_scene *s, sr_error *err);
 
 void sr_bench_scene_free(sr_bench_scene *s);
 

@@ -39,6 +39,10 @@ static const knob KNOBS[SR_REPORT_KNOBS] = {
 static const knob REFERENCE = { "reference: 16 bits, exact clip, reversed z", REFERENCE_BITS, SR_CLIP_EXACT, 0.0f,
                                 true, 1 };
 
+const sr_report_scene_make sr_report_scene_makers[SR_REPORT_SCENES] = {
+    sr_bench_dense_default, sr_bench_fly, sr_bench_stiff, sr_bench_scan_dragon, sr_bench_scan_close, sr_bench_scan_stiff,
+};
+
 int sr_report_scene_frames(const sr_bench_scene *s)
 {
     return s->path.count ? (s->path.count < MAX_PATH_FRAMES ? s->path.count : MAX_PATH_FRAMES) : 1;
@@ -118,7 +122,7 @@ static bool measure_knob(const sr_bench_scene *s, const sr_framebuffer *refs, co
     double *ms = malloc((size_t)timed * sizeof *ms);
     bool ok = ws && ms && sr_framebuffer_create(&fb, s->width, s->height, err);
     uint64_t differ = 0;
-    sr_truth_tally tally = { 0 };
+    sr_truth_tally tally = { .coverage_tolerance = sr_truth_coverage_tolerance(k->subpixel_bits) };
     *out = (sr_report_point){ .knob = k->name };
     for (int f = 0; ok && f < scene_n; f++) {
         for (int r = 0; ok && r < frames; r++)
@@ -173,10 +177,8 @@ bool sr_report_write(const char *dir, int frames, sr_error *err)
 {
     sr_report_scene scenes[SR_REPORT_SCENES];
     sr_bench_scene s;
-    bool (*make[SR_REPORT_SCENES])(sr_bench_scene *, sr_error *) = { sr_bench_dense_default, sr_bench_fly,
-                                                                      sr_bench_stiff };
     for (int i = 0; i < SR_REPORT_SCENES; i++) {
-        bool ok = make[i](&s, err) && measure_scene(&s, frames, &scenes[i], err);
+        bool ok = sr_report_scene_makers[i](&s, err) && measure_scene(&s, frames, &scenes[i], err);
         sr_bench_scene_free(&s);
         if (!ok)
             return false;

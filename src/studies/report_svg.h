@@ -10,7 +10,7 @@
 #include "softrast_private.h"
 
 #define SR_REPORT_KNOBS 9
-#define SR_REPORT_SCENES 3
+#define SR_REPORT_SCENES 6
 
 typedef struct sr_report_point {
     const char *knob;

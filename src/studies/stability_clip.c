@@ -3,7 +3,8 @@
  * float exactly as the vertex stage does and clipped by sr_clip_polygon
  * against the planes its outcodes name; its trace hook hands over each cut,
  * which is compared with the exact intersection of the same float edge with
- * the same plane (clip_exact.h, summed in long double). */
+ * the same plane or, for a corner, with the triangle's exact point on both
+ * planes (clip_exact.h, summed in long double). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,10 +20,21 @@
 #define SEED 0x5EEDC11Bu
 #define TOLERANCE_SCREEN_SIDE 1920 /* pixels: the benchmark's width */
 
-/* The exact cut of the traced edge, rounded once from the exact quotient's
- * parts in long double. */
+/* The exact cut of the traced edge, or the exact corner of the traced
+ * triangle, rounded once from the exact quotient's parts in long double. */
 static void exact_cut(const sr_clip_cut *c, long double cut[4])
 {
+    if (c->corner) {
+        sr_clip_exact_corner corner;
+        sr_clip_exact_corner_of(c->triangle, c->first, c->plane, NULL, &corner);
+        long double denominator = expansion_value_long(corner.denominator, corner.denominator_terms);
+        for (int i = 0; i < 4; i++) {
+            double num[SR_CLIP_CORNER_NUMERATOR_TERMS];
+            int n = sr_clip_exact_corner_numerator(&corner, c->triangle, i, num);
+            cut[i] = expansion_value_long(num, n) / denominator;
+        }
+        return;
+    }
     sr_clip_exact_edge edge;
     sr_clip_exact_edge_of(c->plane, c->inside, c->outside, NULL, &edge);
     long double denominator = expansion_value_long(edge.denominator, edge.denominator_terms);

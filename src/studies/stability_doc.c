@@ -1,9 +1,8 @@
 /* Writes docs/stability.md from a run's numbers, and the plot beside it. */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <string.h>
 
+#include "doc_file.h"
 #include "timing.h"
 #include "stability.h"
 
@@ -125,8 +124,11 @@ static void write_clip_section(FILE *f, const sr_stability_report *r)
                "in float by the camera's P·V (cglm) as the vertex stage does, are clipped against the planes\n"
                "their outcodes name by `sr_clip_polygon`. Every cut vertex it makes (its trace hook hands each\n"
                "over) is compared with the exact cut of the same float edge by the same plane,\n"
-               "v = (d_in·b − d_out·a) / (d_in − d_out) with both sums and\n"
-               "all products carried error-free (two-sum, fma) and one rounding at the end (long double).\n"
+               "v = (d_in·b − d_out·a) / (d_in − d_out), or, for a corner (the default and exact cut a\n"
+               "triangle on two planes or more from its own vertices, docs/precision.md), with the\n"
+               "triangle's exact point on both planes, Σ c_k·v_k / Σ c_k, c = P × Q of the vertices'\n"
+               "distances; both sums and all products carried error-free (two-sum, fma) and one rounding at\n"
+               "the end (long double).\n"
                "**Metric:** e = max(|Δx|, |Δy|, |Δz|, |Δw|) / max(|x|, |y|, |z|, |w|) of the exact vertex. Inside\n"
                "the clip volume the denominator is |w|, so e is an NDC-sized error: the vertex moves by at most\n"
                "e·W pixels on a W-pixel screen (e ≤ %.1e is below half a 1/256 subpixel step at 1920 px, the\n"
@@ -323,14 +325,14 @@ static void write_depth_section(FILE *f, const sr_stability_depth *d)
 
 static bool write_markdown(const char *path, const sr_stability_report *r, sr_error *err)
 {
-    FILE *f = fopen(path, "w");
+    FILE *f = sr_doc_open(path, err);
     if (!f)
-        return sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+        return false;
     write_intro(f, r);
     write_clip_section(f, r);
     write_hits_section(f, r);
     write_depth_section(f, &r->depth);
-    return fclose(f) == 0 ? true : sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    return sr_doc_close(f, path, err);
 }
 
 bool sr_stability_files(const char *dir, const sr_stability_report *r, sr_error *err)

@@ -2,12 +2,11 @@
  * ordered separation s/d against far/near, one colour per distance, solid
  * for the standard mapping and dashed for reversed z. Cells where no
  * separation is ordered sit on a "none" row above the plot. */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <string.h>
 
 #include "stability.h"
+#include "svg_plot.h"
 
 #define PLOT_W 820
 #define PLOT_H 540
@@ -85,19 +84,15 @@ static void write_legend(FILE *f, const sr_stability_depth *d)
 
 bool sr_stability_svg(const char *path, const sr_stability_depth *d, sr_error *err)
 {
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
-    fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d' font-family='sans-serif'>\n", PLOT_W,
-            PLOT_H);
-    fprintf(f, "<rect width='100%%' height='100%%' fill='white'/>\n");
-    fprintf(f, "<text x='%d' y='22' font-size='14' text-anchor='middle'>softrast: depth resolution, standard "
-               "against reversed z (./build/softrast bench --stability)</text>\n", PLOT_W / 2);
+    sr_svg_file file;
+    if (!sr_svg_begin(&file, path, PLOT_W, PLOT_H, "softrast: depth resolution, standard against reversed z "
+                      "(./build/softrast bench --stability)", err))
+        return false;
+    FILE *f = file.f;
     write_axes(f, d);
     for (int m = 0; m < SR_STABILITY_MAPPINGS; m++)
         for (int k = 0; k < SR_STABILITY_DISTANCES; k++)
             write_series(f, d, k, m);
     write_legend(f, d);
-    fprintf(f, "</svg>\n");
-    return fclose(f) == 0 ? true : sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    return sr_svg_end(&file, err);
 }

@@ -15,13 +15,6 @@
 #define BOX_MARGIN_PX 1e-3           /* a projected vertex's rounding is far below this */
 #define PROGRESS_MS 1000.0
 
-/* The perspective projection as the truth reads it: X_ndc = sx·x/z,
- * Y_ndc = sy·y/z, z_ndc = a + b/z. */
-typedef struct truth_lens {
-    double sx, sy, a, b;
-    double near_z, far_z; /* the view z of z_ndc = 0 and 1, nearer first; far_z may be +inf */
-} truth_lens;
-
 /* A triangle that faces the camera the way the cull keeps. */
 typedef struct truth_triangle {
     double edge[3][3];     /* edge k, opposite corner k: v[k+1] × v[k+2] (the ray is inside where d·edge has det's sign) */
@@ -33,7 +26,7 @@ typedef struct truth_triangle {
 } truth_triangle;
 
 typedef struct truth_scene {
-    truth_lens lens;
+    sr_truth_lens lens;
     int width, height;
     double (*verts)[3];    /* view space */
     truth_triangle *tris;
@@ -48,14 +41,14 @@ typedef struct truth_hit {
     double z, rel_error; /* view z and its relative error bound */
 } truth_hit;
 
-static bool lens_make(const mat4 p, truth_lens *lens, sr_error *err)
+static bool lens_make(const mat4 p, sr_truth_lens *lens, sr_error *err)
 {
     bool perspective = p[2][3] == 1.0f && p[3][3] == 0.0f && p[0][0] > 0.0f && p[1][1] > 0.0f &&
                        p[2][0] == 0.0f && p[2][1] == 0.0f && p[3][0] == 0.0f && p[3][1] == 0.0f &&
                        p[0][1] == 0.0f && p[1][0] == 0.0f && p[0][3] == 0.0f && p[1][3] == 0.0f;
     if (!perspective)
         return sr_error_set(err, "the truth renderer takes a perspective projection (no --ortho)");
-    *lens = (truth_lens){ .sx = p[0][0], .sy = p[1][1], .a = p[2][2], .b = p[3][2] };
+    *lens = (sr_truth_lens){ .sx = p[0][0], .sy = p[1][1], .a = p[2][2], .b = p[3][2] };
     double z0 = -lens->b / lens->a, z1 = lens->b / (1.0 - lens->a);
     bool ok0 = z0 > 0.0 && isfinite(z0), ok1 = z1 > 0.0 && isfinite(z1);
     if (!ok0 && !ok1)
@@ -144,7 +137,7 @@ static bool pixel_box(const truth_scene *s, const double *v[3], uint16_t out[4])
     return true;
 }
 
-static bool beyond_depth_range(const truth_lens *lens, const double *v[3])
+static bool beyond_depth_range(const sr_truth_lens *lens, const double *v[3])
 {
     double lo = fmin(v[0][2], fmin(v[1][2], v[2][2])), hi = fmax(v[0][2], fmax(v[1][2], v[2][2]));
     return hi < 0.5 * lens->near_z || lo > 2.0 * lens->far_z;
@@ -281,7 +274,7 @@ static int decided_sign(double value, double error)
 /* True if the hit at z (relative error rel) lies within the near and far planes. */
 static bool within_depth(const truth_scene *s, const truth_triangle *t, const sr_truth_ray *ray, double z, double rel)
 {
-    const truth_lens *l = &s->lens;
+    const sr_truth_lens *l = &s->lens;
     double a_hi, a_lo, over = l->b / z;
     two_sum(l->a, -1.0, &a_hi, &a_lo);
     double over_error = rel < 0.25 && isfinite(over) ? 2.0 * fabs(over) * (rel + 4.0 * UNIT_ROUNDOFF) : INFINITY;
@@ -398,8 +391,13 @@ bool sr_truth_render(const sr_draw_desc *desc, int width, int height, sr_truth_i
         return sr_error_set(err, "truth image size %dx%d out of range", width, height);
     bool ok = lens_make(desc->projection, &s.lens, err) && scene_make(&s, desc, err) &&
               image_alloc(out, width, height, err);
-    if (ok)
+    if (ok) {
         trace(&s, out, start_ms);
+        out->mesh = desc->mesh;
+        out->verts = s.verts; /* the image keeps the view-space vertices for truth_outline.h */
+        out->lens = s.lens;
+        s.verts = NULL;
+    }
     double total_ms = sr_now_ms() - start_ms;
     if (ok && total_ms >= PROGRESS_MS)
         fprintf(stderr, "truth: %u triangles in view, %dx%d, %.1f s\n", s.tri_count, width, height, total_ms / 1000.0);
@@ -412,5 +410,6 @@ void sr_truth_image_free(sr_truth_image *t)
     free(t->ids);
     free(t->distance);
     free(t->runner_up);
+    free(t->verts);
     *t = (sr_truth_image){ 0 };
 }

@@ -18,11 +18,24 @@
 
 #include "softrast_private.h"
 
+/* The perspective projection as the truth reads it: X_ndc = sx·x/z,
+ * Y_ndc = sy·y/z, z_ndc = a + b/z. */
+typedef struct sr_truth_lens {
+    double sx, sy, a, b;
+    double near_z, far_z; /* the view z of z_ndc = 0 and 1, nearer first; far_z may be +inf */
+} sr_truth_lens;
+
 typedef struct sr_truth_image {
     int width, height;
     uint32_t *ids;      /* triangle slot + 1, as --shade id writes it; 0: none */
     double *distance;   /* view-space z of the nearest hit; +inf: none */
     double *runner_up;  /* view-space z of the next hit behind it (or tied); +inf: none */
+    /* The geometry the image was traced on, for truth_outline.h: the
+     * desc's mesh (borrowed: it must outlive every use of the image), its
+     * vertices in view space (owned) and the lens. */
+    const sr_mesh *mesh;
+    double (*verts)[3];
+    sr_truth_lens lens;
 } sr_truth_image;
 
 /* Renders the truth of desc's mesh, world, view, projection (a perspective

@@ -8,43 +8,6 @@
 #define RAY_SUM_MAX (3 * RAY_TRIPLE_MAX)
 #define PRODUCT_MAX (2 * POINT_TRIPLE_MAX * RAY_SUM_MAX)
 
-/* x + y = a + b exactly, for |a| >= |b| (Dekker). */
-static void fast_two_sum(double a, double b, double *x, double *y)
-{
-    *x = a + b;
-    *y = b - (*x - a);
-}
-
-/* The expansion e[0..n) rewritten in place with as few parts as its value
- * needs (Shewchuk's Compress); returns the new length. */
-static int compress(double *e, int n)
-{
-    if (n == 0)
-        return 0;
-    int bottom = n - 1;
-    double q = e[bottom];
-    for (int i = n - 2; i >= 0; i--) {
-        double sum, small;
-        fast_two_sum(q, e[i], &sum, &small);
-        if (small != 0.0) {
-            e[bottom--] = sum;
-            q = small;
-        } else {
-            q = sum;
-        }
-    }
-    int top = 0;
-    for (int i = bottom + 1; i < n; i++) {
-        double sum, small;
-        fast_two_sum(e[i], q, &sum, &small);
-        if (small != 0.0)
-            e[top++] = small;
-        q = sum;
-    }
-    e[top] = q;
-    return top + 1;
-}
-
 /* The sign of a nonoverlapping expansion: its largest nonzero part's. */
 static int sign_of(const double *e, int n)
 {

@@ -151,17 +151,37 @@ static bool window_grab(window *w, const sr_viewer *v, const char *path, sr_erro
     return ok;
 }
 
-static bool save_frame(const char *dir, const char *name, int frame, const sr_viewer *v, sr_error *err)
+/* Digits of a flight's frame numbers: 4, or as many as its last frame
+ * needs, so that the files of any flight (and of each of its shards) sort
+ * in frame order. */
+static int frame_digits(int frames)
+{
+    int digits = 4;
+    for (int last = frames - 1; last >= 10000; last /= 10)
+        digits++;
+    return digits;
+}
+
+static bool save_frame(const char *dir, int digits, int frame, const sr_viewer *v, sr_error *err)
 {
     char prefix[1024];
-    snprintf(prefix, sizeof prefix, "%s/%s-%04d", dir, name, frame);
+    if (snprintf(prefix, sizeof prefix, "%s/frame-%0*d", dir, digits, frame) >= (int)sizeof prefix)
+        return sr_error_set(err, "--shots: the folder's path is too long (%zu bytes)", strlen(dir));
     return sr_viewer_save(v, prefix, err);
 }
 
-static void print_frame_camera(int frame, const sr_camera *c)
+static bool grab_frame(window *w, const sr_viewer *v, const char *dir, int digits, int frame, sr_error *err)
 {
-    printf("frame %04d: --eye %.9g,%.9g,%.9g --target %.9g,%.9g,%.9g --up %.9g,%.9g,%.9g --fov %.9g --near %.9g "
-           "--far %.9g\n", frame, c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2],
+    char path[1024];
+    if (snprintf(path, sizeof path, "%s/window-%0*d.png", dir, digits, frame) >= (int)sizeof path)
+        return sr_error_set(err, "--grab: the folder's path is too long (%zu bytes)", strlen(dir));
+    return window_grab(w, v, path, err);
+}
+
+static void print_frame_camera(int digits, int frame, const sr_camera *c)
+{
+    printf("frame %0*d: --eye %.9g,%.9g,%.9g --target %.9g,%.9g,%.9g --up %.9g,%.9g,%.9g --fov %.9g --near %.9g "
+           "--far %.9g\n", digits, frame, c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2],
            c->up[0], c->up[1], c->up[2], c->fov_deg, c->near, c->far);
 }
 
@@ -199,21 +219,20 @@ static bool fly_script(const view_job *job, sr_viewer *v, window *w, sr_error *e
         return false;
     int frames = job->frames ? job->frames : script.count;
     int first = job->range_set ? job->range[0] : 0, end = job->range_set ? job->range[1] : frames;
+    int digits = frame_digits(frames);
     bool ok = end <= frames ||
               sr_error_set(err, "--frame-range %d:%d ends past the flight's %d frames (B is at most %d)", first, end,
                            frames, frames);
     for (int f = first; ok && f < end && !v->quit; f++) {
-        char grab[1024];
         SDL_Event e;
         while (w->window && SDL_PollEvent(&e))
             sr_viewer_handle_event(v, &e);
         sr_flight_camera(&script, f, frames, &v->setup.camera);
-        print_frame_camera(f, &v->setup.camera);
-        ok = sr_viewer_draw(v, job->overlays, err) && (!job->shots_dir || save_frame(job->shots_dir, "frame", f, v, err));
+        print_frame_camera(digits, f, &v->setup.camera);
+        ok = sr_viewer_draw(v, job->overlays, err) && (!job->shots_dir || save_frame(job->shots_dir, digits, f, v, err));
         if (ok && w->window)
             window_present(w, v);
-        snprintf(grab, sizeof grab, "%s/window-%04d.png", job->grab_dir ? job->grab_dir : ".", f);
-        ok = ok && (!job->grab_dir || window_grab(w, v, grab, err));
+        ok = ok && (!job->grab_dir || grab_frame(w, v, job->grab_dir, digits, f, err));
     }
     sr_flight_free(&script);
     return ok;

@@ -24,7 +24,7 @@ static void cycle_shade(sr_viewer *v)
     int mode = v->setup.shade;
     do
         mode = (mode + 1) % SR_SHADE_COUNT;
-    while (!sr_scene_supports(&v->scene, (sr_shade)mode));
+    while (!sr_shade_supported(&v->scene.mesh, &v->scene.texture, (sr_shade)mode));
     v->setup.shade = mode;
 }
 

@@ -1,0 +1,31 @@
+/* clip_corner.h — the point of a triangle on two clip planes, for a vertex
+ * that a second plane cuts from the first plane's cut line.
+ *
+ * With P_k and Q_k the distances of the triangle's vertices to the two
+ * planes, the weights c = P × Q give the corner Σ c_k·v_k / Σ c_k
+ * (clip_exact.h). The weights depend on the positions alone and are taken
+ * exactly, from the vertices in an order of their positions' bits, so a
+ * corner is the same bits whichever vertex the triangle starts from,
+ * whichever way it winds and whatever varyings it carries. A corner is made
+ * only where every weight has the sign of their sum (Σ c_k != 0): the point
+ * then lies in the triangle, its position is a convex combination of the
+ * vertices' and each varying is interpolated with the same weights and kept
+ * within the vertices' range. Otherwise (a degenerate triangle, lines that
+ * are parallel in it, or a polygon edge that rounding put on the wrong
+ * line) there is no corner and the caller clips the triangle edge by edge.
+ */
+#ifndef SOFTRAST_PIPELINE_CLIP_CORNER_H
+#define SOFTRAST_PIPELINE_CLIP_CORNER_H
+
+#include "clip.h"
+
+/* The corner of tri on `first` and `plane`, its position in double where
+ * an error bound allows `tolerance` (NDC) and precision is adaptive, else
+ * exactly rounded once; floats = 4 + varyings. Placed on both planes.
+ * Returns the precision of its position, or SR_CLIP_ADAPTIVE when there is
+ * no corner (cut untouched). */
+sr_clip_precision sr_clip_corner(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane, int floats,
+                                 sr_clip_precision precision, double tolerance, const sr_clip_depth *depth,
+                                 sr_vertex_out *cut);
+
+#endif
