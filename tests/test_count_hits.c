@@ -8,8 +8,8 @@
 
 #include "raster_reference.h"
 
-#define COUNT_W 200 /* several tiles each way, the last ones partial */
-#define COUNT_H 130
+#define COUNT_W (2 * SR_TILE_SIDE + 72) /* several tiles each way, the last ones partial */
+#define COUNT_H (SR_TILE_SIDE + 66)
 #define COUNT_TRIANGLES 400
 
 /* A triangle list in pixel space from subpixel vertices (exact in float);

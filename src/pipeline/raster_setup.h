@@ -23,7 +23,7 @@ typedef struct sr_edge {
 } sr_edge;
 
 /* What a triangle lets the per-pixel loops leave out, chosen once per
- * triangle (sr_raster_triangle_in_box). Each choice computes per triangle
+ * triangle in its set-up (sr_raster_setup). Each choice computes per triangle
  * exactly the float values the general loop would compute per pixel, so the
  * image does not depend on it. */
 typedef enum sr_interp {
