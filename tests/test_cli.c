@@ -415,5 +415,5 @@ Test(cli, bench_shade_replaces_the_scenes_shading_or_skips)
     cr_expect_null(strstr(r.out, "skipped"), "%s", r.out);
     r = run_softrast_env(temp_dir, "timeout -s KILL 60", "bench --scene fly --frames 1 --shade color");
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
-    cr_expect_not_null(strstr(r.out, "fly      skipped: it lacks what --shade color reads"), "%s", r.out);
+    cr_expect_not_null(strstr(r.out, "fly       skipped: it lacks what --shade color reads"), "%s", r.out);
 }

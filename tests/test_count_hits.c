@@ -8,20 +8,24 @@
 
 #include "raster_reference.h"
 
-#define COUNT_W 200 /* several tiles each way, the last ones partial */
-#define COUNT_H 130
+#define COUNT_W (2 * SR_TILE_SIDE + 72) /* several tiles each way, the last ones partial */
+#define COUNT_H (SR_TILE_SIDE + 66)
 #define COUNT_TRIANGLES 400
 
-/* A triangle list in pixel space from subpixel vertices (exact in float). */
-static void mesh_of(sr_mesh *mesh, const ref_point (*tris)[3], uint32_t n)
+/* A triangle list in pixel space from subpixel vertices (exact in float);
+ * `shaded`: with vertex colors and a depth that varies per vertex. */
+static void mesh_of(sr_mesh *mesh, const ref_point (*tris)[3], uint32_t n, bool shaded)
 {
-    scene_mesh_alloc(mesh, 3 * n, n, false);
+    scene_mesh_alloc(mesh, 3 * n, n, shaded);
     for (uint32_t t = 0; t < n; t++) {
         for (uint32_t k = 0; k < 3; k++) {
-            mesh->positions[3 * t + k][0] = (float)tris[t][k].x / ONE;
-            mesh->positions[3 * t + k][1] = (float)tris[t][k].y / ONE;
-            mesh->positions[3 * t + k][2] = TRIANGLE_Z;
-            mesh->indices[3 * t + k] = 3 * t + k;
+            uint32_t v = 3 * t + k;
+            mesh->positions[v][0] = (float)tris[t][k].x / ONE;
+            mesh->positions[v][1] = (float)tris[t][k].y / ONE;
+            mesh->positions[v][2] = shaded ? 0.1f + 0.8f * (float)((v * 7) % 11) / 10.0f : TRIANGLE_Z;
+            for (int c = 0; shaded && c < 3; c++)
+                mesh->colors[v][c] = (float)((v * 5 + (uint32_t)c * 3) % 8) / 7.0f;
+            mesh->indices[v] = v;
         }
     }
 }
@@ -57,7 +61,7 @@ static uint32_t expect_reference_counts(const ref_point (*tris)[3], uint32_t n, 
 {
     sr_mesh mesh;
     sr_framebuffer fb;
-    mesh_of(&mesh, tris, n);
+    mesh_of(&mesh, tris, n, false);
     scene_fb_make(&fb, width, height);
     size_t pixels = scene_pixel_count(&fb);
     uint32_t *want = malloc(pixels * sizeof *want);
@@ -108,4 +112,69 @@ Test(count_hits, random_triangles_match_the_reference_at_every_thread_count)
     for (int t = 0; t < COUNT_TRIANGLES; t++)
         random_triangle(&rng, (kind)(t % KIND_COUNT), COUNT_W, COUNT_H, tris[t]);
     cr_assert_gt(expect_reference_counts(tris, COUNT_TRIANGLES, COUNT_W, COUNT_H), 2);
+}
+
+/* The binned path sets a triangle that spans tiles up once and sends it only
+ * to the tiles its edges reach, each flagged covered whole or not. These
+ * put edges along tile borders, through the pixel centres of a tile's first
+ * column or row (the top-left rule decides which tile draws them) and half
+ * a pixel either side, and triangles over every tile, on 4x3 tiles. */
+#define BORDER_T ((int64_t)SR_TILE_SIDE)
+#define BORDER_W ((int)(4 * BORDER_T))
+#define BORDER_H ((int)(3 * BORDER_T))
+#define TS (BORDER_T * ONE) /* a tile side in subpixels */
+#define PS(n) ((int64_t)(n) * ONE) /* n pixels in subpixels */
+static const ref_point tile_border_tris[][3] = {
+    /* a quad split on its diagonal, its sides on tile borders */
+    { { TS, TS }, { 3 * TS, TS }, { 3 * TS, 2 * TS } },
+    { { TS, TS }, { 3 * TS, 2 * TS }, { TS, 2 * TS } },
+    /* two triangles sharing a vertical edge through the centres of a tile's
+     * first column, two sharing a horizontal one through a first row */
+    { { TS + HALF, PS(8) }, { TS + HALF, 3 * TS - PS(5) }, { PS(10), 2 * TS } },
+    { { TS + HALF, PS(8) }, { 2 * TS + PS(30), TS }, { TS + HALF, 3 * TS - PS(5) } },
+    { { PS(5), 2 * TS + HALF }, { 4 * TS - PS(3), 2 * TS + HALF }, { 2 * TS, 3 * TS - PS(1) } },
+    { { PS(5), 2 * TS + HALF }, { 2 * TS, TS + PS(3) }, { 4 * TS - PS(3), 2 * TS + HALF } },
+    /* slivers on a border: one subpixel wide, and half a pixel tall */
+    { { 2 * TS, 0 }, { 2 * TS + 1, 0 }, { 2 * TS + HALF, 3 * TS } },
+    { { 0, TS + PS(1) }, { 4 * TS, TS }, { 0, TS + PS(1) - HALF } },
+    /* over every tile, both windings, corners on tile corners or past the screen */
+    { { 0, 0 }, { 4 * TS, 0 }, { 0, 3 * TS } },
+    { { 4 * TS, 3 * TS }, { 0, 3 * TS }, { 4 * TS, 0 } },
+    { { PS(-20), PS(-30) }, { 4 * TS + PS(40), TS }, { TS, 3 * TS + PS(50) } },
+};
+#define BORDER_TRIS ((uint32_t)(sizeof tile_border_tris / sizeof *tile_border_tris))
+
+Test(count_hits, triangles_on_tile_borders_match_the_reference)
+{
+    cr_assert_gt(expect_reference_counts(tile_border_tris, BORDER_TRIS, BORDER_W, BORDER_H), 2);
+}
+
+/* The same triangles shaded (colors, depth per vertex): every thread count
+ * and per-pixel loop gives the one-thread scalar picture, bit for bit. */
+Test(count_hits, triangles_on_tile_borders_shade_the_same_on_every_path)
+{
+    sr_mesh mesh;
+    mesh_of(&mesh, tile_border_tris, BORDER_TRIS, true);
+    sr_framebuffer want, got;
+    scene_fb_make(&want, BORDER_W, BORDER_H);
+    scene_fb_make(&got, BORDER_W, BORDER_H);
+    sr_error err = { "" };
+    size_t pixels = scene_pixel_count(&want);
+    for (int s = SR_SIMD_SCALAR; s < SR_SIMD_COUNT; s++) {
+        for (int threads = 1; threads <= 3; threads++) {
+            sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_COLOR, .cull = SR_CULL_NONE, .threads = threads,
+                                  .study = &(sr_draw_study){ .simd = (sr_simd)s, .force_tiles = true } };
+            scene_pixel_ortho(&desc, BORDER_W, BORDER_H);
+            sr_framebuffer *fb = s == SR_SIMD_SCALAR && threads == 1 ? &want : &got;
+            sr_framebuffer_clear(fb, 0);
+            cr_assert(sr_draw(fb, &desc, NULL, &err), "sr_draw: %s", err.message);
+            cr_assert_eq(memcmp(fb->color, want.color, pixels * sizeof *fb->color), 0, "%s, %d threads: color",
+                         sr_simd_name((sr_simd)s), threads);
+            cr_assert_eq(memcmp(fb->depth, want.depth, pixels * sizeof *fb->depth), 0, "%s, %d threads: depth",
+                         sr_simd_name((sr_simd)s), threads);
+        }
+    }
+    sr_framebuffer_destroy(&want);
+    sr_framebuffer_destroy(&got);
+    sr_mesh_free(&mesh);
 }

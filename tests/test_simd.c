@@ -14,7 +14,7 @@
 
 #define SOUP_TRIANGLES 60
 #define SOUP_SEED 0x51D51D
-#define FB_SIDE 97 /* odd, so rows end in partial groups of lanes */
+#define FB_SIDE (SR_TILE_SIDE + 33) /* odd, so rows end in partial groups of lanes; 2x2 tiles */
 #define HUGE_UV 3e7f /* past 2^23, where a float has no fraction left to wrap */
 #define TILED_THREADS 3
 

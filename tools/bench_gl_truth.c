@@ -28,7 +28,7 @@ static bool tally_frames(bench_gl_scene *g, const sr_bench_scene *s, int frames,
     int n = sr_report_scene_frames(s);
     bool ok = true;
     for (int f = 0; ok && f < n; f++) {
-        sr_truth_image truth;
+        sr_truth_image truth = { 0 };
         mat4 projection;
         ok = bench_gl_scene_prepare(g, s, f, n, err) && bench_gl_scene_draw(g, err) &&
              bench_gl_scene_read(g, fb->color, fb->depth, err) && frame_truth(s, f, n, &truth, projection, err);

@@ -50,7 +50,9 @@ typedef enum sr_simd {
 #define SR_MIN_SUBPIXEL_BITS 2 /* the range a study may ask for */
 #define SR_MAX_SUBPIXEL_BITS 16
 #define SR_MAX_GUARD_BAND 64.0f
-#define SR_TILE_SIDE 64 /* pixels on a side of a tile of the threaded path */
+/* Pixels on a side of a tile of the threaded path (docs/performance.md): a
+ * measurement fact for studies and tests, not a promise; it may change. */
+#define SR_TILE_SIDE 128
 #define SR_MAX_VARYINGS 8 /* lambert: normal 3 + color 3 (or uv 2) */
 
 /* A fan-triangle vertex after divide, viewport and snapping: position in

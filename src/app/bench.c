@@ -99,7 +99,7 @@ static bool run_scene(sr_bench_scene *s, bool made, const bench_job *job, bench_
     sr_bench_run how = { .frames = job->frames, .threads = job->threads, .simd = (sr_simd)job->simd,
                          .times = job->stages ? &times : NULL };
     if (made && job->shade >= 0 && !sr_shade_supported(&s->mesh, &s->texture, (sr_shade)job->shade)) {
-        printf("%-8s skipped: it lacks what --shade %s reads\n", s->name, SR_SHADE_NAMES[job->shade]);
+        printf("%-9s skipped: it lacks what --shade %s reads\n", s->name, SR_SHADE_NAMES[job->shade]);
         sr_bench_scene_free(s);
         return true;
     }

@@ -330,7 +330,10 @@ static bool cut_from_triangle(triangle_clip *tc, int line, sr_clip_plane plane, 
     }
     /* A cut from the triangle may come from vertices far off, whose float z
      * (a·w + b rounded at their w) cannot carry b: under the depth model z
-     * follows the cut's own w. */
+     * follows the cut's own w, on every plane (the edge-by-edge path
+     * interpolates z on the side planes, so a cut's recorded z may differ
+     * between the two paths; no pixel does: the viewport's z_ndc comes
+     * from w). */
     if (depth && depth->on)
         z_from_w(depth, cut->v);
     keep(tc, &made, cut);

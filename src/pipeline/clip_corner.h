@@ -21,7 +21,8 @@
 
 /* The corner of tri on `first` and `plane`, its position in double where
  * an error bound allows `tolerance` (NDC) and precision is adaptive, else
- * exactly rounded once; floats = 4 + varyings. Placed on both planes.
+ * from exact expansions (numerator and denominator each rounded, then
+ * divided: within a few ulp); floats = 4 + varyings. Placed on both planes.
  * Returns the precision of its position, or SR_CLIP_ADAPTIVE when there is
  * no corner (cut untouched). */
 sr_clip_precision sr_clip_corner(const sr_vertex_out tri[3], sr_clip_plane first, sr_clip_plane plane, int floats,

@@ -2,8 +2,8 @@
  * end points are far larger than the visible piece (a triangle of extent
  * 1e30 seen from a few units away): plane distances and the numerator
  * d_in·b − d_out·a are carried as exact floating-point expansions (two-sum,
- * two-product, Shewchuk's grow-expansion, expansion.h) and rounded once at
- * the end. */
+ * two-product, Shewchuk's grow-expansion, expansion.h); numerator and
+ * denominator are each rounded at the end, then divided (a few ulp). */
 #ifndef SOFTRAST_CLIP_EXACT_H
 #define SOFTRAST_CLIP_EXACT_H
 
@@ -39,7 +39,7 @@ void sr_clip_exact_edge_of(sr_clip_plane plane, const sr_vertex_out *inside, con
 /* d_in·b − d_out·a as an expansion num[0..n); returns n. */
 int sr_clip_exact_numerator(const sr_clip_exact_edge *edge, float a, float b, double num[SR_CLIP_NUMERATOR_TERMS]);
 
-/* The cut vertex from sr_clip_exact_edge_of, each coordinate rounded once. */
+/* The cut vertex from sr_clip_exact_edge_of, each coordinate within a few ulp. */
 void sr_clip_intersect_exact(sr_clip_plane plane, const sr_vertex_out *inside, const sr_vertex_out *outside,
                              int floats, const sr_clip_depth *depth, sr_vertex_out *cut);
 

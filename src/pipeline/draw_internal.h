@@ -21,16 +21,34 @@
  * functions cannot overflow whatever the precision asked for. */
 #define SR_FIXED_POINT_BITS 30
 
-/* A fan triangle in a bin: its three vertices as references (below the mesh's
- * vertex count: the shared screen vertex; from there on: the binning
- * thread's clip vertices), its exact area, its id and its scan box on the
- * framebuffer (sides up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits). */
+/* A fan triangle in a bin: its id, its scan box on the framebuffer (sides
+ * up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits) and either, for one within a
+ * tile, its exact area and its three vertices as references (below the
+ * mesh's vertex count: the shared screen vertex; from there on: the binning
+ * thread's clip vertices), which the tile sets it up from, or, for one
+ * whose box spans tiles (area2 0: a drawn triangle never has zero area), its
+ * set-up in the binning thread's `setups`. */
 typedef struct sr_record {
-    uint32_t ref[3];
+    union {
+        uint32_t ref[3];
+        uint32_t setup;
+    };
     uint32_t id;
     int64_t area2;
     int16_t x0, y0, x1, y1;
 } sr_record;
+
+/* A bin entry's flag: the tile's share of the record's set-up triangle is
+ * covered whole (sr_raster_classify), so its rows need no solving. */
+#define SR_BIN_COVERED 0x80000000u
+#define SR_BIN_RECORD 0x7FFFFFFFu /* the record index's bits */
+
+/* One thread's list of a tile: bin entries, and the estimated cost of
+ * drawing them (bin.c, tile_cost), which orders the tiles. */
+typedef struct sr_bin {
+    sr_array entries; /* uint32_t */
+    uint64_t cost;
+} sr_bin;
 
 /* One thread's share of a draw: its counts, and in the binned path the clip
  * vertices, records and per-tile lists of record indices it made. Aligned
@@ -42,7 +60,8 @@ typedef struct sr_thread_work {
     uint64_t simd_draws; /* rasterizer calls a SIMD kernel made */
     sr_array clip_verts; /* sr_screen_vertex */
     sr_array records;    /* sr_record */
-    sr_array *bins;      /* one sr_array of uint32_t per tile */
+    sr_array setups;     /* sr_tri_setup, of the records that span tiles */
+    sr_bin *bins;        /* one per tile: record indices, SR_BIN_COVERED or'd in */
     size_t bin_count;
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
@@ -53,6 +72,7 @@ struct sr_workspace {
     sr_array verts;    /* sr_vertex_out, one per mesh vertex */
     sr_array outcodes; /* unsigned char */
     sr_array screen;   /* sr_screen_vertex, valid where the outcode is 0 */
+    sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
     sr_thread_work threads[SR_MAX_THREADS];
 };
 

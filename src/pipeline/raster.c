@@ -294,20 +294,14 @@ static sr_span_kernel span_kernel(const sr_shade_context *shade, sr_shade mode, 
     }
 }
 
-/* The box's corner pixels against each edge: all four outside one edge, the
- * box holds no pixel of the triangle (an edge function is linear, so no
- * pixel between the corners is inside either); all four inside every edge,
- * every pixel is. A tile of a large triangle is usually one or the other.
- * Boxes smaller than this are not worth the twelve evaluations. */
+/* Boxes smaller than this are not worth sr_raster_classify's twelve
+ * evaluations: they count as partial. */
 #define CLASSIFY_MIN_PIXELS 64
 
-typedef enum box_class { BOX_PARTIAL, BOX_OUTSIDE, BOX_COVERED } box_class;
-
-static box_class classify_box(const setup *s)
+sr_box_cover sr_raster_classify(const setup *s, sr_raster_rect b)
 {
-    sr_raster_rect b = s->box;
     if ((int64_t)(b.x1 - b.x0) * (b.y1 - b.y0) < CLASSIFY_MIN_PIXELS)
-        return BOX_PARTIAL;
+        return SR_COVER_PARTIAL;
     int64_t xs[2] = { sr_subpixel_centre(b.x0, s->bits), sr_subpixel_centre(b.x1 - 1, s->bits) };
     int64_t ys[2] = { sr_subpixel_centre(b.y0, s->bits), sr_subpixel_centre(b.y1 - 1, s->bits) };
     bool covered = true;
@@ -316,10 +310,10 @@ static box_class classify_box(const setup *s)
         for (int c = 0; c < 4; c++)
             inside += sr_edge_at(&s->e[k], xs[c & 1], ys[c >> 1]) >= s->e[k].bias;
         if (inside == 0)
-            return BOX_OUTSIDE;
+            return SR_COVER_NONE;
         covered = covered && inside == 4;
     }
-    return covered ? BOX_COVERED : BOX_PARTIAL;
+    return covered ? SR_COVER_ALL : SR_COVER_PARTIAL;
 }
 
 static inline __attribute__((always_inline)) uint64_t
@@ -391,28 +385,42 @@ uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int s
      * before any setup. */
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return 0;
-    const sr_screen_vertex *v[3];
     setup s;
-    order_clockwise(tri, area2, v);
-    setup_make(v, box, subpixel_bits, &s);
-    box_class c = classify_box(&s);
-    if (c == BOX_OUTSIDE)
+    if (!sr_raster_setup(tri, area2, box, subpixel_bits, mode, shade, &s))
         return 0;
-    interpolants_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, &s);
-    s.covered = c == BOX_COVERED;
-    interp_choose(&s, mode, shade);
-    sr_span_kernel kernel = s.box.x1 - s.box.x0 >= SIMD_MIN_WIDTH ? span_kernel(shade, mode, fb->reversed_z) : NULL;
-    *simd = kernel && edges_fit_double(&s);
+    return sr_raster_setup_draw(fb, &s, mode, shade, triangle_id, simd);
+}
+
+bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box, int subpixel_bits,
+                     sr_shade mode, const sr_shade_context *shade, setup *s)
+{
+    const sr_screen_vertex *v[3];
+    order_clockwise(tri, area2, v);
+    setup_make(v, box, subpixel_bits, s);
+    sr_box_cover c = sr_raster_classify(s, box);
+    if (c == SR_COVER_NONE)
+        return false;
+    interpolants_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, s);
+    s->covered = c == SR_COVER_ALL;
+    interp_choose(s, mode, shade);
+    return true;
+}
+
+uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,
+                              uint32_t triangle_id, bool *simd)
+{
+    sr_span_kernel kernel = s->box.x1 - s->box.x0 >= SIMD_MIN_WIDTH ? span_kernel(shade, mode, fb->reversed_z) : NULL;
+    *simd = kernel && edges_fit_double(s);
     if (*simd)
-        return kernel(&s, shade, fb, triangle_id);
+        return kernel(s, shade, fb, triangle_id);
     if (mode == SR_RASTER_COUNT_HITS) /* past the enum's cases, so not in the switch */
-        return raster_loop(&s, fb, SR_RASTER_COUNT_HITS, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
+        return raster_loop(s, fb, SR_RASTER_COUNT_HITS, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
     switch (mode) {
-    case SR_SHADE_ID:      return raster_mode(&s, fb, SR_SHADE_ID, shade, triangle_id);
-    case SR_SHADE_COLOR:   return raster_mode(&s, fb, SR_SHADE_COLOR, shade, triangle_id);
-    case SR_SHADE_NORMAL:  return raster_mode(&s, fb, SR_SHADE_NORMAL, shade, triangle_id);
-    case SR_SHADE_TEXTURE: return raster_mode(&s, fb, SR_SHADE_TEXTURE, shade, triangle_id);
-    case SR_SHADE_LAMBERT: return raster_mode(&s, fb, SR_SHADE_LAMBERT, shade, triangle_id);
-    default:               return raster_mode(&s, fb, SR_SHADE_DEPTH, shade, triangle_id);
+    case SR_SHADE_ID:      return raster_mode(s, fb, SR_SHADE_ID, shade, triangle_id);
+    case SR_SHADE_COLOR:   return raster_mode(s, fb, SR_SHADE_COLOR, shade, triangle_id);
+    case SR_SHADE_NORMAL:  return raster_mode(s, fb, SR_SHADE_NORMAL, shade, triangle_id);
+    case SR_SHADE_TEXTURE: return raster_mode(s, fb, SR_SHADE_TEXTURE, shade, triangle_id);
+    case SR_SHADE_LAMBERT: return raster_mode(s, fb, SR_SHADE_LAMBERT, shade, triangle_id);
+    default:               return raster_mode(s, fb, SR_SHADE_DEPTH, shade, triangle_id);
     }
 }

@@ -23,7 +23,7 @@ typedef struct sr_edge {
 } sr_edge;
 
 /* What a triangle lets the per-pixel loops leave out, chosen once per
- * triangle (sr_raster_triangle_in_box). Each choice computes per triangle
+ * triangle in its set-up (sr_raster_setup). Each choice computes per triangle
  * exactly the float values the general loop would compute per pixel, so the
  * image does not depend on it. */
 typedef enum sr_interp {
@@ -140,6 +140,29 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                                const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                                uint32_t triangle_id, bool *simd);
 sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const tri[3], sr_raster_rect rect, int subpixel_bits);
+
+/* A box of pixels against the triangle's edges, from its four corner
+ * pixels: all four outside one edge, the box holds no pixel of the triangle
+ * (an edge function is linear, so no pixel between the corners is inside
+ * either); all four inside every edge, every pixel is (its rows need no
+ * solving). A tile of a large triangle is usually one or the other. Small
+ * boxes are not classified: partial. */
+typedef enum sr_box_cover { SR_COVER_PARTIAL, SR_COVER_NONE, SR_COVER_ALL } sr_box_cover;
+sr_box_cover sr_raster_classify(const sr_tri_setup *s, sr_raster_rect box);
+
+/* Sets the triangle up over its scan box (non-empty; sr_raster_scan_box_of
+ * clamped to the rectangle drawn): the edges, and unless the box holds none
+ * of its pixels (then false) the depth plane, 1/w and the varyings the mode
+ * reads. The binned path sets a triangle that spans tiles up once and
+ * draws it per tile with the box and `covered` of the tile's share. */
+bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box, int subpixel_bits,
+                     sr_shade mode, const sr_shade_context *shade, sr_tri_setup *s);
+
+/* Draws a set-up triangle's pixels in s->box (a SIMD kernel where the box
+ * is wide enough and its edge values fit doubles: *simd) and returns the
+ * fragments that passed the depth test. */
+uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const sr_tri_setup *s, sr_shade mode,
+                              const sr_shade_context *shade, uint32_t triangle_id, bool *simd);
 
 /* sr_raster_triangle_on with the scan box already found (sr_raster_scan_box_of
  * clamped to the rectangle drawn): the binned path finds it once per

@@ -25,8 +25,9 @@ static void thread_work_free(sr_thread_work *w)
 {
     sr_array_free(&w->clip_verts);
     sr_array_free(&w->records);
+    sr_array_free(&w->setups);
     for (size_t i = 0; i < w->bin_count; i++)
-        sr_array_free(&w->bins[i]);
+        sr_array_free(&w->bins[i].entries);
     free(w->bins);
     *w = (sr_thread_work){ 0 };
 }
@@ -38,6 +39,7 @@ void sr_workspace_destroy(sr_workspace *ws)
     sr_array_free(&ws->verts);
     sr_array_free(&ws->outcodes);
     sr_array_free(&ws->screen);
+    sr_array_free(&ws->tile_order);
     for (int t = 0; t < SR_MAX_THREADS; t++)
         thread_work_free(&ws->threads[t]);
     free(ws);

@@ -1,6 +1,7 @@
-/* bench_scenes.h — the benchmark's scenes, made in memory so the numbers do
- * not depend on files: a dense torus seen from outside and from inside its
- * tube, a flight through the room, full-screen quads textured and untextured. */
+/* bench_scenes.h — the benchmark's scenes: made in memory where they can be
+ * (a dense torus seen from outside and from inside its tube, full-screen
+ * quads textured and untextured), read from the program's data (the room)
+ * or from build/scans (the scanned meshes, `make scans`). */
 #ifndef SOFTRAST_APP_BENCH_SCENES_H
 #define SOFTRAST_APP_BENCH_SCENES_H
 

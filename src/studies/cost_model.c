@@ -131,9 +131,10 @@ static double marginal(const cost_series *s)
 
 static bool write_markdown(const char *path, const cost_model *m, sr_error *err)
 {
-    FILE *f = sr_doc_open(path, err);
-    if (!f)
+    sr_doc doc;
+    if (!sr_doc_open(&doc, path, err))
         return false;
+    FILE *f = doc.f;
     fprintf(f, "# Cost model of the dense scene\n\n"
                "Written by `./build/softrast bench --cost-model --frames %d` (src/studies/cost_model.c); read it\n"
                "with docs/performance.md. The closed torus of the dense scene, lambert, back faces culled: time\n"
@@ -154,7 +155,7 @@ static bool write_markdown(const char *path, const cost_model *m, sr_error *err)
     fprintf(f, "\n## Against pixels (1M triangles)\n");
     for (int k = 0; k < m->runs; k++)
         write_series_table(f, &m->pixels[k], "pixels");
-    return sr_doc_close(f, path, err);
+    return sr_doc_close(&doc, err);
 }
 
 static void series_range(const cost_series *s, int runs, double r[4])

@@ -1,20 +1,23 @@
 /* The studies' output files (doc_file.h). */
 #include <errno.h>
-#include <string.h>
 
 #include "doc_file.h"
 
-FILE *sr_doc_open(const char *path, sr_error *err)
+bool sr_doc_open(sr_doc *d, const char *path, sr_error *err)
 {
-    FILE *f = fopen(path, "w");
-    if (!f)
-        sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
-    return f;
+    *d = (sr_doc){ .path = path };
+    if (!sr_output_open(&d->out, path, err))
+        return false;
+    d->f = d->out.f;
+    errno = 0;
+    return true;
 }
 
-bool sr_doc_close(FILE *f, const char *path, sr_error *err)
+bool sr_doc_close(sr_doc *d, sr_error *err)
 {
-    bool ok = !ferror(f);
-    ok = fclose(f) == 0 && ok;
-    return ok ? true : sr_error_set(err, "%s: cannot write: %s", path, strerror(errno ? errno : EIO));
+    bool written = !ferror(d->f);
+    if (!written && !errno)
+        errno = EIO;
+    d->f = NULL;
+    return sr_output_close(&d->out, d->path, written, err);
 }

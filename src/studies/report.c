@@ -6,6 +6,7 @@
 #include "timing.h"
 #include "bench_scenes.h"
 #include "report.h"
+#include "report_peer.h"
 #include "report_svg.h"
 
 #define REFERENCE_BITS 16
@@ -177,6 +178,12 @@ bool sr_report_write(const char *dir, int frames, sr_error *err)
 {
     sr_report_scene scenes[SR_REPORT_SCENES];
     sr_bench_scene s;
+    /* The peer's file first: a bad one fails at once, not after minutes. */
+    char peer_path[1024];
+    snprintf(peer_path, sizeof peer_path, "%s/" SR_REPORT_PEER_FILE, dir);
+    sr_report_peer peer;
+    if (!sr_report_peer_read(peer_path, &peer, err))
+        return false;
     for (int i = 0; i < SR_REPORT_SCENES; i++) {
         bool ok = sr_report_scene_makers[i](&s, err) && measure_scene(&s, frames, &scenes[i], err);
         sr_bench_scene_free(&s);
@@ -184,5 +191,5 @@ bool sr_report_write(const char *dir, int frames, sr_error *err)
             return false;
     }
     sr_report_simd_scene loops[SR_REPORT_SIMD_SCENES];
-    return sr_report_simd_measure(frames, loops, err) && sr_report_files(dir, scenes, loops, frames, err);
+    return sr_report_simd_measure(frames, loops, err) && sr_report_files(dir, scenes, loops, &peer, frames, err);
 }

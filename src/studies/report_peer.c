@@ -12,9 +12,10 @@ static const char HEADER[] =
 
 bool sr_report_peer_write(const char *path, const sr_report_peer *peer, sr_error *err)
 {
-    FILE *f = sr_doc_open(path, err);
-    if (!f)
+    sr_doc doc;
+    if (!sr_doc_open(&doc, path, err))
         return false;
+    FILE *f = doc.f;
     fprintf(f, "# A peer against the truth on softrast's report scenes, written by ./build/bench-gl --truth\n"
                "# (docs/bench-compare.md) and read by softrast bench --report (docs/report.md).\n"
                "renderer\t%s\n%s", peer->renderer, HEADER);
@@ -26,7 +27,7 @@ bool sr_report_peer_write(const char *path, const sr_report_peer *peer, sr_error
                 (unsigned long long)e->wrong_triangle, (unsigned long long)e->coverage, e->edge_distance_max,
                 e->z_max, e->z_p999, e->z_median);
     }
-    return sr_doc_close(f, path, err);
+    return sr_doc_close(&doc, err);
 }
 
 static bool parse_row(const char *line, sr_report_peer_row *r)

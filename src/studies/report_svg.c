@@ -1,10 +1,10 @@
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "report_peer.h"
 #include "report_svg.h"
+#include "svg_plot.h"
 
 #define PLOT_W 820
 #define PLOT_H 520
@@ -50,7 +50,7 @@ static bool peer_point(const sr_report_peer *peer, const sr_report_scene *s, sr_
     const sr_report_peer_row *r = sr_report_peer_find(peer, s->name);
     if (r)
         *out = (sr_report_point){ .knob = "llvmpipe", .ms = r->ms, .truth = r->truth };
-    return r != NULL;
+    return r != NULL && isfinite(r->ms) && isfinite(r->truth.z_max);
 }
 
 static void write_table(FILE *f, const sr_report_scene *s)
@@ -80,9 +80,10 @@ static void write_truth_table(FILE *f, const sr_report_scene *s, const sr_report
 static bool write_markdown(const char *path, const sr_report_scene *scenes, const sr_report_simd_scene *loops,
                            const sr_report_peer *peer, int frames, sr_error *err)
 {
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    sr_doc doc;
+    if (!sr_doc_open(&doc, path, err))
+        return false;
+    FILE *f = doc.f;
     fprintf(f, "# Error against run time\n\n"
                "Regenerate: `./build/softrast bench --report --frames %d` (or `make report`, which first fetches\n"
                "the scanned meshes: `make scans`), from the project's root; it writes this file,\n"
@@ -119,7 +120,7 @@ static bool write_markdown(const char *path, const sr_report_scene *scenes, cons
         write_truth_table(f, &scenes[i], peer);
     fprintf(f, "\n![|z − truth| max against time, llvmpipe's squares beside softrast's knobs](report-truth.svg)\n");
     sr_report_simd_write(f, loops);
-    return fclose(f) == 0 ? true : sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    return sr_doc_close(&doc, err);
 }
 
 typedef struct plot_range {
@@ -138,8 +139,12 @@ static double plot_y(const plot_range *r, double error)
            (PLOT_H - 2 * MARGIN) * (log10(e) - log10(r->err_lo)) / (log10(r->err_hi) - log10(r->err_lo));
 }
 
+/* Non-finite values (a peer file may hold inf) are left out of the range:
+ * an infinite axis would never end its tick loop. */
 static void range_add(plot_range *r, const plot *pl, const sr_report_point *p)
 {
+    if (!isfinite(p->ms) || !isfinite(pl->error(p)))
+        return;
     r->ms_lo = p->ms < r->ms_lo ? p->ms : r->ms_lo;
     r->ms_hi = p->ms > r->ms_hi ? p->ms : r->ms_hi;
     r->err_hi = pl->error(p) > r->err_hi ? pl->error(p) : r->err_hi;
@@ -217,30 +222,24 @@ static bool write_svg(const char *dir, const plot *pl, const sr_report_scene *sc
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", dir, pl->file);
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    char title[256];
+    snprintf(title, sizeof title, "%s (./build/softrast bench --report --frames %d)", pl->title, frames);
+    sr_svg_file file;
+    if (!sr_svg_begin(&file, path, PLOT_W, PLOT_H, title, err))
+        return false;
     plot_range r = find_range(pl, scenes, peer);
-    fprintf(f, "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d' font-family='sans-serif'>\n", PLOT_W,
-            PLOT_H);
-    fprintf(f, "<rect width='100%%' height='100%%' fill='white'/>\n");
-    fprintf(f, "<text x='%d' y='24' font-size='14' text-anchor='middle'>%s "
-               "(./build/softrast bench --report --frames %d)</text>\n", PLOT_W / 2, pl->title, frames);
-    write_axes(f, pl, &r);
-    write_points(f, pl, &r, scenes, peer);
-    fprintf(f, "</svg>\n");
-    return fclose(f) == 0 ? true : sr_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    write_axes(file.f, pl, &r);
+    write_points(file.f, pl, &r, scenes, peer);
+    return sr_svg_end(&file, err);
 }
 
-bool sr_report_files(const char *dir, const sr_report_scene *scenes, const sr_report_simd_scene *loops, int frames,
-                     sr_error *err)
+bool sr_report_files(const char *dir, const sr_report_scene *scenes, const sr_report_simd_scene *loops,
+                     const sr_report_peer *peer, int frames, sr_error *err)
 {
-    char md[1024], peer_path[1024];
+    char md[1024];
     snprintf(md, sizeof md, "%s/report.md", dir);
-    snprintf(peer_path, sizeof peer_path, "%s/" SR_REPORT_PEER_FILE, dir);
-    sr_report_peer peer;
-    bool ok = sr_report_peer_read(peer_path, &peer, err) && write_markdown(md, scenes, loops, &peer, frames, err);
+    bool ok = write_markdown(md, scenes, loops, peer, frames, err);
     for (size_t i = 0; ok && i < sizeof PLOTS / sizeof *PLOTS; i++)
-        ok = write_svg(dir, &PLOTS[i], scenes, &peer, frames, err);
+        ok = write_svg(dir, &PLOTS[i], scenes, peer, frames, err);
     return ok;
 }

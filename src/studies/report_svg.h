@@ -26,7 +26,11 @@ typedef struct sr_report_scene {
     sr_report_point points[SR_REPORT_KNOBS];
 } sr_report_scene;
 
-bool sr_report_files(const char *dir, const sr_report_scene *scenes, const sr_report_simd_scene *loops, int frames,
-                     sr_error *err);
+struct sr_report_peer; /* report_peer.h */
+
+/* Writes report.md and the plots into dir; peer: llvmpipe's figures, read
+ * before measuring (count 0 when its file is missing). */
+bool sr_report_files(const char *dir, const sr_report_scene *scenes, const sr_report_simd_scene *loops,
+                     const struct sr_report_peer *peer, int frames, sr_error *err);
 
 #endif

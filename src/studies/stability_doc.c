@@ -325,14 +325,15 @@ static void write_depth_section(FILE *f, const sr_stability_depth *d)
 
 static bool write_markdown(const char *path, const sr_stability_report *r, sr_error *err)
 {
-    FILE *f = sr_doc_open(path, err);
-    if (!f)
+    sr_doc doc;
+    if (!sr_doc_open(&doc, path, err))
         return false;
+    FILE *f = doc.f;
     write_intro(f, r);
     write_clip_section(f, r);
     write_hits_section(f, r);
     write_depth_section(f, &r->depth);
-    return sr_doc_close(f, path, err);
+    return sr_doc_close(&doc, err);
 }
 
 bool sr_stability_files(const char *dir, const sr_stability_report *r, sr_error *err)

@@ -1,17 +1,15 @@
 /* Log-log SVG plots for the studies (svg_plot.h). */
 #include <math.h>
 
-#include "doc_file.h"
 #include "svg_plot.h"
 
 #define DASH " stroke-dasharray='7 4'"
 
 bool sr_svg_begin(sr_svg_file *file, const char *path, int width, int height, const char *title, sr_error *err)
 {
-    file->path = path;
-    file->f = sr_doc_open(path, err);
-    if (!file->f)
+    if (!sr_doc_open(&file->doc, path, err))
         return false;
+    file->f = file->doc.f;
     fprintf(file->f, "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d' font-family='sans-serif'>\n",
             width, height);
     fprintf(file->f, "<rect width='100%%' height='100%%' fill='white'/>\n");
@@ -22,9 +20,8 @@ bool sr_svg_begin(sr_svg_file *file, const char *path, int width, int height, co
 bool sr_svg_end(sr_svg_file *file, sr_error *err)
 {
     fprintf(file->f, "</svg>\n");
-    bool ok = sr_doc_close(file->f, file->path, err);
     file->f = NULL;
-    return ok;
+    return sr_doc_close(&file->doc, err);
 }
 
 static double panel_x(const sr_svg_panel *p, double v)

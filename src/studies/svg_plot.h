@@ -7,11 +7,12 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "doc_file.h"
 #include "softrast_private.h"
 
 typedef struct sr_svg_file {
     FILE *f;
-    const char *path;
+    sr_doc doc;
 } sr_svg_file;
 
 /* A panel: its rectangle in the file and the decades it shows (log10 of

@@ -164,8 +164,9 @@ bool sr_viewer_save(const sr_viewer *v, const char *prefix, sr_error *err)
 {
     char png[1024], pfm[1024];
     const sr_framebuffer *fb = &v->scene.fb;
-    snprintf(png, sizeof png, "%s.png", prefix);
-    snprintf(pfm, sizeof pfm, "%s.pfm", prefix);
+    if (snprintf(png, sizeof png, "%s.png", prefix) >= (int)sizeof png ||
+        snprintf(pfm, sizeof pfm, "%s.pfm", prefix) >= (int)sizeof pfm)
+        return sr_error_set(err, "%.40s…: the path is too long (%zu bytes)", prefix, strlen(prefix) + 4);
     return sr_image_write_png(png, v->display, fb->width, fb->height, err) &&
            sr_image_write_pfm(pfm, fb->depth, fb->width, fb->height, err);
 }
