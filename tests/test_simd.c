@@ -13,6 +13,7 @@
 #include "scene_helpers.h"
 
 #define SOUP_TRIANGLES 60
+#define NARROW_SOUP_TRIANGLES 3000
 #define SOUP_SEED 0x51D51D
 #define FB_SIDE (SR_TILE_SIDE + 33) /* odd, so rows end in partial groups of lanes; 2x2 tiles */
 #define HUGE_UV 3e7f /* past 2^23, where a float has no fraction left to wrap */
@@ -24,11 +25,13 @@ static const sr_simd vector_loops[] = { SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX5
  * threshold, with random normals (some zero; with `flat`, every other
  * triangle has one normal at its three vertices, which an orthographic camera
  * shades once per triangle), uvs well outside [0, 1] (wrapping) and colors
- * outside [0, 1] (clamping). */
-static void soup_make(sr_mesh *mesh, bool flat)
+ * outside [0, 1] (clamping). With `reach` > 0, a triangle's second and third
+ * vertices lie within reach · depth of its first on each axis (at 90° and
+ * FB_SIDE pixels, reach 0.15 makes triangles up to about 24 pixels wide). */
+static void soup_make(sr_mesh *mesh, int triangles, bool flat, double reach)
 {
     sr_error err;
-    cr_assert(sr_mesh_alloc(mesh, 3 * SOUP_TRIANGLES, 3 * SOUP_TRIANGLES, true, true, true, &err), "%s",
+    cr_assert(sr_mesh_alloc(mesh, 3 * (uint32_t)triangles, 3 * (uint32_t)triangles, true, true, true, &err), "%s",
               err.message);
     test_rng rng = { SOUP_SEED };
     for (uint32_t i = 0; i < mesh->vertex_count; i++) {
@@ -36,6 +39,11 @@ static void soup_make(sr_mesh *mesh, bool flat)
         glm_vec3_copy((vec3){ (float)rng_uniform(&rng, -1.5, 1.5) * depth, (float)rng_uniform(&rng, -1.5, 1.5) * depth,
                               depth },
                       mesh->positions[i]);
+        if (reach > 0.0 && i % 3 > 0) {
+            const float *first = mesh->positions[i - i % 3];
+            for (int k = 0; k < 3; k++)
+                mesh->positions[i][k] = first[k] + (float)rng_uniform(&rng, -reach, reach) * first[2];
+        }
         for (int k = 0; k < 3; k++) {
             mesh->normals[i][k] = i % 17 == 0 ? 0.0f : (float)rng_uniform(&rng, -1.0, 1.0);
             mesh->colors[i][k] = (float)rng_uniform(&rng, -0.3, 1.3);
@@ -172,7 +180,7 @@ Test(simd, random_triangles_match_the_scalar_loop_in_every_mode)
     sr_texture tex = { .width = 5, .height = 3, .texels = (uint32_t *)texels };
     sr_texture tiny = { .width = 1, .height = 1, .texels = (uint32_t *)&one_texel };
     sr_mesh soup;
-    soup_make(&soup, false);
+    soup_make(&soup, SOUP_TRIANGLES, false, 0.0);
     const struct {
         sr_shade shade;
         sr_filter filter;
@@ -192,6 +200,26 @@ Test(simd, random_triangles_match_the_scalar_loop_in_every_mode)
             snprintf(what, sizeof what, "mode %d filter %d texture %dx%d%s", modes[m].shade, modes[m].filter,
                      modes[m].texture ? modes[m].texture->width : 0, modes[m].texture ? modes[m].texture->height : 0,
                      reversed ? " reversed" : "");
+            assert_vector_loops_match_scalar(&desc, reversed, what);
+        }
+    }
+    sr_mesh_free(&soup);
+}
+
+/* Narrow triangles, 1 to about 24 pixels wide: the scalar loop tests each
+ * pixel of a box narrower than its span threshold, the kernels take boxes
+ * from SIMD_MIN_WIDTH up (raster.c), so both thresholds are crossed. */
+Test(simd, narrow_triangles_match_the_scalar_loop)
+{
+    sr_mesh soup;
+    soup_make(&soup, NARROW_SOUP_TRIANGLES, false, 0.15);
+    static const sr_shade modes[] = { SR_SHADE_DEPTH, SR_SHADE_NORMAL, SR_SHADE_LAMBERT };
+    for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {
+        for (int reversed = 0; reversed < 2; reversed++) {
+            sr_draw_desc desc = { .mesh = &soup, .shade = modes[m], .cull = SR_CULL_NONE };
+            look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);
+            char what[64];
+            snprintf(what, sizeof what, "narrow triangles, mode %d%s", modes[m], reversed ? " reversed" : "");
             assert_vector_loops_match_scalar(&desc, reversed, what);
         }
     }
@@ -224,7 +252,7 @@ Test(simd, flat_normals_and_orthographic_triangles_match_the_scalar_loop)
     static const uint32_t texels[6] = { 0xFF0000, 0x00FF00, 0x0000FF, 0xFFFFFF, 0x123456, 0xABCDEF };
     sr_texture tex = { .width = 3, .height = 2, .texels = (uint32_t *)texels };
     sr_mesh soup, no_colors;
-    soup_make(&soup, true);
+    soup_make(&soup, SOUP_TRIANGLES, true, 0.0);
     no_colors = soup;
     no_colors.colors = NULL;
     const struct {

@@ -213,7 +213,8 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_
     const int64_t *step = s->step_x;
     bool spans = wide(s);
     for (int j = s->box.y0; j < s->box.y1; j++) {
-        sr_row_range r = sr_row_make(s, fb, spans, j);
+        sr_row_range r;
+        sr_row_make(s, fb, spans, j, &r);
         int64_t e0 = r.e[0], e1 = r.e[1], e2 = r.e[2];
         float k = r.k;
         for (int d = 0; d < r.count; d++, e0 += step[0], e1 += step[1], e2 += step[2], k += 1.0f)

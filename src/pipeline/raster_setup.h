@@ -102,25 +102,29 @@ typedef struct sr_row_range {
     float z, k; /* z at the row's pixel ref_x; `at`'s pixel is k pixels right of it */
 } sr_row_range;
 
-static SR_ALWAYS_INLINE sr_row_range sr_row_make(const sr_tri_setup *s, const sr_framebuffer *fb, bool spans, int j)
+/* Fills the caller's *r field by field: a struct built on the stack and
+ * returned by value was copied with wide vector loads of narrower stores
+ * just made, which the CPU cannot forward (a stall of every row, measured
+ * in the span kernels' profile). With count 0 the other fields are unset. */
+static SR_ALWAYS_INLINE void sr_row_make(const sr_tri_setup *s, const sr_framebuffer *fb, bool spans, int j,
+                                         sr_row_range *r)
 {
     int64_t px = sr_subpixel_centre(s->box.x0, s->bits), py = sr_subpixel_centre(j, s->bits);
     int64_t lo = 0, hi = s->box.x1 - s->box.x0 - 1;
-    sr_row_range r = { 0 };
+    int64_t e[3];
     for (int k = 0; k < 3; k++) {
-        r.e[k] = sr_edge_at(&s->e[k], px, py);
+        e[k] = sr_edge_at(&s->e[k], px, py);
         if (spans && !s->covered)
-            sr_edge_span(r.e[k], s->step_x[k], s->e[k].bias, &lo, &hi);
+            sr_edge_span(e[k], s->step_x[k], s->e[k].bias, &lo, &hi);
     }
-    r.count = lo <= hi ? (int)(hi - lo + 1) : 0;
-    if (r.count == 0)
-        return r;
+    r->count = lo <= hi ? (int)(hi - lo + 1) : 0;
+    if (r->count == 0)
+        return;
     for (int k = 0; k < 3; k++)
-        r.e[k] += lo * s->step_x[k];
-    r.at = (size_t)j * (size_t)fb->width + (size_t)s->box.x0 + (size_t)lo;
-    r.z = (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
-    r.k = (float)(s->box.x0 + lo - s->ref_x); /* exact: boxes are far narrower than 2^24 pixels */
-    return r;
+        r->e[k] = e[k] + lo * s->step_x[k];
+    r->at = (size_t)j * (size_t)fb->width + (size_t)s->box.x0 + (size_t)lo;
+    r->z = (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
+    r->k = (float)(s->box.x0 + lo - s->ref_x); /* exact: boxes are far narrower than 2^24 pixels */
 }
 
 /* The widest kernel's lanes: edge values are checked exact this far past a

@@ -434,7 +434,8 @@ span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, 
         t.color = shade_lanes(mode, a, interp, &t, c, (vf[SR_MAX_VARYINGS]){ { 0 } }, id);
     uint64_t fragments = 0;
     for (int j = s->box.y0; j < s->box.y1; j++) {
-        sr_row_range r = sr_row_make(s, fb, true, j);
+        sr_row_range r;
+        sr_row_make(s, fb, true, j, &r);
         if (r.count > 0)
             fragments += span_row(s, &t, c, fb, mode, a, interp, greater, id, &r);
     }
