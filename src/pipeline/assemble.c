@@ -15,11 +15,18 @@ bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3])
     return out[0] != out[1] && out[1] != out[2] && out[0] != out[2];
 }
 
-/* Indices checked at once: 4-lane compares ORed, one branch per block,
- * where the compiler has vector types (the plain loop, one compare and
- * branch per index, ran at half the speed the memory gave on a mesh past
- * the caches: docs/performance.md, "The vertex phase"). */
+/* Indices checked at once: 4-lane compares ORed, one branch per block
+ * instead of one per index, where the compiler has vector types
+ * (docs/performance.md, "The vertex phase"). */
 #define INDEX_BLOCK 64
+
+static bool each_valid(const uint32_t *indices, uint32_t count, uint32_t vertex_count)
+{
+    for (uint32_t k = 0; k < count; k++)
+        if (indices[k] >= vertex_count)
+            return false;
+    return true;
+}
 
 static bool block_valid(const uint32_t *indices, uint32_t vertex_count)
 {
@@ -33,23 +40,19 @@ static bool block_valid(const uint32_t *indices, uint32_t vertex_count)
     }
     return (past[0] | past[1] | past[2] | past[3]) == 0;
 #else
-    for (int k = 0; k < INDEX_BLOCK; k++)
-        if (indices[k] >= vertex_count)
-            return false;
-    return true;
+    return each_valid(indices, INDEX_BLOCK, vertex_count);
 #endif
 }
 
 bool sr_assemble_indices_valid_in(const sr_mesh *mesh, uint32_t first, uint32_t end)
 {
+    if (first >= end)
+        return true;
     uint32_t i = first;
     for (; end - i >= INDEX_BLOCK; i += INDEX_BLOCK)
         if (!block_valid(mesh->indices + i, mesh->vertex_count))
             return false;
-    for (; i < end; i++)
-        if (mesh->indices[i] >= mesh->vertex_count)
-            return false;
-    return true;
+    return each_valid(mesh->indices + i, end - i, mesh->vertex_count);
 }
 
 bool sr_assemble_indices_valid(const sr_mesh *mesh)
