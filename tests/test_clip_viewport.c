@@ -147,6 +147,98 @@ Test(viewport, never_returns_an_infinite_inverse_w_or_varying)
     }
 }
 
+/* ---- the mapping against its formula as first written ----------------- */
+
+/* The mapping as the viewport stage first wrote it, one operation after
+ * another: (g·x + 1)·0.5·W·2^bits, llrint, 1/w and b/w each a division of
+ * its own. The stage now takes W·2^(bits−1) once and divides 1/w and b/w as
+ * one pair (docs/performance.md, "The vertex phase"); every bit must stay. */
+static bool map_as_written(const sr_vertex_out *v, const double *clip_d, int varyings, const sr_viewport *vp,
+                           sr_screen_vertex *out)
+{
+    const double scale = (double)((int64_t)1 << vp->subpixel_bits), g = vp->guard;
+    double w = v->v[SR_W];
+    if (!(w > 0.0) || !isfinite(w))
+        return false;
+    double inv_w = 1.0 / w, x = v->v[SR_X] * inv_w, y = v->v[SR_Y] * inv_w;
+    double z = vp->depth.on ? vp->depth.a + vp->depth.b / w : v->v[SR_Z] * inv_w;
+    if (!(x >= -1.0 - SR_NDC_SLACK && x <= 1.0 + SR_NDC_SLACK && y >= -1.0 - SR_NDC_SLACK &&
+          y <= 1.0 + SR_NDC_SLACK && z >= -SR_NDC_SLACK && z <= 1.0 + SR_NDC_SLACK))
+        return false;
+    double sx = (g * x + 1.0) * 0.5 * vp->width * scale, sy = (1.0 - g * y) * 0.5 * vp->height * scale;
+    out->x = llrint(sx);
+    out->y = llrint(sy);
+    if (clip_d) {
+        double w_d = clip_d[SR_W], inv_w_d = 1.0 / w_d;
+        sx = (g * (clip_d[SR_X] * inv_w_d) + 1.0) * 0.5 * vp->width * scale;
+        sy = (1.0 - g * (clip_d[SR_Y] * inv_w_d)) * 0.5 * vp->height * scale;
+        z = vp->depth.on ? vp->depth.a + vp->depth.b / w_d : clip_d[SR_Z] * inv_w_d;
+    }
+    out->x_off = (float)(sx - (double)out->x);
+    out->y_off = (float)(sy - (double)out->y);
+    out->z = (float)z;
+    out->inv_w = (float)inv_w;
+    bool finite = isfinite(out->inv_w);
+    for (int i = 0; i < varyings; i++) {
+        out->var_w[i] = (float)(v->v[SR_VARYINGS_AT + i] * inv_w);
+        finite = finite && isfinite(out->var_w[i]);
+    }
+    return finite;
+}
+
+/* A random viewport the draw accepts: snapped coordinates below
+ * 2^SR_FIXED_POINT_BITS, and a perspective depth model or none. */
+static sr_viewport random_viewport(test_rng *r)
+{
+    sr_viewport vp = { .width = 1 + rng_below(r, 4096), .height = 1 + rng_below(r, 4096),
+                       .guard = rng_below(r, 2) ? 1.0f : (float)rng_uniform(r, 1.0, 8.0) };
+    int side = vp.width > vp.height ? vp.width : vp.height;
+    do
+        vp.subpixel_bits = SR_MIN_SUBPIXEL_BITS + rng_below(r, SR_MAX_SUBPIXEL_BITS - SR_MIN_SUBPIXEL_BITS + 1);
+    while (ceil(vp.guard) * side * (double)((int64_t)1 << vp.subpixel_bits) > (double)((int64_t)1 << 30));
+    if (rng_below(r, 2)) {
+        float near = (float)pow(10.0, rng_uniform(r, -6, 1)), far = near * (float)pow(10.0, rng_uniform(r, 1, 9));
+        vp.depth = (sr_clip_depth){ .on = true, .a = far / (far - near), .b = -far * near / (far - near) };
+    }
+    return vp;
+}
+
+/* Bit for bit, return value and every field, on vertices whose w spans
+ * 1e-30 … 1e30, at and a hair past the slack, with varyings up to 1e38. */
+Test(viewport, maps_every_vertex_bit_for_bit_as_the_formula_first_written)
+{
+    test_rng r = { 1414 };
+    int mapped = 0, refused = 0;
+    for (int k = 0; k < 200000; k++) {
+        sr_viewport vp = random_viewport(&r);
+        double w = pow(10.0, rng_uniform(&r, -30, 30)) * (rng_below(&r, 50) ? 1.0 : -1.0);
+        double reach = rng_below(&r, 4) ? 1.0 : 1.0 + 2.0 * SR_NDC_SLACK;
+        double ndc_z = vp.depth.on ? rng_uniform(&r, -0.01, 1.01) : rng_uniform(&r, -reach, reach);
+        sr_vertex_out v = vert4(rng_uniform(&r, -reach, reach) * w, rng_uniform(&r, -reach, reach) * w, ndc_z * w, w);
+        int varyings = rng_below(&r, SR_MAX_VARYINGS + 1);
+        for (int i = 0; i < varyings; i++)
+            v.v[SR_VARYINGS_AT + i] = (float)(rng_uniform(&r, -1, 1) * pow(10.0, rng_uniform(&r, -30, 38)));
+        double clip_d[4];
+        for (int i = 0; i < 4; i++)
+            clip_d[i] = v.v[i] * (1.0 + rng_uniform(&r, -1e-7, 1e-7));
+        for (int given = 0; given < 2; given++) {
+            sr_screen_vertex got, want;
+            memset(&got, 0, sizeof got);
+            memset(&want, 0, sizeof want);
+            bool ok = given ? sr_viewport_map_d(&v, clip_d, varyings, &vp, &got) : sr_viewport_map(&v, varyings, &vp, &got);
+            bool ok_want = map_as_written(&v, given ? clip_d : NULL, varyings, &vp, &want);
+            cr_assert_eq(ok, ok_want, "case %d: mapped %d, as written %d", k, ok, ok_want);
+            if (ok)
+                cr_assert(memcmp(&got, &want, sizeof got) == 0, "case %d (%a, %a, %a, %a): fields differ", k,
+                          v.v[SR_X], v.v[SR_Y], v.v[SR_Z], v.v[SR_W]);
+            mapped += ok;
+            refused += !ok;
+        }
+    }
+    cr_assert_gt(mapped, 100000);
+    cr_assert_gt(refused, 10000);
+}
+
 /* ---- fan: (v0, vi, vi+1) after mapping ---------------------------------- */
 
 #define FAN_TRIANGLES 4000

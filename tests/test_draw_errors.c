@@ -9,6 +9,7 @@
 #include <criterion/criterion.h>
 
 #include "scene_helpers.h"
+#include "softrast_private.h"
 
 #define FLAT 32
 #define FLAT_Z 0.5f
@@ -67,6 +68,34 @@ Test(draw, fails_on_an_index_out_of_range)
     mesh.indices[2] = UINT32_MAX;
     expect_draw_fails(&(sr_draw_desc){ .mesh = &mesh, .shade = SR_SHADE_ID }, "index");
     sr_mesh_free(&mesh);
+}
+
+/* The check reads the indices in blocks: one index past the end is found
+ * wherever it sits (in a block, in the tail, at any start of a thread's
+ * share), as vertex_count itself and as UINT32_MAX, and none is reported
+ * where there is none. */
+#define CHECKED_INDICES 150 /* two 64-index blocks and a tail */
+
+Test(draw, index_check_finds_one_index_past_the_end_at_every_position)
+{
+    uint32_t idx[CHECKED_INDICES];
+    sr_mesh mesh = { .indices = idx, .index_count = CHECKED_INDICES, .vertex_count = 1000 };
+    for (int i = 0; i < CHECKED_INDICES; i++)
+        idx[i] = (uint32_t)(i * 7) % mesh.vertex_count;
+    idx[CHECKED_INDICES - 1] = mesh.vertex_count - 1;
+    static const uint32_t firsts[] = { 0, 1, 13, 64, 100 };
+    for (size_t f = 0; f < sizeof firsts / sizeof firsts[0]; f++)
+        cr_assert(sr_assemble_indices_valid_in(&mesh, firsts[f], CHECKED_INDICES), "from %u", firsts[f]);
+    static const uint32_t past[] = { 1000, 1001, UINT32_MAX / 2 + 1, UINT32_MAX };
+    for (int at = 0; at < CHECKED_INDICES; at++)
+        for (size_t p = 0; p < sizeof past / sizeof past[0]; p++) {
+            uint32_t kept = idx[at];
+            idx[at] = past[p];
+            for (size_t f = 0; f < sizeof firsts / sizeof firsts[0]; f++)
+                cr_assert_eq(sr_assemble_indices_valid_in(&mesh, firsts[f], CHECKED_INDICES), (uint32_t)at < firsts[f],
+                             "index %u at %d, checked from %u", past[p], at, firsts[f]);
+            idx[at] = kept;
+        }
 }
 
 Test(draw, fails_on_normal_and_lambert_shading_without_normals)

@@ -59,16 +59,24 @@ static unsigned depth_outcode(const float *c, const sr_clip_depth *depth)
     return (unsigned)(near < 0.0) << SR_PLANE_NEAR | (unsigned)(far < 0.0) << SR_PLANE_FAR;
 }
 
+/* The outcode bit of one plane from the table. Called with each plane
+ * spelled out, so the table folds away and no loop walks it per vertex. */
+static inline unsigned plane_bit(sr_clip_plane plane, const float *c)
+{
+    return (unsigned)(sr_clip_distance(plane, c) < 0.0) << plane;
+}
+
 unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth *depth)
 {
     if (!isfinite(c[SR_X]) || !isfinite(c[SR_Y]) || !isfinite(c[SR_Z]) || !isfinite(c[SR_W]))
         return SR_OUT_NONFINITE;
-    bool model = depth && depth->on;
-    unsigned code = model ? depth_outcode(c, depth) : 0u;
-    for (int p = 0; p < SR_CLIP_PLANES; p++)
-        if (!model || !sr_clip_plane_in_depth_model((sr_clip_plane)p))
-            code |= (unsigned)(sr_clip_distance((sr_clip_plane)p, c) < 0.0) << p;
-    return code;
+    _Static_assert(SR_PLANE_NEAR == 0 && SR_PLANE_FAR == 1 && SR_CLIP_PLANES == 6,
+                   "near and far are the planes on z, the depth model's");
+    unsigned sides = plane_bit(SR_PLANE_LEFT, c) | plane_bit(SR_PLANE_RIGHT, c) | plane_bit(SR_PLANE_BOTTOM, c) |
+                     plane_bit(SR_PLANE_TOP, c);
+    if (depth && depth->on)
+        return sides | depth_outcode(c, depth);
+    return sides | plane_bit(SR_PLANE_NEAR, c) | plane_bit(SR_PLANE_FAR, c);
 }
 
 unsigned sr_clip_outcode(const float *c)

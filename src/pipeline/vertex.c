@@ -94,28 +94,37 @@ static inline void position_w1(const float *xyz, vec4 out)
 #endif
 }
 
+/* The mesh, the layout and the matrices are read into locals
+ * first: the loop's float stores to out could alias them as far as the
+ * compiler knows, and it would load them again for every vertex. */
 void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
                    uint32_t first, uint32_t count, sr_vertex_out *out)
 {
+    const sr_mesh m = *mesh;
+    const sr_varying_layout l = *layout;
+    CGLM_ALIGN_MAT mat4 clip_from_object;
+    mat3 normal_matrix;
+    glm_mat4_copy((vec4 *)xf->clip_from_object, clip_from_object);
+    glm_mat3_copy((vec3 *)xf->normal_matrix, normal_matrix);
     for (uint32_t k = 0; k < count; k++) {
         uint32_t i = first + k;
         float *v = out[k].v;
-        if (mesh->clip_positions) {
-            glm_vec4_copy(mesh->clip_positions[i], v);
+        if (m.clip_positions) {
+            glm_vec4_copy(m.clip_positions[i], v);
         } else {
             CGLM_ALIGN(16) vec4 p;
-            position_w1(mesh->positions[i], p);
-            glm_mat4_mulv((vec4 *)xf->clip_from_object, p, v);
+            position_w1(m.positions[i], p);
+            glm_mat4_mulv(clip_from_object, p, v);
         }
-        if (layout->normal >= 0) {
+        if (l.normal >= 0) {
             vec3 n;
-            glm_mat3_mulv((vec3 *)xf->normal_matrix, mesh->normals[i], n);
+            glm_mat3_mulv(normal_matrix, m.normals[i], n);
             glm_vec3_normalize(n);
-            copy_varying(v, layout->normal, n, 3);
+            copy_varying(v, l.normal, n, 3);
         }
-        if (layout->uv >= 0)
-            copy_varying(v, layout->uv, mesh->uvs[i], 2);
-        if (layout->color >= 0)
-            copy_varying(v, layout->color, mesh->colors[i], 3);
+        if (l.uv >= 0)
+            copy_varying(v, l.uv, m.uvs[i], 2);
+        if (l.color >= 0)
+            copy_varying(v, l.color, m.colors[i], 3);
     }
 }

@@ -18,19 +18,48 @@ static int64_t round_to_integer(double v)
     return (int64_t)((v + no_fraction) - no_fraction);
 }
 
-/* The point a vertex of NDC (x, y) maps to, in subpixel units, unsnapped. */
-static void screen_point(double x, double y, const sr_viewport *vp, double *sx, double *sy)
+/* Subpixel units per NDC unit over half the framebuffer, on each axis:
+ * W·2^bits/2 is exact, so t·(W·2^bits/2) rounds as ((t·0.5)·W)·2^bits
+ * did (the two powers of two are exact for the t of a mapped point, never
+ * subnormal), and the per-draw part is no longer redone per point. */
+typedef struct screen_scale {
+    double guard, x_units, y_units;
+} screen_scale;
+
+static screen_scale screen_scale_of(const sr_viewport *vp)
 {
-    double scale = (double)((int64_t)1 << vp->subpixel_bits), guard = vp->guard;
-    *sx = (guard * x + 1.0) * 0.5 * vp->width * scale;
-    *sy = (1.0 - guard * y) * 0.5 * vp->height * scale;
+    double half_scale = (double)((int64_t)1 << vp->subpixel_bits) * 0.5;
+    return (screen_scale){ vp->guard, vp->width * half_scale, vp->height * half_scale };
+}
+
+/* The point a vertex of NDC (x, y) maps to, in subpixel units, unsnapped. */
+static void screen_point(double x, double y, const screen_scale *s, double *sx, double *sy)
+{
+    *sx = (s->guard * x + 1.0) * s->x_units;
+    *sy = (1.0 - s->guard * y) * s->y_units;
+}
+
+/* 1/w and b/w (b the depth model's, or anything when it is off), as one
+ * two-lane division where the compiler has vector types: each lane rounds
+ * as the scalar division does. */
+static void divide_by_w(double w, double b, double *inv_w, double *b_over_w)
+{
+#if defined(__GNUC__)
+    typedef double two_doubles __attribute__((vector_size(16)));
+    two_doubles q = (two_doubles){ 1.0, b } / (two_doubles){ w, w };
+    *inv_w = q[0];
+    *b_over_w = q[1];
+#else
+    *inv_w = 1.0 / w;
+    *b_over_w = b / w;
+#endif
 }
 
 /* Under the depth model z_ndc follows from w (a·w + b over w), exact but
  * for this one division and sum, whatever z could hold. */
-static double depth_ndc(double z, double w, double inv_w, const sr_viewport *vp)
+static double depth_ndc(double z, double inv_w, double b_over_w, const sr_viewport *vp)
 {
-    return vp->depth.on ? vp->depth.a + vp->depth.b / w : z * inv_w;
+    return vp->depth.on ? vp->depth.a + b_over_w : z * inv_w;
 }
 
 /* sr_viewport_map, with the unsnapped point and z from clip_d (the clip
@@ -42,19 +71,22 @@ static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, int 
     double w = v->v[SR_W];
     if (!(w > 0.0) || !isfinite(w))
         return false;
-    double inv_w = 1.0 / w;
+    double inv_w, b_over_w;
+    divide_by_w(w, vp->depth.b, &inv_w, &b_over_w);
     double x = v->v[SR_X] * inv_w, y = v->v[SR_Y] * inv_w;
-    double z = depth_ndc(v->v[SR_Z], w, inv_w, vp);
+    double z = depth_ndc(v->v[SR_Z], inv_w, b_over_w, vp);
     if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(z, 0.0))
         return false;
+    screen_scale scale = screen_scale_of(vp);
     double sx, sy;
-    screen_point(x, y, vp, &sx, &sy);
+    screen_point(x, y, &scale, &sx, &sy);
     out->x = round_to_integer(sx);
     out->y = round_to_integer(sy);
     if (clip_d) {
-        double w_d = clip_d[SR_W], inv_w_d = 1.0 / w_d;
-        screen_point(clip_d[SR_X] * inv_w_d, clip_d[SR_Y] * inv_w_d, vp, &sx, &sy);
-        z = depth_ndc(clip_d[SR_Z], w_d, inv_w_d, vp);
+        double inv_w_d, b_over_w_d;
+        divide_by_w(clip_d[SR_W], vp->depth.b, &inv_w_d, &b_over_w_d);
+        screen_point(clip_d[SR_X] * inv_w_d, clip_d[SR_Y] * inv_w_d, &scale, &sx, &sy);
+        z = depth_ndc(clip_d[SR_Z], inv_w_d, b_over_w_d, vp);
     }
     out->x_off = (float)(sx - (double)out->x); /* the difference exact, then 24 bits of it */
     out->y_off = (float)(sy - (double)out->y);
