@@ -21,7 +21,7 @@ static int64_t round_to_integer(double v)
 /* Subpixel units per NDC unit over half the framebuffer, on each axis:
  * W·2^bits/2 is exact, so t·(W·2^bits/2) rounds as ((t·0.5)·W)·2^bits
  * did (the two powers of two are exact for the t of a mapped point, never
- * subnormal), and the per-draw part is no longer redone per point. */
+ * subnormal): one product per axis and point instead of three. */
 typedef struct screen_scale {
     double guard, x_units, y_units;
 } screen_scale;

@@ -195,7 +195,7 @@ static void plot_panel(sr_svg_panel *p, const cost_series *s, int runs, const ch
 
 static bool write_svg(const char *path, const cost_model *m, sr_error *err)
 {
-    sr_svg_file file;
+    sr_doc file;
     char title[160];
     snprintf(title, sizeof title, "softrast: the dense torus's time per frame, log-log "
              "(./build/softrast bench --cost-model --frames %d)", m->frames);

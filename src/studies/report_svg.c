@@ -224,7 +224,7 @@ static bool write_svg(const char *dir, const plot *pl, const sr_report_scene *sc
     snprintf(path, sizeof path, "%s/%s", dir, pl->file);
     char title[256];
     snprintf(title, sizeof title, "%s (./build/softrast bench --report --frames %d)", pl->title, frames);
-    sr_svg_file file;
+    sr_doc file;
     if (!sr_svg_begin(&file, path, PLOT_W, PLOT_H, title, err))
         return false;
     plot_range r = find_range(pl, scenes, peer);

@@ -84,7 +84,7 @@ static void write_legend(FILE *f, const sr_stability_depth *d)
 
 bool sr_stability_svg(const char *path, const sr_stability_depth *d, sr_error *err)
 {
-    sr_svg_file file;
+    sr_doc file;
     if (!sr_svg_begin(&file, path, PLOT_W, PLOT_H, "softrast: depth resolution, standard against reversed z "
                       "(./build/softrast bench --stability)", err))
         return false;

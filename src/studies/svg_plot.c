@@ -5,11 +5,10 @@
 
 #define DASH " stroke-dasharray='7 4'"
 
-bool sr_svg_begin(sr_svg_file *file, const char *path, int width, int height, const char *title, sr_error *err)
+bool sr_svg_begin(sr_doc *file, const char *path, int width, int height, const char *title, sr_error *err)
 {
-    if (!sr_doc_open(&file->doc, path, err))
+    if (!sr_doc_open(file, path, err))
         return false;
-    file->f = file->doc.f;
     fprintf(file->f, "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d' font-family='sans-serif'>\n",
             width, height);
     fprintf(file->f, "<rect width='100%%' height='100%%' fill='white'/>\n");
@@ -17,11 +16,10 @@ bool sr_svg_begin(sr_svg_file *file, const char *path, int width, int height, co
     return true;
 }
 
-bool sr_svg_end(sr_svg_file *file, sr_error *err)
+bool sr_svg_end(sr_doc *file, sr_error *err)
 {
     fprintf(file->f, "</svg>\n");
-    file->f = NULL;
-    return sr_doc_close(&file->doc, err);
+    return sr_doc_close(file, err);
 }
 
 static double panel_x(const sr_svg_panel *p, double v)

@@ -10,15 +10,10 @@
 #include "doc_file.h"
 #include "softrast_private.h"
 
-typedef struct sr_svg_file {
-    FILE *f;
-    sr_doc doc;
-} sr_svg_file;
-
 /* A panel: its rectangle in the file and the decades it shows (log10 of
  * the lowest and highest value on each axis). */
 typedef struct sr_svg_panel {
-    sr_svg_file *file;
+    sr_doc *file;
     double left, top, width, height;
     double x_lo, x_hi, y_lo, y_hi;
 } sr_svg_panel;
@@ -30,8 +25,8 @@ typedef struct sr_svg_series {
     bool dashed, joined, dots;
 } sr_svg_series;
 
-bool sr_svg_begin(sr_svg_file *file, const char *path, int width, int height, const char *title, sr_error *err);
-bool sr_svg_end(sr_svg_file *file, sr_error *err);
+bool sr_svg_begin(sr_doc *file, const char *path, int width, int height, const char *title, sr_error *err);
+bool sr_svg_end(sr_doc *file, sr_error *err);
 
 /* The panel's decades, widened to whole decades around [lo, hi] of each
  * axis, its frame, grid and tick labels (1k, 10k, 1M … for counts; unit
