@@ -59,6 +59,34 @@ Test(raster, covers_exactly_the_reference_pixels_of_random_triangles)
     sr_framebuffer_destroy(&fb);
 }
 
+/* Boxes up to and just past the ones whose pixels the set-up tests before
+ * the depth plane (sr_tri_setup.tiny: up to 7 wide and 8 tall), of either
+ * winding, with vertices anywhere or on pixel centres (edges through
+ * centres: the top-left rule decides), within the framebuffer or a rect
+ * that cuts their boxes. */
+Test(raster, boxes_up_to_and_past_the_tiny_ones_cover_exactly_the_reference_pixels)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, FB_W, FB_H);
+    test_rng rng = { RANDOM_SEED + 1 };
+    const sr_raster_rect inner = { 3, 2, FB_W - 5, FB_H - 4 };
+    for (int t = 0; t < RANDOM_TRIANGLES; t++) {
+        int64_t reach_x = rng_range(&rng, 0, 10 * ONE), reach_y = rng_range(&rng, 0, 10 * ONE);
+        int64_t x0 = rng_range(&rng, 0, FB_W * ONE - reach_x), y0 = rng_range(&rng, 0, FB_H * ONE - reach_y);
+        ref_point v[3];
+        for (int i = 0; i < 3; i++) {
+            v[i] = (ref_point){ x0 + rng_range(&rng, 0, reach_x), y0 + rng_range(&rng, 0, reach_y) };
+            if (t % 2)
+                v[i] = (ref_point){ v[i].x / ONE * ONE + HALF, v[i].y / ONE * ONE + HALF };
+        }
+        if (ref_turn(v[0], v[1], v[2]) == 0)
+            continue;
+        expect_reference_raster("raster_boxes_up_to_and_past_the_tiny_ones_cover_exactly_the_reference_pixels", t,
+                                t % 2 ? KIND_CENTRES : KIND_TINY, v, &fb, t % 3 ? full_rect : inner);
+    }
+    sr_framebuffer_destroy(&fb);
+}
+
 Test(raster, coverage_is_the_same_for_all_six_vertex_orders)
 {
     static const int orders[6][3] = { { 0, 1, 2 }, { 1, 2, 0 }, { 2, 0, 1 }, { 0, 2, 1 }, { 2, 1, 0 }, { 1, 0, 2 } };

@@ -18,6 +18,13 @@
  * k must be below sr_mesh_triangle_slots(mesh). */
 bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3]);
 
+/* Where triangle k's three indices sit, in some order (list: 3k, 3k+1,
+ * 3k+2; strip: k, k+1, k+2): enough to prefetch its vertices. */
+static inline const uint32_t *sr_assemble_slot_indices(const sr_mesh *mesh, uint32_t k)
+{
+    return mesh->indices + (mesh->topology == SR_TRIANGLE_STRIP ? (size_t)k : 3 * (size_t)k);
+}
+
 /* True if every index is below vertex_count (checked once per draw). */
 bool sr_assemble_indices_valid(const sr_mesh *mesh);
 

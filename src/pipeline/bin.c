@@ -242,8 +242,7 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, u
     sr_raster_rect share = box_in((sr_raster_rect){ rec->x0, rec->y0, rec->x1, rec->y1 }, tile);
     if (rec->area2 == 0) {
         sr_tri_setup s = ((const sr_tri_setup *)w->setups.data)[rec->setup];
-        s.box = share;
-        s.covered = entry & SR_BIN_COVERED;
+        sr_raster_setup_share(&s, share, entry & SR_BIN_COVERED);
         return sr_raster_setup_draw(st->fb, &s, st->mode, &st->shade, rec->id, simd);
     }
     const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),

@@ -87,8 +87,25 @@ static void emit_slot(sr_fan_sink *sink, uint32_t k)
     emit_polygon(sink, &poly, k);
 }
 
+/* The slots ahead whose screen vertices are prefetched. The vertex phase
+ * wrote them all (64 bytes each, 33 MB for the dense torus) long before,
+ * so without it the culling's first read of a vertex waited for memory:
+ * 13 % of the depth torus's frame in perf at one thread, 2 % with it. */
+#define PREFETCH_SLOTS 16
+
+static void prefetch_slot(const sr_fan_sink *sink, uint32_t k)
+{
+    const sr_screen_vertex *screen = sink->st->ws->screen.data;
+    const uint32_t *idx = sr_assemble_slot_indices(sink->st->desc->mesh, k);
+    for (int i = 0; i < 3; i++)
+        __builtin_prefetch(&screen[idx[i]]);
+}
+
 void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
 {
-    for (uint32_t k = first; k < end; k++)
+    for (uint32_t k = first; k < end; k++) {
+        if (end - k > PREFETCH_SLOTS)
+            prefetch_slot(sink, k + PREFETCH_SLOTS);
         emit_slot(sink, k);
+    }
 }

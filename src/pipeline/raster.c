@@ -52,7 +52,9 @@ sr_raster_rect sr_raster_scan_box(const sr_screen_vertex tri[3], sr_raster_rect 
                                  subpixel_bits);
 }
 
-sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_raster_rect rect, int bits)
+/* Inlined into the one-thread path with the set-up (below), so the box
+ * stays in registers. */
+static SR_ALWAYS_INLINE sr_raster_rect scan_box(const sr_screen_vertex *const v[3], sr_raster_rect rect, int bits)
 {
     int64_t one = (int64_t)1 << bits, half = one / 2;
     int64_t lo_x = v[0]->x, hi_x = v[0]->x, lo_y = v[0]->y, hi_y = v[0]->y;
@@ -68,6 +70,11 @@ sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_rast
         .y0 = clamp_int(floor_shift(lo_y - half + one - 1, bits), rect.y0, rect.y1),
         .y1 = clamp_int(floor_shift(hi_y - half, bits) + 1, rect.y0, rect.y1),
     };
+}
+
+sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_raster_rect rect, int bits)
+{
+    return scan_box(v, rect, bits);
 }
 
 /* The vertices relative to vertex 0's snapped point, in subpixel units,
@@ -203,6 +210,25 @@ static inline bool wide(const setup *s)
     return s->box.x1 - s->box.x0 >= SPAN_MIN_WIDTH;
 }
 
+/* A tiny box's covered pixels (sr_tri_setup.tiny), in the rows' order. The
+ * values are the row loop's: z at row j is the same double rounded to float,
+ * k the same small integer, and E at a pixel centre the same exact integer. */
+static inline __attribute__((always_inline)) uint64_t
+tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
+          const sr_shade_context *shade, uint32_t id)
+{
+    uint64_t fragments = 0;
+    for (uint64_t m = s->tiny; m; m &= m - 1) {
+        int n = __builtin_ctzll(m), i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
+        int64_t px = sr_subpixel_centre(i, s->bits), py = sr_subpixel_centre(j, s->bits);
+        float z_row = (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
+        fragments += fill_pixel(s, fb, mode, greater, interp, shade, id, (size_t)j * (size_t)fb->width + (size_t)i,
+                                z_row, (float)(i - s->ref_x), sr_edge_at(&s->e[1], px, py),
+                                sr_edge_at(&s->e[2], px, py));
+    }
+    return fragments;
+}
+
 /* The scalar per-pixel loop; always inlined with a constant mode and depth
  * test so each combination gets its own loop with those branches folded away. */
 static inline __attribute__((always_inline)) uint64_t
@@ -295,6 +321,41 @@ static sr_span_kernel span_kernel(const sr_shade_context *shade, sr_shade mode, 
     }
 }
 
+/* Narrower than the SIMD kernels take, and at most SR_TINY_SIDE rows
+ * (measured in instructions on the dense and depth tori against boxes of
+ * at most 3 × 3, 4 × 4 and 7 × 4: this tests the fewest). */
+static bool box_is_tiny(sr_raster_rect b)
+{
+    return b.x1 - b.x0 < SIMD_MIN_WIDTH && b.y1 - b.y0 <= SR_TINY_SIDE;
+}
+_Static_assert(SIMD_MIN_WIDTH <= SR_TINY_SIDE + 1, "a tiny box's row fits its row of the mask");
+
+/* The covered pixel centres of a tiny box (sr_tri_setup.tiny), each tested
+ * as the row loop tests it, E >= bias, here as E − bias >= 0 for the three
+ * edges at once: the sign of their OR. The values are E − bias at pixel
+ * centres of the box, stepped by the exact integer steps from an exact
+ * corner value, so the same integers the per-pixel test sees (minus 0 or 1). */
+static uint64_t tiny_coverage(const setup *s)
+{
+    int64_t px = sr_subpixel_centre(s->box.x0, s->bits), py = sr_subpixel_centre(s->box.y0, s->bits);
+    int64_t one = (int64_t)1 << s->bits; /* a multiply below: b may be negative */
+    /* Three scalars, not arrays: gcc vectorised the arrays' row step into
+     * 16-byte loads of values just stored 8 bytes at a time, which the CPU
+     * cannot forward (a stall per row in perf). */
+    int64_t r0 = sr_edge_at(&s->e[0], px, py) - s->e[0].bias, r1 = sr_edge_at(&s->e[1], px, py) - s->e[1].bias,
+            r2 = sr_edge_at(&s->e[2], px, py) - s->e[2].bias;
+    uint64_t mask = 0;
+    for (int j = 0; j < s->box.y1 - s->box.y0; j++) {
+        int64_t e0 = r0, e1 = r1, e2 = r2;
+        for (int i = 0; i < s->box.x1 - s->box.x0; i++) {
+            mask |= (uint64_t)((e0 | e1 | e2) >= 0) << (j * SR_TINY_SIDE + i);
+            e0 += s->step_x[0], e1 += s->step_x[1], e2 += s->step_x[2];
+        }
+        r0 += s->e[0].b * one, r1 += s->e[1].b * one, r2 += s->e[2].b * one;
+    }
+    return mask;
+}
+
 /* Boxes smaller than this are not worth sr_raster_classify's twelve
  * evaluations: they count as partial. */
 #define CLASSIFY_MIN_PIXELS 64
@@ -318,11 +379,19 @@ sr_box_cover sr_raster_classify(const setup *s, sr_raster_rect b)
 }
 
 static inline __attribute__((always_inline)) uint64_t
+raster_pixels(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
+              const sr_shade_context *shade, uint32_t id)
+{
+    return s->tiny ? tiny_loop(s, fb, mode, greater, interp, shade, id)
+                   : raster_loop(s, fb, mode, greater, interp, shade, id);
+}
+
+static inline __attribute__((always_inline)) uint64_t
 raster_interp(const setup *s, sr_framebuffer *fb, sr_shade mode, sr_interp interp, const sr_shade_context *shade,
               uint32_t id)
 {
-    return fb->reversed_z ? raster_loop(s, fb, mode, true, interp, shade, id)
-                          : raster_loop(s, fb, mode, false, interp, shade, id);
+    return fb->reversed_z ? raster_pixels(s, fb, mode, true, interp, shade, id)
+                          : raster_pixels(s, fb, mode, false, interp, shade, id);
 }
 
 /* One loop per interp for the modes that read varyings. */
@@ -369,17 +438,37 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
                                  triangle_id, &simd);
 }
 
-uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
-                               const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
-                               uint32_t triangle_id, bool *simd)
+/* sr_raster_setup, inlined where the box was just found: passed by value
+ * to a call, gcc spilled it to the stack and read it back 16 bytes at a
+ * time from two 8-byte stores, a store-forwarding stall per triangle. */
+static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
+                                      int subpixel_bits, sr_shade mode, const sr_shade_context *shade, setup *s)
 {
-    return sr_raster_triangle_in_box(fb, sr_raster_scan_box_of(tri, rect, subpixel_bits), subpixel_bits, mode, shade,
-                                     tri, area2, triangle_id, simd);
+    const sr_screen_vertex *v[3];
+    order_clockwise(tri, area2, v);
+    setup_make(v, box, subpixel_bits, s);
+    /* A tiny box's pixels are tested first, so a triangle that covers none
+     * of them (a fifth of the dense torus's) skips the depth plane. */
+    s->tiny = box_is_tiny(box) ? tiny_coverage(s) : 0;
+    sr_box_cover c = box_is_tiny(box) ? (s->tiny ? SR_COVER_PARTIAL : SR_COVER_NONE) : sr_raster_classify(s, box);
+    if (c == SR_COVER_NONE)
+        return false;
+    interpolants_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, s);
+    s->covered = c == SR_COVER_ALL;
+    interp_choose(s, mode, shade);
+    return true;
 }
 
-uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
-                                   const sr_shade_context *shade, const sr_screen_vertex *const tri[3],
-                                   int64_t area2, uint32_t triangle_id, bool *simd)
+bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box, int subpixel_bits,
+                     sr_shade mode, const sr_shade_context *shade, setup *s)
+{
+    return setup_in(tri, area2, box, subpixel_bits, mode, shade, s);
+}
+
+static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,
+                                                 sr_shade mode, const sr_shade_context *shade,
+                                                 const sr_screen_vertex *const tri[3], int64_t area2,
+                                                 uint32_t triangle_id, bool *simd)
 {
     *simd = false;
     /* Most triangles of a dense mesh cover no pixel centre: find that out
@@ -387,24 +476,31 @@ uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int s
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return 0;
     setup s;
-    if (!sr_raster_setup(tri, area2, box, subpixel_bits, mode, shade, &s))
+    if (!setup_in(tri, area2, box, subpixel_bits, mode, shade, &s))
         return 0;
     return sr_raster_setup_draw(fb, &s, mode, shade, triangle_id, simd);
 }
 
-bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box, int subpixel_bits,
-                     sr_shade mode, const sr_shade_context *shade, setup *s)
+uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
+                                   const sr_shade_context *shade, const sr_screen_vertex *const tri[3],
+                                   int64_t area2, uint32_t triangle_id, bool *simd)
 {
-    const sr_screen_vertex *v[3];
-    order_clockwise(tri, area2, v);
-    setup_make(v, box, subpixel_bits, s);
-    sr_box_cover c = sr_raster_classify(s, box);
-    if (c == SR_COVER_NONE)
-        return false;
-    interpolants_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, s);
-    s->covered = c == SR_COVER_ALL;
-    interp_choose(s, mode, shade);
-    return true;
+    return triangle_in_box(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, simd);
+}
+
+uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
+                               const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
+                               uint32_t triangle_id, bool *simd)
+{
+    return triangle_in_box(fb, scan_box(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri, area2,
+                           triangle_id, simd);
+}
+
+void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
+{
+    s->box = share;
+    s->covered = covered;
+    s->tiny = 0; /* the mask is the whole box's */
 }
 
 uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,

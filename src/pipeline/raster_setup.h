@@ -38,6 +38,10 @@ typedef enum sr_interp {
     SR_INTERP_FLAT_NORMAL,
 } sr_interp;
 
+/* The rows of a tiny box and the stride of its mask (sr_tri_setup.tiny):
+ * 64 bits hold 8 × 8 pixels. */
+#define SR_TINY_SIDE 8
+
 typedef struct sr_tri_setup {
     sr_edge e[3];
     int64_t step_x[3]; /* E's change from one pixel to the next on a row */
@@ -54,6 +58,11 @@ typedef struct sr_tri_setup {
     sr_raster_rect box;
     int bits;     /* subpixel bits of the vertices */
     bool covered; /* every pixel centre of the box is inside: rows need no solving or tests */
+    /* A tiny box (too narrow for the SIMD kernels, at most SR_TINY_SIDE
+     * rows): its covered pixel centres, bit (j − y0)·SR_TINY_SIDE + (i − x0)
+     * for pixel (i, j), found before the depth plane and drawn bit by bit.
+     * 0: the rows are solved and tested as for any box. */
+    uint64_t tiny;
     sr_interp interp;
     float w;       /* 1/iw0, when interp is not SR_INTERP_PERSPECTIVE */
     float lambert; /* the intensity, when interp is SR_INTERP_FLAT_NORMAL */
@@ -161,6 +170,10 @@ sr_box_cover sr_raster_classify(const sr_tri_setup *s, sr_raster_rect box);
  * draws it per tile with the box and `covered` of the tile's share. */
 bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box, int subpixel_bits,
                      sr_shade mode, const sr_shade_context *shade, sr_tri_setup *s);
+
+/* Makes a triangle set up over a larger box draw only its share of it (a
+ * tile's), covered whole or not, by rows. */
+void sr_raster_setup_share(sr_tri_setup *s, sr_raster_rect share, bool covered);
 
 /* Draws a set-up triangle's pixels in s->box (a SIMD kernel where the box
  * is wide enough and its edge values fit doubles: *simd) and returns the
