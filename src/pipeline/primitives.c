@@ -93,19 +93,21 @@ static void emit_slot(sr_fan_sink *sink, uint32_t k)
  * 13 % of the depth torus's frame in perf at one thread, 2 % with it. */
 #define PREFETCH_SLOTS 16
 
-static void prefetch_slot(const sr_fan_sink *sink, uint32_t k)
-{
-    const sr_screen_vertex *screen = sink->st->ws->screen.data;
-    const uint32_t *idx = sr_assemble_slot_indices(sink->st->desc->mesh, k);
-    for (int i = 0; i < 3; i++)
-        __builtin_prefetch(&screen[idx[i]]);
-}
-
 void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
 {
+    /* Read once: emit_slot's calls could write anything, for all gcc knows. */
+    const sr_screen_vertex *screen = sink->st->ws->screen.data;
+    const sr_mesh *mesh = sink->st->desc->mesh;
     for (uint32_t k = first; k < end; k++) {
-        if (end - k > PREFETCH_SLOTS)
-            prefetch_slot(sink, k + PREFETCH_SLOTS);
+        if (end - k > PREFETCH_SLOTS) {
+            /* Three calls in the loop's body: gcc 12 dropped a loop of
+             * prefetches, and a call of a function of them, as having no
+             * side effects. */
+            const uint32_t *idx = sr_assemble_slot_indices(mesh, k + PREFETCH_SLOTS);
+            __builtin_prefetch(&screen[idx[0]]);
+            __builtin_prefetch(&screen[idx[1]]);
+            __builtin_prefetch(&screen[idx[2]]);
+        }
         emit_slot(sink, k);
     }
 }
