@@ -251,6 +251,12 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, u
                                      rec->id, simd);
 }
 
+/* A tile prefetches the screen vertices of the record this many entries
+ * ahead: its tiny triangles are set up from vertices the binning read long
+ * before (whole-process CPU at 2 threads, 8 pairs: depth 0.976, dense
+ * 0.986). */
+#define PREFETCH_ENTRIES 8
+
 /* The binning threads' lists for the tile merged by slot: each thread took
  * its chunks in increasing order and a slot's fan triangles are all one
  * thread's, so the merge is submission order. */
@@ -283,6 +289,15 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
             return fragments;
         const sr_thread_work *w = &st->ws->threads[from];
         for (; next[from] < w->bins[tile].entries.count; next[from]++) {
+            /* In the loop's body: gcc drops a call of a function of prefetches. */
+            if (w->bins[tile].entries.count - next[from] > PREFETCH_ENTRIES) {
+                const sr_record *ahead = record_of(w, entry_at(w, tile, next[from] + PREFETCH_ENTRIES));
+                if (ahead->area2 != 0) {
+                    __builtin_prefetch(vertex_of(st, w, ahead->ref[0]));
+                    __builtin_prefetch(vertex_of(st, w, ahead->ref[1]));
+                    __builtin_prefetch(vertex_of(st, w, ahead->ref[2]));
+                }
+            }
             uint32_t entry = entry_at(w, tile, next[from]);
             if (record_of(w, entry)->id > others_id)
                 break;

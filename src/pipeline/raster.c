@@ -79,8 +79,10 @@ sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_rast
 
 /* The vertices relative to vertex 0's snapped point, in subpixel units,
  * before snapping (unsnapped) or after: the integer differences are exact in
- * double, the offsets add their 24 bits. */
-static void plane_points(const sr_screen_vertex *const v[3], bool unsnapped, double p[3][2])
+ * double, the offsets add their 24 bits. Inlined, so each call is
+ * specialised on `unsnapped` (74 instructions a call before, 2 % of the
+ * depth torus's). */
+static SR_ALWAYS_INLINE void plane_points(const sr_screen_vertex *const v[3], bool unsnapped, double p[3][2])
 {
     for (int k = 0; k < 3; k++) {
         p[k][0] = (double)(v[k]->x - v[0]->x) + (unsnapped ? (double)v[k]->x_off : 0.0);
