@@ -2,19 +2,6 @@
 
 #include "assemble.h"
 
-bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3])
-{
-    if (mesh->topology == SR_TRIANGLE_STRIP) {
-        uint32_t odd = k & 1;
-        out[0] = mesh->indices[k];
-        out[1] = mesh->indices[k + 1 + odd];
-        out[2] = mesh->indices[k + 2 - odd];
-    } else {
-        memcpy(out, &mesh->indices[3 * (size_t)k], 3 * sizeof(uint32_t));
-    }
-    return out[0] != out[1] && out[1] != out[2] && out[0] != out[2];
-}
-
 /* Indices checked at once: 4-lane compares ORed, one branch per block
  * instead of one per index, where the compiler has vector types
  * (docs/performance.md, "The vertex phase"). */

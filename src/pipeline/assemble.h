@@ -11,12 +11,25 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "softrast/softrast.h"
 
 /* Writes triangle k's three vertex indices; false if it is degenerate.
- * k must be below sr_mesh_triangle_slots(mesh). */
-bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3]);
+ * k must be below sr_mesh_triangle_slots(mesh). Inline: called once per
+ * triangle slot. */
+static inline bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3])
+{
+    if (mesh->topology == SR_TRIANGLE_STRIP) {
+        uint32_t odd = k & 1;
+        out[0] = mesh->indices[k];
+        out[1] = mesh->indices[k + 1 + odd];
+        out[2] = mesh->indices[k + 2 - odd];
+    } else {
+        memcpy(out, &mesh->indices[3 * (size_t)k], 3 * sizeof(uint32_t));
+    }
+    return out[0] != out[1] && out[1] != out[2] && out[0] != out[2];
+}
 
 /* Where triangle k's three indices sit, in some order (list: 3k, 3k+1,
  * 3k+2; strip: k, k+1, k+2): enough to prefetch its vertices. */

@@ -54,6 +54,23 @@ static void emit_inside(sr_fan_sink *sink, const uint32_t idx[3], uint32_t id)
                   id, false);
 }
 
+/* Stages 4 to 6 for triangle slot k, which crosses the planes in `planes`.
+ * Out of emit_slot's line: its polygons (1 KB of stack) made every slot's
+ * call save and reserve them, though most slots of a dense mesh are not
+ * clipped. */
+static __attribute__((noinline)) void emit_clipped(sr_fan_sink *sink, const uint32_t idx[3], unsigned planes,
+                                                   uint32_t k)
+{
+    const sr_draw_state *st = sink->st;
+    const sr_vertex_out *verts = st->ws->verts.data;
+    sr_polygon poly = { .count = 3, .vert = { verts[idx[0]], verts[idx[1]], verts[idx[2]] } };
+    sink->work->stats.clipped++;
+    sr_clip_config cfg = { .precision = st->precision, .ndc_tolerance = st->clip_tolerance,
+                           .counts = &sink->work->cuts, .depth = st->vp.depth };
+    sr_clip_polygon(&poly, planes, SR_VARYINGS_AT + st->shade.layout.count, &cfg);
+    emit_polygon(sink, &poly, k);
+}
+
 /* Stages 2 to 4 for triangle slot k. */
 static void emit_slot(sr_fan_sink *sink, uint32_t k)
 {
@@ -78,13 +95,7 @@ static void emit_slot(sr_fan_sink *sink, uint32_t k)
         emit_inside(sink, idx, k);
         return;
     }
-    const sr_vertex_out *verts = st->ws->verts.data;
-    sr_polygon poly = { .count = 3, .vert = { verts[idx[0]], verts[idx[1]], verts[idx[2]] } };
-    stats->clipped++;
-    sr_clip_config cfg = { .precision = st->precision, .ndc_tolerance = st->clip_tolerance,
-                           .counts = &sink->work->cuts, .depth = st->vp.depth };
-    sr_clip_polygon(&poly, any, SR_VARYINGS_AT + st->shade.layout.count, &cfg);
-    emit_polygon(sink, &poly, k);
+    emit_clipped(sink, idx, any, k);
 }
 
 /* The slots ahead whose screen vertices are prefetched. The vertex phase
