@@ -125,7 +125,7 @@ static void depth_plane(const sr_screen_vertex *const v[3], int64_t area2, setup
 }
 
 /* What coverage needs: the edges within the scan box. */
-static void setup_make(const sr_screen_vertex *const v[3], sr_raster_rect box, int bits, setup *s)
+static SR_ALWAYS_INLINE void setup_make(const sr_screen_vertex *const v[3], sr_raster_rect box, int bits, setup *s)
 {
     s->bits = bits;
     s->box = box;
@@ -337,7 +337,7 @@ _Static_assert(SIMD_MIN_WIDTH <= SR_TINY_SIDE + 1, "a tiny box's row fits its ro
  * edges at once: the sign of their OR. The values are E − bias at pixel
  * centres of the box, stepped by the exact integer steps from an exact
  * corner value, so the same integers the per-pixel test sees (minus 0 or 1). */
-static uint64_t tiny_coverage(const setup *s)
+static SR_ALWAYS_INLINE uint64_t tiny_coverage(const setup *s)
 {
     int64_t px = sr_subpixel_centre(s->box.x0, s->bits), py = sr_subpixel_centre(s->box.y0, s->bits);
     int64_t one = (int64_t)1 << s->bits; /* a multiply below: b may be negative */
@@ -442,7 +442,9 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
 
 /* sr_raster_setup, inlined where the box was just found: passed by value
  * to a call, gcc spilled it to the stack and read it back 16 bytes at a
- * time from two 8-byte stores, a store-forwarding stall per triangle. */
+ * time from two 8-byte stores, a store-forwarding stall per triangle. The
+ * edges and a tiny box's mask are inlined into it too (12M instructions a
+ * frame fewer on the depth torus, whole-process CPU 0.987). */
 static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
                                       int subpixel_bits, sr_shade mode, const sr_shade_context *shade, setup *s)
 {
