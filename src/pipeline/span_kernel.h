@@ -303,7 +303,12 @@ static inline __attribute__((always_inline)) vu16 weight_halves(vi w)
     return (vu16)(w | w << 16);
 }
 
-static inline __attribute__((always_inline)) vi sample_bilinear_lanes(const sr_texture *tex, vf fu, vf fv)
+static inline __attribute__((always_inline)) vi pack_split(split_texels t)
+{
+    return ((vi)t.rb | (vi)t.g << 8) & 0xFFFFFF;
+}
+
+static inline __attribute__((always_inline)) split_texels sample_bilinear_lanes(const sr_texture *tex, vf fu, vf fv)
 {
     vi x0, x1, y0, y1;
     vu16 wx = weight_halves(bilinear_pair_lanes(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1));
@@ -313,8 +318,7 @@ static inline __attribute__((always_inline)) vi sample_bilinear_lanes(const sr_t
         lerp_split(split_lanes(gather_texels(tex, row0 + x0)), split_lanes(gather_texels(tex, row0 + x1)), wx);
     split_texels bottom =
         lerp_split(split_lanes(gather_texels(tex, row1 + x0)), split_lanes(gather_texels(tex, row1 + x1)), wx);
-    split_texels t = lerp_split(top, bottom, wy);
-    return ((vi)t.rb | (vi)t.g << 8) & 0xFFFFFF;
+    return lerp_split(top, bottom, wy);
 }
 
 /* sr_shade_sample_packed per lane. */
@@ -323,6 +327,16 @@ static inline __attribute__((always_inline)) vi sample_lanes(const triangle_lane
 {
     vf fu = wrap_unit_lanes(u), fv = wrap_unit_lanes(v);
     return c->filter == SR_FILTER_NEAREST ? sample_nearest_lanes(&t->texture, fu, fv)
+                                          : pack_split(sample_bilinear_lanes(&t->texture, fu, fv));
+}
+
+/* The same, split, for lit_texel_lanes: the bilinear filter's texels are
+ * split already, so they are not packed to be taken apart again. */
+static inline __attribute__((always_inline)) split_texels sample_split_lanes(const triangle_lanes *t,
+                                                                             const sr_shade_context *c, vf u, vf v)
+{
+    vf fu = wrap_unit_lanes(u), fv = wrap_unit_lanes(v);
+    return c->filter == SR_FILTER_NEAREST ? split_lanes(sample_nearest_lanes(&t->texture, fu, fv))
                                           : sample_bilinear_lanes(&t->texture, fu, fv);
 }
 
@@ -335,12 +349,13 @@ static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_con
     return select_f(len2 > zero, lit, zero + SR_LAMBERT_AMBIENT);
 }
 
-/* sr_shade_lit_texel per lane. */
-static inline __attribute__((always_inline)) vi lit_texel_lanes(vi t, vf k)
+/* sr_shade_lit_texel per lane, on a split texel: red, green, blue. */
+static inline __attribute__((always_inline)) vi lit_texel_lanes(split_texels t, vf k)
 {
+    vi channel[3] = { (vi)t.rb >> 16, (vi)t.g & 0xFF, (vi)t.rb & 0xFF };
     vi out = { 0 };
-    for (int shift = 16; shift >= 0; shift -= 8)
-        out |= __builtin_convertvector(k * __builtin_convertvector((t >> shift) & 0xFF, vf) + 0.5f, vi) << shift;
+    for (int i = 0; i < 3; i++)
+        out |= __builtin_convertvector(k * __builtin_convertvector(channel[i], vf) + 0.5f, vi) << (16 - 8 * i);
     return out;
 }
 
@@ -371,7 +386,7 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     case SR_SHADE_LAMBERT: {
         vf k = interp == SR_INTERP_FLAT_NORMAL ? t->lambert : lambert_lanes(c, var);
         if (a == ALBEDO_TEXTURE)
-            return lit_texel_lanes(sample_lanes(t, c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
+            return lit_texel_lanes(sample_split_lanes(t, c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
         rgb_lanes base = albedo_lanes(a, var);
         return pack_lanes(k * base.c[0], k * base.c[1], k * base.c[2]);
     }
