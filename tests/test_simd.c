@@ -6,6 +6,7 @@
  * through its walls; and the kernels really draw (the workspace counts
  * their calls). */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <string.h>
 
 #include "pipeline/raster_setup.h"
@@ -203,6 +204,53 @@ Test(simd, random_triangles_match_the_scalar_loop_in_every_mode)
             assert_vector_loops_match_scalar(&desc, reversed, what);
         }
     }
+    sr_mesh_free(&soup);
+}
+
+/* Textures 1 to 4 texels wide and 1 to 3 high, whose texels carry junk in
+ * their unused top byte, bilinear, in texture and lambert shading: under the
+ * random uvs many lanes wrap (x0 = width − 1, x1 = 0; the same for rows);
+ * under an orthographic camera, triangles of one uv each put every pixel
+ * exactly on a seam: u or v at 0, −0, 1, just below 1, and half a texel in
+ * from either edge. */
+Test(simd, bilinear_seams_and_narrow_textures_match_the_scalar_loop)
+{
+    static const uint32_t texels[12] = { 0xFFFF0000, 0x0100FF00, 0x800000FF, 0x7FFFFFFF, 0x00000000, 0xC0808080,
+                                         0x12123456, 0xABABCDEF, 0x55FEDCBA, 0xEE010203, 0x407F7F7F, 0x0280FF00 };
+    sr_mesh soup, seams;
+    soup_make(&soup, SOUP_TRIANGLES, false, 0.0);
+    soup_make(&seams, SOUP_TRIANGLES, false, 0.0);
+    for (int w = 1; w <= 4; w++) {
+        for (int h = 1; h <= 3; h++) {
+            sr_texture tex = { .width = w, .height = h, .texels = (uint32_t *)texels };
+            const float seam[] = { 0.0f, -0.0f, 1.0f, nextafterf(1.0f, 0.0f), 0.5f / (float)w, 1.0f - 0.5f / (float)w,
+                                   0.5f / (float)h, 1.0f - 0.5f / (float)h };
+            const int seam_count = (int)(sizeof seam / sizeof *seam);
+            for (uint32_t i = 0; i < seams.vertex_count; i++) {
+                uint32_t t = i / 3;
+                seams.uvs[i][0] = seam[t % seam_count];
+                seams.uvs[i][1] = seam[t / seam_count % seam_count];
+            }
+            const struct {
+                const sr_mesh *mesh;
+                sr_shade shade;
+                float ortho_height;
+            } draws[] = { { &soup, SR_SHADE_TEXTURE, 0.0f },
+                          { &soup, SR_SHADE_LAMBERT, 0.0f },
+                          { &seams, SR_SHADE_TEXTURE, 12.0f },
+                          { &seams, SR_SHADE_LAMBERT, 12.0f } };
+            for (size_t d = 0; d < sizeof draws / sizeof *draws; d++) {
+                sr_draw_desc desc = { .mesh = draws[d].mesh, .shade = draws[d].shade, .texture = &tex,
+                                      .filter = SR_FILTER_BILINEAR, .cull = SR_CULL_NONE };
+                look_ortho(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, draws[d].ortho_height, false);
+                char what[64];
+                snprintf(what, sizeof what, "texture %dx%d, mode %d, %s uvs", w, h, draws[d].shade,
+                         draws[d].mesh == &soup ? "random" : "seam");
+                assert_vector_loops_match_scalar(&desc, false, what);
+            }
+        }
+    }
+    sr_mesh_free(&seams);
     sr_mesh_free(&soup);
 }
 
