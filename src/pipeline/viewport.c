@@ -62,9 +62,28 @@ static double depth_ndc(double z, double inv_w, double b_over_w, const sr_viewpo
     return vp->depth.on ? vp->depth.a + b_over_w : z * inv_w;
 }
 
+/* The unsnapped point and z of a clip position in double; false where it
+ * is not finite, has w <= 0 or lies past the slack (the point of two lines
+ * that barely meet, sr_clip_point_on_lines_d). */
+static inline bool map_double(const double c[4], const screen_scale *scale, const sr_viewport *vp, double *sx,
+                              double *sy, double *z)
+{
+    double w = c[SR_W];
+    if (!(w > 0.0) || !isfinite(w))
+        return false;
+    double inv_w, b_over_w;
+    divide_by_w(w, vp->depth.b, &inv_w, &b_over_w);
+    double x = c[SR_X] * inv_w, y = c[SR_Y] * inv_w;
+    *z = depth_ndc(c[SR_Z], inv_w, b_over_w, vp);
+    if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(*z, 0.0))
+        return false;
+    screen_point(x, y, scale, sx, sy);
+    return true;
+}
+
 /* sr_viewport_map, with the unsnapped point and z from clip_d (the clip
- * position in double) when given: the snapped point stays the float
- * position's. */
+ * position in double) when given and usable: the snapped point stays the
+ * float position's. */
 static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, int varyings, const sr_viewport *vp,
                               sr_screen_vertex *out)
 {
@@ -82,11 +101,11 @@ static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, int 
     screen_point(x, y, &scale, &sx, &sy);
     out->x = round_to_integer(sx);
     out->y = round_to_integer(sy);
-    if (clip_d) {
-        double inv_w_d, b_over_w_d;
-        divide_by_w(clip_d[SR_W], vp->depth.b, &inv_w_d, &b_over_w_d);
-        screen_point(clip_d[SR_X] * inv_w_d, clip_d[SR_Y] * inv_w_d, &scale, &sx, &sy);
-        z = depth_ndc(clip_d[SR_Z], inv_w_d, b_over_w_d, vp);
+    double sx_d, sy_d, z_d;
+    if (clip_d && map_double(clip_d, &scale, vp, &sx_d, &sy_d, &z_d)) {
+        sx = sx_d;
+        sy = sy_d;
+        z = z_d;
     }
     out->x_off = (float)(sx - (double)out->x); /* the difference exact, then 24 bits of it */
     out->y_off = (float)(sy - (double)out->y);

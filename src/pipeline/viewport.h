@@ -35,13 +35,15 @@ typedef struct sr_viewport {
  * varyings that the clipper left inside. */
 bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp, sr_screen_vertex *out);
 
-/* sr_viewport_map for a vertex of the mesh, whose clip position the vertex
- * stage can give in double as well (clip_d, sr_vertex_clip_d): the
- * unsnapped point and z come from it, since the float position is off by up
- * to about 1e-4 px, enough to tilt a steep sliver's depth plane past 1e-6
- * (docs/precision.md, "Depth from the unsnapped vertices"). The snapped
- * point, so coverage, is the float position's, as sr_viewport_map makes it
- * for the clipper's copy of the same vertex. */
+/* sr_viewport_map for a vertex whose clip position is known in double as
+ * well (clip_d): a mesh vertex's (sr_vertex_clip_d), or a clipped
+ * polygon's vertex as the triangle's point on its two lines
+ * (sr_clip_point_on_lines_d). The unsnapped point and z come from it,
+ * since the float position is off by up to about 1e-4 px, enough to tilt a
+ * steep sliver's depth plane past 1e-6 (docs/precision.md, "Depth from the
+ * unsnapped vertices"); where clip_d is not finite, has w <= 0 or lies past
+ * the slack, from the float position as in sr_viewport_map. The snapped
+ * point, so coverage, is always the float position's. */
 bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
                        sr_screen_vertex *out);
 
