@@ -85,7 +85,7 @@ typedef struct sr_draw_state {
     sr_shade mode;       /* desc's shading, or SR_RASTER_COUNT_HITS */
     sr_shade_context shade;
     sr_viewport vp;
-    sr_vertex_transform xf; /* clip from object, float and double */
+    const sr_vertex_transform *xf; /* the vertex phase's: clip from object, float and double */
     sr_clip_precision precision;
     double clip_tolerance; /* NDC error a cut vertex may carry: half a subpixel step */
     sr_workspace *ws;

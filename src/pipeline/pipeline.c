@@ -94,16 +94,18 @@ static void shade_context_make(const sr_draw_desc *d, sr_simd simd, const sr_var
 
 typedef struct vertex_phase {
     const sr_draw_state *st;
+    sr_vertex_transform xf;
     bool inside; /* the mesh's bounds are inside every plane: no classification */
     sr_chunks vertices, indices;
 } vertex_phase;
 
 /* Stage 6 for vertex i, inside every plane: its unsnapped point and depth
  * from the clip position in double. */
-static bool map_inside(const sr_draw_state *st, const sr_vertex_out *v, uint32_t i, sr_screen_vertex *out)
+static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t i, sr_screen_vertex *out)
 {
+    const sr_draw_state *st = ph->st;
     double clip_d[4];
-    sr_vertex_mesh_clip_d(st->desc->mesh, i, &st->xf, clip_d);
+    sr_vertex_mesh_clip_d(st->desc->mesh, i, &ph->xf, clip_d);
     return sr_viewport_map_d(v, clip_d, st->shade.layout.count, &st->vp, out);
 }
 
@@ -117,13 +119,13 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
     sr_vertex_out *verts = st->ws->verts.data;
     unsigned char *outcodes = st->ws->outcodes.data;
     sr_screen_vertex *screen = st->ws->screen.data;
-    sr_vertex_run(st->desc->mesh, &st->xf, &st->shade.layout, first, end - first, verts + first);
+    sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, first, end - first, verts + first);
     for (uint32_t i = first; i < end; i++) {
         unsigned code = ph->inside ? 0 : sr_clip_outcode_with(verts[i].v, &st->vp.depth);
         for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
             if (!isfinite(verts[i].v[SR_VARYINGS_AT + k]))
                 code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
-        if (code == 0 && !map_inside(st, &verts[i], i, &screen[i]))
+        if (code == 0 && !map_inside(ph, &verts[i], i, &screen[i]))
             code = SR_OUT_NONFINITE;
         outcodes[i] = (unsigned char)code;
         *outcodes_and &= code;
@@ -276,12 +278,13 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         st->ws->threads[t].cuts = (sr_clip_counts){ { 0 } };
     }
     vertex_phase ph = { .st = st };
-    make_transform(st, &st->xf);
+    make_transform(st, &ph.xf);
+    st->xf = &ph.xf;
     const sr_mesh *mesh = st->desc->mesh;
     /* Bounds are of the positions: clip-space input is classified per vertex. */
     unsigned outside = 0;
     sr_clip_box box = mesh->bounded && !mesh->clip_positions
-                          ? sr_clip_classify_box_planes(st->xf.clip_from_object, mesh->bounds_lo, mesh->bounds_hi,
+                          ? sr_clip_classify_box_planes(ph.xf.clip_from_object, mesh->bounds_lo, mesh->bounds_hi,
                                                         &outside)
                           : SR_BOX_CROSSES;
     /* An empty mesh (valid indices: none) has nothing to draw. */

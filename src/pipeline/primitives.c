@@ -39,7 +39,7 @@ static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, const uint32
         return;
     double tri_d[3][4];
     for (int k = 0; k < 3; k++)
-        sr_vertex_mesh_clip_d(st->desc->mesh, idx[k], &st->xf, tri_d[k]);
+        sr_vertex_mesh_clip_d(st->desc->mesh, idx[k], st->xf, tri_d[k]);
     sr_screen_vertex screen[SR_MAX_CLIP_VERTS];
     for (int i = 0; i < poly->count; i++) {
         double point[4];
