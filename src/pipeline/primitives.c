@@ -3,7 +3,6 @@
 #include "draw_internal.h"
 #include "assemble.h"
 #include "clip.h"
-#include "clip_corner.h"
 #include "cull.h"
 #include "vertex.h"
 #include "viewport.h"
@@ -24,12 +23,9 @@ static void cull_and_emit(sr_fan_sink *sink, const sr_screen_vertex *const tri[3
 }
 
 /* Stages 5 and 6 for the polygon clipped from triangle idx: map every
- * vertex once, snapped from its float clip position, its unsnapped point
- * and depth from the triangle's point on its two lines in double (the
- * triangle's corners as the vertex phase maps them, a cut from the
- * triangle's clip positions in double: docs/precision.md, "Depth from the
- * unsnapped vertices"); store them with the sink, fan (v0, vi, vi+1). A
- * vertex the viewport refuses (a divide past float range) drops the
+ * vertex once, its depth from the triangle's clip positions in double
+ * (sr_viewport_map_polygon), store them with the sink, fan (v0, vi, vi+1).
+ * A vertex the viewport refuses (a divide past float range) drops the
  * polygon, counted rejected and non-finite as the vertex phase counts such
  * vertices. */
 static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, const uint32_t idx[3], uint32_t id)
@@ -41,15 +37,10 @@ static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, const uint32
     for (int k = 0; k < 3; k++)
         sr_vertex_mesh_clip_d(st->desc->mesh, idx[k], st->xf, tri_d[k]);
     sr_screen_vertex screen[SR_MAX_CLIP_VERTS];
-    for (int i = 0; i < poly->count; i++) {
-        double point[4];
-        sr_clip_point_on_lines_d(tri_d, poly->line[i > 0 ? i - 1 : poly->count - 1], poly->line[i], &st->vp.depth,
-                                 point);
-        if (!sr_viewport_map_d(&poly->vert[i], point, st->shade.layout.count, &st->vp, &screen[i])) {
-            sink->work->stats.rejected++;
-            sink->work->stats.nonfinite++;
-            return;
-        }
+    if (!sr_viewport_map_polygon(poly, tri_d, st->shade.layout.count, &st->vp, screen)) {
+        sink->work->stats.rejected++;
+        sink->work->stats.nonfinite++;
+        return;
     }
     uint32_t base = sink->store(sink, screen, poly->count);
     for (int i = 1; i + 1 < poly->count; i++) {

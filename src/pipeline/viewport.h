@@ -35,16 +35,26 @@ typedef struct sr_viewport {
  * varyings that the clipper left inside. */
 bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp, sr_screen_vertex *out);
 
-/* sr_viewport_map for a vertex whose clip position is known in double as
- * well (clip_d): a mesh vertex's (sr_vertex_clip_d), or a clipped
- * polygon's vertex as the triangle's point on its two lines
- * (sr_clip_point_on_lines_d). The unsnapped point and z come from it,
- * since the float position is off by up to about 1e-4 px, enough to tilt a
- * steep sliver's depth plane past 1e-6 (docs/precision.md, "Depth from the
- * unsnapped vertices"); where clip_d is not finite, has w <= 0 or lies past
- * the slack, from the float position as in sr_viewport_map. The snapped
- * point, so coverage, is always the float position's. */
+/* sr_viewport_map for a vertex of the mesh, whose clip position the vertex
+ * stage can give in double as well (clip_d, sr_vertex_clip_d): the
+ * unsnapped point and z come from it, since the float position is off by up
+ * to about 1e-4 px, enough to tilt a steep sliver's depth plane past 1e-6
+ * (docs/precision.md, "Depth from the unsnapped vertices"). The snapped
+ * point, so coverage, is the float position's, as sr_viewport_map makes it
+ * for the clipper's copy of the same vertex. */
 bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
                        sr_screen_vertex *out);
+
+/* Maps the polygon the clipper made from a triangle (sr_clip_polygon) whose
+ * vertices' clip positions in double are tri_d, into out[0 .. count): each
+ * vertex as sr_viewport_map_d maps it with the triangle's point on its two
+ * lines (sr_clip_point_on_lines_d) for clip_d, so a corner of the triangle
+ * maps as the vertex phase maps it and a cut takes its depth from the
+ * triangle in double. Where that point is not finite, has w <= 0 or lies
+ * past the slack (lines that barely meet), the vertex maps from its float
+ * position alone, as sr_viewport_map does. False as soon as a vertex is
+ * refused. */
+bool sr_viewport_map_polygon(const sr_polygon *poly, const double tri_d[3][4], int varyings, const sr_viewport *vp,
+                             sr_screen_vertex *out);
 
 #endif
