@@ -15,7 +15,7 @@
 #define SOUP_TRIANGLES 60
 #define NARROW_SOUP_TRIANGLES 3000
 #define SOUP_SEED 0x51D51D
-#define FB_SIDE (SR_TILE_SIDE + 33) /* odd, so rows end in partial groups of lanes; 2x2 tiles */
+#define FB_SIDE (5 * SR_TILE_ROWS_MAX + 1) /* odd, so rows end in partial groups of lanes; 5 tiles and a row */
 #define HUGE_UV 3e7f /* past 2^23, where a float has no fraction left to wrap */
 #define TILED_THREADS 3
 
@@ -56,8 +56,8 @@ static void soup_make(sr_mesh *mesh, int triangles, bool flat, double reach)
     }
 }
 
-/* A draw with this loop and thread count; returns how many rasterizer calls
- * a SIMD kernel made. */
+/* A draw with this loop and thread count (one: the direct path; more: the
+ * tiles); returns how many rasterizer calls a SIMD kernel made. */
 static uint64_t draw_with(const sr_draw_desc *base, sr_simd simd, int threads, bool reversed, sr_framebuffer *fb,
                           sr_stats *stats)
 {
@@ -68,7 +68,7 @@ static uint64_t draw_with(const sr_draw_desc *base, sr_simd simd, int threads, b
     sr_workspace *ws = sr_workspace_create();
     cr_assert_not_null(ws);
     sr_draw_desc desc = *base;
-    desc.study = &(sr_draw_study){ .simd = simd, .force_tiles = true };
+    desc.study = &(sr_draw_study){ .simd = simd, .path = threads == 1 ? SR_PATH_DIRECT : SR_PATH_TILES };
     desc.threads = threads;
     desc.workspace = ws;
     *stats = (sr_stats){ 0 };

@@ -50,9 +50,15 @@ typedef enum sr_simd {
 #define SR_MIN_SUBPIXEL_BITS 2 /* the range a study may ask for */
 #define SR_MAX_SUBPIXEL_BITS 16
 #define SR_MAX_GUARD_BAND 64.0f
-/* Pixels on a side of a tile of the threaded path (docs/performance.md): a
+/* The threaded path draws in tiles that are strips of whole rows,
+ * SR_TILE_ROWS(width) each: SR_TILE_ROWS_MAX, or fewer on a framebuffer
+ * wider than SR_TILE_PIXELS / SR_TILE_ROWS_MAX so that a strip's color and
+ * depth stay within SR_TILE_PIXELS pixels (docs/performance.md). A
  * measurement fact for studies and tests, not a promise; it may change. */
-#define SR_TILE_SIDE 128
+#define SR_TILE_ROWS_MAX 32
+#define SR_TILE_PIXELS 65536
+#define SR_TILE_ROWS(width) \
+    ((width) <= SR_TILE_PIXELS / SR_TILE_ROWS_MAX ? SR_TILE_ROWS_MAX : SR_TILE_PIXELS / (width))
 #define SR_MAX_VARYINGS 8 /* lambert: normal 3 + color 3 (or uv 2) */
 
 /* A fan-triangle vertex after divide, viewport and snapping: position in
@@ -98,6 +104,8 @@ typedef struct sr_draw_times {
     double total;             /* wall ms of the whole sr_draw, its serial checks and set-up included */
 } sr_draw_times;
 
+typedef enum sr_draw_path { SR_PATH_BY_COST = 0, SR_PATH_DIRECT, SR_PATH_TILES } sr_draw_path;
+
 typedef struct sr_draw_study {
     int subpixel_bits;                /* 0: SR_SUBPIXEL_BITS; else SR_MIN..SR_MAX_SUBPIXEL_BITS */
     sr_clip_precision clip_precision; /* SR_CLIP_ADAPTIVE: per edge, within half a subpixel step */
@@ -107,14 +115,16 @@ typedef struct sr_draw_study {
     void *observer_user;
     bool count_hits;                  /* count coverage instead of shading: see below */
     sr_draw_times *times;             /* optional: the phases' wall time is added here */
-    bool force_tiles;                 /* with threads > 1: the tiles whatever the cost estimate */
+    sr_draw_path path;                /* SR_PATH_BY_COST: one thread or the tiles by the cost estimate */
 } sr_draw_study;
 
-/* force_tiles: a draw with several threads takes them, and the tiled path,
- * only when its cost estimate says they pay (many triangle slots or a large
- * framebuffer, and not every vertex outside one plane: docs/performance.md);
- * force_tiles skips the estimate, so tests keep the tiled path exercised on
- * small scenes. Both paths draw the same pixels. */
+/* path: a draw takes several threads, and the tiled path, only when its
+ * cost estimate says they pay (many triangle slots or a large framebuffer,
+ * and not every vertex outside one plane), and takes the tiles on one thread
+ * when its triangles are few for its pixels (docs/performance.md, "One
+ * thread or tiles"). SR_PATH_DIRECT draws on one thread without tiles,
+ * SR_PATH_TILES on the tiles at the draw's thread count, one included, so
+ * tests keep both paths exercised on small scenes. All draw the same pixels. */
 
 /* count_hits: every pixel a fan triangle covers gets color += 1 (the caller
  * clears color to 0 first), so after the draw each pixel holds the number of

@@ -91,7 +91,7 @@ typedef struct sr_draw_state {
     sr_workspace *ws;
     int threads;
     uint32_t vertex_count, slots;
-    int tiles_x, tiles_y;
+    int tile_rows, tiles; /* the binned path's tiles: strips of whole rows */
 } sr_draw_state;
 
 /* Receives the fan triangles that survive culling. `store` keeps a clipped
