@@ -65,10 +65,12 @@ typedef enum sr_simd {
  * units of 2^-subpixel_bits pixel (top-left origin, y down), z_ndc, 1/w and
  * the varyings divided by w. x_off, y_off: where the vertex lay before
  * snapping, relative to x, y in the same units (|·| <= 1/2; zero, as a
- * vertex made by hand has them, means exactly at x, y). A mesh vertex
- * inside every plane snaps its float clip position but keeps the offsets
- * (and z) of its clip position in double, which may lie past 1/2 by the
- * float transform's error. Coverage is decided on the snapped x, y; the
+ * vertex made by hand has them, means exactly at x, y). The pipeline
+ * snaps every vertex from float clip coordinates (a cut vertex: the
+ * clipper's) but keeps the offsets (and z) of its position in double (a
+ * mesh vertex's clip position; a clipped polygon's vertex, the triangle's
+ * point on its two lines), which may lie past 1/2 by the float transform's
+ * and the clipper's error. Coverage is decided on the snapped x, y; the
  * depth plane goes through the unsnapped points. */
 typedef struct sr_screen_vertex {
     int64_t x, y;

@@ -14,6 +14,7 @@
 #include "raster_setup.h"
 #include "softrast/softrast.h"
 #include "softrast/study.h"
+#include "vertex.h"
 #include "viewport.h"
 
 #define SR_MAX_THREADS 64
@@ -84,6 +85,7 @@ typedef struct sr_draw_state {
     sr_shade mode;       /* desc's shading, or SR_RASTER_COUNT_HITS */
     sr_shade_context shade;
     sr_viewport vp;
+    const sr_vertex_transform *xf; /* the vertex phase's: clip from object, float and double */
     sr_clip_precision precision;
     double clip_tolerance; /* NDC error a cut vertex may carry: half a subpixel step */
     sr_workspace *ws;

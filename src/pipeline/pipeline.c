@@ -102,15 +102,12 @@ typedef struct vertex_phase {
 } vertex_phase;
 
 /* Stage 6 for vertex i, inside every plane: its unsnapped point and depth
- * from the clip position in double (clip-space input is exact as given). */
+ * from the clip position in double. */
 static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t i, sr_screen_vertex *out)
 {
     const sr_draw_state *st = ph->st;
-    const sr_mesh *mesh = st->desc->mesh;
-    if (mesh->clip_positions)
-        return sr_viewport_map(v, st->shade.layout.count, &st->vp, out);
     double clip_d[4];
-    sr_vertex_clip_d(mesh->positions[i], &ph->xf, clip_d);
+    sr_vertex_mesh_clip_d(st->desc->mesh, i, &ph->xf, clip_d);
     return sr_viewport_map_d(v, clip_d, st->shade.layout.count, &st->vp, out);
 }
 
@@ -309,6 +306,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     }
     vertex_phase ph = { .st = st };
     make_transform(st, &ph.xf);
+    st->xf = &ph.xf;
     const sr_mesh *mesh = st->desc->mesh;
     /* Bounds are of the positions: clip-space input is classified per vertex. */
     unsigned outside = 0;
