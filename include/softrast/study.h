@@ -82,7 +82,8 @@ typedef struct sr_screen_vertex {
 
 /* Sees every fan triangle that survives culling, before it is rasterized;
  * clipped: the triangle crossed a plane; id: its triangle slot. A draw with
- * one runs on one thread and calls it in submission order. */
+ * one takes the direct path on one thread, whatever its threads and path
+ * ask, and calls it in submission order. */
 typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id);
 
 /* Where a draw's time goes, added to by every draw whose study points at
@@ -90,17 +91,17 @@ typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], 
  * wall time, and of CPU time summed over the phase's threads (on a shared
  * machine a thread may wait for a core: cpu / wall is the parallelism the
  * phase got, cpu against the one-thread draw's is the threads' overhead).
- * Two clock reads per phase and thread, never per triangle: on one thread,
- * where set-up and rasterization interleave per triangle, both count under
- * `primitives` (perf splits them: docs/performance.md). */
+ * Two clock reads per phase and thread, never per triangle: on the direct
+ * path, where set-up and rasterization interleave per triangle, both count
+ * under `primitives` (perf splits them: docs/performance.md). */
 typedef struct sr_phase_time {
     double wall, cpu;
 } sr_phase_time;
 
 typedef struct sr_draw_times {
     sr_phase_time vertex;     /* stage 1, outcodes, mapping of the inside vertices */
-    sr_phase_time primitives; /* stages 2-7; threads: and binning; one thread: and rasterization */
-    sr_phase_time raster;     /* threads: the tiles */
+    sr_phase_time primitives; /* stages 2-7; tiled path: and binning; direct path: and rasterization */
+    sr_phase_time raster;     /* tiled path (at any thread count): the tiles */
     double total;             /* wall ms of the whole sr_draw, its serial checks and set-up included */
 } sr_draw_times;
 
