@@ -301,9 +301,12 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
 {
     for (int t = 0; t < st->threads; t++) {
         st->ws->threads[t].stats = (sr_stats){ 0 };
-        st->ws->threads[t].simd_draws = 0;
         st->ws->threads[t].cuts = (sr_clip_counts){ { 0 } };
     }
+    /* sr_workspace_simd_draws sums every thread's: an earlier draw on more
+     * threads must leave nothing in those this one does not use. */
+    for (int t = 0; t < SR_MAX_THREADS; t++)
+        st->ws->threads[t].simd_draws = 0;
     vertex_phase ph = { .st = st };
     make_transform(st, &ph.xf);
     st->xf = &ph.xf;
