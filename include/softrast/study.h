@@ -50,7 +50,7 @@ typedef enum sr_simd {
 #define SR_MIN_SUBPIXEL_BITS 2 /* the range a study may ask for */
 #define SR_MAX_SUBPIXEL_BITS 16
 #define SR_MAX_GUARD_BAND 64.0f
-/* The threaded path draws in tiles that are strips of whole rows,
+/* The tiled path draws in tiles that are strips of whole rows,
  * SR_TILE_ROWS(width) each: SR_TILE_ROWS_MAX, or fewer on a framebuffer
  * wider than SR_TILE_PIXELS / SR_TILE_ROWS_MAX so that a strip's color and
  * depth stay within SR_TILE_PIXELS pixels (docs/performance.md). A
@@ -138,7 +138,7 @@ typedef struct sr_draw_study {
  * per-pixel loop counts (sr_workspace_simd_draws stays 0). */
 
 /* How many rasterizer calls of the last draw with this workspace a SIMD
- * kernel made (a call is a fan triangle, or with threads its share of one
+ * kernel made (a call is a fan triangle, or on the tiles its share of one
  * tile; narrow ones take the scalar loop): tests check the kernels ran. */
 SR_API uint64_t sr_workspace_simd_draws(const sr_workspace *ws);
 

@@ -250,8 +250,8 @@ static void reject_all(const sr_draw_state *st, unsigned outside)
     sr_clip_count_rejected(stats, outside, stats->triangles);
 }
 
-/* The one-thread path: every fan triangle goes straight to the rasterizer,
- * over the whole framebuffer, in submission order. */
+/* The direct path, on one thread: every fan triangle goes straight to the
+ * rasterizer, over the whole framebuffer, in submission order. */
 static uint32_t store_in_place(sr_fan_sink *sink, const sr_screen_vertex *v, int n)
 {
     (void)sink, (void)v, (void)n;
