@@ -289,11 +289,11 @@ static bool draw_plain(const scene *sc, sr_shade shade, int threads, sr_draw_pat
     return sr_draw(fb, &desc, stats, NULL);
 }
 
-/* pipeline.h: "The image and depth are bit-identical for every thread
- * count" (and so are the counts): the tiles against the direct path. Drawn in the decoded shading mode (id if
- * the mesh cannot be shaded so), on the scene's framebuffer or one several
- * tiles tall (strips of SR_TILE_ROWS rows), the threaded draw reusing one
- * workspace. */
+/* softrast.h, sr_draw: "the image and depth are bit-identical for every
+ * thread count and either path" (and so are the counts): the tiles against
+ * the direct path. Drawn in the decoded shading mode (id if the mesh cannot
+ * be shaded so), on the scene's framebuffer or on one several tiles tall
+ * (strips of SR_TILE_ROWS rows), the threaded draw reusing one workspace. */
 static void check_threads(const scene *sc)
 {
     if (!sc->indices_valid || sc->threads == 0)

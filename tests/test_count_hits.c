@@ -30,11 +30,13 @@ static void mesh_of(sr_mesh *mesh, const ref_point (*tris)[3], uint32_t n, bool 
     }
 }
 
-/* The mesh drawn counting hits with `threads` threads; returns the stats. */
+/* The mesh drawn counting hits, on the direct path for threads 0, else on
+ * the tiles at that thread count; returns the stats. */
 static sr_stats count_hits(sr_framebuffer *fb, const sr_mesh *mesh, int threads)
 {
+    sr_draw_path path = threads == 0 ? SR_PATH_DIRECT : SR_PATH_TILES;
     sr_draw_desc desc = { .mesh = mesh, .cull = SR_CULL_NONE, .threads = threads,
-                          .study = &(sr_draw_study){ .count_hits = true, .path = SR_PATH_TILES } };
+                          .study = &(sr_draw_study){ .count_hits = true, .path = path } };
     scene_pixel_ortho(&desc, fb->width, fb->height);
     sr_framebuffer_clear(fb, 0);
     sr_stats stats = { 0 };
@@ -56,7 +58,8 @@ static void reference_counts(const ref_point (*tris)[3], uint32_t n, int width, 
         }
 }
 
-/* Counts at 1, 2 and 3 threads against the reference; returns the largest count. */
+/* Counts on the direct path and on the tiles at 1, 2 and 3 threads against
+ * the reference; returns the largest count. */
 static uint32_t expect_reference_counts(const ref_point (*tris)[3], uint32_t n, int width, int height)
 {
     sr_mesh mesh;
@@ -73,7 +76,7 @@ static uint32_t expect_reference_counts(const ref_point (*tris)[3], uint32_t n, 
         total += want[i];
         most = want[i] > most ? want[i] : most;
     }
-    for (int threads = 1; threads <= 3; threads++) {
+    for (int threads = 0; threads <= 3; threads++) { /* 0: the direct path */
         sr_stats stats = count_hits(&fb, &mesh, threads);
         for (size_t i = 0; i < pixels; i++)
             cr_assert_eq(fb.color[i], want[i], "%d threads: pixel (%zu, %zu) counted %u, the reference %u",

@@ -14,13 +14,15 @@
  * place): the same cuts mapped from float miss the bound on most of them
  * (all but corners of two side planes under the depth model, whose x/w,
  * y/w are exact and whose z rounds alike), so the bound sees a cut mapped
- * from float. Last, lines that do not meet in front of the eye. */
+ * from float. Then a cut of an edge two triangles share, the same screen
+ * vertex in both. Last, lines that do not meet in front of the eye. */
 #include <criterion/criterion.h>
 #include <float.h>
 #include <gmp.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "clip_helpers.h"
 #include "exact_cut.h"
@@ -267,6 +269,28 @@ static void check_cut(sr_clip_precision precision, const double tri_d[3][4], con
     tally->largest_bound_x = fmax(tally->largest_bound_x, X_UNITS * e.bound[0]);
 }
 
+/* Triangle tri (tri_d in double, v in float) clipped at this precision and
+ * mapped as the draw maps it; false where nothing is clipped or left. */
+static bool clip_and_map(sr_clip_precision precision, const double tri_d[3][4], const sr_vertex_out v[3],
+                         const sr_viewport *vp, sr_polygon *poly, sr_screen_vertex *s)
+{
+    unsigned any = 0, all = SR_OUT_PLANES;
+    for (int k = 0; k < 3; k++) {
+        unsigned c = sr_clip_outcode_with(v[k].v, &vp->depth);
+        any |= c;
+        all &= c;
+    }
+    if (!any || all)
+        return false;
+    *poly = poly3(v[0], v[1], v[2]);
+    sr_clip_config cfg = { .precision = precision, .ndc_tolerance = 0.5 / (SR_SUBPIXEL_ONE * VIEW_W),
+                           .depth = vp->depth };
+    if (sr_clip_polygon(poly, any, SR_VARYINGS_AT, &cfg) < 3)
+        return false;
+    cr_assert(sr_viewport_map_polygon(poly, tri_d, 0, vp, s), "a clipped triangle refused");
+    return true;
+}
+
 static cut_tally measure(sr_clip_precision precision, uint64_t seed)
 {
     test_rng r = { seed };
@@ -276,23 +300,13 @@ static cut_tally measure(sr_clip_precision precision, uint64_t seed)
         double tri_d[3][4], tri_f[3][4];
         sr_vertex_out v[3];
         random_triangle(&r, tri_d, v, &vp.depth);
-        unsigned any = 0, all = SR_OUT_PLANES;
-        for (int k = 0; k < 3; k++) {
-            unsigned c = sr_clip_outcode_with(v[k].v, &vp.depth);
-            any |= c;
-            all &= c;
+        for (int k = 0; k < 3; k++)
             for (int i = 0; i < 4; i++)
                 tri_f[k][i] = v[k].v[i];
-        }
-        if (!any || all)
-            continue;
-        sr_polygon poly = poly3(v[0], v[1], v[2]);
-        sr_clip_config cfg = { .precision = precision, .ndc_tolerance = 0.5 / (SR_SUBPIXEL_ONE * VIEW_W),
-                               .depth = vp.depth };
-        if (sr_clip_polygon(&poly, any, SR_VARYINGS_AT, &cfg) < 3)
-            continue;
+        sr_polygon poly;
         sr_screen_vertex s[SR_MAX_CLIP_VERTS];
-        cr_assert(sr_viewport_map_polygon(&poly, tri_d, 0, &vp, s), "triangle %d refused", n);
+        if (!clip_and_map(precision, tri_d, v, &vp, &poly, s))
+            continue;
         for (int i = 0; i < poly.count; i++) {
             polygon_vertex pv = { &poly.vert[i], &s[i], poly.line[i > 0 ? i - 1 : poly.count - 1], poly.line[i] };
             tally.vertices++;
@@ -338,6 +352,61 @@ Test(cut_depth, double_cuts_take_depth_from_the_exact_point_in_double)
 Test(cut_depth, float_cuts_take_depth_from_the_exact_point_in_double)
 {
     check(SR_CLIP_FLOAT, 0xC07D0004ull);
+}
+
+/* The vertex of poly on lines edge and plane line p (either order); -1 if none. */
+static int vertex_on_lines(const sr_polygon *poly, int edge, int p)
+{
+    for (int i = 0; i < poly->count; i++) {
+        int l1 = poly->line[i > 0 ? i - 1 : poly->count - 1], l2 = poly->line[i];
+        if ((l1 == edge && l2 == p) || (l1 == p && l2 == edge))
+            return i;
+    }
+    return -1;
+}
+
+/* Two triangles that share an edge, (a, b, c) and (d, b, a) with d inside
+ * the side planes, each clipped on its own (one may cross more planes than
+ * the other, so one may cut from the triangle and the other edge by edge;
+ * the precision goes round with the pair): a cut of the shared edge, its
+ * edge 0 in one and edge 1, walked the other way, in the other, is the same
+ * screen vertex in both, snapped point, offsets, z and 1/w, so neighbours
+ * hand the rasterizer one depth plane along the edge at every precision. */
+Test(cut_depth, a_cut_of_a_shared_edge_maps_alike_in_both_triangles)
+{
+    test_rng r = { 0xC07D0005ull };
+    sr_viewport vp = { .width = VIEW_W, .height = VIEW_H, .subpixel_bits = SR_SUBPIXEL_BITS, .guard = 1.0f };
+    int shared = 0;
+    for (int n = 0; n < TRIANGLES; n++) {
+        double tri_d[3][4];
+        sr_vertex_out v[3];
+        random_triangle(&r, tri_d, v, &vp.depth);
+        /* d: its z on the triangle's depth model, or anywhere in front */
+        double w = log_uniform(&r, 0.2, 16.0), x = rng_uniform(&r, -0.9, 0.9), y = rng_uniform(&r, -0.9, 0.9);
+        double z = vp.depth.on ? (double)vp.depth.a * w + vp.depth.b : rng_uniform(&r, 0.0, 1.0) * w;
+        double nb_d[3][4] = { { x * w, y * w, z, w } };
+        memcpy(nb_d[1], tri_d[1], sizeof nb_d[1]);
+        memcpy(nb_d[2], tri_d[0], sizeof nb_d[2]);
+        const sr_vertex_out nb[3] = { vert4(nb_d[0][0], nb_d[0][1], nb_d[0][2], nb_d[0][3]), v[1], v[0] };
+        sr_clip_precision precision = (sr_clip_precision)(n % SR_CLIP_PRECISIONS);
+        sr_polygon pa, pb;
+        sr_screen_vertex sa[SR_MAX_CLIP_VERTS], sb[SR_MAX_CLIP_VERTS];
+        if (!clip_and_map(precision, tri_d, v, &vp, &pa, sa) || !clip_and_map(precision, nb_d, nb, &vp, &pb, sb))
+            continue;
+        for (int p = SR_CLIP_ON_PLANE; p < SR_CLIP_ON_PLANE + SR_CLIP_PLANES; p++) {
+            int i = vertex_on_lines(&pa, 0, p), j = vertex_on_lines(&pb, 1, p);
+            if (i < 0 || j < 0)
+                continue;
+            const sr_screen_vertex *a = &sa[i], *b = &sb[j];
+            cr_assert(a->x == b->x && a->y == b->y, "pair %d, precision %d, plane %d: snapped apart", n, precision,
+                      p - SR_CLIP_ON_PLANE);
+            cr_assert(a->x_off == b->x_off && a->y_off == b->y_off && a->z == b->z && a->inv_w == b->inv_w,
+                      "pair %d, precision %d, plane %d: x_off %a / %a, y_off %a / %a, z %a / %a", n, precision,
+                      p - SR_CLIP_ON_PLANE, a->x_off, b->x_off, a->y_off, b->y_off, a->z, b->z);
+            shared++;
+        }
+    }
+    cr_assert_gt(shared, 800, "only %d cuts of a shared edge", shared);
 }
 
 /* Lines that do not meet in the triangle (near and far where w is

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "pipeline/draw_internal.h"
 #include "pipeline/raster_setup.h"
 #include "softrast_private.h"
 #include "scene_helpers.h"
@@ -354,4 +355,34 @@ Test(simd, orthographic_flat_lambert_is_the_intensity_of_the_normal)
         }
     }
     sr_mesh_free(&quads);
+}
+
+/* sr_workspace_simd_draws counts the last draw alone, whatever the draws
+ * before it with the same workspace left in the counts of threads it does
+ * not use (a viewer reuses one workspace while its thread count changes;
+ * which threads of a tiled draw ran a kernel depends on the scheduler, so
+ * the last thread's count is set as such a draw may leave it). */
+Test(simd, kernel_calls_are_the_last_draws_alone)
+{
+    sr_mesh soup;
+    soup_make(&soup, SOUP_TRIANGLES, false, 0.0);
+    sr_framebuffer fb;
+    scene_fb_make(&fb, FB_SIDE, FB_SIDE);
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    sr_draw_desc desc = { .mesh = &soup, .shade = SR_SHADE_COLOR, .cull = SR_CULL_NONE, .threads = TILED_THREADS,
+                          .workspace = ws, .study = &(sr_draw_study){ .simd = SR_SIMD_SSE2, .path = SR_PATH_TILES } };
+    look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, false);
+    sr_error err;
+    cr_assert(sr_draw(&fb, &desc, NULL, &err), "%s", err.message);
+    cr_assert_gt(sr_workspace_simd_draws(ws), 0u, "the SSE2 loop never ran on %d threads", TILED_THREADS);
+    ws->threads[TILED_THREADS - 1].simd_draws = 1;
+    desc.threads = 1;
+    desc.study = &(sr_draw_study){ .simd = SR_SIMD_SCALAR, .path = SR_PATH_DIRECT };
+    cr_assert(sr_draw(&fb, &desc, NULL, &err), "%s", err.message);
+    cr_assert_eq(sr_workspace_simd_draws(ws), 0u, "a scalar draw on one thread counts %llu kernel calls",
+                 (unsigned long long)sr_workspace_simd_draws(ws));
+    sr_workspace_destroy(ws);
+    sr_framebuffer_destroy(&fb);
+    sr_mesh_free(&soup);
 }

@@ -2,6 +2,7 @@
  * the same ids, colors and depths, bit for bit, and the same counts, for
  * every thread count. */
 #include <criterion/criterion.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "softrast_private.h"
@@ -151,9 +152,68 @@ Test(threads, observer_sees_every_drawn_triangle_once_in_order)
     sr_mesh_free(&torus);
 }
 
+/* A framebuffer in buffers of the caller's own, exactly width * height
+ * (no slack after the last row), holding another picture: desc.clear on the
+ * tiles at these thread counts gives what the direct path drew after
+ * sr_framebuffer_clear, bit for bit. */
+static void assert_caller_buffers_cleared_on_the_tiles(const sr_draw_desc *desc, const drawn *want, int width,
+                                                       int height)
+{
+    size_t n = (size_t)width * height;
+    for (int threads = 1; threads <= 3; threads += 2) {
+        sr_framebuffer fb = { .width = width, .height = height, .color = malloc(n * sizeof *fb.color),
+                              .depth = malloc(n * sizeof *fb.depth) };
+        cr_assert(fb.color && fb.depth);
+        for (size_t i = 0; i < n; i++) {
+            fb.color[i] = 0xABCDEF;
+            fb.depth[i] = 0.5f;
+        }
+        sr_draw_desc clearing = *desc;
+        clearing.clear = true;
+        clearing.threads = threads;
+        clearing.study = &(sr_draw_study){ .path = SR_PATH_TILES };
+        sr_stats stats = { 0 };
+        sr_error err;
+        cr_assert(sr_draw(&fb, &clearing, &stats, &err), "%s", err.message);
+        cr_assert_eq(memcmp(want->fb.color, fb.color, n * sizeof *fb.color), 0, "%dx%d, %d threads: color", width,
+                     height, threads);
+        cr_assert_eq(memcmp(want->fb.depth, fb.depth, n * sizeof *fb.depth), 0, "%dx%d, %d threads: depth", width,
+                     height, threads);
+        cr_assert_eq(memcmp(&want->stats, &stats, sizeof stats), 0, "%dx%d, %d threads: stats", width, height,
+                     threads);
+        free(fb.color);
+        free(fb.depth);
+    }
+}
+
+/* Tiles are strips of SR_TILE_ROWS(width) rows: fewer than SR_TILE_ROWS_MAX
+ * past 2048 pixels wide, 4 at the widest framebuffer; one pixel wide or one
+ * row tall, a single column or a single partial strip. Each size draws on
+ * the tiles what it draws on the direct path, at every thread count, into
+ * buffers of its own too, cleared by the draw. */
+Test(threads, strips_of_every_width_match_one_thread)
+{
+    sr_mesh room;
+    sr_error err;
+    cr_assert(sr_obj_load(&room, "assets/room.obj", &err), "%s", err.message);
+    static const int sizes[][2] = { { SR_MAX_FRAMEBUFFER_SIDE, 9 }, { 3001, 45 }, { 2049, 33 }, { 1, 70 }, { 70, 1 } };
+    for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
+        int w = sizes[i][0], h = sizes[i][1];
+        sr_draw_desc desc = { .mesh = &room, .shade = SR_SHADE_ID, .clear_color = 0x123456 };
+        look(&desc, (vec3){ -8, 3, -8 }, (vec3){ 4, 1.5f, 6 }, 75.0f, (float)w / (float)h);
+        assert_same_for_all_thread_counts(&desc, w, h, false);
+        drawn direct;
+        draw_with_threads(&desc, w, h, false, 1, SR_PATH_DIRECT, &direct);
+        assert_caller_buffers_cleared_on_the_tiles(&desc, &direct, w, h);
+        sr_framebuffer_destroy(&direct.fb);
+    }
+    sr_mesh_free(&room);
+}
+
 /* desc.clear into a framebuffer holding another picture: the same pixels,
- * depths and counts as sr_framebuffer_clear then the draw, on one thread
- * (one clear up front) and on several (each tile cleared by its thread). */
+ * depths and counts as sr_framebuffer_clear then the direct path's draw, on
+ * the tiles at one thread and at several (each tile cleared by the thread
+ * that draws it). */
 Test(threads, clear_inside_the_draw_matches_clear_before_it)
 {
     sr_mesh torus;

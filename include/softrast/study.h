@@ -50,7 +50,7 @@ typedef enum sr_simd {
 #define SR_MIN_SUBPIXEL_BITS 2 /* the range a study may ask for */
 #define SR_MAX_SUBPIXEL_BITS 16
 #define SR_MAX_GUARD_BAND 64.0f
-/* The threaded path draws in tiles that are strips of whole rows,
+/* The tiled path draws in tiles that are strips of whole rows,
  * SR_TILE_ROWS(width) each: SR_TILE_ROWS_MAX, or fewer on a framebuffer
  * wider than SR_TILE_PIXELS / SR_TILE_ROWS_MAX so that a strip's color and
  * depth stay within SR_TILE_PIXELS pixels (docs/performance.md). A
@@ -82,7 +82,8 @@ typedef struct sr_screen_vertex {
 
 /* Sees every fan triangle that survives culling, before it is rasterized;
  * clipped: the triangle crossed a plane; id: its triangle slot. A draw with
- * one runs on one thread and calls it in submission order. */
+ * one takes the direct path on one thread, whatever its threads and path
+ * ask, and calls it in submission order. */
 typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id);
 
 /* Where a draw's time goes, added to by every draw whose study points at
@@ -90,17 +91,17 @@ typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], 
  * wall time, and of CPU time summed over the phase's threads (on a shared
  * machine a thread may wait for a core: cpu / wall is the parallelism the
  * phase got, cpu against the one-thread draw's is the threads' overhead).
- * Two clock reads per phase and thread, never per triangle: on one thread,
- * where set-up and rasterization interleave per triangle, both count under
- * `primitives` (perf splits them: docs/performance.md). */
+ * Two clock reads per phase and thread, never per triangle: on the direct
+ * path, where set-up and rasterization interleave per triangle, both count
+ * under `primitives` (perf splits them: docs/performance.md). */
 typedef struct sr_phase_time {
     double wall, cpu;
 } sr_phase_time;
 
 typedef struct sr_draw_times {
     sr_phase_time vertex;     /* stage 1, outcodes, mapping of the inside vertices */
-    sr_phase_time primitives; /* stages 2-7; threads: and binning; one thread: and rasterization */
-    sr_phase_time raster;     /* threads: the tiles */
+    sr_phase_time primitives; /* stages 2-7; tiled path: and binning; direct path: and rasterization */
+    sr_phase_time raster;     /* tiled path (at any thread count): the tiles */
     double total;             /* wall ms of the whole sr_draw, its serial checks and set-up included */
 } sr_draw_times;
 
@@ -137,7 +138,7 @@ typedef struct sr_draw_study {
  * per-pixel loop counts (sr_workspace_simd_draws stays 0). */
 
 /* How many rasterizer calls of the last draw with this workspace a SIMD
- * kernel made (a call is a fan triangle, or with threads its share of one
+ * kernel made (a call is a fan triangle, or on the tiles its share of one
  * tile; narrow ones take the scalar loop): tests check the kernels ran. */
 SR_API uint64_t sr_workspace_simd_draws(const sr_workspace *ws);
 

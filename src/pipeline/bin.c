@@ -1,7 +1,8 @@
-/* The threaded path: set up triangles in chunks of slots, bin the fan
- * triangles into tiles, draw each tile on one thread in submission order. A
- * tile's pixels see the same triangles in the same order with the same edge
- * values as in the one-thread path, so the image is bit-identical. */
+/* The tiled path, on one thread or several: set up triangles in chunks of
+ * slots, bin the fan triangles into tiles, draw each tile on one thread in
+ * submission order. A tile's pixels see the same triangles in the same
+ * order with the same edge values as on the direct path, so the image is
+ * bit-identical. */
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>

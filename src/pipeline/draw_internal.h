@@ -1,7 +1,8 @@
 /* draw_internal.h — what the draw call's own files share: the per-draw
  * state, the workspace's layout, and the fan-triangle sink that lets one
  * primitive stage (assembly to culling) feed either the rasterizer directly
- * (one thread) or the tile bins (several). Not public API. */
+ * (the direct path, one thread) or the tile bins (the tiled path, one
+ * thread or several). Not public API. */
 #ifndef SOFTRAST_DRAW_INTERNAL_H
 #define SOFTRAST_DRAW_INTERNAL_H
 

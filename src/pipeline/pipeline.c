@@ -250,8 +250,8 @@ static void reject_all(const sr_draw_state *st, unsigned outside)
     sr_clip_count_rejected(stats, outside, stats->triangles);
 }
 
-/* The one-thread path: every fan triangle goes straight to the rasterizer,
- * over the whole framebuffer, in submission order. */
+/* The direct path, on one thread: every fan triangle goes straight to the
+ * rasterizer, over the whole framebuffer, in submission order. */
 static uint32_t store_in_place(sr_fan_sink *sink, const sr_screen_vertex *v, int n)
 {
     (void)sink, (void)v, (void)n;
@@ -301,9 +301,12 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
 {
     for (int t = 0; t < st->threads; t++) {
         st->ws->threads[t].stats = (sr_stats){ 0 };
-        st->ws->threads[t].simd_draws = 0;
         st->ws->threads[t].cuts = (sr_clip_counts){ { 0 } };
     }
+    /* sr_workspace_simd_draws sums every thread's: an earlier draw on more
+     * threads must leave nothing in those this one does not use. */
+    for (int t = 0; t < SR_MAX_THREADS; t++)
+        st->ws->threads[t].simd_draws = 0;
     vertex_phase ph = { .st = st };
     make_transform(st, &ph.xf);
     st->xf = &ph.xf;
