@@ -50,15 +50,6 @@ typedef enum sr_simd {
 #define SR_MIN_SUBPIXEL_BITS 2 /* the range a study may ask for */
 #define SR_MAX_SUBPIXEL_BITS 16
 #define SR_MAX_GUARD_BAND 64.0f
-/* The tiled path draws in tiles that are strips of whole rows,
- * SR_TILE_ROWS(width) each: SR_TILE_ROWS_MAX, or fewer on a framebuffer
- * wider than SR_TILE_PIXELS / SR_TILE_ROWS_MAX so that a strip's color and
- * depth stay within SR_TILE_PIXELS pixels (docs/performance.md). A
- * measurement fact for studies and tests, not a promise; it may change. */
-#define SR_TILE_ROWS_MAX 32
-#define SR_TILE_PIXELS 65536
-#define SR_TILE_ROWS(width) \
-    ((width) <= SR_TILE_PIXELS / SR_TILE_ROWS_MAX ? SR_TILE_ROWS_MAX : SR_TILE_PIXELS / (width))
 #define SR_MAX_VARYINGS 8 /* lambert: normal 3 + color 3 (or uv 2) */
 
 /* A fan-triangle vertex after divide, viewport and snapping: position in
