@@ -268,9 +268,10 @@ static void check_shading_independent(const draw_run *id_run, const draw_run *sh
                 differ % a->width, differ / a->width, a->depth[differ], b->depth[differ], shaded->shade);
 }
 
-/* One draw without an observer (which would force one thread). */
-static bool draw_plain(const scene *sc, sr_shade shade, int threads, sr_workspace *ws, int width, int height,
-                       sr_framebuffer *fb, sr_stats *stats)
+/* One draw without an observer (which would force one thread), on the path
+ * given: the cost estimate would keep these small scenes on one thread. */
+static bool draw_plain(const scene *sc, sr_shade shade, int threads, sr_draw_path path, sr_workspace *ws, int width,
+                       int height, sr_framebuffer *fb, sr_stats *stats)
 {
     CHECK(sr_framebuffer_create(fb, width, height, NULL), "framebuffer %dx%d", width, height);
     fb->reversed_z = sc->reversed_z;
@@ -278,6 +279,7 @@ static bool draw_plain(const scene *sc, sr_shade shade, int threads, sr_workspac
     sr_draw_desc desc = {
         .mesh = &sc->mesh, .shade = shade, .cull = sc->cull, .front = sc->front, .filter = sc->filter,
         .texture = sc->has_texture ? &sc->texture : NULL, .threads = threads, .workspace = ws,
+        .study = &(sr_draw_study){ .path = path },
     };
     glm_mat4_copy((vec4 *)sc->world, desc.world);
     glm_mat4_copy((vec4 *)sc->view, desc.view);
@@ -287,27 +289,28 @@ static bool draw_plain(const scene *sc, sr_shade shade, int threads, sr_workspac
     return sr_draw(fb, &desc, stats, NULL);
 }
 
-/* pipeline.h: "The image and depth are bit-identical for every thread
- * count" (and so are the counts). Drawn in the decoded shading mode (id if
- * the mesh cannot be shaded so), on the scene's framebuffer or one of
- * several SR_TILE_SIDE tiles, the threaded draw reusing one workspace. */
+/* softrast.h, sr_draw: "the image and depth are bit-identical for every
+ * thread count and either path" (and so are the counts): the tiles against
+ * the direct path. Drawn in the decoded shading mode (id if the mesh cannot
+ * be shaded so), on the scene's framebuffer or on one several tiles tall
+ * (strips of SR_TILE_ROWS rows), the threaded draw reusing one workspace. */
 static void check_threads(const scene *sc)
 {
     if (!sc->indices_valid || sc->threads == 0)
         return;
     sr_shade shade = draw_should_succeed(sc, sc->shade) ? sc->shade : SR_SHADE_ID;
-    int width = sc->width + (sc->big ? SR_TILE_SIDE + 13 : 0);
-    int height = sc->height + (sc->big ? SR_TILE_SIDE + 7 : 0);
+    int width = sc->width + (sc->big ? 4 * SR_TILE_ROWS_MAX + 13 : 0);
+    int height = sc->height + (sc->big ? 4 * SR_TILE_ROWS_MAX + 7 : 0);
     sr_workspace *ws = sr_workspace_create();
     CHECK(ws != NULL, "no workspace");
     sr_framebuffer one, many;
     sr_stats one_stats, many_stats;
-    bool one_ok = draw_plain(sc, shade, 1, NULL, width, height, &one, &one_stats);
-    bool many_ok = draw_plain(sc, shade, sc->threads, ws, width, height, &many, &many_stats);
+    bool one_ok = draw_plain(sc, shade, 1, SR_PATH_DIRECT, NULL, width, height, &one, &one_stats);
+    bool many_ok = draw_plain(sc, shade, sc->threads, SR_PATH_TILES, ws, width, height, &many, &many_stats);
     bool again_ok = true;
     if (sc->big) { /* the workspace again, as a viewer reuses it every frame */
         sr_framebuffer_destroy(&many);
-        again_ok = draw_plain(sc, shade, sc->threads, ws, width, height, &many, &many_stats);
+        again_ok = draw_plain(sc, shade, sc->threads, SR_PATH_TILES, ws, width, height, &many, &many_stats);
     }
     CHECK(one_ok && many_ok && again_ok, "sr_draw failed: %d with one thread, %d/%d with %d", one_ok, many_ok,
           again_ok, sc->threads);

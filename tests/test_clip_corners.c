@@ -17,6 +17,7 @@
 #include <stdlib.h>
 
 #include "clip_helpers.h"
+#include "exact_cut.h"
 #include "pipeline/clip_corner.h"
 #include "pipeline/viewport.h"
 
@@ -48,30 +49,6 @@ static void exact_poly_clear(exact_poly *p)
     for (int i = 0; i < REF_MAX_VERTS; i++)
         for (int k = 0; k < 4; k++)
             mpq_clear(p->v[i][k]);
-}
-
-/* The plane distance of an exact point; under the depth model near and far
- * come from w (a·w + b, w − a·w − b), as the clipper takes them. */
-static void exact_distance(int plane, mpq_t *const c, const sr_clip_depth *depth, mpq_t d)
-{
-    const sr_clip_plane_row *row = &sr_clip_plane_table[plane];
-    if (depth->on && row->axis == SR_Z) {
-        mpq_t t;
-        mpq_init(t);
-        mpq_set_d(t, depth->a);
-        mpq_mul(t, t, c[SR_W]);
-        mpq_set_d(d, depth->b);
-        mpq_add(d, d, t); /* near: a·w + b */
-        if (row->bounded_by_w)
-            mpq_sub(d, c[SR_W], d);
-        mpq_clear(t);
-        return;
-    }
-    mpq_set(d, c[row->axis]);
-    if (row->sign < 0)
-        mpq_neg(d, d);
-    if (row->bounded_by_w)
-        mpq_add(d, d, c[SR_W]);
 }
 
 static void exact_clip(exact_poly *p, unsigned planes, const sr_clip_depth *depth, exact_poly *scratch)

@@ -57,27 +57,22 @@ static sr_clip_depth model(int k)
 }
 
 /* The exact distance of a point at clip w to near or far under the model. */
-static void exact_distance(sr_clip_plane plane, const sr_clip_depth *m, double w, mpq_t d)
+static void exact_depth_distance(sr_clip_plane plane, const sr_clip_depth *m, double w, mpq_t d)
 {
-    mpq_t a, b, wq;
-    mpq_inits(a, b, wq, NULL);
-    mpq_set_d(a, m->a);
-    mpq_set_d(b, m->b);
-    mpq_set_d(wq, w);
-    mpq_mul(d, a, wq);
-    mpq_add(d, d, b); /* the model's z; the distance is the plane table's with it */
-    if (sr_clip_plane_table[plane].sign < 0)
-        mpq_neg(d, d);
-    if (sr_clip_plane_table[plane].bounded_by_w)
-        mpq_add(d, d, wq);
-    mpq_clears(a, b, wq, NULL);
+    mpq_t c[4];
+    for (int i = 0; i < 4; i++)
+        mpq_init(c[i]);
+    mpq_set_d(c[SR_W], w);
+    exact_distance(plane, c, m, d);
+    for (int i = 0; i < 4; i++)
+        mpq_clear(c[i]);
 }
 
 static int exact_sign(sr_clip_plane plane, const sr_clip_depth *m, double w)
 {
     mpq_t d;
     mpq_init(d);
-    exact_distance(plane, m, w, d);
+    exact_depth_distance(plane, m, w, d);
     int s = mpq_sgn(d);
     mpq_clear(d);
     return s;
@@ -163,7 +158,7 @@ Test(clip_depth, outcodes_and_distances_under_the_model_are_exact)
         cr_assert_eq(bit, (unsigned)(want < 0), "model %d plane %d w %a", e % MODELS, plane, w);
         mpq_t q;
         mpq_init(q);
-        exact_distance(plane, &m, w, q);
+        exact_depth_distance(plane, &m, w, q);
         double ref = mpq_get_d(q);
         mpq_clear(q);
         cr_assert(fabs(d - ref) <= 2.0 * DBL_EPSILON * fabs(ref), "w %a: distance %a, exact %a", w, d, ref);
@@ -196,8 +191,8 @@ static double exact_cut(sr_clip_plane plane, const sr_clip_depth *m, const sr_ve
 {
     mpq_t da, db;
     mpq_inits(da, db, NULL);
-    exact_distance(plane, m, a->v[SR_W], da);
-    exact_distance(plane, m, b->v[SR_W], db);
+    exact_depth_distance(plane, m, a->v[SR_W], da);
+    exact_depth_distance(plane, m, b->v[SR_W], db);
     double r = exact_cut_coordinate(da, db, a->v[i], b->v[i]);
     mpq_clears(da, db, NULL);
     return r;

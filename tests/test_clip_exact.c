@@ -25,16 +25,18 @@ static float magnitude(double lo, double hi)
     return (float)((uniform() < 0.5 ? -1.0 : 1.0) * pow(10.0, lo + (hi - lo) * uniform()));
 }
 
-/* The exact distance of a clip-space point to a plane, as a rational. */
-static void exact_distance(sr_clip_plane plane, const float *c, mpq_t d)
+/* The exact distance of a float clip-space point to a plane, as a rational. */
+static void exact_float_distance(sr_clip_plane plane, const float *c, mpq_t d)
 {
-    const sr_clip_plane_row *row = &sr_clip_plane_table[plane];
-    mpq_t w;
-    mpq_init(w);
-    mpq_set_d(d, row->sign * (double)c[row->axis]);
-    mpq_set_d(w, row->bounded_by_w ? c[SR_W] : 0.0);
-    mpq_add(d, d, w);
-    mpq_clear(w);
+    static const sr_clip_depth none = { .on = false };
+    mpq_t q[4];
+    for (int i = 0; i < 4; i++) {
+        mpq_init(q[i]);
+        mpq_set_d(q[i], c[i]);
+    }
+    exact_distance(plane, q, &none, d);
+    for (int i = 0; i < 4; i++)
+        mpq_clear(q[i]);
 }
 
 /* Coordinate i of the exact cut point a + t(b − a), t = d_a / (d_a − d_b). */
@@ -42,8 +44,8 @@ static double exact_cut(sr_clip_plane plane, const sr_vertex_out *a, const sr_ve
 {
     mpq_t da, db;
     mpq_inits(da, db, NULL);
-    exact_distance(plane, a->v, da);
-    exact_distance(plane, b->v, db);
+    exact_float_distance(plane, a->v, da);
+    exact_float_distance(plane, b->v, db);
     double r = exact_cut_coordinate(da, db, a->v[i], b->v[i]);
     mpq_clears(da, db, NULL);
     return r;

@@ -8,8 +8,8 @@
 
 #include "raster_reference.h"
 
-#define COUNT_W (2 * SR_TILE_SIDE + 72) /* several tiles each way, the last ones partial */
-#define COUNT_H (SR_TILE_SIDE + 66)
+#define COUNT_W 328 /* many groups of SIMD lanes, the last partial */
+#define COUNT_H (6 * SR_TILE_ROWS_MAX + 2) /* six tiles (strips of rows) and a partial seventh */
 #define COUNT_TRIANGLES 400
 
 /* A triangle list in pixel space from subpixel vertices (exact in float);
@@ -30,11 +30,13 @@ static void mesh_of(sr_mesh *mesh, const ref_point (*tris)[3], uint32_t n, bool 
     }
 }
 
-/* The mesh drawn counting hits with `threads` threads; returns the stats. */
+/* The mesh drawn counting hits, on the direct path for threads 0, else on
+ * the tiles at that thread count; returns the stats. */
 static sr_stats count_hits(sr_framebuffer *fb, const sr_mesh *mesh, int threads)
 {
+    sr_draw_path path = threads == 0 ? SR_PATH_DIRECT : SR_PATH_TILES;
     sr_draw_desc desc = { .mesh = mesh, .cull = SR_CULL_NONE, .threads = threads,
-                          .study = &(sr_draw_study){ .count_hits = true, .force_tiles = true } };
+                          .study = &(sr_draw_study){ .count_hits = true, .path = path } };
     scene_pixel_ortho(&desc, fb->width, fb->height);
     sr_framebuffer_clear(fb, 0);
     sr_stats stats = { 0 };
@@ -56,7 +58,8 @@ static void reference_counts(const ref_point (*tris)[3], uint32_t n, int width, 
         }
 }
 
-/* Counts at 1, 2 and 3 threads against the reference; returns the largest count. */
+/* Counts on the direct path and on the tiles at 1, 2 and 3 threads against
+ * the reference; returns the largest count. */
 static uint32_t expect_reference_counts(const ref_point (*tris)[3], uint32_t n, int width, int height)
 {
     sr_mesh mesh;
@@ -73,7 +76,7 @@ static uint32_t expect_reference_counts(const ref_point (*tris)[3], uint32_t n, 
         total += want[i];
         most = want[i] > most ? want[i] : most;
     }
-    for (int threads = 1; threads <= 3; threads++) {
+    for (int threads = 0; threads <= 3; threads++) { /* 0: the direct path */
         sr_stats stats = count_hits(&fb, &mesh, threads);
         for (size_t i = 0; i < pixels; i++)
             cr_assert_eq(fb.color[i], want[i], "%d threads: pixel (%zu, %zu) counted %u, the reference %u",
@@ -115,14 +118,16 @@ Test(count_hits, random_triangles_match_the_reference_at_every_thread_count)
 }
 
 /* The binned path sets a triangle that spans tiles up once and sends it only
- * to the tiles its edges reach, each flagged covered whole or not. These
- * put edges along tile borders, through the pixel centres of a tile's first
- * column or row (the top-left rule decides which tile draws them) and half
- * a pixel either side, and triangles over every tile, on 4x3 tiles. */
-#define BORDER_T ((int64_t)SR_TILE_SIDE)
+ * to the tiles its edges reach, each flagged covered whole or not. Tiles are
+ * strips of whole rows (SR_TILE_ROWS). These put edges along tile borders,
+ * through the pixel centres of a tile's first row (the top-left rule decides
+ * which tile draws them) and half a pixel either side, and triangles over
+ * every tile, on a framebuffer 3 tiles tall; the vertical edges at the same
+ * spacing test shared vertical edges on the way. */
+#define BORDER_T ((int64_t)SR_TILE_ROWS(4 * SR_TILE_ROWS_MAX))
 #define BORDER_W ((int)(4 * BORDER_T))
 #define BORDER_H ((int)(3 * BORDER_T))
-#define TS (BORDER_T * ONE) /* a tile side in subpixels */
+#define TS (BORDER_T * ONE) /* a tile's rows in subpixels */
 #define PS(n) ((int64_t)(n) * ONE) /* n pixels in subpixels */
 static const ref_point tile_border_tris[][3] = {
     /* a quad split on its diagonal, its sides on tile borders */
@@ -149,8 +154,9 @@ Test(count_hits, triangles_on_tile_borders_match_the_reference)
     cr_assert_gt(expect_reference_counts(tile_border_tris, BORDER_TRIS, BORDER_W, BORDER_H), 2);
 }
 
-/* The same triangles shaded (colors, depth per vertex): every thread count
- * and per-pixel loop gives the one-thread scalar picture, bit for bit. */
+/* The same triangles shaded (colors, depth per vertex): the tiles at every
+ * thread count and per-pixel loop give the direct path's scalar picture, bit
+ * for bit. */
 Test(count_hits, triangles_on_tile_borders_shade_the_same_on_every_path)
 {
     sr_mesh mesh;
@@ -161,11 +167,12 @@ Test(count_hits, triangles_on_tile_borders_shade_the_same_on_every_path)
     sr_error err = { "" };
     size_t pixels = scene_pixel_count(&want);
     for (int s = SR_SIMD_SCALAR; s < SR_SIMD_COUNT; s++) {
-        for (int threads = 1; threads <= 3; threads++) {
+        for (int threads = 0; threads <= 3; threads++) { /* 0: the reference */
+            sr_draw_path path = threads == 0 ? SR_PATH_DIRECT : SR_PATH_TILES;
             sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_COLOR, .cull = SR_CULL_NONE, .threads = threads,
-                                  .study = &(sr_draw_study){ .simd = (sr_simd)s, .force_tiles = true } };
+                                  .study = &(sr_draw_study){ .simd = (sr_simd)s, .path = path } };
             scene_pixel_ortho(&desc, BORDER_W, BORDER_H);
-            sr_framebuffer *fb = s == SR_SIMD_SCALAR && threads == 1 ? &want : &got;
+            sr_framebuffer *fb = s == SR_SIMD_SCALAR && threads == 0 ? &want : &got;
             sr_framebuffer_clear(fb, 0);
             cr_assert(sr_draw(fb, &desc, NULL, &err), "sr_draw: %s", err.message);
             cr_assert_eq(memcmp(fb->color, want.color, pixels * sizeof *fb->color), 0, "%s, %d threads: color",

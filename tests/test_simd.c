@@ -6,8 +6,10 @@
  * through its walls; and the kernels really draw (the workspace counts
  * their calls). */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <string.h>
 
+#include "pipeline/draw_internal.h"
 #include "pipeline/raster_setup.h"
 #include "softrast_private.h"
 #include "scene_helpers.h"
@@ -15,7 +17,7 @@
 #define SOUP_TRIANGLES 60
 #define NARROW_SOUP_TRIANGLES 3000
 #define SOUP_SEED 0x51D51D
-#define FB_SIDE (SR_TILE_SIDE + 33) /* odd, so rows end in partial groups of lanes; 2x2 tiles */
+#define FB_SIDE (5 * SR_TILE_ROWS_MAX + 1) /* odd, so rows end in partial groups of lanes; 5 tiles and a row */
 #define HUGE_UV 3e7f /* past 2^23, where a float has no fraction left to wrap */
 #define TILED_THREADS 3
 
@@ -56,8 +58,8 @@ static void soup_make(sr_mesh *mesh, int triangles, bool flat, double reach)
     }
 }
 
-/* A draw with this loop and thread count; returns how many rasterizer calls
- * a SIMD kernel made. */
+/* A draw with this loop and thread count (one: the direct path; more: the
+ * tiles); returns how many rasterizer calls a SIMD kernel made. */
 static uint64_t draw_with(const sr_draw_desc *base, sr_simd simd, int threads, bool reversed, sr_framebuffer *fb,
                           sr_stats *stats)
 {
@@ -68,7 +70,7 @@ static uint64_t draw_with(const sr_draw_desc *base, sr_simd simd, int threads, b
     sr_workspace *ws = sr_workspace_create();
     cr_assert_not_null(ws);
     sr_draw_desc desc = *base;
-    desc.study = &(sr_draw_study){ .simd = simd, .force_tiles = true };
+    desc.study = &(sr_draw_study){ .simd = simd, .path = threads == 1 ? SR_PATH_DIRECT : SR_PATH_TILES };
     desc.threads = threads;
     desc.workspace = ws;
     *stats = (sr_stats){ 0 };
@@ -206,6 +208,53 @@ Test(simd, random_triangles_match_the_scalar_loop_in_every_mode)
     sr_mesh_free(&soup);
 }
 
+/* Textures 1 to 4 texels wide and 1 to 3 high, whose texels carry junk in
+ * their unused top byte, bilinear, in texture and lambert shading: under the
+ * random uvs many lanes wrap (x0 = width − 1, x1 = 0; the same for rows);
+ * under an orthographic camera, triangles of one uv each put every pixel
+ * exactly on a seam: u or v at 0, −0, 1, just below 1, and half a texel in
+ * from either edge. */
+Test(simd, bilinear_seams_and_narrow_textures_match_the_scalar_loop)
+{
+    static const uint32_t texels[12] = { 0xFFFF0000, 0x0100FF00, 0x800000FF, 0x7FFFFFFF, 0x00000000, 0xC0808080,
+                                         0x12123456, 0xABABCDEF, 0x55FEDCBA, 0xEE010203, 0x407F7F7F, 0x0280FF00 };
+    sr_mesh soup, seams;
+    soup_make(&soup, SOUP_TRIANGLES, false, 0.0);
+    soup_make(&seams, SOUP_TRIANGLES, false, 0.0);
+    for (int w = 1; w <= 4; w++) {
+        for (int h = 1; h <= 3; h++) {
+            sr_texture tex = { .width = w, .height = h, .texels = (uint32_t *)texels };
+            const float seam[] = { 0.0f, -0.0f, 1.0f, nextafterf(1.0f, 0.0f), 0.5f / (float)w, 1.0f - 0.5f / (float)w,
+                                   0.5f / (float)h, 1.0f - 0.5f / (float)h };
+            const int seam_count = (int)(sizeof seam / sizeof *seam);
+            for (uint32_t i = 0; i < seams.vertex_count; i++) {
+                uint32_t t = i / 3;
+                seams.uvs[i][0] = seam[t % seam_count];
+                seams.uvs[i][1] = seam[t / seam_count % seam_count];
+            }
+            const struct {
+                const sr_mesh *mesh;
+                sr_shade shade;
+                float ortho_height;
+            } draws[] = { { &soup, SR_SHADE_TEXTURE, 0.0f },
+                          { &soup, SR_SHADE_LAMBERT, 0.0f },
+                          { &seams, SR_SHADE_TEXTURE, 12.0f },
+                          { &seams, SR_SHADE_LAMBERT, 12.0f } };
+            for (size_t d = 0; d < sizeof draws / sizeof *draws; d++) {
+                sr_draw_desc desc = { .mesh = draws[d].mesh, .shade = draws[d].shade, .texture = &tex,
+                                      .filter = SR_FILTER_BILINEAR, .cull = SR_CULL_NONE };
+                look_ortho(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, draws[d].ortho_height, false);
+                char what[64];
+                snprintf(what, sizeof what, "texture %dx%d, mode %d, %s uvs", w, h, draws[d].shade,
+                         draws[d].mesh == &soup ? "random" : "seam");
+                assert_vector_loops_match_scalar(&desc, false, what);
+            }
+        }
+    }
+    sr_mesh_free(&seams);
+    sr_mesh_free(&soup);
+}
+
 /* Narrow triangles, 1 to about 24 pixels wide: the scalar loop tests each
  * pixel of a box narrower than its span threshold, the kernels take boxes
  * from SIMD_MIN_WIDTH up (raster.c), so both thresholds are crossed. */
@@ -306,4 +355,34 @@ Test(simd, orthographic_flat_lambert_is_the_intensity_of_the_normal)
         }
     }
     sr_mesh_free(&quads);
+}
+
+/* sr_workspace_simd_draws counts the last draw alone, whatever the draws
+ * before it with the same workspace left in the counts of threads it does
+ * not use (a viewer reuses one workspace while its thread count changes;
+ * which threads of a tiled draw ran a kernel depends on the scheduler, so
+ * the last thread's count is set as such a draw may leave it). */
+Test(simd, kernel_calls_are_the_last_draws_alone)
+{
+    sr_mesh soup;
+    soup_make(&soup, SOUP_TRIANGLES, false, 0.0);
+    sr_framebuffer fb;
+    scene_fb_make(&fb, FB_SIDE, FB_SIDE);
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    sr_draw_desc desc = { .mesh = &soup, .shade = SR_SHADE_COLOR, .cull = SR_CULL_NONE, .threads = TILED_THREADS,
+                          .workspace = ws, .study = &(sr_draw_study){ .simd = SR_SIMD_SSE2, .path = SR_PATH_TILES } };
+    look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, false);
+    sr_error err;
+    cr_assert(sr_draw(&fb, &desc, NULL, &err), "%s", err.message);
+    cr_assert_gt(sr_workspace_simd_draws(ws), 0u, "the SSE2 loop never ran on %d threads", TILED_THREADS);
+    ws->threads[TILED_THREADS - 1].simd_draws = 1;
+    desc.threads = 1;
+    desc.study = &(sr_draw_study){ .simd = SR_SIMD_SCALAR, .path = SR_PATH_DIRECT };
+    cr_assert(sr_draw(&fb, &desc, NULL, &err), "%s", err.message);
+    cr_assert_eq(sr_workspace_simd_draws(ws), 0u, "a scalar draw on one thread counts %llu kernel calls",
+                 (unsigned long long)sr_workspace_simd_draws(ws));
+    sr_workspace_destroy(ws);
+    sr_framebuffer_destroy(&fb);
+    sr_mesh_free(&soup);
 }

@@ -2,6 +2,7 @@
  * the same ids, colors and depths, bit for bit, and the same counts, for
  * every thread count. */
 #include <criterion/criterion.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "softrast_private.h"
@@ -12,7 +13,7 @@ typedef struct drawn {
 } drawn;
 
 static void draw_with_threads(const sr_draw_desc *base, int width, int height, bool reversed, int threads,
-                              drawn *out)
+                              sr_draw_path path, drawn *out)
 {
     sr_error err;
     cr_assert(sr_framebuffer_create(&out->fb, width, height, &err), "%s", err.message);
@@ -20,7 +21,7 @@ static void draw_with_threads(const sr_draw_desc *base, int width, int height, b
     sr_framebuffer_clear(&out->fb, 0x123456);
     sr_draw_desc desc = *base;
     sr_draw_study study = base->study ? *base->study : (sr_draw_study){ 0 };
-    study.force_tiles = true; /* the tiles even where one thread would be cheaper */
+    study.path = path; /* not the cost estimate's choice: both paths on these small scenes */
     desc.study = &study;
     desc.threads = threads;
     out->stats = (sr_stats){ 0 };
@@ -29,13 +30,13 @@ static void draw_with_threads(const sr_draw_desc *base, int width, int height, b
 
 static void assert_same_for_all_thread_counts(const sr_draw_desc *desc, int width, int height, bool reversed)
 {
-    static const int counts[] = { 2, 3, 4, 7, 16 };
+    static const int counts[] = { 1, 2, 3, 4, 7, 16 };
     drawn one;
-    draw_with_threads(desc, width, height, reversed, 1, &one);
+    draw_with_threads(desc, width, height, reversed, 1, SR_PATH_DIRECT, &one);
     size_t n = (size_t)width * height;
     for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
         drawn many;
-        draw_with_threads(desc, width, height, reversed, counts[c], &many);
+        draw_with_threads(desc, width, height, reversed, counts[c], SR_PATH_TILES, &many);
         cr_assert_eq(memcmp(one.fb.color, many.fb.color, n * sizeof *one.fb.color), 0,
                      "color differs with %d threads", counts[c]);
         cr_assert_eq(memcmp(one.fb.depth, many.fb.depth, n * sizeof *one.fb.depth), 0,
@@ -74,7 +75,7 @@ Test(threads, room_ids_and_depth_match_one_thread_through_walls)
     for (size_t i = 0; i < sizeof eyes / sizeof *eyes; i++) {
         sr_draw_desc desc = { .mesh = &room, .shade = SR_SHADE_ID };
         look(&desc, eyes[i], eyes[i] + 3, 75.0f, 392.0f / 258.0f);
-        assert_same_for_all_thread_counts(&desc, 392, 258, false); /* 4x3 tiles of 128, the last partial */
+        assert_same_for_all_thread_counts(&desc, 392, 258, false); /* 9 tiles of 32 rows, the last of 2 */
     }
     sr_mesh_free(&room);
 }
@@ -143,7 +144,7 @@ Test(threads, observer_sees_every_drawn_triangle_once_in_order)
                           .study = &(sr_draw_study){ .observer = observe, .observer_user = &seen } };
     look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 1.0f);
     drawn out;
-    draw_with_threads(&desc, 64, 64, false, 4, &out);
+    draw_with_threads(&desc, 64, 64, false, 4, SR_PATH_TILES, &out);
     cr_assert_gt(out.stats.drawn, 0);
     cr_assert_eq(seen.count, out.stats.drawn);
     cr_assert(seen.in_order);
@@ -151,9 +152,68 @@ Test(threads, observer_sees_every_drawn_triangle_once_in_order)
     sr_mesh_free(&torus);
 }
 
+/* A framebuffer in buffers of the caller's own, exactly width * height
+ * (no slack after the last row), holding another picture: desc.clear on the
+ * tiles at these thread counts gives what the direct path drew after
+ * sr_framebuffer_clear, bit for bit. */
+static void assert_caller_buffers_cleared_on_the_tiles(const sr_draw_desc *desc, const drawn *want, int width,
+                                                       int height)
+{
+    size_t n = (size_t)width * height;
+    for (int threads = 1; threads <= 3; threads += 2) {
+        sr_framebuffer fb = { .width = width, .height = height, .color = malloc(n * sizeof *fb.color),
+                              .depth = malloc(n * sizeof *fb.depth) };
+        cr_assert(fb.color && fb.depth);
+        for (size_t i = 0; i < n; i++) {
+            fb.color[i] = 0xABCDEF;
+            fb.depth[i] = 0.5f;
+        }
+        sr_draw_desc clearing = *desc;
+        clearing.clear = true;
+        clearing.threads = threads;
+        clearing.study = &(sr_draw_study){ .path = SR_PATH_TILES };
+        sr_stats stats = { 0 };
+        sr_error err;
+        cr_assert(sr_draw(&fb, &clearing, &stats, &err), "%s", err.message);
+        cr_assert_eq(memcmp(want->fb.color, fb.color, n * sizeof *fb.color), 0, "%dx%d, %d threads: color", width,
+                     height, threads);
+        cr_assert_eq(memcmp(want->fb.depth, fb.depth, n * sizeof *fb.depth), 0, "%dx%d, %d threads: depth", width,
+                     height, threads);
+        cr_assert_eq(memcmp(&want->stats, &stats, sizeof stats), 0, "%dx%d, %d threads: stats", width, height,
+                     threads);
+        free(fb.color);
+        free(fb.depth);
+    }
+}
+
+/* Tiles are strips of SR_TILE_ROWS(width) rows: fewer than SR_TILE_ROWS_MAX
+ * past 2048 pixels wide, 4 at the widest framebuffer; one pixel wide or one
+ * row tall, a single column or a single partial strip. Each size draws on
+ * the tiles what it draws on the direct path, at every thread count, into
+ * buffers of its own too, cleared by the draw. */
+Test(threads, strips_of_every_width_match_one_thread)
+{
+    sr_mesh room;
+    sr_error err;
+    cr_assert(sr_obj_load(&room, "assets/room.obj", &err), "%s", err.message);
+    static const int sizes[][2] = { { SR_MAX_FRAMEBUFFER_SIDE, 9 }, { 3001, 45 }, { 2049, 33 }, { 1, 70 }, { 70, 1 } };
+    for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
+        int w = sizes[i][0], h = sizes[i][1];
+        sr_draw_desc desc = { .mesh = &room, .shade = SR_SHADE_ID, .clear_color = 0x123456 };
+        look(&desc, (vec3){ -8, 3, -8 }, (vec3){ 4, 1.5f, 6 }, 75.0f, (float)w / (float)h);
+        assert_same_for_all_thread_counts(&desc, w, h, false);
+        drawn direct;
+        draw_with_threads(&desc, w, h, false, 1, SR_PATH_DIRECT, &direct);
+        assert_caller_buffers_cleared_on_the_tiles(&desc, &direct, w, h);
+        sr_framebuffer_destroy(&direct.fb);
+    }
+    sr_mesh_free(&room);
+}
+
 /* desc.clear into a framebuffer holding another picture: the same pixels,
- * depths and counts as sr_framebuffer_clear then the draw, on one thread
- * (one clear up front) and on several (each tile cleared by its thread). */
+ * depths and counts as sr_framebuffer_clear then the direct path's draw, on
+ * the tiles at one thread and at several (each tile cleared by the thread
+ * that draws it). */
 Test(threads, clear_inside_the_draw_matches_clear_before_it)
 {
     sr_mesh torus;
@@ -164,7 +224,7 @@ Test(threads, clear_inside_the_draw_matches_clear_before_it)
         sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT, .clear_color = 0x123456 };
         look_reversed(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f, reversed);
         drawn before;
-        draw_with_threads(&desc, 301, 173, reversed, 1, &before);
+        draw_with_threads(&desc, 301, 173, reversed, 1, SR_PATH_DIRECT, &before);
         for (int threads = 1; threads <= 4; threads += 3) {
             drawn inside = { .fb = { 0 } };
             cr_assert(sr_framebuffer_create(&inside.fb, 301, 173, &err), "%s", err.message);
@@ -176,7 +236,7 @@ Test(threads, clear_inside_the_draw_matches_clear_before_it)
             sr_draw_desc clearing = desc;
             clearing.clear = true;
             clearing.threads = threads;
-            clearing.study = &(sr_draw_study){ .force_tiles = true };
+            clearing.study = &(sr_draw_study){ .path = SR_PATH_TILES };
             cr_assert(sr_draw(&inside.fb, &clearing, &inside.stats, &err), "%s", err.message);
             cr_assert_eq(memcmp(before.fb.color, inside.fb.color, n * sizeof *before.fb.color), 0,
                          "color differs, %d threads", threads);
@@ -190,29 +250,63 @@ Test(threads, clear_inside_the_draw_matches_clear_before_it)
     sr_mesh_free(&torus);
 }
 
-/* sr_draw_study.times: every draw adds its phases (never clears them); one
- * thread has no tile phase, several do; the draw's whole time holds its
- * phases. Which is faster is the bench's business, not a test's. */
+/* sr_draw_study.times: every draw adds its phases (never clears them); the
+ * direct path has no tile phase, the tiles have one; the draw's whole time
+ * holds its phases. Which is faster is the bench's business, not a test's. */
 Test(threads, draw_times_add_up_per_phase)
 {
     sr_mesh torus;
     sr_error err;
     cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
     for (int threads = 1; threads <= 2; threads++) {
+        sr_draw_path path = threads == 1 ? SR_PATH_DIRECT : SR_PATH_TILES;
         sr_draw_times times = { { 0 } };
         sr_draw_desc desc = { .mesh = &torus, .threads = threads, .study = &(sr_draw_study){ .times = &times } };
         look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
         drawn out;
-        draw_with_threads(&desc, 301, 173, false, threads, &out);
+        draw_with_threads(&desc, 301, 173, false, threads, path, &out);
         sr_draw_times once = times;
         sr_framebuffer_destroy(&out.fb);
-        draw_with_threads(&desc, 301, 173, false, threads, &out);
+        draw_with_threads(&desc, 301, 173, false, threads, path, &out);
         sr_framebuffer_destroy(&out.fb);
         cr_assert_gt(once.vertex.wall, 0.0);
         cr_assert_gt(once.primitives.cpu, 0.0);
-        cr_assert(threads == 1 ? once.raster.wall == 0.0 : once.raster.wall > 0.0, "tile phase on %d threads", threads);
+        cr_assert(path == SR_PATH_DIRECT ? once.raster.wall == 0.0 : once.raster.wall > 0.0, "tile phase on %d threads",
+                  threads);
         cr_assert_geq(once.total, once.vertex.wall + once.primitives.wall + once.raster.wall);
         cr_assert_gt(times.total, once.total, "a second draw adds to the times");
+    }
+    sr_mesh_free(&torus);
+}
+
+/* The cost estimate on one thread: a large framebuffer and few triangles
+ * (a torus of 2880 slots at 1280x720) take the tiles, a small framebuffer
+ * the direct path; both draw what the direct path draws. */
+Test(threads, one_thread_takes_the_tiles_for_few_triangles_on_many_pixels)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 48, 30, &err), "%s", err.message);
+    static const int sizes[][2] = { { 1280, 720 }, { 320, 180 } };
+    for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
+        int w = sizes[i][0], h = sizes[i][1];
+        sr_draw_times times = { { 0 } };
+        sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT,
+                              .study = &(sr_draw_study){ .times = &times } };
+        look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, (float)w / (float)h);
+        drawn direct, by_cost = { .fb = { 0 } };
+        draw_with_threads(&desc, w, h, false, 1, SR_PATH_DIRECT, &direct);
+        cr_assert(sr_framebuffer_create(&by_cost.fb, w, h, &err), "%s", err.message);
+        sr_framebuffer_clear(&by_cost.fb, 0x123456);
+        times = (sr_draw_times){ { 0 } };
+        cr_assert(sr_draw(&by_cost.fb, &desc, &by_cost.stats, &err), "%s", err.message);
+        cr_assert_eq(times.raster.wall > 0.0, i == 0, "%dx%d: tiles taken %d", w, h, times.raster.wall > 0.0);
+        size_t n = (size_t)w * h;
+        cr_assert_eq(memcmp(direct.fb.color, by_cost.fb.color, n * sizeof *direct.fb.color), 0, "%dx%d color", w, h);
+        cr_assert_eq(memcmp(direct.fb.depth, by_cost.fb.depth, n * sizeof *direct.fb.depth), 0, "%dx%d depth", w, h);
+        cr_assert_gt(direct.stats.fragments, 0);
+        sr_framebuffer_destroy(&direct.fb);
+        sr_framebuffer_destroy(&by_cost.fb);
     }
     sr_mesh_free(&torus);
 }

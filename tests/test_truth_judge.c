@@ -174,27 +174,43 @@ static void cut_side(exact_polygon *g, int axis, double bound, double sign)
 typedef struct vertex_errors {
     const sr_truth_image *truth;
     const sr_mesh *mesh;
-    sr_vertex_transform xf; /* the draw's, for an unclipped triangle's float points */
+    sr_vertex_transform xf; /* the draw's, for the float points */
     sr_viewport vp;
     double max;
     uint64_t vertices;
 } vertex_errors;
 
-/* The points snapping rounded, for an unclipped triangle: the vertex phase
- * snaps the float transform's point but hands on the offsets of the double
- * one (for the depth plane, docs/precision.md), so the float point is
- * mapped again here, and must snap to the same point. */
+/* The points snapping rounded: the vertex phase and the viewport snap the
+ * float clip positions (the clipper's cuts of them) but hand on the
+ * offsets of the positions in double (for the depth plane,
+ * docs/precision.md), so the triangle is transformed, clipped as the draw
+ * clips it and mapped again from float here, and each drawn vertex must
+ * snap to one of those points. */
 static void float_points(const vertex_errors *v, uint32_t id, const sr_screen_vertex drawn[3],
                          sr_screen_vertex out[3])
 {
     static const sr_varying_layout none = { .count = 0, .color = -1, .uv = -1, .normal = -1 };
     uint32_t idx[3];
     cr_assert(sr_assemble_triangle(v->mesh, id, idx));
+    sr_polygon poly = { .count = 3 };
+    unsigned planes = 0;
     for (int k = 0; k < 3; k++) {
-        sr_vertex_out clip;
+        CGLM_ALIGN(16) sr_vertex_out clip; /* the vertex stage stores 16 bytes at a time */
         sr_vertex_run(v->mesh, &v->xf, &none, idx[k], 1, &clip);
-        cr_assert(sr_viewport_map(&clip, 0, &v->vp, &out[k]));
-        cr_assert(out[k].x == drawn[k].x && out[k].y == drawn[k].y, "slot %u vertex %d snaps elsewhere", id, k);
+        poly.vert[k] = clip;
+        planes |= sr_clip_outcode_with(clip.v, &v->vp.depth);
+    }
+    int side = v->vp.width > v->vp.height ? v->vp.width : v->vp.height;
+    sr_clip_config cfg = { .ndc_tolerance = 1.0 / ((double)SR_SUBPIXEL_ONE * side), .depth = v->vp.depth };
+    if (planes)
+        sr_clip_polygon(&poly, planes, SR_VARYINGS_AT, &cfg);
+    for (int k = 0; k < 3; k++) {
+        bool found = false;
+        for (int i = 0; i < poly.count && !found; i++) {
+            cr_assert(sr_viewport_map(&poly.vert[i], 0, &v->vp, &out[k]));
+            found = out[k].x == drawn[k].x && out[k].y == drawn[k].y;
+        }
+        cr_assert(found, "slot %u vertex %d snaps elsewhere", id, k);
     }
 }
 
@@ -205,13 +221,10 @@ static void float_points(const vertex_errors *v, uint32_t id, const sr_screen_ve
  * inside the image. */
 static void measure_vertices(void *user, const sr_screen_vertex drawn[3], bool clipped, uint32_t id)
 {
+    (void)clipped;
     vertex_errors *v = user;
-    sr_screen_vertex unclipped[3];
-    const sr_screen_vertex *tri = drawn;
-    if (!clipped) {
-        float_points(v, id, drawn, unclipped);
-        tri = unclipped;
-    }
+    sr_screen_vertex tri[3];
+    float_points(v, id, drawn, tri);
     exact_polygon g;
     g.count = sr_truth_outline_corners(v->truth, id, g.p);
     cut_side(&g, 0, 0.0, 1.0);

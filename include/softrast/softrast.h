@@ -305,7 +305,7 @@ typedef struct sr_draw_desc {
     sr_workspace *workspace;   /* optional */
     const sr_draw_study *study; /* optional measurement knobs (softrast/study.h); NULL: the defaults */
     /* true: the draw first clears fb as sr_framebuffer_clear(fb, clear_color)
-     * would, with threads each tile just before its triangles (while it is
+     * would, on the tiles each tile just before its triangles (while it is
      * in cache, and in parallel). */
     bool clear;
     uint32_t clear_color;
@@ -316,8 +316,9 @@ typedef struct sr_draw_desc {
  * mode whose inputs the mesh lacks (normals, uvs, colors, texture), a
  * non-finite mesh origin. Bad geometry (NaN, inf, anything behind the eye)
  * is not an error: it is dropped or clipped and counted in stats. With
- * threads > 1 the screen is cut into 64-pixel tiles drawn in parallel; the
- * image and depth are bit-identical for every thread count. */
+ * threads > 1, or few triangles for many pixels, the screen is cut into
+ * tiles (strips of whole rows) drawn in parallel; the image and depth are
+ * bit-identical for every thread count and either path. */
 SR_API bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
 
 #endif

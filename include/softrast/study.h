@@ -50,19 +50,18 @@ typedef enum sr_simd {
 #define SR_MIN_SUBPIXEL_BITS 2 /* the range a study may ask for */
 #define SR_MAX_SUBPIXEL_BITS 16
 #define SR_MAX_GUARD_BAND 64.0f
-/* Pixels on a side of a tile of the threaded path (docs/performance.md): a
- * measurement fact for studies and tests, not a promise; it may change. */
-#define SR_TILE_SIDE 128
 #define SR_MAX_VARYINGS 8 /* lambert: normal 3 + color 3 (or uv 2) */
 
 /* A fan-triangle vertex after divide, viewport and snapping: position in
  * units of 2^-subpixel_bits pixel (top-left origin, y down), z_ndc, 1/w and
  * the varyings divided by w. x_off, y_off: where the vertex lay before
  * snapping, relative to x, y in the same units (|·| <= 1/2; zero, as a
- * vertex made by hand has them, means exactly at x, y). A mesh vertex
- * inside every plane snaps its float clip position but keeps the offsets
- * (and z) of its clip position in double, which may lie past 1/2 by the
- * float transform's error. Coverage is decided on the snapped x, y; the
+ * vertex made by hand has them, means exactly at x, y). The pipeline
+ * snaps every vertex from float clip coordinates (a cut vertex: the
+ * clipper's) but keeps the offsets (and z) of its position in double (a
+ * mesh vertex's clip position; a clipped polygon's vertex, the triangle's
+ * point on its two lines), which may lie past 1/2 by the float transform's
+ * and the clipper's error. Coverage is decided on the snapped x, y; the
  * depth plane goes through the unsnapped points. */
 typedef struct sr_screen_vertex {
     int64_t x, y;
@@ -74,7 +73,8 @@ typedef struct sr_screen_vertex {
 
 /* Sees every fan triangle that survives culling, before it is rasterized;
  * clipped: the triangle crossed a plane; id: its triangle slot. A draw with
- * one runs on one thread and calls it in submission order. */
+ * one takes the direct path on one thread, whatever its threads and path
+ * ask, and calls it in submission order. */
 typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id);
 
 /* Where a draw's time goes, added to by every draw whose study points at
@@ -82,19 +82,21 @@ typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], 
  * wall time, and of CPU time summed over the phase's threads (on a shared
  * machine a thread may wait for a core: cpu / wall is the parallelism the
  * phase got, cpu against the one-thread draw's is the threads' overhead).
- * Two clock reads per phase and thread, never per triangle: on one thread,
- * where set-up and rasterization interleave per triangle, both count under
- * `primitives` (perf splits them: docs/performance.md). */
+ * Two clock reads per phase and thread, never per triangle: on the direct
+ * path, where set-up and rasterization interleave per triangle, both count
+ * under `primitives` (perf splits them: docs/performance.md). */
 typedef struct sr_phase_time {
     double wall, cpu;
 } sr_phase_time;
 
 typedef struct sr_draw_times {
     sr_phase_time vertex;     /* stage 1, outcodes, mapping of the inside vertices */
-    sr_phase_time primitives; /* stages 2-7; threads: and binning; one thread: and rasterization */
-    sr_phase_time raster;     /* threads: the tiles */
+    sr_phase_time primitives; /* stages 2-7; tiled path: and binning; direct path: and rasterization */
+    sr_phase_time raster;     /* tiled path (at any thread count): the tiles */
     double total;             /* wall ms of the whole sr_draw, its serial checks and set-up included */
 } sr_draw_times;
+
+typedef enum sr_draw_path { SR_PATH_BY_COST = 0, SR_PATH_DIRECT, SR_PATH_TILES } sr_draw_path;
 
 typedef struct sr_draw_study {
     int subpixel_bits;                /* 0: SR_SUBPIXEL_BITS; else SR_MIN..SR_MAX_SUBPIXEL_BITS */
@@ -105,14 +107,16 @@ typedef struct sr_draw_study {
     void *observer_user;
     bool count_hits;                  /* count coverage instead of shading: see below */
     sr_draw_times *times;             /* optional: the phases' wall time is added here */
-    bool force_tiles;                 /* with threads > 1: the tiles whatever the cost estimate */
+    sr_draw_path path;                /* SR_PATH_BY_COST: one thread or the tiles by the cost estimate */
 } sr_draw_study;
 
-/* force_tiles: a draw with several threads takes them, and the tiled path,
- * only when its cost estimate says they pay (many triangle slots or a large
- * framebuffer, and not every vertex outside one plane: docs/performance.md);
- * force_tiles skips the estimate, so tests keep the tiled path exercised on
- * small scenes. Both paths draw the same pixels. */
+/* path: a draw takes several threads, and the tiled path, only when its
+ * cost estimate says they pay (many triangle slots or a large framebuffer,
+ * and not every vertex outside one plane), and takes the tiles on one thread
+ * when its triangles are few for its pixels (docs/performance.md, "One
+ * thread or tiles"). SR_PATH_DIRECT draws on one thread without tiles,
+ * SR_PATH_TILES on the tiles at the draw's thread count, one included, so
+ * tests keep both paths exercised on small scenes. All draw the same pixels. */
 
 /* count_hits: every pixel a fan triangle covers gets color += 1 (the caller
  * clears color to 0 first), so after the draw each pixel holds the number of
@@ -125,7 +129,7 @@ typedef struct sr_draw_study {
  * per-pixel loop counts (sr_workspace_simd_draws stays 0). */
 
 /* How many rasterizer calls of the last draw with this workspace a SIMD
- * kernel made (a call is a fan triangle, or with threads its share of one
+ * kernel made (a call is a fan triangle, or on the tiles its share of one
  * tile; narrow ones take the scalar loop): tests check the kernels ran. */
 SR_API uint64_t sr_workspace_simd_draws(const sr_workspace *ws);
 

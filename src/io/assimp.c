@@ -19,6 +19,7 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -244,13 +245,25 @@ static bool build_mesh(const struct aiScene *sc, const char *path, sr_mesh *mesh
     return true;
 }
 
+/* Assimp's reason on one line: it may quote bytes of the file (an FBX
+ * type code), a newline among them. */
+static bool import_error(const char *path, sr_error *err)
+{
+    char reason[sizeof err->message];
+    snprintf(reason, sizeof reason, "%s", aiGetErrorString());
+    for (char *c = reason; *c; c++)
+        if (iscntrl((unsigned char)*c))
+            *c = '?';
+    return sr_error_set(err, "%s: %s", path, reason);
+}
+
 /* In the child process: Assimp's import, converted. */
 static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
     const struct aiScene *sc = aiImportFile(path, IMPORT_STEPS);
     if (!sc)
-        return sr_error_set(err, "%s: %s", path, aiGetErrorString());
+        return import_error(path, err);
     bool ok = build_mesh(sc, path, mesh, err) && find_texture(sc, path, mesh, texture, err);
     aiReleaseImport(sc);
     if (!ok)

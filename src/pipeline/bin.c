@@ -1,7 +1,8 @@
-/* The threaded path: set up triangles in chunks of slots, bin the fan
- * triangles into tiles, draw each tile on one thread in submission order. A
- * tile's pixels see the same triangles in the same order with the same edge
- * values as in the one-thread path, so the image is bit-identical. */
+/* The tiled path, on one thread or several: set up triangles in chunks of
+ * slots, bin the fan triangles into tiles, draw each tile on one thread in
+ * submission order. A tile's pixels see the same triangles in the same
+ * order with the same edge values as on the direct path, so the image is
+ * bit-identical. */
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -60,12 +61,11 @@ static sr_raster_rect box_in(sr_raster_rect box, sr_raster_rect tile)
                              clamp_to(box.x1, tile.x0, tile.x1), clamp_to(box.y1, tile.y0, tile.y1) };
 }
 
-static sr_raster_rect tile_rect(const sr_draw_state *st, int tx, int ty)
+/* Tile t: rows t * tile_rows on, across the whole framebuffer. */
+static sr_raster_rect tile_rect(const sr_draw_state *st, int tile)
 {
-    sr_raster_rect rect = { tx * SR_TILE_SIDE, ty * SR_TILE_SIDE, (tx + 1) * SR_TILE_SIDE, (ty + 1) * SR_TILE_SIDE };
-    rect.x1 = rect.x1 < st->fb->width ? rect.x1 : st->fb->width;
-    rect.y1 = rect.y1 < st->fb->height ? rect.y1 : st->fb->height;
-    return rect;
+    int y1 = (tile + 1) * st->tile_rows;
+    return (sr_raster_rect){ 0, tile * st->tile_rows, st->fb->width, y1 < st->fb->height ? y1 : st->fb->height };
 }
 
 /* A tile's estimated cost, in pixels drawn: a triangle costs as much as
@@ -122,15 +122,14 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
     sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return; /* covers no pixel centre: no record */
-    int tx0 = box.x0 / SR_TILE_SIDE, tx1 = (box.x1 - 1) / SR_TILE_SIDE;
-    int ty0 = box.y0 / SR_TILE_SIDE, ty1 = (box.y1 - 1) / SR_TILE_SIDE;
-    if (tx0 == tx1 && ty0 == ty1) {
+    int first = box.y0 / st->tile_rows, last = (box.y1 - 1) / st->tile_rows;
+    if (first == last) {
         sr_record *rec = record_new(w, id, box);
         if (!rec)
             return;
         memcpy(rec->ref, ref, sizeof rec->ref);
         rec->area2 = area2;
-        bin_push(w, &w->bins[ty0 * st->tiles_x + tx0], (uint32_t)(w->records.count - 1),
+        bin_push(w, &w->bins[first], (uint32_t)(w->records.count - 1),
                  entry_cost(box, SR_COVER_PARTIAL));
         return;
     }
@@ -149,14 +148,11 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
     rec->setup = (uint32_t)(w->setups.count - 1);
     rec->area2 = 0;
     uint32_t index = (uint32_t)(w->records.count - 1);
-    for (int ty = ty0; ty <= ty1; ty++) {
-        for (int tx = tx0; tx <= tx1; tx++) {
-            sr_raster_rect share = box_in(box, tile_rect(st, tx, ty));
-            sr_box_cover c = sr_raster_classify(setup, share);
-            if (c != SR_COVER_NONE)
-                bin_push(w, &w->bins[ty * st->tiles_x + tx], index | (c == SR_COVER_ALL ? SR_BIN_COVERED : 0),
-                         entry_cost(share, c));
-        }
+    for (int tile = first; tile <= last; tile++) {
+        sr_raster_rect share = box_in(box, tile_rect(st, tile));
+        sr_box_cover c = sr_raster_classify(setup, share);
+        if (c != SR_COVER_NONE)
+            bin_push(w, &w->bins[tile], index | (c == SR_COVER_ALL ? SR_BIN_COVERED : 0), entry_cost(share, c));
     }
 }
 
@@ -187,7 +183,7 @@ static void setup_chunks(void *ctx, int t)
     setup_phase *ph = ctx;
     sr_draw_state *st = ph->st;
     sr_thread_work *w = &st->ws->threads[t];
-    if (!work_reset(w, (size_t)st->tiles_x * (size_t)st->tiles_y)) {
+    if (!work_reset(w, (size_t)st->tiles)) {
         w->out_of_memory = true;
         return;
     }
@@ -204,25 +200,20 @@ static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_threa
     return &((const sr_screen_vertex *)binner->clip_verts.data)[ref - st->vertex_count];
 }
 
-/* sr_framebuffer_clear for the tile's pixels alone, a row of one buffer
- * then of the other: one loop storing colour and depth in turn took fly's
- * near-empty frames 1.35 ms (the two stores might alias, so it stayed
- * pixel by pixel); a prepared row copied by memcpy became `rep movsq`, 512
- * bytes at a time, against which these loops measured faster
- * (whole-process CPU at 2 threads: depth 0.960, dense 0.972, fly 0.976,
- * fill 0.999). */
+/* sr_framebuffer_clear for the tile's rows alone: the first row stored
+ * pixel by pixel, copied to the others (memcpy moves a row in a few vector
+ * stores). */
 static void clear_tile(sr_framebuffer *fb, sr_raster_rect rect, uint32_t color)
 {
+    size_t width = (size_t)fb->width, first = (size_t)rect.y0 * width;
     float depth = sr_framebuffer_depth_clear(fb);
-    size_t n = (size_t)(rect.x1 - rect.x0);
-    for (int y = rect.y0; y < rect.y1; y++) {
-        size_t at = (size_t)y * (size_t)fb->width + (size_t)rect.x0;
-        uint32_t *c = fb->color + at;
-        float *d = fb->depth + at;
-        for (size_t x = 0; x < n; x++)
-            c[x] = color;
-        for (size_t x = 0; x < n; x++)
-            d[x] = depth;
+    for (size_t x = 0; x < width; x++) {
+        fb->color[first + x] = color;
+        fb->depth[first + x] = depth;
+    }
+    for (size_t at = first + width; at < (size_t)rect.y1 * width; at += width) {
+        memcpy(fb->color + at, fb->color + first, width * sizeof *fb->color);
+        memcpy(fb->depth + at, fb->depth + first, width * sizeof *fb->depth);
     }
 }
 
@@ -265,7 +256,7 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, u
  * thread's, so the merge is submission order. */
 static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_draws)
 {
-    sr_raster_rect rect = tile_rect(st, tile % st->tiles_x, tile / st->tiles_x);
+    sr_raster_rect rect = tile_rect(st, tile);
     if (st->desc->clear)
         clear_tile(st->fb, rect, st->desc->clear_color);
     uint64_t fragments = 0;
@@ -319,10 +310,11 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
  * tile alone at the end. Tiles of about the same cost (within a factor of
  * two) go in turns over one band of tiles per thread, not screen order:
  * turn k is tile k / T of band k % T. Handed out in screen order, the tile
- * one thread draws is the right neighbour of another's, and the hardware
- * prefetcher of one core keeps reading the rows the other core is writing:
- * measured on fill at 2 threads, 496 ms of CPU a frame in screen order, 454
- * in bands (448 for the binned path on one thread); fly 18.1 -> 16.8. */
+ * one thread draws borders another's, and the hardware prefetcher of one
+ * core keeps reading the rows the other core is writing (measured with
+ * 128-pixel square tiles, which had that border on every row: fill at 2
+ * threads, 496 ms of CPU a frame in screen order, 454 in bands). Strips of
+ * whole rows border each other once per strip, not once per row. */
 static int tile_of_turn(const sr_draw_state *st, int turn, int band_tiles)
 {
     return turn % st->threads * band_tiles + turn / st->threads;
@@ -347,7 +339,7 @@ static int cost_class(uint64_t cost)
  * (a counting sort: two passes over the tiles). */
 static bool order_tiles(sr_draw_state *st)
 {
-    int tiles = st->tiles_x * st->tiles_y, band_tiles = (tiles + st->threads - 1) / st->threads;
+    int tiles = st->tiles, band_tiles = (tiles + st->threads - 1) / st->threads;
     if (!sr_array_reserve(&st->ws->tile_order, (size_t)tiles, sizeof(int)))
         return false;
     int *order = st->ws->tile_order.data;
@@ -371,7 +363,7 @@ static void raster_tiles(void *ctx, int t)
 {
     raster_phase *ph = ctx;
     const sr_draw_state *st = ph->st;
-    int tiles = st->tiles_x * st->tiles_y;
+    int tiles = st->tiles;
     const int *order = st->ws->tile_order.data;
     sr_thread_work *w = &st->ws->threads[t];
     for (int turn = atomic_fetch_add(&ph->next_tile, 1); turn < tiles; turn = atomic_fetch_add(&ph->next_tile, 1))

@@ -16,9 +16,12 @@
  * precision the bound assumes: such edges go exact. */
 #define TINY_SCALE 1e-30f
 
-/* The plane table of clip.h on a point in double. */
-static double distance_d(sr_clip_plane plane, const double c[4])
+double sr_clip_distance_d(sr_clip_plane plane, const double c[4], const sr_clip_depth *depth)
 {
+    if (depth && depth->on && sr_clip_plane_in_depth_model(plane)) {
+        double aw = (double)depth->a * c[SR_W];
+        return sr_clip_plane_table[plane].bounded_by_w ? (c[SR_W] - aw) - depth->b : aw + depth->b;
+    }
     return sr_clip_plane_distance(plane, c[sr_clip_plane_table[plane].axis], c[SR_W]);
 }
 
@@ -116,7 +119,7 @@ sr_clip_box sr_clip_classify_box_planes(const float clip_from_object[4][4], cons
             return SR_BOX_CROSSES;
         unsigned out = 0;
         for (int p = 0; p < SR_CLIP_PLANES; p++) {
-            double d = distance_d((sr_clip_plane)p, c);
+            double d = sr_clip_distance_d((sr_clip_plane)p, c, NULL);
             out |= (unsigned)(d < -margin) << p;
             any_near |= (unsigned)(d < margin) << p;
         }
@@ -243,26 +246,37 @@ sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *in
     return p;
 }
 
-/* One Sutherland–Hodgman pass. Returns the output count, or -1 if rounding
- * made the polygon cross the plane more than twice and the output would pass
- * the bound (only slivers thinner than float precision do that). */
-static int clip_against_plane(const sr_vertex_out *in, int n, sr_clip_plane plane, int floats,
-                              const sr_clip_config *cfg, sr_vertex_out *out)
+/* The line of the output edge that leaves a cut vertex: where the input
+ * edge leaves the plane (a_in), the plane's cut line; where it comes back
+ * in, the rest of the input edge. */
+static unsigned char line_after_cut(bool a_in, unsigned char edge_line, sr_clip_plane plane)
 {
-    int m = 0;
+    return a_in ? (unsigned char)(SR_CLIP_ON_PLANE + plane) : edge_line;
+}
+
+/* One Sutherland–Hodgman pass, carrying each edge's line (sr_polygon).
+ * Returns the output count, or -1 if rounding made the polygon cross the
+ * plane more than twice and the output would pass the bound (only slivers
+ * thinner than float precision do that). */
+static int clip_against_plane(const sr_polygon *in, sr_clip_plane plane, int floats, const sr_clip_config *cfg,
+                              sr_polygon *out)
+{
+    int n = in->count, m = 0;
     for (int i = 0; i < n; i++) {
-        const sr_vertex_out *a = &in[i], *b = &in[i + 1 < n ? i + 1 : 0];
+        const sr_vertex_out *a = &in->vert[i], *b = &in->vert[i + 1 < n ? i + 1 : 0];
         const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
         bool a_in = sr_clip_distance_with(plane, a->v, depth) >= 0.0;
         bool b_in = sr_clip_distance_with(plane, b->v, depth) >= 0.0;
         if (m + (a_in) + (a_in != b_in) > SR_MAX_CLIP_VERTS)
             return -1;
-        if (a_in)
-            out[m++] = *a;
-        if (a_in && !b_in)
-            sr_clip_intersect(plane, a, b, floats, cfg, &out[m++]);
-        else if (!a_in && b_in)
-            sr_clip_intersect(plane, b, a, floats, cfg, &out[m++]);
+        if (a_in) {
+            out->line[m] = in->line[i];
+            out->vert[m++] = *a;
+        }
+        if (a_in != b_in) {
+            sr_clip_intersect(plane, a_in ? a : b, a_in ? b : a, floats, cfg, &out->vert[m]);
+            out->line[m++] = line_after_cut(a_in, in->line[i], plane);
+        }
     }
     return m;
 }
@@ -270,14 +284,16 @@ static int clip_against_plane(const sr_vertex_out *in, int n, sr_clip_plane plan
 /* Plain Sutherland–Hodgman: every polygon edge cut as it stands. */
 static void clip_edge_by_edge(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
 {
-    sr_vertex_out scratch[SR_MAX_CLIP_VERTS];
+    sr_polygon scratch;
     for (int p = 0; p < SR_CLIP_PLANES && poly->count >= 3; p++) {
         if (!(planes & (1u << p)))
             continue;
-        int n = clip_against_plane(poly->vert, poly->count, (sr_clip_plane)p, floats, cfg, scratch);
+        int n = clip_against_plane(poly, (sr_clip_plane)p, floats, cfg, &scratch);
         poly->count = n < 3 ? 0 : n;
-        for (int i = 0; i < poly->count; i++)
-            poly->vert[i] = scratch[i];
+        for (int i = 0; i < poly->count; i++) {
+            poly->vert[i] = scratch.vert[i];
+            poly->line[i] = scratch.line[i];
+        }
     }
 }
 
@@ -361,30 +377,28 @@ static int vertex_side(const triangle_clip *tc, int before, int after, sr_clip_p
     return sr_clip_exact_side(tc->tri, before, after, plane, depth);
 }
 
-/* One pass; line[i] is what edge i (vertex i to i + 1) runs along, so
- * vertex i lies on lines i − 1 and i. Returns the output count, or -1 as
- * clip_against_plane does. */
-static int pass_from_triangle(triangle_clip *tc, const sr_vertex_out *in, const unsigned char *in_line, int n,
-                              sr_clip_plane plane, sr_vertex_out *out, unsigned char *out_line)
+/* One pass (vertex i lies on lines line[i − 1] and line[i]). Returns the
+ * output count, or -1 as clip_against_plane does. */
+static int pass_from_triangle(triangle_clip *tc, const sr_polygon *in, sr_clip_plane plane, sr_polygon *out)
 {
-    int side[SR_MAX_CLIP_VERTS];
+    int n = in->count, side[SR_MAX_CLIP_VERTS];
     for (int i = 0; i < n; i++) {
-        side[i] = vertex_side(tc, in_line[i > 0 ? i - 1 : n - 1], in_line[i], plane, &in[i]);
+        side[i] = vertex_side(tc, in->line[i > 0 ? i - 1 : n - 1], in->line[i], plane, &in->vert[i]);
         tc->failed = tc->failed || side[i] < 0;
     }
     int m = 0;
     for (int i = 0; i < n && !tc->failed; i++) {
-        const sr_vertex_out *a = &in[i], *b = &in[i + 1 < n ? i + 1 : 0];
+        const sr_vertex_out *a = &in->vert[i], *b = &in->vert[i + 1 < n ? i + 1 : 0];
         bool a_in = side[i], b_in = side[i + 1 < n ? i + 1 : 0];
         if (m + (a_in) + (a_in != b_in) > SR_MAX_CLIP_VERTS)
             return -1;
         if (a_in) {
-            out_line[m] = in_line[i];
-            out[m++] = *a;
+            out->line[m] = in->line[i];
+            out->vert[m++] = *a;
         }
         if (a_in != b_in) {
-            tc->failed = !cut_from_triangle(tc, in_line[i], plane, a_in ? a : b, a_in ? b : a, &out[m]);
-            out_line[m++] = a_in ? (unsigned char)(SR_CLIP_ON_PLANE + plane) : in_line[i];
+            tc->failed = !cut_from_triangle(tc, in->line[i], plane, a_in ? a : b, a_in ? b : a, &out->vert[m]);
+            out->line[m++] = line_after_cut(a_in, in->line[i], plane);
         }
     }
     return m;
@@ -401,19 +415,17 @@ static bool clip_from_triangle(sr_polygon *poly, unsigned planes, int floats, co
     tc.cfg = cfg;
     tc.failed = false;
     tc.kept = 0;
-    sr_polygon clipped = *poly;
-    sr_vertex_out scratch[SR_MAX_CLIP_VERTS];
-    unsigned char line[SR_MAX_CLIP_VERTS] = { 0, 1, 2 }, scratch_line[SR_MAX_CLIP_VERTS];
+    sr_polygon clipped = *poly, scratch;
     for (int p = 0; p < SR_CLIP_PLANES && clipped.count >= 3; p++) {
         if (!(planes & (1u << p)))
             continue;
-        int n = pass_from_triangle(&tc, clipped.vert, line, clipped.count, (sr_clip_plane)p, scratch, scratch_line);
+        int n = pass_from_triangle(&tc, &clipped, (sr_clip_plane)p, &scratch);
         if (tc.failed)
             return false;
         clipped.count = n < 3 ? 0 : n;
         for (int i = 0; i < clipped.count; i++) {
-            clipped.vert[i] = scratch[i];
-            line[i] = scratch_line[i];
+            clipped.vert[i] = scratch.vert[i];
+            clipped.line[i] = scratch.line[i];
         }
     }
     for (int i = 0; i < tc.kept; i++) {
@@ -450,6 +462,9 @@ int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, const sr_clip
         poly->count = 0;
         return 0;
     }
+    if (poly->count == 3)
+        for (int k = 0; k < 3; k++)
+            poly->line[k] = (unsigned char)k;
     if (!cuts_from_triangle(poly, planes, cfg))
         clip_edge_by_edge(poly, planes, floats, cfg);
     else if (!clip_from_triangle(poly, planes, floats, cfg)) {

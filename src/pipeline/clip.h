@@ -147,6 +147,10 @@ sr_clip_depth sr_clip_depth_of(const float projection[4][4]);
 double sr_clip_distance_with(sr_clip_plane plane, const float *clip, const sr_clip_depth *depth);
 unsigned sr_clip_outcode_with(const float *clip, const sr_clip_depth *depth);
 
+/* The distance of a point in double (depth as above; a·w rounds too, as
+ * does w − a·w), within a few roundings of the exact one. */
+double sr_clip_distance_d(sr_clip_plane plane, const double c[4], const sr_clip_depth *depth);
+
 /* Where an object-space box lies against the clip volume under a transform:
  * every point inside every plane (the draw can skip classification and
  * clipping), every point outside one plane (the draw can skip the mesh), or
@@ -181,10 +185,11 @@ sr_clip_precision sr_clip_intersect(sr_clip_plane plane, const sr_vertex_out *in
  * in w alone and z follows w, a·w + b rounded once). */
 void sr_clip_place_on_plane(sr_clip_plane plane, const sr_clip_depth *depth, float *clip);
 
-/* Clips poly in place against the planes whose bits are set in `planes`.
- * Returns the vertex count (0: nothing left, or a degenerate sliver whose
- * rounding made it non-convex past the bound; never more than
- * SR_MAX_CLIP_VERTS). */
+/* Clips poly in place against the planes whose bits are set in `planes`;
+ * given a triangle, it records the line each edge of the result runs
+ * along (sr_polygon.line), whichever precision cut it. Returns the vertex
+ * count (0: nothing left, or a degenerate sliver whose rounding made it
+ * non-convex past the bound; never more than SR_MAX_CLIP_VERTS). */
 int sr_clip_polygon(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg);
 
 #endif

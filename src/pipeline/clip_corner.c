@@ -109,3 +109,26 @@ sr_clip_precision sr_clip_corner(const sr_vertex_out tri[3], sr_clip_plane first
     sr_clip_place_on_plane(plane, depth, cut->v);
     return used;
 }
+
+/* A line's vector over the vertices (clip_exact.h), in double. */
+static void line_vector_d(const double tri_d[3][4], int line, const sr_clip_depth *depth, double v[3])
+{
+    for (int k = 0; k < 3; k++)
+        v[k] = line >= SR_CLIP_ON_PLANE ? sr_clip_distance_d((sr_clip_plane)(line - SR_CLIP_ON_PLANE), tri_d[k], depth)
+                                        : (double)(k == (line + 2) % 3);
+}
+
+void sr_clip_point_on_lines_d(const double tri_d[3][4], int line1, int line2, const sr_clip_depth *depth,
+                              double out[4])
+{
+    double p[3], q[3], c[3];
+    line_vector_d(tri_d, line1, depth, p);
+    line_vector_d(tri_d, line2, depth, q);
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        c[k] = p[i] * q[j] - p[j] * q[i];
+    }
+    double sum = c[0] + c[1] + c[2];
+    for (int r = 0; r < 4; r++)
+        out[r] = (c[0] * tri_d[0][r] + c[1] * tri_d[1][r] + c[2] * tri_d[2][r]) / sum;
+}

@@ -29,4 +29,17 @@ sr_clip_precision sr_clip_corner(const sr_vertex_out tri[3], sr_clip_plane first
                                  sr_clip_precision precision, double tolerance, const sr_clip_depth *depth,
                                  sr_vertex_out *cut);
 
+/* The triangle's point on two of its lines (sr_polygon.line: an edge, or a
+ * plane's cut line) from its vertices' clip positions in double, tri_d:
+ * Σ c_k·v_k / Σ c_k with c = P × Q, the lines' vectors over the vertices
+ * (an edge k's is the unit vector of vertex k + 2, a plane's its
+ * distances, sr_clip_distance_d), all in double. On two edges it is their
+ * common vertex, bit for bit; on an edge and a plane the edge's cut
+ * (Q_j·v_i − Q_i·v_j) / (Q_j − Q_i), its weights exact from the
+ * distances. For the depth of a cut vertex (docs/precision.md): whatever
+ * its weights' rounding, the point lies in the plane of tri_d's triangle.
+ * Where the lines do not meet in one point (Σ c_k = 0) it is not finite. */
+void sr_clip_point_on_lines_d(const double tri_d[3][4], int line1, int line2, const sr_clip_depth *depth,
+                              double out[4]);
+
 #endif

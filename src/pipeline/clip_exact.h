@@ -66,10 +66,6 @@ void sr_clip_exact_corner_of(const sr_vertex_out tri[3], sr_clip_plane first, sr
 int sr_clip_exact_corner_numerator(const sr_clip_exact_corner *corner, const sr_vertex_out tri[3], int i,
                                    double num[SR_CLIP_CORNER_NUMERATOR_TERMS]);
 
-/* A line in the triangle: its edge k (vertex k to k + 1, where the
- * weight of vertex k + 2 is 0) for k < SR_CLIP_ON_PLANE, or the cut line of
- * plane l − SR_CLIP_ON_PLANE (where that plane's distance is 0). */
-enum { SR_CLIP_ON_PLANE = 3 };
 #define SR_CLIP_SIDE_TERMS (3 * SR_CLIP_CORNER_WEIGHT_TERMS * 2 * SR_CLIP_DISTANCE_TERMS)
 
 /* Whether the triangle's point on two of its lines is inside `plane`

@@ -1,7 +1,8 @@
 /* draw_internal.h — what the draw call's own files share: the per-draw
  * state, the workspace's layout, and the fan-triangle sink that lets one
  * primitive stage (assembly to culling) feed either the rasterizer directly
- * (one thread) or the tile bins (several). Not public API. */
+ * (the direct path, one thread) or the tile bins (the tiled path, one
+ * thread or several). Not public API. */
 #ifndef SOFTRAST_DRAW_INTERNAL_H
 #define SOFTRAST_DRAW_INTERNAL_H
 
@@ -14,6 +15,7 @@
 #include "raster_setup.h"
 #include "softrast/softrast.h"
 #include "softrast/study.h"
+#include "vertex.h"
 #include "viewport.h"
 
 #define SR_MAX_THREADS 64
@@ -84,12 +86,13 @@ typedef struct sr_draw_state {
     sr_shade mode;       /* desc's shading, or SR_RASTER_COUNT_HITS */
     sr_shade_context shade;
     sr_viewport vp;
+    const sr_vertex_transform *xf; /* the vertex phase's: clip from object, float and double */
     sr_clip_precision precision;
     double clip_tolerance; /* NDC error a cut vertex may carry: half a subpixel step */
     sr_workspace *ws;
     int threads;
     uint32_t vertex_count, slots;
-    int tiles_x, tiles_y;
+    int tile_rows, tiles; /* the binned path's tiles: strips of whole rows */
 } sr_draw_state;
 
 /* Receives the fan triangles that survive culling. `store` keeps a clipped

@@ -34,6 +34,8 @@ static bool check_accuracy_knobs(const sr_framebuffer *fb, const sr_draw_study *
         return sr_error_set(err, "unknown SIMD choice %d", (int)d->simd);
     if ((unsigned)d->clip_precision >= SR_CLIP_PRECISIONS)
         return sr_error_set(err, "unknown clip precision %d", (int)d->clip_precision);
+    if ((unsigned)d->path > SR_PATH_TILES)
+        return sr_error_set(err, "unknown draw path %d", (int)d->path);
     int side = fb->width > fb->height ? fb->width : fb->height;
     double extent = ceil(guard_band(d)) * side * (double)((int64_t)1 << bits);
     if (extent > (double)((int64_t)1 << SR_FIXED_POINT_BITS))
@@ -100,15 +102,12 @@ typedef struct vertex_phase {
 } vertex_phase;
 
 /* Stage 6 for vertex i, inside every plane: its unsnapped point and depth
- * from the clip position in double (clip-space input is exact as given). */
+ * from the clip position in double. */
 static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t i, sr_screen_vertex *out)
 {
     const sr_draw_state *st = ph->st;
-    const sr_mesh *mesh = st->desc->mesh;
-    if (mesh->clip_positions)
-        return sr_viewport_map(v, st->shade.layout.count, &st->vp, out);
     double clip_d[4];
-    sr_vertex_clip_d(mesh->positions[i], &ph->xf, clip_d);
+    sr_vertex_mesh_clip_d(st->desc->mesh, i, &ph->xf, clip_d);
     return sr_viewport_map_d(v, clip_d, st->shade.layout.count, &st->vp, out);
 }
 
@@ -198,10 +197,16 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
 #define TILES_MIN_SLOTS 32768u
 #define TILES_MIN_PIXELS (1280 * 720)
 
-static bool worth_tiles(const sr_draw_state *st)
+static int64_t pixel_count(const sr_draw_state *st)
 {
-    return st->study.force_tiles || st->slots >= TILES_MIN_SLOTS ||
-           (int64_t)st->fb->width * st->fb->height >= TILES_MIN_PIXELS;
+    return (int64_t)st->fb->width * st->fb->height;
+}
+
+static bool worth_threads(const sr_draw_state *st)
+{
+    if (st->study.path != SR_PATH_BY_COST)
+        return st->study.path == SR_PATH_TILES;
+    return st->slots >= TILES_MIN_SLOTS || pixel_count(st) >= TILES_MIN_PIXELS;
 }
 
 /* After it: every vertex outside one plane (a view that looks away from the
@@ -212,7 +217,26 @@ static bool all_outside_one_plane(const sr_draw_state *st)
     unsigned outcodes_and = ~0u;
     for (int t = 0; t < st->threads; t++)
         outcodes_and &= st->ws->threads[t].outcodes_and;
-    return outcodes_and != 0 && !st->study.force_tiles;
+    return outcodes_and != 0;
+}
+
+/* On one thread, the tiles pay for a large framebuffer and few triangle
+ * slots for its pixels: large triangles drawn over each other keep a
+ * tile's color and depth in the core's cache where the direct path streams
+ * the whole framebuffer through memory per triangle, while pixel-sized
+ * triangles pay the binning and gain nothing. */
+#define TILES_ONE_THREAD_PIXELS_PER_SLOT 64
+
+static bool takes_tiles(const sr_draw_state *st)
+{
+    if (st->study.observer)
+        return false; /* it sees every triangle, in order, from the direct path */
+    if (st->study.path != SR_PATH_BY_COST)
+        return st->study.path == SR_PATH_TILES;
+    if (all_outside_one_plane(st))
+        return false;
+    return st->threads > 1 || (pixel_count(st) >= TILES_MIN_PIXELS &&
+                               (int64_t)st->slots * TILES_ONE_THREAD_PIXELS_PER_SLOT <= pixel_count(st));
 }
 
 /* A mesh outside the view: every assembled triangle is rejected, nothing
@@ -226,8 +250,8 @@ static void reject_all(const sr_draw_state *st, unsigned outside)
     sr_clip_count_rejected(stats, outside, stats->triangles);
 }
 
-/* The one-thread path: every fan triangle goes straight to the rasterizer,
- * over the whole framebuffer, in submission order. */
+/* The direct path, on one thread: every fan triangle goes straight to the
+ * rasterizer, over the whole framebuffer, in submission order. */
 static uint32_t store_in_place(sr_fan_sink *sink, const sr_screen_vertex *v, int n)
 {
     (void)sink, (void)v, (void)n;
@@ -277,11 +301,15 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
 {
     for (int t = 0; t < st->threads; t++) {
         st->ws->threads[t].stats = (sr_stats){ 0 };
-        st->ws->threads[t].simd_draws = 0;
         st->ws->threads[t].cuts = (sr_clip_counts){ { 0 } };
     }
+    /* sr_workspace_simd_draws sums every thread's: an earlier draw on more
+     * threads must leave nothing in those this one does not use. */
+    for (int t = 0; t < SR_MAX_THREADS; t++)
+        st->ws->threads[t].simd_draws = 0;
     vertex_phase ph = { .st = st };
     make_transform(st, &ph.xf);
+    st->xf = &ph.xf;
     const sr_mesh *mesh = st->desc->mesh;
     /* Bounds are of the positions: clip-space input is classified per vertex. */
     unsigned outside = 0;
@@ -293,14 +321,14 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     bool draws = box != SR_BOX_OUTSIDE && st->vertex_count > 0;
     if (!draws && !sr_assemble_indices_valid(mesh)) /* else the vertex phase checks them */
         return index_error(st, err);
-    if (!worth_tiles(st))
+    if (!worth_threads(st))
         st->threads = 1;
     if (draws) {
         ph.inside = box == SR_BOX_INSIDE;
         if (!run_vertex_phase(st, &ph, err))
             return false;
     }
-    bool binned = draws && st->threads > 1 && !all_outside_one_plane(st);
+    bool binned = draws && takes_tiles(st);
     /* Nothing is written before every check has passed; the binned path
      * clears each tile as it draws it. */
     if (st->desc->clear && !binned)
@@ -359,11 +387,11 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     sr_draw_state st = { .fb = fb, .desc = desc, .study = study, .mode = mode, .ws = ws,
                          .threads = thread_count(desc, &study),
                          .vertex_count = desc->mesh->vertex_count, .slots = sr_mesh_triangle_slots(desc->mesh),
-                         .tiles_x = (fb->width + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
-                         .tiles_y = (fb->height + SR_TILE_SIDE - 1) / SR_TILE_SIDE,
+                         .tile_rows = SR_TILE_ROWS(fb->width),
                          .vp = { fb->width, fb->height, subpixel_bits(&study), guard_band(&study),
                                  clip_depth(desc) },
                          .precision = study.clip_precision };
+    st.tiles = (fb->height + st.tile_rows - 1) / st.tile_rows;
     /* Half a subpixel step, in NDC of the squeezed clip space of a guard band. */
     int side = fb->width > fb->height ? fb->width : fb->height;
     st.clip_tolerance = 1.0 / ((double)((int64_t)1 << st.vp.subpixel_bits) * side * st.vp.guard);

@@ -4,6 +4,7 @@
 #include "assemble.h"
 #include "clip.h"
 #include "cull.h"
+#include "vertex.h"
 #include "viewport.h"
 
 /* Stage 7 for one fan triangle whose vertices are *tri[] (refs name them
@@ -21,23 +22,26 @@ static void cull_and_emit(sr_fan_sink *sink, const sr_screen_vertex *const tri[3
     sink->triangle(sink, tri, ref, area2, id, clipped);
 }
 
-/* Stages 5 and 6 for a clipped polygon: map every vertex once, store them
- * with the sink, fan (v0, vi, vi+1). A vertex the viewport refuses (a divide
- * past float range) drops the polygon, counted rejected and non-finite as
- * the vertex phase counts such vertices. */
-static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, uint32_t id)
+/* Stages 5 and 6 for the polygon clipped from triangle idx: map every
+ * vertex once, its depth from the triangle's clip positions in double
+ * (sr_viewport_map_polygon), store them with the sink, fan (v0, vi, vi+1).
+ * A vertex the viewport refuses (a divide past float range) drops the
+ * polygon, counted rejected and non-finite as the vertex phase counts such
+ * vertices. */
+static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, const uint32_t idx[3], uint32_t id)
 {
     const sr_draw_state *st = sink->st;
-    sr_screen_vertex screen[SR_MAX_CLIP_VERTS];
-    for (int i = 0; i < poly->count; i++) {
-        if (!sr_viewport_map(&poly->vert[i], st->shade.layout.count, &st->vp, &screen[i])) {
-            sink->work->stats.rejected++;
-            sink->work->stats.nonfinite++;
-            return;
-        }
-    }
     if (poly->count < 3)
         return;
+    double tri_d[3][4];
+    for (int k = 0; k < 3; k++)
+        sr_vertex_mesh_clip_d(st->desc->mesh, idx[k], st->xf, tri_d[k]);
+    sr_screen_vertex screen[SR_MAX_CLIP_VERTS];
+    if (!sr_viewport_map_polygon(poly, tri_d, st->shade.layout.count, &st->vp, screen)) {
+        sink->work->stats.rejected++;
+        sink->work->stats.nonfinite++;
+        return;
+    }
     uint32_t base = sink->store(sink, screen, poly->count);
     for (int i = 1; i + 1 < poly->count; i++) {
         const uint32_t ref[3] = { base, base + (uint32_t)i, base + (uint32_t)i + 1 };
@@ -68,7 +72,7 @@ static __attribute__((noinline)) void emit_clipped(sr_fan_sink *sink, const uint
     sr_clip_config cfg = { .precision = st->precision, .ndc_tolerance = st->clip_tolerance,
                            .counts = &sink->work->cuts, .depth = st->vp.depth };
     sr_clip_polygon(&poly, planes, SR_VARYINGS_AT + st->shade.layout.count, &cfg);
-    emit_polygon(sink, &poly, k);
+    emit_polygon(sink, &poly, idx, k);
 }
 
 /* Stages 2 to 4 for triangle slot k. */

@@ -20,6 +20,16 @@
 #include "shade.h"
 #include "stages.h"
 
+/* The tiled path draws in tiles that are strips of whole rows,
+ * SR_TILE_ROWS(width) each: SR_TILE_ROWS_MAX, or fewer on a framebuffer
+ * wider than SR_TILE_PIXELS / SR_TILE_ROWS_MAX so that a strip's color and
+ * depth stay within SR_TILE_PIXELS pixels (docs/performance.md). Tests
+ * and the fuzzer size their framebuffers by it. */
+#define SR_TILE_ROWS_MAX 32
+#define SR_TILE_PIXELS 65536
+#define SR_TILE_ROWS(width) \
+    ((width) <= SR_TILE_PIXELS / SR_TILE_ROWS_MAX ? SR_TILE_ROWS_MAX : SR_TILE_PIXELS / (width))
+
 /* The pixels [x0, x1) × [y0, y1) a call may touch (the framebuffer, or a tile). */
 typedef struct sr_raster_rect {
     int x0, y0, x1, y1;

@@ -110,7 +110,8 @@ static inline uint32_t sr_shade_bilinear_pair(float c, int n, int *i0, int *i1)
 /* (a·(1 − w) + b·w) per channel of two packed texels, in exact integers,
  * rounded to nearest: red and blue share one 32-bit multiply in separate
  * 16-bit halves (a channel times a weight stays below 2^16, so neither half
- * carries into the other), as a SIMD lane does them. */
+ * carries into the other). The SIMD kernels compute the same values in
+ * another form (span_kernel.h, lerp_halves). */
 static inline uint32_t sr_shade_lerp_texels(uint32_t a, uint32_t b, uint32_t w)
 {
     uint32_t v = SR_SHADE_WEIGHT_ONE - w;

@@ -164,6 +164,10 @@ typedef struct triangle_lanes {
     vf w;       /* when not SR_INTERP_PERSPECTIVE */
     vf lambert; /* when SR_INTERP_FLAT_NORMAL */
     vi color;   /* when color_per_triangle */
+    /* c->texture, when given, copied: the compiler must assume that a
+     * store of a pixel may change what c points to, so it would load the
+     * texture's size again for every group of pixels. */
+    sr_texture texture;
 } triangle_lanes;
 
 /* Gray lambert with a flat normal is one color over the whole triangle. */
@@ -228,16 +232,18 @@ static inline __attribute__((always_inline)) vi texel_index_lanes(vf f, int n)
     return select_i(i < n, i, (vi){ 0 } + (n - 1));
 }
 
+/* The texels at index, as stored: the top byte is whatever the caller's
+ * memory holds, so a reader masks it or ignores it. */
 static inline __attribute__((always_inline)) vi gather_texels(const sr_texture *tex, vi index)
 {
 #ifdef SPAN_GATHER
-    vi t = SPAN_GATHER(tex->texels, index);
+    return SPAN_GATHER(tex->texels, index);
 #else
     vi t;
     for (int l = 0; l < SPAN_LANES; l++)
         t[l] = (int32_t)tex->texels[index[l]];
+    return t;
 #endif
-    return t & 0xFFFFFF;
 }
 
 typedef struct rgb_lanes {
@@ -248,7 +254,7 @@ static inline __attribute__((always_inline)) vi sample_nearest_lanes(const sr_te
 {
     vi x = texel_index_lanes(fu, tex->width);
     vi y = (tex->height - 1) - texel_index_lanes(fv, tex->height);
-    return gather_texels(tex, y * tex->width + x);
+    return gather_texels(tex, y * tex->width + x) & 0xFFFFFF;
 }
 
 /* sr_shade_bilinear_pair per lane. */
@@ -262,38 +268,76 @@ static inline __attribute__((always_inline)) vi bilinear_pair_lanes(vf c, int n,
     return __builtin_convertvector((c - lo_f) * (float)SR_SHADE_WEIGHT_ONE + 0.5f, vi);
 }
 
-/* sr_shade_lerp_texels per lane: the products fit 16 bits, so 16-bit
- * multiplies give the scalar path's 32-bit ones (the weight is in both
- * halves of its lane). */
+/* Texels as 16-bit halves of their lanes: red and blue (0x00RR00BB) in
+ * one vector, green in the low half of another (0xTT0000GG: the unused top
+ * byte rides along in the high half, lerped like a channel, and is dropped
+ * at the end, which costs one operation less per texel than a mask). */
 typedef uint16_t vu16 __attribute__((vector_size(SPAN_LANES * 4)));
-typedef uint32_t vu __attribute__((vector_size(SPAN_LANES * 4)));
 
-static inline __attribute__((always_inline)) vi lerp_texels_lanes(vi a, vi b, vi w)
+typedef struct split_texels {
+    vu16 rb, g;
+} split_texels;
+
+static inline __attribute__((always_inline)) split_texels split_lanes(vi t)
 {
-    vu v = SR_SHADE_WEIGHT_ONE - (vu)w;
-    vu16 w2 = (vu16)((vu)w | (vu)w << 16), v2 = (vu16)(v | v << 16);
-    vu rb = (vu)((vu16)(a & 0xFF00FF) * v2 + (vu16)(b & 0xFF00FF) * w2) + 0x800080u;
-    vu g = (vu)((vu16)((a >> 8) & 0xFF) * v2 + (vu16)((b >> 8) & 0xFF) * w2) + 0x80u;
-    return (vi)(((rb >> SR_SHADE_WEIGHT_BITS) & 0xFF00FFu) | (g >> SR_SHADE_WEIGHT_BITS) << 8);
+    return (split_texels){ (vu16)(t & 0xFF00FF), (vu16)t >> 8 };
 }
 
-static inline __attribute__((always_inline)) vi sample_bilinear_lanes(const sr_texture *tex, vf fu, vf fv)
+/* sr_shade_lerp_texels per 16-bit half: a·(ONE − w) + b·w + ONE/2, shifted
+ * down, is a + (((b − a)·w + ONE/2) >> bits) exactly (a·ONE is a multiple of
+ * ONE, and >> floors), and since the result fits 8 bits, arithmetic modulo
+ * 2^16 gets its low byte right: one 16-bit multiply per half instead of the
+ * scalar path's two. w2 holds the weight in both halves of each lane. */
+static inline __attribute__((always_inline)) vu16 lerp_halves(vu16 a, vu16 b, vu16 w2)
+{
+    return ((((b - a) * w2 + (uint16_t)(SR_SHADE_WEIGHT_ONE / 2)) >> SR_SHADE_WEIGHT_BITS) + a) & 0xFF;
+}
+
+static inline __attribute__((always_inline)) split_texels lerp_split(split_texels a, split_texels b, vu16 w2)
+{
+    return (split_texels){ lerp_halves(a.rb, b.rb, w2), lerp_halves(a.g, b.g, w2) };
+}
+
+static inline __attribute__((always_inline)) vu16 weight_halves(vi w)
+{
+    return (vu16)(w | w << 16);
+}
+
+static inline __attribute__((always_inline)) vi pack_split(split_texels t)
+{
+    return ((vi)t.rb | (vi)t.g << 8) & 0xFFFFFF;
+}
+
+static inline __attribute__((always_inline)) split_texels sample_bilinear_lanes(const sr_texture *tex, vf fu, vf fv)
 {
     vi x0, x1, y0, y1;
-    vi wx = bilinear_pair_lanes(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1);
-    vi wy = bilinear_pair_lanes((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1);
+    vu16 wx = weight_halves(bilinear_pair_lanes(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1));
+    vu16 wy = weight_halves(bilinear_pair_lanes((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1));
     vi row0 = y0 * tex->width, row1 = y1 * tex->width;
-    vi top = lerp_texels_lanes(gather_texels(tex, row0 + x0), gather_texels(tex, row0 + x1), wx);
-    vi bottom = lerp_texels_lanes(gather_texels(tex, row1 + x0), gather_texels(tex, row1 + x1), wx);
-    return lerp_texels_lanes(top, bottom, wy);
+    split_texels top =
+        lerp_split(split_lanes(gather_texels(tex, row0 + x0)), split_lanes(gather_texels(tex, row0 + x1)), wx);
+    split_texels bottom =
+        lerp_split(split_lanes(gather_texels(tex, row1 + x0)), split_lanes(gather_texels(tex, row1 + x1)), wx);
+    return lerp_split(top, bottom, wy);
 }
 
 /* sr_shade_sample_packed per lane. */
-static inline __attribute__((always_inline)) vi sample_lanes(const sr_shade_context *c, vf u, vf v)
+static inline __attribute__((always_inline)) vi sample_lanes(const triangle_lanes *t, const sr_shade_context *c, vf u,
+                                                             vf v)
 {
     vf fu = wrap_unit_lanes(u), fv = wrap_unit_lanes(v);
-    return c->filter == SR_FILTER_NEAREST ? sample_nearest_lanes(c->texture, fu, fv)
-                                          : sample_bilinear_lanes(c->texture, fu, fv);
+    return c->filter == SR_FILTER_NEAREST ? sample_nearest_lanes(&t->texture, fu, fv)
+                                          : pack_split(sample_bilinear_lanes(&t->texture, fu, fv));
+}
+
+/* The same, split, for lit_texel_lanes: the bilinear filter's texels are
+ * split already, so they are not packed to be taken apart again. */
+static inline __attribute__((always_inline)) split_texels sample_split_lanes(const triangle_lanes *t,
+                                                                             const sr_shade_context *c, vf u, vf v)
+{
+    vf fu = wrap_unit_lanes(u), fv = wrap_unit_lanes(v);
+    return c->filter == SR_FILTER_NEAREST ? split_lanes(sample_nearest_lanes(&t->texture, fu, fv))
+                                          : sample_bilinear_lanes(&t->texture, fu, fv);
 }
 
 static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_context *c, const vf *n)
@@ -305,12 +349,13 @@ static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_con
     return select_f(len2 > zero, lit, zero + SR_LAMBERT_AMBIENT);
 }
 
-/* sr_shade_lit_texel per lane. */
-static inline __attribute__((always_inline)) vi lit_texel_lanes(vi t, vf k)
+/* sr_shade_lit_texel per lane, on a split texel: red, green, blue. */
+static inline __attribute__((always_inline)) vi lit_texel_lanes(split_texels t, vf k)
 {
+    vi channel[3] = { (vi)t.rb >> 16, (vi)t.g & 0xFF, (vi)t.rb & 0xFF };
     vi out = { 0 };
-    for (int shift = 16; shift >= 0; shift -= 8)
-        out |= __builtin_convertvector(k * __builtin_convertvector((t >> shift) & 0xFF, vf) + 0.5f, vi) << shift;
+    for (int i = 0; i < 3; i++)
+        out |= __builtin_convertvector(k * __builtin_convertvector(channel[i], vf) + 0.5f, vi) << (16 - 8 * i);
     return out;
 }
 
@@ -337,11 +382,11 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     case SR_SHADE_NORMAL:
         return pack_lanes(0.5f + 0.5f * var[0], 0.5f + 0.5f * var[1], 0.5f + 0.5f * var[2]);
     case SR_SHADE_TEXTURE:
-        return sample_lanes(c, var[0], var[1]);
+        return sample_lanes(t, c, var[0], var[1]);
     case SR_SHADE_LAMBERT: {
         vf k = interp == SR_INTERP_FLAT_NORMAL ? t->lambert : lambert_lanes(c, var);
         if (a == ALBEDO_TEXTURE)
-            return lit_texel_lanes(sample_lanes(c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
+            return lit_texel_lanes(sample_split_lanes(t, c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
         rgb_lanes base = albedo_lanes(a, var);
         return pack_lanes(k * base.c[0], k * base.c[1], k * base.c[2]);
     }
@@ -430,6 +475,8 @@ span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, 
           sr_interp interp, bool greater, uint32_t id)
 {
     triangle_lanes t = { .w = (vf){ 0 } + s->w, .lambert = (vf){ 0 } + s->lambert };
+    if (c->texture)
+        t.texture = *c->texture;
     if (color_per_triangle(mode, a, interp))
         t.color = shade_lanes(mode, a, interp, &t, c, (vf[SR_MAX_VARYINGS]){ { 0 } }, id);
     uint64_t fragments = 0;

@@ -56,9 +56,19 @@ typedef struct sr_vertex_out {
     float v[SR_VERTEX_FLOATS];
 } sr_vertex_out;
 
+/* A line in a clipped triangle: its edge k (vertex k to k + 1, where the
+ * weight of vertex k + 2 is 0) for k < SR_CLIP_ON_PLANE, or the cut line of
+ * plane l − SR_CLIP_ON_PLANE (where that plane's distance is 0). */
+enum { SR_CLIP_ON_PLANE = 3 };
+
+/* The clipper's polygon. When it was given a triangle, line[i] is the line
+ * its edge i (vertex i to i + 1) runs along, so vertex i is the triangle's
+ * point on lines line[i − 1] and line[i]: the viewport maps a cut vertex's
+ * depth from that point in double (docs/precision.md). */
 typedef struct sr_polygon {
     int count;
     sr_vertex_out vert[SR_MAX_CLIP_VERTS];
+    unsigned char line[SR_MAX_CLIP_VERTS];
 } sr_polygon;
 
 #endif

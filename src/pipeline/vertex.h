@@ -39,15 +39,29 @@ void sr_vertex_make_transform(const mat4 world, const mat4 view, const mat4 proj
                               sr_vertex_transform *xf);
 
 /* A position's clip coordinates in double, through clip_from_object_d:
- * the vertex phase takes the unsnapped screen point and depth of a vertex
- * inside every plane from them (sr_viewport_map_d), since the float
- * product is off by up to about 1e-4 px (docs/precision.md, "Depth from the
- * unsnapped vertices"). Inline: it runs once per vertex. */
+ * the unsnapped screen point and depth of a vertex inside every plane, and
+ * of a clipped triangle's vertices and cuts, come from them
+ * (sr_viewport_map_d), since the float product is off by up to about 1e-4
+ * px (docs/precision.md, "Depth from the unsnapped vertices"). Inline: it
+ * runs once per vertex. */
 static inline void sr_vertex_clip_d(const float p[3], const sr_vertex_transform *xf, double out[4])
 {
     const sr_dmat4 *m = &xf->clip_from_object_d;
     for (int r = 0; r < 4; r++)
         out[r] = m->m[0][r] * p[0] + m->m[1][r] * p[1] + m->m[2][r] * p[2] + m->m[3][r];
+}
+
+/* Mesh vertex i's clip position in double: its position's
+ * (sr_vertex_clip_d), or a clip-space mesh's own, exact as given. */
+static inline void sr_vertex_mesh_clip_d(const sr_mesh *mesh, uint32_t i, const sr_vertex_transform *xf,
+                                         double out[4])
+{
+    if (mesh->clip_positions) {
+        for (int r = 0; r < 4; r++)
+            out[r] = mesh->clip_positions[i][r];
+    } else {
+        sr_vertex_clip_d(mesh->positions[i], xf, out);
+    }
 }
 
 /* Runs vertices [first, first + count) of mesh into out[0 .. count). */

@@ -1,5 +1,6 @@
 #include <math.h>
 
+#include "clip_corner.h"
 #include "viewport.h"
 
 static bool within_slack(double ndc, double lo)
@@ -62,11 +63,33 @@ static double depth_ndc(double z, double inv_w, double b_over_w, const sr_viewpo
     return vp->depth.on ? vp->depth.a + b_over_w : z * inv_w;
 }
 
+/* The unsnapped point and z of a clip position in double. Checked (a
+ * polygon vertex's point on two lines, which may barely meet): false where
+ * it is not finite, has w <= 0 or lies past the slack. A mesh vertex's
+ * position in double is the twin of its float one, which passed those
+ * tests: the vertex phase maps it unchecked, as many times a frame as the
+ * mesh has vertices inside. */
+static inline bool map_double(const double c[4], bool checked, const screen_scale *scale, const sr_viewport *vp,
+                              double *sx, double *sy, double *z)
+{
+    double w = c[SR_W];
+    if (checked && (!(w > 0.0) || !isfinite(w)))
+        return false;
+    double inv_w, b_over_w;
+    divide_by_w(w, vp->depth.b, &inv_w, &b_over_w);
+    double x = c[SR_X] * inv_w, y = c[SR_Y] * inv_w;
+    *z = depth_ndc(c[SR_Z], inv_w, b_over_w, vp);
+    if (checked && (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(*z, 0.0)))
+        return false;
+    screen_point(x, y, scale, sx, sy);
+    return true;
+}
+
 /* sr_viewport_map, with the unsnapped point and z from clip_d (the clip
- * position in double) when given: the snapped point stays the float
- * position's. */
-static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, int varyings, const sr_viewport *vp,
-                              sr_screen_vertex *out)
+ * position in double) when given and of use: the snapped point stays the
+ * float position's. */
+static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool checked, int varyings,
+                              const sr_viewport *vp, sr_screen_vertex *out)
 {
     double w = v->v[SR_W];
     if (!(w > 0.0) || !isfinite(w))
@@ -82,11 +105,11 @@ static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, int 
     screen_point(x, y, &scale, &sx, &sy);
     out->x = round_to_integer(sx);
     out->y = round_to_integer(sy);
-    if (clip_d) {
-        double inv_w_d, b_over_w_d;
-        divide_by_w(clip_d[SR_W], vp->depth.b, &inv_w_d, &b_over_w_d);
-        screen_point(clip_d[SR_X] * inv_w_d, clip_d[SR_Y] * inv_w_d, &scale, &sx, &sy);
-        z = depth_ndc(clip_d[SR_Z], inv_w_d, b_over_w_d, vp);
+    double sx_d, sy_d, z_d;
+    if (clip_d && map_double(clip_d, checked, &scale, vp, &sx_d, &sy_d, &z_d)) {
+        sx = sx_d;
+        sy = sy_d;
+        z = z_d;
     }
     out->x_off = (float)(sx - (double)out->x); /* the difference exact, then 24 bits of it */
     out->y_off = (float)(sy - (double)out->y);
@@ -102,11 +125,24 @@ static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, int 
 
 bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp, sr_screen_vertex *out)
 {
-    return map_vertex(v, NULL, varyings, vp, out);
+    return map_vertex(v, NULL, false, varyings, vp, out);
 }
 
 bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
                        sr_screen_vertex *out)
 {
-    return map_vertex(v, clip_d, varyings, vp, out);
+    return map_vertex(v, clip_d, false, varyings, vp, out);
+}
+
+bool sr_viewport_map_polygon(const sr_polygon *poly, const double tri_d[3][4], int varyings, const sr_viewport *vp,
+                             sr_screen_vertex *out)
+{
+    for (int i = 0; i < poly->count; i++) {
+        double point[4];
+        sr_clip_point_on_lines_d(tri_d, poly->line[i > 0 ? i - 1 : poly->count - 1], poly->line[i], &vp->depth,
+                                 point);
+        if (!map_vertex(&poly->vert[i], point, true, varyings, vp, &out[i]))
+            return false;
+    }
+    return true;
 }

@@ -45,4 +45,16 @@ bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp
 bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
                        sr_screen_vertex *out);
 
+/* Maps the polygon the clipper made from a triangle (sr_clip_polygon) whose
+ * vertices' clip positions in double are tri_d, into out[0 .. count): each
+ * vertex as sr_viewport_map_d maps it with the triangle's point on its two
+ * lines (sr_clip_point_on_lines_d) for clip_d, so a corner of the triangle
+ * maps as the vertex phase maps it and a cut takes its depth from the
+ * triangle in double. Where that point is not finite, has w <= 0 or lies
+ * past the slack (lines that barely meet), the vertex maps from its float
+ * position alone, as sr_viewport_map does. False as soon as a vertex is
+ * refused. */
+bool sr_viewport_map_polygon(const sr_polygon *poly, const double tri_d[3][4], int varyings, const sr_viewport *vp,
+                             sr_screen_vertex *out);
+
 #endif
