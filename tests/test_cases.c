@@ -18,7 +18,7 @@
  *   - the mirror of stages 1–4 agrees with the draw's stats on triangles
  *     and clipped (so the clipper output it checked is the one drawn);
  *   - the same draw on CASE_THREADS threads gives a bit-identical image,
- *     depth buffer and stats (pipeline.h).
+ *     depth buffer and stats (softrast.h).
  * A failure names the case file and the line of the expectation, and writes
  * build/test-output/case-NAME.png (the draw) and case-NAME_hits.png (hits per
  * pixel: gray once, red twice or more, blue missing) for pixel checks.
@@ -170,7 +170,7 @@ static uint64_t framebuffer_hash(const sr_framebuffer *fb)
 }
 
 /* The threaded path must give the same picture, depth and stats as the
- * one-thread path the observed draw took (pipeline.h: bit-identical). */
+ * one-thread path the observed draw took (softrast.h: bit-identical). */
 static bool check_threads(case_run *r)
 {
     uint64_t one = framebuffer_hash(&r->fb);
