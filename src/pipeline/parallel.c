@@ -20,47 +20,132 @@ bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end)
     return true;
 }
 
-typedef struct job {
-    void (*fn)(void *ctx, int t);
-    void *ctx;
-    int t;
-    bool timed;
-    double cpu_ms; /* the thread's CPU time in fn, when timed */
-} job;
-
-static void *run_job(void *arg)
+/* fn(ctx, t), and the CPU time the calling thread spent in it when timed. */
+static double timed_call(void (*fn)(void *ctx, int t), void *ctx, int t, bool timed)
 {
-    job *j = arg;
-    double start = j->timed ? sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) : 0.0;
-    j->fn(j->ctx, j->t);
-    if (j->timed)
-        j->cpu_ms = sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) - start;
+    double start = timed ? sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) : 0.0;
+    fn(ctx, t);
+    return timed ? sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) - start : 0.0;
+}
+
+/* A worker sleeps on its own condition variable until it is handed a phase
+ * or the pool stops; the loop around the wait absorbs spurious wakeups. The
+ * lock orders everything: the phase's fn and ctx are written under it before
+ * has_work, and the worker's results under it before pending drops, so the
+ * caller that sees pending at 0 sees every write fn made. */
+static void *worker_run(void *arg)
+{
+    sr_worker *w = arg;
+    sr_pool *pool = w->pool;
+    pthread_mutex_lock(&pool->lock);
+    for (;;) {
+        while (!w->has_work && !pool->stopping)
+            pthread_cond_wait(&w->wake, &pool->lock);
+        if (!w->has_work) /* stopping: never set while a phase runs */
+            break;
+        void (*fn)(void *, int) = pool->fn;
+        void *ctx = pool->ctx;
+        bool timed = pool->timed;
+        pthread_mutex_unlock(&pool->lock);
+        double cpu_ms = timed_call(fn, ctx, w->t, timed);
+        pthread_mutex_lock(&pool->lock);
+        w->cpu_ms = cpu_ms;
+        w->has_work = false;
+        if (--pool->pending == 0)
+            pthread_cond_signal(&pool->done);
+    }
+    pthread_mutex_unlock(&pool->lock);
     return NULL;
 }
 
-/* Threads live for one phase of one draw: at two to a few phases a frame
- * their start-up (tens of microseconds) is noise next to a frame's work.
- * A thread that cannot start leaves its share to the calling thread. */
-void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx, sr_phase_time *time)
+static bool pool_ready(sr_pool *pool)
 {
-    pthread_t ids[SR_MAX_THREADS];
-    job jobs[SR_MAX_THREADS];
-    bool started[SR_MAX_THREADS] = { false };
+    if (pool->ready)
+        return true;
+    if (pthread_mutex_init(&pool->lock, NULL) != 0)
+        return false;
+    if (pthread_cond_init(&pool->done, NULL) != 0) {
+        pthread_mutex_destroy(&pool->lock);
+        return false;
+    }
+    pool->ready = true;
+    pool->started = 1;
+    return true;
+}
+
+/* Starts workers until the pool has `threads` threads, the caller counted,
+ * and returns how many it has: fewer when one cannot start. */
+static int pool_grow(sr_pool *pool, int threads)
+{
+    if (!pool_ready(pool))
+        return 1;
+    while (pool->started < threads) {
+        sr_worker *w = &pool->workers[pool->started];
+        *w = (sr_worker){ .pool = pool, .t = pool->started };
+        if (pthread_cond_init(&w->wake, NULL) != 0)
+            break;
+        if (pthread_create(&w->id, NULL, worker_run, w) != 0) {
+            pthread_cond_destroy(&w->wake);
+            break;
+        }
+        pool->started++;
+    }
+    return pool->started;
+}
+
+/* Threads 1 .. pooled-1 run on the pool's workers; a share whose thread
+ * cannot start runs on the caller after its own, as before the pool. Only
+ * the workspace's one user thread reaches here (softrast.h), so `started`
+ * is the caller's alone. */
+void sr_parallel_run(sr_pool *pool, int threads, void (*fn)(void *ctx, int t), void *ctx, sr_phase_time *time)
+{
     double start = time ? sr_now_ms() : 0.0;
-    for (int t = 0; t < threads; t++)
-        jobs[t] = (job){ fn, ctx, t, time != NULL, 0.0 };
-    for (int t = 1; t < threads; t++)
-        started[t] = pthread_create(&ids[t], NULL, run_job, &jobs[t]) == 0;
-    run_job(&jobs[0]);
-    for (int t = 1; t < threads; t++) {
-        if (started[t])
-            pthread_join(ids[t], NULL);
-        else
-            run_job(&jobs[t]);
+    int pooled = threads > 1 ? pool_grow(pool, threads) : 1;
+    if (pooled > threads)
+        pooled = threads;
+    if (pooled > 1) {
+        pthread_mutex_lock(&pool->lock);
+        pool->fn = fn;
+        pool->ctx = ctx;
+        pool->timed = time != NULL;
+        pool->pending = pooled - 1;
+        for (int t = 1; t < pooled; t++)
+            pool->workers[t].has_work = true;
+        pthread_mutex_unlock(&pool->lock);
+        for (int t = 1; t < pooled; t++)
+            pthread_cond_signal(&pool->workers[t].wake);
+    }
+    double cpu_ms = timed_call(fn, ctx, 0, time != NULL);
+    for (int t = pooled; t < threads; t++)
+        cpu_ms += timed_call(fn, ctx, t, time != NULL);
+    if (pooled > 1) {
+        pthread_mutex_lock(&pool->lock);
+        while (pool->pending > 0)
+            pthread_cond_wait(&pool->done, &pool->lock);
+        for (int t = 1; t < pooled; t++)
+            cpu_ms += pool->workers[t].cpu_ms;
+        pthread_mutex_unlock(&pool->lock);
     }
     if (!time)
         return;
     time->wall += sr_now_ms() - start;
-    for (int t = 0; t < threads; t++)
-        time->cpu += jobs[t].cpu_ms;
+    time->cpu += cpu_ms;
+}
+
+void sr_pool_stop(sr_pool *pool)
+{
+    if (!pool->ready)
+        return;
+    pthread_mutex_lock(&pool->lock);
+    pool->stopping = true;
+    pthread_mutex_unlock(&pool->lock);
+    for (int t = 1; t < pool->started; t++)
+        pthread_cond_signal(&pool->workers[t].wake);
+    for (int t = 1; t < pool->started; t++) {
+        pthread_join(pool->workers[t].id, NULL);
+        pthread_cond_destroy(&pool->workers[t].wake);
+    }
+    pthread_cond_destroy(&pool->done);
+    pthread_mutex_destroy(&pool->lock);
+    *pool = (sr_pool){ 0 };
 }
