@@ -71,28 +71,32 @@ typedef struct sr_thread_work {
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
 } sr_thread_work;
 
-/* A worker thread of the pool: its index t, and the phase it is handed. */
+/* A worker thread of the pool: its index t, and the phases it is handed.
+ * Each on its own cache line: a waiting worker polls its `go`. */
 typedef struct sr_worker {
+    _Alignas(SR_CACHE_LINE) atomic_uint_fast64_t go; /* the last phase handed to it */
+    uint64_t seen;       /* the last phase it ran: its own */
+    pthread_cond_t wake; /* go moved on, or the pool is stopping */
+    bool sleeping;       /* in pthread_cond_wait on wake: under the pool's lock */
     pthread_t id;
-    pthread_cond_t wake; /* has_work or the pool's stopping became true */
     struct sr_pool *pool;
     int t;
-    bool has_work; /* under the pool's lock */
     double cpu_ms; /* its CPU time in the phase's fn, when timed */
 } sr_worker;
 
 /* The workspace's threads 1 .. started-1 (parallel.c): started the first
- * time a draw asks for more threads than there are, asleep between phases,
- * joined when the workspace is destroyed. Every field past `lock` is read
- * and written under it. */
+ * time a draw asks for more threads than there are, asleep between draws,
+ * joined when the workspace is destroyed. */
 typedef struct sr_pool {
     bool ready; /* lock and done initialized */
     pthread_mutex_t lock;
-    pthread_cond_t done; /* pending reached 0 */
-    int started;         /* 0, or 1 + the workers running */
-    int pending;         /* the phase's workers whose fn has not returned */
-    bool stopping;
-    void (*fn)(void *ctx, int t);
+    pthread_cond_t done;   /* pending reached 0 */
+    bool caller_sleeping;  /* in pthread_cond_wait on done: under lock */
+    bool stopping;         /* under lock */
+    atomic_int pending;    /* the phase's workers whose fn has not returned */
+    int started;           /* 0, or 1 + the workers running: the caller's */
+    uint64_t phase;        /* phases handed out: the caller's */
+    void (*fn)(void *ctx, int t); /* the phase's, written before go moves on */
     void *ctx;
     bool timed;
     sr_worker workers[SR_MAX_THREADS]; /* [0] unused: thread 0 is the caller */
