@@ -32,7 +32,7 @@ static double timed_call(void (*fn)(void *ctx, int t), void *ctx, int t, bool ti
  * follow each other within microseconds, and waking a sleeper costs tens. */
 #define SPIN_MS 0.05
 
-/* Polls until f(arg) or SPIN_MS have passed; f(arg) at the end. */
+/* Polls f(arg) for up to SPIN_MS: true once it holds, false when time ran out. */
 static bool spin_until(bool (*f)(void *arg), void *arg)
 {
     double deadline = sr_now_ms() + SPIN_MS;
