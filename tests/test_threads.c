@@ -28,21 +28,25 @@ static void draw_with_threads(const sr_draw_desc *base, int width, int height, b
     cr_assert(sr_draw(&out->fb, &desc, &out->stats, &err), "%s", err.message);
 }
 
+static void assert_same_drawing(const drawn *one, const drawn *many, int threads)
+{
+    size_t n = (size_t)one->fb.width * one->fb.height;
+    cr_assert_eq(memcmp(one->fb.color, many->fb.color, n * sizeof *one->fb.color), 0, "color differs with %d threads",
+                 threads);
+    cr_assert_eq(memcmp(one->fb.depth, many->fb.depth, n * sizeof *one->fb.depth), 0, "depth differs with %d threads",
+                 threads);
+    cr_assert_eq(memcmp(&one->stats, &many->stats, sizeof one->stats), 0, "stats differ with %d threads", threads);
+}
+
 static void assert_same_for_all_thread_counts(const sr_draw_desc *desc, int width, int height, bool reversed)
 {
     static const int counts[] = { 1, 2, 3, 4, 7, 16 };
     drawn one;
     draw_with_threads(desc, width, height, reversed, 1, SR_PATH_DIRECT, &one);
-    size_t n = (size_t)width * height;
     for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
         drawn many;
         draw_with_threads(desc, width, height, reversed, counts[c], SR_PATH_TILES, &many);
-        cr_assert_eq(memcmp(one.fb.color, many.fb.color, n * sizeof *one.fb.color), 0,
-                     "color differs with %d threads", counts[c]);
-        cr_assert_eq(memcmp(one.fb.depth, many.fb.depth, n * sizeof *one.fb.depth), 0,
-                     "depth differs with %d threads", counts[c]);
-        cr_assert_eq(memcmp(&one.stats, &many.stats, sizeof one.stats), 0, "stats differ with %d threads",
-                     counts[c]);
+        assert_same_drawing(&one, &many, counts[c]);
         sr_framebuffer_destroy(&many.fb);
     }
     cr_assert_gt(one.stats.fragments, 0, "the scene drew nothing: the comparison would prove nothing");
@@ -90,6 +94,58 @@ Test(threads, dense_torus_lambert_matches_one_thread)
     assert_same_for_all_thread_counts(&desc, 301, 173, false);
     desc.shade = SR_SHADE_DEPTH;
     assert_same_for_all_thread_counts(&desc, 301, 173, false);
+    sr_mesh_free(&torus);
+}
+
+/* A workspace keeps its worker threads from draw to draw (parallel.c):
+ * draws with one workspace whose thread count goes up and down draw what
+ * the one-thread direct path draws. */
+Test(threads, one_workspace_matches_one_thread_as_the_thread_count_changes)
+{
+    static const int counts[] = { 1, 2, 7, 3, 16, 1, 2, 16, 4, 1, 3 };
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT };
+    look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+    drawn one;
+    draw_with_threads(&desc, 301, 173, false, 1, SR_PATH_DIRECT, &one);
+    cr_assert_gt(one.stats.fragments, 0, "the scene drew nothing: the comparison would prove nothing");
+    desc.workspace = sr_workspace_create();
+    cr_assert_not_null(desc.workspace);
+    for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
+        drawn many;
+        draw_with_threads(&desc, 301, 173, false, counts[c], SR_PATH_TILES, &many);
+        assert_same_drawing(&one, &many, counts[c]);
+        sr_framebuffer_destroy(&many.fb);
+    }
+    sr_workspace_destroy(desc.workspace);
+    sr_framebuffer_destroy(&one.fb);
+    sr_mesh_free(&torus);
+}
+
+/* Destroying a workspace joins its sleeping workers, or has none to join
+ * (a hang here times out; the sanitizer build checks nothing leaks). */
+Test(threads, workspace_destroys_right_after_creation, .timeout = 60)
+{
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    sr_workspace_destroy(ws);
+}
+
+Test(threads, workspace_destroys_right_after_a_threaded_draw, .timeout = 60)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 40, 20, &err), "%s", err.message);
+    sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_ID, .workspace = sr_workspace_create() };
+    cr_assert_not_null(desc.workspace);
+    look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 1.0f);
+    drawn many;
+    draw_with_threads(&desc, 64, 64, false, 5, SR_PATH_TILES, &many);
+    sr_workspace_destroy(desc.workspace);
+    cr_assert_gt(many.stats.fragments, 0);
+    sr_framebuffer_destroy(&many.fb);
     sr_mesh_free(&torus);
 }
 

@@ -275,9 +275,12 @@ typedef struct sr_stats {
     uint64_t rejected_by_plane[6];
 } sr_stats;
 
-/* Scratch memory a draw reuses from frame to frame (transformed vertices,
- * tile bins). Optional: a draw without one makes and frees its own. One
- * workspace serves one draw at a time. */
+/* Scratch memory and worker threads a draw reuses from frame to frame
+ * (transformed vertices, tile bins; the threads of a draw with threads > 1,
+ * asleep between draws and ended by sr_workspace_destroy). Optional: a draw
+ * without one makes and frees its own. One workspace serves one draw at a
+ * time: never use it from two threads at once, nor in a child of fork()
+ * (the child has none of its threads). */
 typedef struct sr_workspace sr_workspace;
 SR_API sr_workspace *sr_workspace_create(void); /* NULL when out of memory */
 SR_API void sr_workspace_destroy(sr_workspace *ws);

@@ -375,7 +375,7 @@ bool sr_draw_binned(sr_draw_state *st)
     sr_draw_times *times = st->study.times;
     setup_phase setup = { .st = st };
     sr_chunks_init(&setup.slots, st->slots, setup_chunk(st));
-    sr_parallel_run(st->threads, setup_chunks, &setup, times ? &times->primitives : NULL);
+    sr_parallel_run(&st->ws->pool, st->threads, setup_chunks, &setup, times ? &times->primitives : NULL);
     for (int t = 0; t < st->threads; t++)
         if (st->ws->threads[t].out_of_memory)
             return false;
@@ -383,6 +383,6 @@ bool sr_draw_binned(sr_draw_state *st)
         return false;
     raster_phase ph = { .st = st };
     atomic_init(&ph.next_tile, 0);
-    sr_parallel_run(st->threads, raster_tiles, &ph, times ? &times->raster : NULL);
+    sr_parallel_run(&st->ws->pool, st->threads, raster_tiles, &ph, times ? &times->raster : NULL);
     return true;
 }

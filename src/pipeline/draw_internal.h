@@ -6,6 +6,7 @@
 #ifndef SOFTRAST_DRAW_INTERNAL_H
 #define SOFTRAST_DRAW_INTERNAL_H
 
+#include <pthread.h>
 #include <stdatomic.h>
 #include <stddef.h>
 
@@ -70,7 +71,39 @@ typedef struct sr_thread_work {
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
 } sr_thread_work;
 
+/* A worker thread of the pool: its index t, and the phases it is handed.
+ * Each on its own cache line: a waiting worker polls its `go`. */
+typedef struct sr_worker {
+    _Alignas(SR_CACHE_LINE) atomic_uint_fast64_t go; /* the last phase handed to it */
+    uint64_t seen;       /* the last phase it ran: its own */
+    pthread_cond_t wake; /* go moved on, or the pool is stopping */
+    bool sleeping;       /* in pthread_cond_wait on wake: under the pool's lock */
+    pthread_t id;
+    struct sr_pool *pool;
+    int t;
+    double cpu_ms; /* its CPU time in the phase's fn, when timed */
+} sr_worker;
+
+/* The workspace's threads 1 .. started-1 (parallel.c): started the first
+ * time a draw asks for more threads than there are, asleep between draws,
+ * joined when the workspace is destroyed. */
+typedef struct sr_pool {
+    bool ready; /* lock and done initialized */
+    pthread_mutex_t lock;
+    pthread_cond_t done;   /* pending reached 0 */
+    bool caller_sleeping;  /* in pthread_cond_wait on done: under lock */
+    bool stopping;         /* under lock */
+    atomic_int pending;    /* the phase's workers whose fn has not returned */
+    int started;           /* 0, or 1 + the workers running: the caller's */
+    uint64_t phase;        /* phases handed out: the caller's */
+    void (*fn)(void *ctx, int t); /* the phase's, written before go moves on */
+    void *ctx;
+    bool timed;
+    sr_worker workers[SR_MAX_THREADS]; /* [0] unused: thread 0 is the caller */
+} sr_pool;
+
 struct sr_workspace {
+    sr_pool pool;
     sr_array verts;    /* sr_vertex_out, one per mesh vertex */
     sr_array outcodes; /* unsigned char */
     sr_array screen;   /* sr_screen_vertex, valid where the outcode is 0 */
@@ -111,9 +144,14 @@ struct sr_fan_sink {
  * clipping, fan, viewport (of cut vertices) and culling, into sink. */
 void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end);
 
-/* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread; adds
- * the phase's wall time and its threads' CPU time to *time when given. */
-void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx, sr_phase_time *time);
+/* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread and
+ * the others on the pool's workers (started as needed), and returns when
+ * every fn has returned; adds the phase's wall time and its threads' CPU
+ * time to *time when given. */
+void sr_parallel_run(sr_pool *pool, int threads, void (*fn)(void *ctx, int t), void *ctx, sr_phase_time *time);
+
+/* Wakes the pool's workers to end and joins them. */
+void sr_pool_stop(sr_pool *pool);
 
 /* Work handed out in chunks to whichever thread asks next, so a thread that
  * is slow (or waits for a core) leaves its share to the others. Each thread

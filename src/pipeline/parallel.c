@@ -20,47 +20,184 @@ bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end)
     return true;
 }
 
-typedef struct job {
-    void (*fn)(void *ctx, int t);
-    void *ctx;
-    int t;
-    bool timed;
-    double cpu_ms; /* the thread's CPU time in fn, when timed */
-} job;
-
-static void *run_job(void *arg)
+/* fn(ctx, t), and the CPU time the calling thread spent in it when timed. */
+static double timed_call(void (*fn)(void *ctx, int t), void *ctx, int t, bool timed)
 {
-    job *j = arg;
-    double start = j->timed ? sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) : 0.0;
-    j->fn(j->ctx, j->t);
-    if (j->timed)
-        j->cpu_ms = sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) - start;
+    double start = timed ? sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) : 0.0;
+    fn(ctx, t);
+    return timed ? sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) - start : 0.0;
+}
+
+/* How long a waiting thread polls before it sleeps: phases of a frame
+ * follow each other within microseconds, and waking a sleeper costs tens. */
+#define SPIN_MS 0.05
+
+/* Polls f(arg) for up to SPIN_MS: true once it holds, false when time ran out. */
+static bool spin_until(bool (*f)(void *arg), void *arg)
+{
+    double deadline = sr_now_ms() + SPIN_MS;
+    while (!f(arg))
+        if (sr_now_ms() > deadline)
+            return false;
+    return true;
+}
+
+static bool worker_handed_phase(void *arg)
+{
+    sr_worker *w = arg;
+    return atomic_load_explicit(&w->go, memory_order_acquire) != w->seen;
+}
+
+static bool phase_done(void *arg)
+{
+    sr_pool *pool = arg;
+    return atomic_load_explicit(&pool->pending, memory_order_acquire) == 0;
+}
+
+/* Waits for the next phase; false when the pool stops instead. A worker
+ * sleeps under the lock only after checking go under it, and the caller
+ * moves go on before it takes the lock to wake sleepers, so no wakeup is
+ * lost; the loop around the wait absorbs spurious ones. */
+static bool worker_wait(sr_worker *w)
+{
+    if (spin_until(worker_handed_phase, w))
+        return true;
+    sr_pool *pool = w->pool;
+    pthread_mutex_lock(&pool->lock);
+    while (!worker_handed_phase(w) && !pool->stopping) {
+        w->sleeping = true;
+        pthread_cond_wait(&w->wake, &pool->lock);
+        w->sleeping = false;
+    }
+    bool handed = worker_handed_phase(w); /* stopping is never set while a phase runs */
+    pthread_mutex_unlock(&pool->lock);
+    return handed;
+}
+
+/* The phase's fn and ctx are written before go moves on (release) and read
+ * after go is seen (acquire); a worker's writes come before its decrement
+ * of pending, which the caller reads (acquire) before it goes on. */
+static void *worker_run(void *arg)
+{
+    sr_worker *w = arg;
+    sr_pool *pool = w->pool;
+    while (worker_wait(w)) {
+        w->seen = atomic_load_explicit(&w->go, memory_order_relaxed);
+        w->cpu_ms = timed_call(pool->fn, pool->ctx, w->t, pool->timed);
+        if (atomic_fetch_sub_explicit(&pool->pending, 1, memory_order_acq_rel) == 1) {
+            pthread_mutex_lock(&pool->lock);
+            if (pool->caller_sleeping)
+                pthread_cond_signal(&pool->done);
+            pthread_mutex_unlock(&pool->lock);
+        }
+    }
     return NULL;
 }
 
-/* Threads live for one phase of one draw: at two to a few phases a frame
- * their start-up (tens of microseconds) is noise next to a frame's work.
- * A thread that cannot start leaves its share to the calling thread. */
-void sr_parallel_run(int threads, void (*fn)(void *ctx, int t), void *ctx, sr_phase_time *time)
+static bool pool_ready(sr_pool *pool)
 {
-    pthread_t ids[SR_MAX_THREADS];
-    job jobs[SR_MAX_THREADS];
-    bool started[SR_MAX_THREADS] = { false };
-    double start = time ? sr_now_ms() : 0.0;
-    for (int t = 0; t < threads; t++)
-        jobs[t] = (job){ fn, ctx, t, time != NULL, 0.0 };
-    for (int t = 1; t < threads; t++)
-        started[t] = pthread_create(&ids[t], NULL, run_job, &jobs[t]) == 0;
-    run_job(&jobs[0]);
-    for (int t = 1; t < threads; t++) {
-        if (started[t])
-            pthread_join(ids[t], NULL);
-        else
-            run_job(&jobs[t]);
+    if (pool->ready)
+        return true;
+    if (pthread_mutex_init(&pool->lock, NULL) != 0)
+        return false;
+    if (pthread_cond_init(&pool->done, NULL) != 0) {
+        pthread_mutex_destroy(&pool->lock);
+        return false;
     }
+    pool->ready = true;
+    pool->started = 1;
+    return true;
+}
+
+/* Starts workers until the pool has `threads` threads, the caller counted,
+ * and returns how many it has: fewer when one cannot start. */
+static int pool_grow(sr_pool *pool, int threads)
+{
+    if (!pool_ready(pool))
+        return 1;
+    while (pool->started < threads) {
+        sr_worker *w = &pool->workers[pool->started];
+        *w = (sr_worker){ .pool = pool, .t = pool->started, .seen = pool->phase };
+        atomic_init(&w->go, pool->phase);
+        if (pthread_cond_init(&w->wake, NULL) != 0)
+            break;
+        if (pthread_create(&w->id, NULL, worker_run, w) != 0) {
+            pthread_cond_destroy(&w->wake);
+            break;
+        }
+        pool->started++;
+    }
+    return pool->started;
+}
+
+static void pool_hand_out(sr_pool *pool, int pooled, void (*fn)(void *ctx, int t), void *ctx, bool timed)
+{
+    pool->fn = fn;
+    pool->ctx = ctx;
+    pool->timed = timed;
+    pool->phase++;
+    atomic_store_explicit(&pool->pending, pooled - 1, memory_order_relaxed);
+    for (int t = 1; t < pooled; t++)
+        atomic_store_explicit(&pool->workers[t].go, pool->phase, memory_order_release);
+    pthread_mutex_lock(&pool->lock);
+    for (int t = 1; t < pooled; t++)
+        if (pool->workers[t].sleeping)
+            pthread_cond_signal(&pool->workers[t].wake);
+    pthread_mutex_unlock(&pool->lock);
+}
+
+static void pool_wait(sr_pool *pool)
+{
+    if (spin_until(phase_done, pool))
+        return;
+    pthread_mutex_lock(&pool->lock);
+    while (!phase_done(pool)) {
+        pool->caller_sleeping = true;
+        pthread_cond_wait(&pool->done, &pool->lock);
+        pool->caller_sleeping = false;
+    }
+    pthread_mutex_unlock(&pool->lock);
+}
+
+/* Threads 1 .. pooled-1 run on the pool's workers; a share whose thread
+ * cannot start runs on the caller after its own, as before the pool. Only
+ * the workspace's one user thread reaches here (softrast.h), so the fields
+ * marked the caller's need no lock. */
+void sr_parallel_run(sr_pool *pool, int threads, void (*fn)(void *ctx, int t), void *ctx, sr_phase_time *time)
+{
+    double start = time ? sr_now_ms() : 0.0;
+    int pooled = threads > 1 ? pool_grow(pool, threads) : 1;
+    if (pooled > threads)
+        pooled = threads;
+    if (pooled > 1)
+        pool_hand_out(pool, pooled, fn, ctx, time != NULL);
+    double cpu_ms = timed_call(fn, ctx, 0, time != NULL);
+    for (int t = pooled; t < threads; t++)
+        cpu_ms += timed_call(fn, ctx, t, time != NULL);
+    if (pooled > 1)
+        pool_wait(pool);
+    for (int t = 1; t < pooled; t++)
+        cpu_ms += pool->workers[t].cpu_ms;
     if (!time)
         return;
     time->wall += sr_now_ms() - start;
-    for (int t = 0; t < threads; t++)
-        time->cpu += jobs[t].cpu_ms;
+    time->cpu += cpu_ms;
+}
+
+void sr_pool_stop(sr_pool *pool)
+{
+    if (!pool->ready)
+        return;
+    pthread_mutex_lock(&pool->lock);
+    pool->stopping = true;
+    for (int t = 1; t < pool->started; t++)
+        pthread_cond_signal(&pool->workers[t].wake);
+    pthread_mutex_unlock(&pool->lock);
+    for (int t = 1; t < pool->started; t++) {
+        pthread_join(pool->workers[t].id, NULL);
+        pthread_cond_destroy(&pool->workers[t].wake);
+    }
+    pthread_cond_destroy(&pool->done);
+    pthread_mutex_destroy(&pool->lock);
+    *pool = (sr_pool){ 0 };
 }

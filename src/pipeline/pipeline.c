@@ -183,7 +183,7 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
     sr_draw_times *times = st->study.times;
     sr_chunks_init(&ph->vertices, n, VERTEX_CHUNK);
     sr_chunks_init(&ph->indices, st->desc->mesh->index_count, INDEX_CHUNK);
-    sr_parallel_run(st->threads, vertex_phase_run, ph, times ? &times->vertex : NULL);
+    sr_parallel_run(&ws->pool, st->threads, vertex_phase_run, ph, times ? &times->vertex : NULL);
     for (int t = 0; t < st->threads; t++)
         if (st->ws->threads[t].index_past_end)
             return index_error(st, err);
@@ -337,7 +337,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         reject_all(st, outside);
     } else if (draws) {
         if (!binned)
-            sr_parallel_run(1, draw_direct, st, st->study.times ? &st->study.times->primitives : NULL);
+            sr_parallel_run(&st->ws->pool, 1, draw_direct, st, st->study.times ? &st->study.times->primitives : NULL);
         else if (!sr_draw_binned(st))
             return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
     }

@@ -36,6 +36,7 @@ void sr_workspace_destroy(sr_workspace *ws)
 {
     if (!ws)
         return;
+    sr_pool_stop(&ws->pool);
     sr_array_free(&ws->verts);
     sr_array_free(&ws->outcodes);
     sr_array_free(&ws->screen);
