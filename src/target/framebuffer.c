@@ -85,14 +85,30 @@ void sr_framebuffer_destroy(sr_framebuffer *fb)
     *fb = (sr_framebuffer){ 0 };
 }
 
+/* n copies of the 4-byte value at `to`: a few stored one by one, then
+ * copied onto the rest in doubling blocks (memcpy stores whole vectors; gcc
+ * at -O2 stored the plain loop 4 bytes at a time, 2 ms of a 1080p frame). */
+static void fill_words(void *to, uint32_t value, size_t n)
+{
+    uint32_t *w = to;
+    size_t done = n < 16 ? n : 16;
+    for (size_t i = 0; i < done; i++)
+        w[i] = value;
+    while (done < n) {
+        size_t step = done < n - done ? done : n - done;
+        memcpy(w + done, w, step * sizeof *w);
+        done += step;
+    }
+}
+
 void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color)
 {
     size_t n = pixel_count(fb);
-    for (size_t i = 0; i < n; i++)
-        fb->color[i] = color;
+    fill_words(fb->color, color, n);
     float clear = sr_framebuffer_depth_clear(fb);
-    for (size_t i = 0; i < n; i++)
-        fb->depth[i] = clear;
+    uint32_t clear_bits;
+    memcpy(&clear_bits, &clear, sizeof clear_bits);
+    fill_words(fb->depth, clear_bits, n);
 }
 
 bool sr_framebuffer_depth_range(const sr_framebuffer *fb, float *lo, float *hi)
