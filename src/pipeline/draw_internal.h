@@ -26,9 +26,10 @@
 
 /* A fan triangle in a bin: its id, its scan box on the framebuffer (sides
  * up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits) and either, for one within a
- * tile, its exact area and its three vertices as references (below the
+ * tile, its exact area, its three vertices as references (below the
  * mesh's vertex count: the shared screen vertex; from there on: the binning
- * thread's clip vertices), which the tile sets it up from, or, for one
+ * thread's clip vertices), which the tile sets it up from, and a tiny
+ * box's covered pixels (0 for a box that is not tiny), or, for one
  * whose box spans tiles (area2 0: a drawn triangle never has zero area), its
  * set-up in the binning thread's `setups`. */
 typedef struct sr_record {
@@ -38,6 +39,7 @@ typedef struct sr_record {
     };
     uint32_t id;
     int64_t area2;
+    uint64_t tiny; /* sr_raster_tiny_mask, never 0 for a tiny box */
     int16_t x0, y0, x1, y1;
 } sr_record;
 

@@ -446,14 +446,16 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
  * edges and a tiny box's mask are inlined into it too (12M instructions a
  * frame fewer on the depth torus, whole-process CPU 0.987). */
 static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
-                                      int subpixel_bits, sr_shade mode, const sr_shade_context *shade, setup *s)
+                                      int subpixel_bits, sr_shade mode, const sr_shade_context *shade,
+                                      bool mask_known, uint64_t mask, setup *s)
 {
     const sr_screen_vertex *v[3];
     order_clockwise(tri, area2, v);
     setup_make(v, box, subpixel_bits, s);
     /* A tiny box's pixels are tested first, so a triangle that covers none
-     * of them (a fifth of the dense torus's) skips the depth plane. */
-    s->tiny = box_is_tiny(box) ? tiny_coverage(s) : 0;
+     * of them (a fifth of the dense torus's) skips the depth plane; the
+     * binned path tests them while binning and passes the mask on. */
+    s->tiny = !box_is_tiny(box) ? 0 : mask_known ? mask : tiny_coverage(s);
     sr_box_cover c = box_is_tiny(box) ? (s->tiny ? SR_COVER_PARTIAL : SR_COVER_NONE) : sr_raster_classify(s, box);
     if (c == SR_COVER_NONE)
         return false;
@@ -466,13 +468,29 @@ static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int6
 bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box, int subpixel_bits,
                      sr_shade mode, const sr_shade_context *shade, setup *s)
 {
-    return setup_in(tri, area2, box, subpixel_bits, mode, shade, s);
+    return setup_in(tri, area2, box, subpixel_bits, mode, shade, false, 0, s);
+}
+
+bool sr_raster_box_is_tiny(sr_raster_rect box)
+{
+    return box_is_tiny(box);
+}
+
+uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
+                             int subpixel_bits)
+{
+    const sr_screen_vertex *v[3];
+    setup s;
+    order_clockwise(tri, area2, v);
+    setup_make(v, box, subpixel_bits, &s);
+    return tiny_coverage(&s);
 }
 
 static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,
                                                  sr_shade mode, const sr_shade_context *shade,
                                                  const sr_screen_vertex *const tri[3], int64_t area2,
-                                                 uint32_t triangle_id, bool *simd)
+                                                 uint32_t triangle_id, bool mask_known, uint64_t mask,
+                                                 bool *simd)
 {
     *simd = false;
     /* Most triangles of a dense mesh cover no pixel centre: find that out
@@ -480,7 +498,7 @@ static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_r
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return 0;
     setup s;
-    if (!setup_in(tri, area2, box, subpixel_bits, mode, shade, &s))
+    if (!setup_in(tri, area2, box, subpixel_bits, mode, shade, mask_known, mask, &s))
         return 0;
     return sr_raster_setup_draw(fb, &s, mode, shade, triangle_id, simd);
 }
@@ -489,7 +507,15 @@ uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int s
                                    const sr_shade_context *shade, const sr_screen_vertex *const tri[3],
                                    int64_t area2, uint32_t triangle_id, bool *simd)
 {
-    return triangle_in_box(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, simd);
+    return triangle_in_box(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, false, 0, simd);
+}
+
+uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
+                                 const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
+                                 uint64_t mask, uint32_t triangle_id)
+{
+    bool simd;
+    return triangle_in_box(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, true, mask, &simd);
 }
 
 uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
@@ -497,7 +523,7 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                                uint32_t triangle_id, bool *simd)
 {
     return triangle_in_box(fb, scan_box(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri, area2,
-                           triangle_id, simd);
+                           triangle_id, false, 0, simd);
 }
 
 void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)

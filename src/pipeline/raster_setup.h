@@ -188,6 +188,18 @@ uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int s
                                    const sr_shade_context *shade, const sr_screen_vertex *const tri[3],
                                    int64_t area2, uint32_t triangle_id, bool *simd);
 
+/* Whether a scan box is tiny (sr_tri_setup.tiny), and such a box's covered
+ * pixel centres: the mask the set-up makes. The binned path tests a tiny
+ * triangle within one tile while binning, drops it when the mask is empty
+ * and draws it with sr_raster_tiny_triangle, which takes the mask (non-zero)
+ * instead of testing again. */
+bool sr_raster_box_is_tiny(sr_raster_rect box);
+uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
+                             int subpixel_bits);
+uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
+                                 const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
+                                 uint64_t mask, uint32_t triangle_id);
+
 /* The kernel for a shading mode, depth test and varying layout (each kernel
  * is compiled for one layout, so its varyings stay in registers), or NULL
  * where the instruction set is not built in (AVX2 and AVX-512 off x86-64)
