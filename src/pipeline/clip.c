@@ -254,46 +254,79 @@ static unsigned char line_after_cut(bool a_in, unsigned char edge_line, sr_clip_
     return a_in ? (unsigned char)(SR_CLIP_ON_PLANE + plane) : edge_line;
 }
 
-/* One Sutherland–Hodgman pass, carrying each edge's line (sr_polygon).
- * Returns the output count, or -1 if rounding made the polygon cross the
- * plane more than twice and the output would pass the bound (only slivers
- * thinner than float precision do that). */
-static int clip_against_plane(const sr_polygon *in, sr_clip_plane plane, int floats, const sr_clip_config *cfg,
-                              sr_polygon *out)
+/* Makes the cut of the polygon edge inside -> outside, which runs along
+ * `line`; false where it cannot. */
+typedef bool (*edge_cut)(void *ctx, int line, sr_clip_plane plane, const sr_vertex_out *inside,
+                         const sr_vertex_out *outside, sr_vertex_out *cut);
+
+#define PASS_OVERFLOW (-1) /* rounding made the polygon cross the plane more than twice */
+#define PASS_NO_CUT (-2)   /* `cut` could not make a cut */
+
+/* One Sutherland–Hodgman pass over the sides of the vertices (inside[i]),
+ * carrying each edge's line (sr_polygon). Returns the output count, or
+ * PASS_OVERFLOW when the output would pass the bound (only slivers thinner
+ * than float precision do that), or PASS_NO_CUT. */
+static int clip_pass(const sr_polygon *in, const bool *inside, sr_clip_plane plane, edge_cut cut, void *ctx,
+                     sr_polygon *out)
 {
     int n = in->count, m = 0;
     for (int i = 0; i < n; i++) {
-        const sr_vertex_out *a = &in->vert[i], *b = &in->vert[i + 1 < n ? i + 1 : 0];
-        const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
-        bool a_in = sr_clip_distance_with(plane, a->v, depth) >= 0.0;
-        bool b_in = sr_clip_distance_with(plane, b->v, depth) >= 0.0;
+        int j = i + 1 < n ? i + 1 : 0;
+        const sr_vertex_out *a = &in->vert[i], *b = &in->vert[j];
+        bool a_in = inside[i], b_in = inside[j];
         if (m + (a_in) + (a_in != b_in) > SR_MAX_CLIP_VERTS)
-            return -1;
+            return PASS_OVERFLOW;
         if (a_in) {
             out->line[m] = in->line[i];
             out->vert[m++] = *a;
         }
         if (a_in != b_in) {
-            sr_clip_intersect(plane, a_in ? a : b, a_in ? b : a, floats, cfg, &out->vert[m]);
+            if (!cut(ctx, in->line[i], plane, a_in ? a : b, a_in ? b : a, &out->vert[m]))
+                return PASS_NO_CUT;
             out->line[m++] = line_after_cut(a_in, in->line[i], plane);
         }
     }
     return m;
 }
 
+/* A pass's output, or nothing when it kept fewer than 3 vertices (or none:
+ * a negative count), becomes the polygon. */
+static void take_pass(sr_polygon *poly, const sr_polygon *out, int n)
+{
+    poly->count = n < 3 ? 0 : n;
+    for (int i = 0; i < poly->count; i++) {
+        poly->vert[i] = out->vert[i];
+        poly->line[i] = out->line[i];
+    }
+}
+
+typedef struct edge_by_edge {
+    int floats;
+    const sr_clip_config *cfg;
+} edge_by_edge;
+
+static bool cut_edge(void *ctx, int line, sr_clip_plane plane, const sr_vertex_out *inside,
+                     const sr_vertex_out *outside, sr_vertex_out *cut)
+{
+    (void)line;
+    const edge_by_edge *e = ctx;
+    sr_clip_intersect(plane, inside, outside, e->floats, e->cfg, cut);
+    return true;
+}
+
 /* Plain Sutherland–Hodgman: every polygon edge cut as it stands. */
 static void clip_edge_by_edge(sr_polygon *poly, unsigned planes, int floats, const sr_clip_config *cfg)
 {
+    const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
+    edge_by_edge ctx = { floats, cfg };
     sr_polygon scratch;
     for (int p = 0; p < SR_CLIP_PLANES && poly->count >= 3; p++) {
         if (!(planes & (1u << p)))
             continue;
-        int n = clip_against_plane(poly, (sr_clip_plane)p, floats, cfg, &scratch);
-        poly->count = n < 3 ? 0 : n;
-        for (int i = 0; i < poly->count; i++) {
-            poly->vert[i] = scratch.vert[i];
-            poly->line[i] = scratch.line[i];
-        }
+        bool inside[SR_MAX_CLIP_VERTS];
+        for (int i = 0; i < poly->count; i++)
+            inside[i] = sr_clip_distance_with((sr_clip_plane)p, poly->vert[i].v, depth) >= 0.0;
+        take_pass(poly, &scratch, clip_pass(poly, inside, (sr_clip_plane)p, cut_edge, &ctx, &scratch));
     }
 }
 
@@ -329,9 +362,10 @@ static void keep(triangle_clip *tc, const sr_clip_cut *made, const sr_vertex_out
  * cut line the corner. False where there is none: the whole edge does not
  * cross the plane, or sr_clip_corner found no corner (with every side
  * decided exactly, neither happens on a triangle that is not degenerate). */
-static bool cut_from_triangle(triangle_clip *tc, int line, sr_clip_plane plane, const sr_vertex_out *inside,
+static bool cut_from_triangle(void *ctx, int line, sr_clip_plane plane, const sr_vertex_out *inside,
                               const sr_vertex_out *outside, sr_vertex_out *cut)
 {
+    triangle_clip *tc = ctx;
     const sr_clip_config *cfg = tc->cfg;
     const sr_clip_depth *depth = cfg ? &cfg->depth : NULL;
     sr_clip_cut made = { .plane = plane, .inside = inside, .outside = outside, .cut = cut };
@@ -377,30 +411,23 @@ static int vertex_side(const triangle_clip *tc, int before, int after, sr_clip_p
     return sr_clip_exact_side(tc->tri, before, after, plane, depth);
 }
 
-/* One pass (vertex i lies on lines line[i − 1] and line[i]). Returns the
- * output count, or -1 as clip_against_plane does. */
+/* One pass (vertex i lies on lines line[i − 1] and line[i]); sets
+ * tc->failed where a side or a cut cannot be decided from the triangle.
+ * Returns clip_pass's count. */
 static int pass_from_triangle(triangle_clip *tc, const sr_polygon *in, sr_clip_plane plane, sr_polygon *out)
 {
-    int n = in->count, side[SR_MAX_CLIP_VERTS];
+    int n = in->count;
+    bool inside[SR_MAX_CLIP_VERTS];
     for (int i = 0; i < n; i++) {
-        side[i] = vertex_side(tc, in->line[i > 0 ? i - 1 : n - 1], in->line[i], plane, &in->vert[i]);
-        tc->failed = tc->failed || side[i] < 0;
-    }
-    int m = 0;
-    for (int i = 0; i < n && !tc->failed; i++) {
-        const sr_vertex_out *a = &in->vert[i], *b = &in->vert[i + 1 < n ? i + 1 : 0];
-        bool a_in = side[i], b_in = side[i + 1 < n ? i + 1 : 0];
-        if (m + (a_in) + (a_in != b_in) > SR_MAX_CLIP_VERTS)
-            return -1;
-        if (a_in) {
-            out->line[m] = in->line[i];
-            out->vert[m++] = *a;
+        int side = vertex_side(tc, in->line[i > 0 ? i - 1 : n - 1], in->line[i], plane, &in->vert[i]);
+        if (side < 0) {
+            tc->failed = true;
+            return 0;
         }
-        if (a_in != b_in) {
-            tc->failed = !cut_from_triangle(tc, in->line[i], plane, a_in ? a : b, a_in ? b : a, &out->vert[m]);
-            out->line[m++] = line_after_cut(a_in, in->line[i], plane);
-        }
+        inside[i] = side;
     }
+    int m = clip_pass(in, inside, plane, cut_from_triangle, tc, out);
+    tc->failed = m == PASS_NO_CUT;
     return m;
 }
 
@@ -422,11 +449,7 @@ static bool clip_from_triangle(sr_polygon *poly, unsigned planes, int floats, co
         int n = pass_from_triangle(&tc, &clipped, (sr_clip_plane)p, &scratch);
         if (tc.failed)
             return false;
-        clipped.count = n < 3 ? 0 : n;
-        for (int i = 0; i < clipped.count; i++) {
-            clipped.vert[i] = scratch.vert[i];
-            clipped.line[i] = scratch.line[i];
-        }
+        take_pass(&clipped, &scratch, n);
     }
     for (int i = 0; i < tc.kept; i++) {
         kept_cut *k = &tc.cuts[i];
