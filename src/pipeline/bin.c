@@ -9,6 +9,7 @@
 
 #include "draw_internal.h"
 #include "raster.h"
+#include "target/framebuffer.h"
 
 /* Slots go to the threads in chunks, about 8 a thread, so one that waits
  * for a core leaves its share to the others, but no smaller than the first
@@ -209,23 +210,6 @@ static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_threa
     return &((const sr_screen_vertex *)binner->clip_verts.data)[ref - st->vertex_count];
 }
 
-/* sr_framebuffer_clear for the tile's rows alone: the first row stored
- * pixel by pixel, copied to the others (memcpy moves a row in a few vector
- * stores). */
-static void clear_tile(sr_framebuffer *fb, sr_raster_rect rect, uint32_t color)
-{
-    size_t width = (size_t)fb->width, first = (size_t)rect.y0 * width;
-    float depth = sr_framebuffer_depth_clear(fb);
-    for (size_t x = 0; x < width; x++) {
-        fb->color[first + x] = color;
-        fb->depth[first + x] = depth;
-    }
-    for (size_t at = first + width; at < (size_t)rect.y1 * width; at += width) {
-        memcpy(fb->color + at, fb->color + first, width * sizeof *fb->color);
-        memcpy(fb->depth + at, fb->depth + first, width * sizeof *fb->depth);
-    }
-}
-
 static uint32_t entry_at(const sr_thread_work *w, int tile, size_t i)
 {
     return ((const uint32_t *)w->bins[tile].entries.data)[i];
@@ -270,7 +254,7 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
 {
     sr_raster_rect rect = tile_rect(st, tile);
     if (st->desc->clear)
-        clear_tile(st->fb, rect, st->desc->clear_color);
+        sr_framebuffer_clear_rows(st->fb, rect.y0, rect.y1, st->desc->clear_color);
     uint64_t fragments = 0;
     size_t next[SR_MAX_THREADS] = { 0 };
     for (;;) {

@@ -7,6 +7,7 @@
 
 #include "softrast/softrast.h"
 #include "core/error.h"
+#include "framebuffer.h"
 
 /* The depth view: the nearest written depth is white, the farthest a dark gray
  * that still stands apart from the black background. */
@@ -101,14 +102,19 @@ static void fill_words(void *to, uint32_t value, size_t n)
     }
 }
 
-void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color)
+void sr_framebuffer_clear_rows(sr_framebuffer *fb, int y0, int y1, uint32_t color)
 {
-    size_t n = pixel_count(fb);
-    fill_words(fb->color, color, n);
+    size_t first = (size_t)y0 * (size_t)fb->width, n = (size_t)(y1 - y0) * (size_t)fb->width;
+    fill_words(fb->color + first, color, n);
     float clear = sr_framebuffer_depth_clear(fb);
     uint32_t clear_bits;
     memcpy(&clear_bits, &clear, sizeof clear_bits);
-    fill_words(fb->depth, clear_bits, n);
+    fill_words(fb->depth + first, clear_bits, n);
+}
+
+void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color)
+{
+    sr_framebuffer_clear_rows(fb, 0, fb->height, color);
 }
 
 bool sr_framebuffer_depth_range(const sr_framebuffer *fb, float *lo, float *hi)
