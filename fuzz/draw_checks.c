@@ -293,7 +293,8 @@ static bool draw_plain(const scene *sc, sr_shade shade, int threads, sr_draw_pat
  * thread count and either path" (and so are the counts): the tiles against
  * the direct path. Drawn in the decoded shading mode (id if the mesh cannot
  * be shaded so), on the scene's framebuffer or on one several tiles tall
- * (strips of SR_TILE_ROWS rows), the threaded draw reusing one workspace. */
+ * (strips of SR_TILE_ROWS rows), the threaded draw reusing one workspace,
+ * on the tiles alone or with the first thread drawing directly. */
 static void check_threads(const scene *sc)
 {
     if (!sc->indices_valid || sc->threads == 0)
@@ -306,11 +307,14 @@ static void check_threads(const scene *sc)
     sr_framebuffer one, many;
     sr_stats one_stats, many_stats;
     bool one_ok = draw_plain(sc, shade, 1, SR_PATH_DIRECT, NULL, width, height, &one, &one_stats);
-    bool many_ok = draw_plain(sc, shade, sc->threads, SR_PATH_TILES, ws, width, height, &many, &many_stats);
+    /* Odd thread counts draw the first slots directly while the others bin. */
+    sr_draw_path path = sc->threads % 2 ? SR_PATH_DIRECT_FIRST : SR_PATH_TILES;
+    bool many_ok = draw_plain(sc, shade, sc->threads, path, ws, width, height, &many, &many_stats);
     bool again_ok = true;
-    if (sc->big) { /* the workspace again, as a viewer reuses it every frame */
+    if (sc->big) { /* the workspace again, as a viewer reuses it every frame, on the other threaded path */
         sr_framebuffer_destroy(&many);
-        again_ok = draw_plain(sc, shade, sc->threads, SR_PATH_TILES, ws, width, height, &many, &many_stats);
+        path = path == SR_PATH_TILES ? SR_PATH_DIRECT_FIRST : SR_PATH_TILES;
+        again_ok = draw_plain(sc, shade, sc->threads, path, ws, width, height, &many, &many_stats);
     }
     CHECK(one_ok && many_ok && again_ok, "sr_draw failed: %d with one thread, %d/%d with %d", one_ok, many_ok,
           again_ok, sc->threads);

@@ -38,17 +38,23 @@ static void assert_same_drawing(const drawn *one, const drawn *many, int threads
     cr_assert_eq(memcmp(&one->stats, &many->stats, sizeof one->stats), 0, "stats differ with %d threads", threads);
 }
 
+/* The threaded paths: the tiles alone, and the first thread drawing the
+ * first triangles directly while the others bin the rest. */
+static const sr_draw_path threaded_paths[] = { SR_PATH_TILES, SR_PATH_DIRECT_FIRST };
+#define THREADED_PATHS (sizeof threaded_paths / sizeof *threaded_paths)
+
 static void assert_same_for_all_thread_counts(const sr_draw_desc *desc, int width, int height, bool reversed)
 {
     static const int counts[] = { 1, 2, 3, 4, 7, 16 };
     drawn one;
     draw_with_threads(desc, width, height, reversed, 1, SR_PATH_DIRECT, &one);
-    for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
-        drawn many;
-        draw_with_threads(desc, width, height, reversed, counts[c], SR_PATH_TILES, &many);
-        assert_same_drawing(&one, &many, counts[c]);
-        sr_framebuffer_destroy(&many.fb);
-    }
+    for (size_t p = 0; p < THREADED_PATHS; p++)
+        for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
+            drawn many;
+            draw_with_threads(desc, width, height, reversed, counts[c], threaded_paths[p], &many);
+            assert_same_drawing(&one, &many, counts[c]);
+            sr_framebuffer_destroy(&many.fb);
+        }
     cr_assert_gt(one.stats.fragments, 0, "the scene drew nothing: the comparison would prove nothing");
     sr_framebuffer_destroy(&one.fb);
 }
@@ -97,6 +103,37 @@ Test(threads, dense_torus_lambert_matches_one_thread)
     sr_mesh_free(&torus);
 }
 
+/* The cost estimate's own choice on a mesh of pixel-sized triangles wholly
+ * in view (the first thread draws the first triangles directly while the
+ * others bin the rest): what the one-thread direct path draws, with the
+ * clear inside the draw and without. */
+Test(threads, cost_estimate_on_a_dense_mesh_in_view_matches_one_thread)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 200, 100, &err), "%s", err.message);
+    sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT, .clear_color = 0x123456 };
+    look(&desc, (vec3){ 0, 2.5f, -4.5f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+    drawn one;
+    draw_with_threads(&desc, 301, 173, false, 1, SR_PATH_DIRECT, &one);
+    cr_assert_gt(one.stats.fragments, 0, "the scene drew nothing: the comparison would prove nothing");
+    for (int clear = 0; clear < 2; clear++)
+        for (int threads = 2; threads <= 16; threads *= 2) {
+            drawn many;
+            cr_assert(sr_framebuffer_create(&many.fb, 301, 173, &err), "%s", err.message);
+            sr_framebuffer_clear(&many.fb, clear ? 0xABCDEF : 0x123456);
+            sr_draw_desc d = desc;
+            d.threads = threads;
+            d.clear = clear;
+            many.stats = (sr_stats){ 0 };
+            cr_assert(sr_draw(&many.fb, &d, &many.stats, &err), "%s", err.message);
+            assert_same_drawing(&one, &many, threads);
+            sr_framebuffer_destroy(&many.fb);
+        }
+    sr_framebuffer_destroy(&one.fb);
+    sr_mesh_free(&torus);
+}
+
 /* A workspace keeps its worker threads from draw to draw (parallel.c):
  * draws with one workspace whose thread count goes up and down draw what
  * the one-thread direct path draws. */
@@ -115,7 +152,7 @@ Test(threads, one_workspace_matches_one_thread_as_the_thread_count_changes)
     cr_assert_not_null(desc.workspace);
     for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
         drawn many;
-        draw_with_threads(&desc, 301, 173, false, counts[c], SR_PATH_TILES, &many);
+        draw_with_threads(&desc, 301, 173, false, counts[c], threaded_paths[c % THREADED_PATHS], &many);
         assert_same_drawing(&one, &many, counts[c]);
         sr_framebuffer_destroy(&many.fb);
     }
@@ -216,7 +253,8 @@ static void assert_caller_buffers_cleared_on_the_tiles(const sr_draw_desc *desc,
                                                        int height)
 {
     size_t n = (size_t)width * height;
-    for (int threads = 1; threads <= 3; threads += 2) {
+    for (int run = 0; run < 4; run++) {
+        int threads = run % 2 ? 3 : 1;
         sr_framebuffer fb = { .width = width, .height = height, .color = malloc(n * sizeof *fb.color),
                               .depth = malloc(n * sizeof *fb.depth) };
         cr_assert(fb.color && fb.depth);
@@ -227,7 +265,7 @@ static void assert_caller_buffers_cleared_on_the_tiles(const sr_draw_desc *desc,
         sr_draw_desc clearing = *desc;
         clearing.clear = true;
         clearing.threads = threads;
-        clearing.study = &(sr_draw_study){ .path = SR_PATH_TILES };
+        clearing.study = &(sr_draw_study){ .path = threaded_paths[run / 2] };
         sr_stats stats = { 0 };
         sr_error err;
         cr_assert(sr_draw(&fb, &clearing, &stats, &err), "%s", err.message);
@@ -281,7 +319,8 @@ Test(threads, clear_inside_the_draw_matches_clear_before_it)
         look_reversed(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f, reversed);
         drawn before;
         draw_with_threads(&desc, 301, 173, reversed, 1, SR_PATH_DIRECT, &before);
-        for (int threads = 1; threads <= 4; threads += 3) {
+        for (int run = 0; run < 4; run++) {
+            int threads = run % 2 ? 4 : 1;
             drawn inside = { .fb = { 0 } };
             cr_assert(sr_framebuffer_create(&inside.fb, 301, 173, &err), "%s", err.message);
             inside.fb.reversed_z = reversed;
@@ -292,7 +331,7 @@ Test(threads, clear_inside_the_draw_matches_clear_before_it)
             sr_draw_desc clearing = desc;
             clearing.clear = true;
             clearing.threads = threads;
-            clearing.study = &(sr_draw_study){ .path = SR_PATH_TILES };
+            clearing.study = &(sr_draw_study){ .path = threaded_paths[run / 2] };
             cr_assert(sr_draw(&inside.fb, &clearing, &inside.stats, &err), "%s", err.message);
             cr_assert_eq(memcmp(before.fb.color, inside.fb.color, n * sizeof *before.fb.color), 0,
                          "color differs, %d threads", threads);

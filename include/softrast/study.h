@@ -96,7 +96,7 @@ typedef struct sr_draw_times {
     double total;             /* wall ms of the whole sr_draw, its serial checks and set-up included */
 } sr_draw_times;
 
-typedef enum sr_draw_path { SR_PATH_BY_COST = 0, SR_PATH_DIRECT, SR_PATH_TILES } sr_draw_path;
+typedef enum sr_draw_path { SR_PATH_BY_COST = 0, SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_DIRECT_FIRST } sr_draw_path;
 
 typedef struct sr_draw_study {
     int subpixel_bits;                /* 0: SR_SUBPIXEL_BITS; else SR_MIN..SR_MAX_SUBPIXEL_BITS */
@@ -115,8 +115,11 @@ typedef struct sr_draw_study {
  * and not every vertex outside one plane), and takes the tiles on one thread
  * when its triangles are few for its pixels (docs/performance.md, "One
  * thread or tiles"). SR_PATH_DIRECT draws on one thread without tiles,
- * SR_PATH_TILES on the tiles at the draw's thread count, one included, so
- * tests keep both paths exercised on small scenes. All draw the same pixels. */
+ * SR_PATH_TILES on the tiles at the draw's thread count, one included, and
+ * SR_PATH_DIRECT_FIRST on the tiles with the first thread drawing the
+ * first triangles directly while the others bin the rest (the estimate's
+ * choice for pixel-sized triangles of a mesh mostly in view), so tests
+ * keep every path exercised on small scenes. All draw the same pixels. */
 
 /* count_hits: every pixel a fan triangle covers gets color += 1 (the caller
  * clears color to 0 first), so after the draw each pixel holds the number of

@@ -1,8 +1,10 @@
 /* The tiled path, on one thread or several: set up triangles in chunks of
  * slots, bin the fan triangles into tiles, draw each tile on one thread in
- * submission order. A tile's pixels see the same triangles in the same
- * order with the same edge values as on the direct path, so the image is
- * bit-identical. */
+ * submission order; or, drawing directly first, the first thread draws the
+ * first chunks straight into the framebuffer while the others bin the rest,
+ * which the tiles draw after. A tile's pixels see the same triangles in the
+ * same order with the same edge values as on the direct path, so the image
+ * is bit-identical. */
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,10 +28,33 @@ static uint32_t setup_chunk(const sr_draw_state *st)
     return size < SETUP_CHUNK_MIN ? SETUP_CHUNK_MIN : size > SETUP_CHUNK_MAX ? SETUP_CHUNK_MAX : size;
 }
 
+/* The chunks of slots, taken from both ends: the last chunk down by the
+ * binning threads, the first up by a thread that draws directly
+ * (st->direct_first), until the two meet. */
 typedef struct setup_phase {
     sr_draw_state *st;
-    sr_chunks slots;
+    uint32_t chunk_size;
+    atomic_uint_fast64_t ends; /* the next chunk from the front << 32 | one past the next from the back */
 } setup_phase;
+
+/* The next chunk's slots [first, end), from the front or the back; false
+ * when every chunk is taken. */
+static bool chunk_take(setup_phase *ph, bool front, uint32_t *first, uint32_t *end)
+{
+    uint_fast64_t ends = atomic_load(&ph->ends), taken;
+    uint32_t chunk;
+    do {
+        uint32_t lo = (uint32_t)(ends >> 32), hi = (uint32_t)ends;
+        if (lo >= hi)
+            return false;
+        chunk = front ? lo : hi - 1;
+        taken = front ? ends + ((uint_fast64_t)1 << 32) : ends - 1;
+    } while (!atomic_compare_exchange_weak(&ph->ends, &ends, taken));
+    uint64_t start = (uint64_t)chunk * ph->chunk_size;
+    *first = (uint32_t)start;
+    *end = start + ph->chunk_size < ph->st->slots ? (uint32_t)(start + ph->chunk_size) : ph->st->slots;
+    return true;
+}
 
 typedef struct raster_phase {
     sr_draw_state *st;
@@ -182,9 +207,26 @@ static bool work_reset(sr_thread_work *w, size_t tiles)
         w->bins[i].cost = 0;
     }
     w->clip_verts.count = 0;
+    w->chunk_marks.count = 0;
+    w->chunks_binned = 0;
     w->records.count = 0;
     w->setups.count = 0;
     w->out_of_memory = false;
+    return true;
+}
+
+/* Every tile's entry count before the chunk a thread takes from the back:
+ * where its segment starts (bin_walk). */
+static bool chunk_mark(const sr_draw_state *st, sr_thread_work *w)
+{
+    uint32_t *marks = sr_array_grow(&w->chunk_marks, (size_t)st->tiles, sizeof *marks);
+    if (!marks) {
+        w->out_of_memory = true;
+        return false;
+    }
+    for (int tile = 0; tile < st->tiles; tile++)
+        marks[tile] = (uint32_t)w->bins[tile].entries.count;
+    w->chunks_binned++;
     return true;
 }
 
@@ -197,10 +239,20 @@ static void setup_chunks(void *ctx, int t)
         w->out_of_memory = true;
         return;
     }
-    sr_fan_sink sink = { .store = store_clip_verts, .triangle = bin_triangle, .st = st, .work = w };
     uint32_t first, end;
-    while (sr_chunks_take(&ph->slots, &first, &end))
+    if (t == 0 && st->direct_first) {
+        if (st->desc->clear)
+            sr_framebuffer_clear(st->fb, st->desc->clear_color);
+        while (chunk_take(ph, true, &first, &end))
+            sr_draw_direct(st, w, first, end);
+        return;
+    }
+    sr_fan_sink sink = { .store = store_clip_verts, .triangle = bin_triangle, .st = st, .work = w };
+    while (chunk_take(ph, !st->direct_first, &first, &end)) {
+        if (st->direct_first && !chunk_mark(st, w))
+            return;
         sr_draw_primitives(&sink, first, end);
+    }
 }
 
 static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_thread_work *binner, uint32_t ref)
@@ -250,16 +302,44 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, u
  * 3 alternating runs). */
 #define PREFETCH_ENTRIES 8
 
-/* The binning threads' lists for the tile merged by slot: each thread took
- * its chunks in increasing order and a slot's fan triangles are all one
- * thread's, so the merge is submission order. */
+/* A thread's list for a tile, walked in submission order: taken from the
+ * back, its chunks' segments from the last taken (the first in slot order)
+ * up, each in the order it was binned. */
+typedef struct bin_walk {
+    size_t at, end; /* the entries left of the current segment */
+    uint32_t segment; /* one past the segment's chunk, in the order taken */
+} bin_walk;
+
+/* Moves to the next segment that has entries; false when none has. */
+static bool walk_segment(const sr_draw_state *st, const sr_thread_work *w, int tile, bin_walk *b)
+{
+    const uint32_t *marks = w->chunk_marks.data;
+    while (b->at == b->end && b->segment > 0) {
+        b->segment--;
+        b->at = marks[(size_t)b->segment * (size_t)st->tiles + (size_t)tile];
+        b->end = b->segment + 1 < w->chunks_binned
+                     ? marks[(size_t)(b->segment + 1) * (size_t)st->tiles + (size_t)tile]
+                     : w->bins[tile].entries.count;
+    }
+    return b->at < b->end;
+}
+
+/* The binning threads' lists for the tile merged by slot: a slot's fan
+ * triangles are all one thread's, each walked in slot order, so the merge
+ * is submission order. */
 static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_draws)
 {
     sr_raster_rect rect = tile_rect(st, tile);
-    if (st->desc->clear)
+    if (st->desc->clear && !st->direct_first) /* else thread 0 cleared the framebuffer */
         sr_framebuffer_clear_rows(st->fb, rect.y0, rect.y1, st->desc->clear_color);
     uint64_t fragments = 0;
-    size_t next[SR_MAX_THREADS] = { 0 };
+    bin_walk walk[SR_MAX_THREADS];
+    for (int t = 0; t < st->threads; t++) {
+        const sr_thread_work *u = &st->ws->threads[t];
+        /* Chunks taken from the front make one segment, in order. */
+        walk[t] = u->chunks_binned ? (bin_walk){ .segment = u->chunks_binned }
+                                   : (bin_walk){ .end = u->bins[tile].entries.count };
+    }
     for (;;) {
         /* The thread whose next record comes first, drawn up to the first
          * record of the others'. */
@@ -267,9 +347,9 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
         uint32_t first_id = 0, others_id = UINT32_MAX;
         for (int t = 0; t < st->threads; t++) {
             const sr_thread_work *u = &st->ws->threads[t];
-            if (next[t] == u->bins[tile].entries.count)
+            if (!walk_segment(st, u, tile, &walk[t]))
                 continue;
-            uint32_t id = record_of(u, entry_at(u, tile, next[t]))->id;
+            uint32_t id = record_of(u, entry_at(u, tile, walk[t].at))->id;
             if (from < 0 || id < first_id) {
                 others_id = from < 0 ? others_id : first_id;
                 from = t;
@@ -281,12 +361,13 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
         if (from < 0)
             return fragments;
         const sr_thread_work *w = &st->ws->threads[from];
-        for (; next[from] < w->bins[tile].entries.count; next[from]++) {
+        bin_walk *b = &walk[from];
+        for (; walk_segment(st, w, tile, b); b->at++) {
             /* In the loop's body: gcc drops a call of a function of prefetches. */
-            if (w->bins[tile].entries.count - next[from] > 2 * PREFETCH_ENTRIES)
-                __builtin_prefetch(record_of(w, entry_at(w, tile, next[from] + 2 * PREFETCH_ENTRIES)));
-            if (w->bins[tile].entries.count - next[from] > PREFETCH_ENTRIES) {
-                const sr_record *ahead = record_of(w, entry_at(w, tile, next[from] + PREFETCH_ENTRIES));
+            if (b->end - b->at > 2 * PREFETCH_ENTRIES)
+                __builtin_prefetch(record_of(w, entry_at(w, tile, b->at + 2 * PREFETCH_ENTRIES)));
+            if (b->end - b->at > PREFETCH_ENTRIES) {
+                const sr_record *ahead = record_of(w, entry_at(w, tile, b->at + PREFETCH_ENTRIES));
                 if (ahead->area2 != 0) {
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[0]));
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[1]));
@@ -297,7 +378,7 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
                         __builtin_prefetch(setup + line);
                 }
             }
-            uint32_t entry = entry_at(w, tile, next[from]);
+            uint32_t entry = entry_at(w, tile, b->at);
             if (record_of(w, entry)->id > others_id)
                 break;
             bool simd = false;
@@ -376,8 +457,8 @@ static void raster_tiles(void *ctx, int t)
 bool sr_draw_binned(sr_draw_state *st)
 {
     sr_draw_times *times = st->study.times;
-    setup_phase setup = { .st = st };
-    sr_chunks_init(&setup.slots, st->slots, setup_chunk(st));
+    setup_phase setup = { .st = st, .chunk_size = setup_chunk(st) };
+    atomic_init(&setup.ends, (st->slots + setup.chunk_size - 1) / setup.chunk_size);
     sr_parallel_run(&st->ws->pool, st->threads, setup_chunks, &setup, times ? &times->primitives : NULL);
     for (int t = 0; t < st->threads; t++)
         if (st->ws->threads[t].out_of_memory)

@@ -68,9 +68,14 @@ typedef struct sr_thread_work {
     sr_array setups;     /* sr_tri_setup, of the records that span tiles */
     sr_bin *bins;        /* one per tile: record indices, SR_BIN_COVERED or'd in */
     size_t bin_count;
+    /* uint32_t: for each chunk of slots it took from the back (st->
+     * direct_first), in that order, every tile's entry count before it. */
+    sr_array chunk_marks;
+    uint32_t chunks_binned;
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
+    uint32_t vertices_outside; /* of the thread's vertices: those outside a plane */
 } sr_thread_work;
 
 /* A worker thread of the pool: its index t, and the phases it is handed.
@@ -128,6 +133,10 @@ typedef struct sr_draw_state {
     int threads;
     uint32_t vertex_count, slots;
     int tile_rows, tiles; /* the binned path's tiles: strips of whole rows */
+    /* The binned path on several threads: thread 0 clears the framebuffer
+     * and draws the first chunks of slots directly while the others bin the
+     * rest from the last chunk down (bin.c). */
+    bool direct_first;
 } sr_draw_state;
 
 /* Receives the fan triangles that survive culling. `store` keeps a clipped
@@ -171,5 +180,10 @@ bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end);
 /* The binned path: primitives into per-thread tile bins, then each tile
  * rasterized by one thread in submission order. False when out of memory. */
 bool sr_draw_binned(sr_draw_state *st);
+
+/* The direct path for slots [first, end), on the calling thread, counted
+ * in w: every fan triangle straight to the rasterizer, over the whole
+ * framebuffer, in submission order (pipeline.c). */
+void sr_draw_direct(const sr_draw_state *st, sr_thread_work *w, uint32_t first, uint32_t end);
 
 #endif
