@@ -224,9 +224,12 @@ tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_in
         int n = __builtin_ctzll(m), i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
         int64_t px = sr_subpixel_centre(i, s->bits), py = sr_subpixel_centre(j, s->bits);
         float z_row = (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
+        /* The edges only for the varyings: depth and id shading may leave
+         * them unset (setup_in). */
+        bool edges = mode_reads_varyings(mode);
         fragments += fill_pixel(s, fb, mode, greater, interp, shade, id, (size_t)j * (size_t)fb->width + (size_t)i,
-                                z_row, (float)(i - s->ref_x), sr_edge_at(&s->e[1], px, py),
-                                sr_edge_at(&s->e[2], px, py));
+                                z_row, (float)(i - s->ref_x), edges ? sr_edge_at(&s->e[1], px, py) : 0,
+                                edges ? sr_edge_at(&s->e[2], px, py) : 0);
     }
     return fragments;
 }
@@ -451,7 +454,15 @@ static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int6
 {
     const sr_screen_vertex *v[3];
     order_clockwise(tri, area2, v);
-    setup_make(v, box, subpixel_bits, s);
+    /* With the mask known, depth and id shading have no use for the edges:
+     * the mask is the coverage (drawn by tiny_loop; counting hits walks the
+     * rows with the edges), and the depth plane comes from the vertices. */
+    if (mask_known && (mode == SR_SHADE_DEPTH || mode == SR_SHADE_ID)) {
+        s->bits = subpixel_bits;
+        s->box = box;
+    } else {
+        setup_make(v, box, subpixel_bits, s);
+    }
     /* A tiny box's pixels are tested first, so a triangle that covers none
      * of them (a fifth of the dense torus's) skips the depth plane; the
      * binned path tests them while binning and passes the mask on. */
