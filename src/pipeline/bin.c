@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "draw_internal.h"
+#include "cull.h"
 #include "raster.h"
 #include "target/framebuffer.h"
 
@@ -117,9 +118,9 @@ static void bin_push(sr_thread_work *w, sr_bin *bin, uint32_t entry, uint64_t co
     bin->cost += cost;
 }
 
-/* A new record, with its id and scan box set; NULL when out of memory or
- * past what a bin entry can name. */
-static sr_record *record_new(sr_thread_work *w, uint32_t id, sr_raster_rect box)
+/* A new record, with its id set; NULL when out of memory or past what a
+ * bin entry can name. */
+static sr_record *record_new(sr_thread_work *w, uint32_t id)
 {
     sr_record *rec = w->records.count < SR_BIN_RECORD ? sr_array_push(&w->records, sizeof *rec) : NULL;
     if (!rec) {
@@ -127,10 +128,6 @@ static sr_record *record_new(sr_thread_work *w, uint32_t id, sr_raster_rect box)
         return NULL;
     }
     rec->id = id;
-    rec->x0 = (int16_t)box.x0;
-    rec->y0 = (int16_t)box.y0;
-    rec->x1 = (int16_t)box.x1;
-    rec->y1 = (int16_t)box.y1;
     return rec;
 }
 
@@ -158,11 +155,10 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
         uint64_t tiny = tiny_box ? sr_raster_tiny_mask(tri, area2, box, st->vp.subpixel_bits) : 0;
         if (tiny_box && !tiny)
             return; /* covers no pixel centre: no record */
-        sr_record *rec = record_new(w, id, box);
+        sr_record *rec = record_new(w, id);
         if (!rec)
             return;
         memcpy(rec->ref, ref, sizeof rec->ref);
-        rec->area2 = area2;
         rec->tiny = tiny;
         bin_push(w, &w->bins[first], (uint32_t)(w->records.count - 1),
                  entry_cost(box, SR_COVER_PARTIAL));
@@ -177,12 +173,11 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
         w->setups.count--; /* no pixel of the box is inside: no record */
         return;
     }
-    sr_record *rec = record_new(w, id, box);
+    sr_record *rec = record_new(w, id);
     if (!rec)
         return;
     rec->setup = (uint32_t)(w->setups.count - 1);
-    rec->area2 = 0;
-    uint32_t index = (uint32_t)(w->records.count - 1);
+    uint32_t index = (uint32_t)(w->records.count - 1) | SR_BIN_SETUP;
     for (int tile = first; tile <= last; tile++) {
         sr_raster_rect share = box_in(box, tile_rect(st, tile));
         sr_box_cover c = sr_raster_classify(setup, share);
@@ -277,18 +272,20 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, u
                              bool *simd)
 {
     const sr_record *rec = record_of(w, entry);
-    sr_raster_rect share = box_in((sr_raster_rect){ rec->x0, rec->y0, rec->x1, rec->y1 }, tile);
-    if (rec->area2 == 0) {
+    if (entry & SR_BIN_SETUP) {
         sr_tri_setup s = ((const sr_tri_setup *)w->setups.data)[rec->setup];
-        sr_raster_setup_share(&s, share, entry & SR_BIN_COVERED);
+        sr_raster_setup_share(&s, box_in(s.box, tile), entry & SR_BIN_COVERED);
         return sr_raster_setup_draw(st->fb, &s, st->mode, &st->shade, rec->id, simd);
     }
     const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
                                              vertex_of(st, w, rec->ref[2]) };
+    /* The box lies within the tile: clamped to it, it is the one binned. */
+    sr_raster_rect box = sr_raster_scan_box_of(tri, tile, st->vp.subpixel_bits);
+    int64_t area2 = sr_cull_area2(tri[0], tri[1], tri[2]);
     if (rec->tiny)
-        return sr_raster_tiny_triangle(st->fb, share, st->vp.subpixel_bits, st->mode, &st->shade, tri, rec->area2,
+        return sr_raster_tiny_triangle(st->fb, box, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2,
                                        rec->tiny, rec->id);
-    return sr_raster_triangle_in_box(st->fb, share, st->vp.subpixel_bits, st->mode, &st->shade, tri, rec->area2,
+    return sr_raster_triangle_in_box(st->fb, box, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2,
                                      rec->id, simd);
 }
 
@@ -367,8 +364,9 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
             if (b->end - b->at > 2 * PREFETCH_ENTRIES)
                 __builtin_prefetch(record_of(w, entry_at(w, tile, b->at + 2 * PREFETCH_ENTRIES)));
             if (b->end - b->at > PREFETCH_ENTRIES) {
-                const sr_record *ahead = record_of(w, entry_at(w, tile, b->at + PREFETCH_ENTRIES));
-                if (ahead->area2 != 0) {
+                uint32_t ahead_entry = entry_at(w, tile, b->at + PREFETCH_ENTRIES);
+                const sr_record *ahead = record_of(w, ahead_entry);
+                if (!(ahead_entry & SR_BIN_SETUP)) {
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[0]));
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[1]));
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[2]));

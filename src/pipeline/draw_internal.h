@@ -24,29 +24,30 @@
  * functions cannot overflow whatever the precision asked for. */
 #define SR_FIXED_POINT_BITS 30
 
-/* A fan triangle in a bin: its id, its scan box on the framebuffer (sides
- * up to SR_MAX_FRAMEBUFFER_SIDE fit 16 bits) and either, for one within a
- * tile, its exact area, its three vertices as references (below the
- * mesh's vertex count: the shared screen vertex; from there on: the binning
- * thread's clip vertices), which the tile sets it up from, and a tiny
- * box's covered pixels (0 for a box that is not tiny), or, for one
- * whose box spans tiles (area2 0: a drawn triangle never has zero area), its
- * set-up in the binning thread's `setups`. */
+/* A fan triangle in a bin: its id and either, for one within a tile, its
+ * three vertices as references (below the mesh's vertex count: the shared
+ * screen vertex; from there on: the binning thread's clip vertices), from
+ * which the tile finds its scan box and area and sets it up, and a tiny
+ * box's covered pixels (0 for a box that is not tiny), or, for one whose
+ * box spans tiles (its bin entries flagged SR_BIN_SETUP), its set-up in
+ * the binning thread's `setups`, which holds its scan box. 24 bytes: what
+ * the tile can find again from the vertices it reads anyway is not
+ * written and read back through memory. */
 typedef struct sr_record {
     union {
         uint32_t ref[3];
         uint32_t setup;
     };
     uint32_t id;
-    int64_t area2;
     uint64_t tiny; /* sr_raster_tiny_mask, never 0 for a tiny box */
-    int16_t x0, y0, x1, y1;
 } sr_record;
 
-/* A bin entry's flag: the tile's share of the record's set-up triangle is
- * covered whole (sr_raster_classify), so its rows need no solving. */
+/* A bin entry's flags: the record's triangle was set up while binning
+ * (SR_BIN_SETUP), and the tile's share of its box is covered whole
+ * (sr_raster_classify), so its rows need no solving. */
 #define SR_BIN_COVERED 0x80000000u
-#define SR_BIN_RECORD 0x7FFFFFFFu /* the record index's bits */
+#define SR_BIN_SETUP 0x40000000u
+#define SR_BIN_RECORD 0x3FFFFFFFu /* the record index's bits */
 
 /* One thread's list of a tile: bin entries, and the estimated cost of
  * drawing them (bin.c, tile_cost), which orders the tiles. */
