@@ -307,7 +307,8 @@ static void check_threads(const scene *sc)
     sr_framebuffer one, many;
     sr_stats one_stats, many_stats;
     bool one_ok = draw_plain(sc, shade, 1, SR_PATH_DIRECT, NULL, width, height, &one, &one_stats);
-    /* Odd thread counts draw the first slots directly while the others bin. */
+    /* Odd thread counts draw the first slots directly while the others bin
+     * (at the fuzzer's at most 48 slots, one chunk: one thread takes it). */
     sr_draw_path path = sc->threads % 2 ? SR_PATH_DIRECT_FIRST : SR_PATH_TILES;
     bool many_ok = draw_plain(sc, shade, sc->threads, path, ws, width, height, &many, &many_stats);
     bool again_ok = true;

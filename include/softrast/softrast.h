@@ -309,7 +309,8 @@ typedef struct sr_draw_desc {
     const sr_draw_study *study; /* optional measurement knobs (softrast/study.h); NULL: the defaults */
     /* true: the draw first clears fb as sr_framebuffer_clear(fb, clear_color)
      * would, on the tiles each tile just before its triangles (while it is
-     * in cache, and in parallel). */
+     * in cache, and in parallel), or, where the first thread draws the
+     * first triangles directly, that thread before it draws. */
     bool clear;
     uint32_t clear_color;
 } sr_draw_desc;
@@ -317,11 +318,12 @@ typedef struct sr_draw_desc {
 /* Draws the mesh into fb (which the caller clears, or desc->clear). False, with a message,
  * for a desc that cannot be drawn: no mesh, an index out of range, a shading
  * mode whose inputs the mesh lacks (normals, uvs, colors, texture), a
- * non-finite mesh origin. Bad geometry (NaN, inf, anything behind the eye)
+ * non-finite mesh origin; then fb is untouched. Out of memory for the tile
+ * bins is also false, and may leave fb partly drawn. Bad geometry (NaN, inf, anything behind the eye)
  * is not an error: it is dropped or clipped and counted in stats. With
  * threads > 1, or few triangles for many pixels, the screen is cut into
  * tiles (strips of whole rows) drawn in parallel; the image and depth are
- * bit-identical for every thread count and either path. */
+ * bit-identical for every thread count and every path. */
 SR_API bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
 
 #endif

@@ -304,7 +304,7 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, u
  * up, each in the order it was binned. */
 typedef struct bin_walk {
     size_t at, end; /* the entries left of the current segment */
-    uint32_t segment; /* one past the segment's chunk, in the order taken */
+    uint32_t segment; /* the current segment's chunk, in the order taken (before the first: their count) */
 } bin_walk;
 
 /* Moves to the next segment that has entries; false when none has. */
@@ -456,7 +456,7 @@ bool sr_draw_binned(sr_draw_state *st)
 {
     sr_draw_times *times = st->study.times;
     setup_phase setup = { .st = st, .chunk_size = setup_chunk(st) };
-    atomic_init(&setup.ends, (st->slots + setup.chunk_size - 1) / setup.chunk_size);
+    atomic_init(&setup.ends, (uint32_t)(((uint64_t)st->slots + setup.chunk_size - 1) / setup.chunk_size));
     sr_parallel_run(&st->ws->pool, st->threads, setup_chunks, &setup, times ? &times->primitives : NULL);
     for (int t = 0; t < st->threads; t++)
         if (st->ws->threads[t].out_of_memory)

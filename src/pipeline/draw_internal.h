@@ -76,7 +76,7 @@ typedef struct sr_thread_work {
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
-    uint32_t vertices_outside; /* of the thread's vertices: those outside a plane */
+    uint32_t vertices_outside; /* of the thread's vertices: those outside a plane or non-finite */
 } sr_thread_work;
 
 /* A worker thread of the pool: its index t, and the phases it is handed.

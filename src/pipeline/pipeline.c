@@ -255,7 +255,7 @@ static bool takes_tiles(const sr_draw_state *st)
  * faster from a strip held in cache (the inside scene: 80 % outside,
  * 32.1 ms a frame at 2 threads binned, 33.7 direct first; the dense
  * torus: 4 % outside, 26.2 against 24.4 ms in depth shading). */
-#define DIRECT_FIRST_MAX_OUTSIDE 8 /* at most one vertex in this many outside */
+#define DIRECT_FIRST_MAX_OUTSIDE 8 /* fewer than one vertex in this many outside */
 
 static bool mostly_in_view(const sr_draw_state *st)
 {
@@ -364,7 +364,8 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
                                       ? st->threads > 1 && pixel_sized_slots(st) && mostly_in_view(st)
                                       : st->study.path == SR_PATH_DIRECT_FIRST);
     /* Nothing is written before every check has passed; the binned path
-     * clears each tile as it draws it. */
+     * clears each tile as it draws it, or, drawing directly first, thread 0
+     * clears the framebuffer before it draws. */
     if (st->desc->clear && !binned)
         sr_framebuffer_clear(st->fb, st->desc->clear_color);
     if (box == SR_BOX_OUTSIDE) {

@@ -182,8 +182,8 @@ uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const sr_tri_setup *s, sr_shad
                               const sr_shade_context *shade, uint32_t triangle_id, bool *simd);
 
 /* sr_raster_triangle_on with the scan box already found (sr_raster_scan_box_of
- * clamped to the rectangle drawn): the binned path finds it once per
- * triangle, not once per tile. */
+ * clamped to the rectangle drawn): the tile of a one-tile triangle finds it
+ * from the vertices it reads anyway. */
 uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
                                    const sr_shade_context *shade, const sr_screen_vertex *const tri[3],
                                    int64_t area2, uint32_t triangle_id, bool *simd);
@@ -191,8 +191,10 @@ uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int s
 /* Whether a scan box is tiny (sr_tri_setup.tiny), and such a box's covered
  * pixel centres: the mask the set-up makes. The binned path tests a tiny
  * triangle within one tile while binning, drops it when the mask is empty
- * and draws it with sr_raster_tiny_triangle, which takes the mask (non-zero)
- * instead of testing again. */
+ * and draws it with sr_raster_tiny_triangle, which takes the mask (non-zero,
+ * of a box that sr_raster_box_is_tiny) instead of testing again; in depth
+ * and id shading it then makes no edges (e, step_x are left unset: the
+ * tiny loop reads them only for varyings). */
 bool sr_raster_box_is_tiny(sr_raster_rect box);
 uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
                              int subpixel_bits);
