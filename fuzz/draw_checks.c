@@ -279,7 +279,7 @@ static bool draw_plain(const scene *sc, sr_shade shade, int threads, sr_draw_pat
     sr_draw_desc desc = {
         .mesh = &sc->mesh, .shade = shade, .cull = sc->cull, .front = sc->front, .filter = sc->filter,
         .texture = sc->has_texture ? &sc->texture : NULL, .threads = threads, .workspace = ws,
-        .study = &(sr_draw_study){ .path = path },
+        .study = &(sr_draw_study){ .path = path, .chunk_slots = sc->chunk_slots },
     };
     glm_mat4_copy((vec4 *)sc->world, desc.world);
     glm_mat4_copy((vec4 *)sc->view, desc.view);
@@ -307,8 +307,8 @@ static void check_threads(const scene *sc)
     sr_framebuffer one, many;
     sr_stats one_stats, many_stats;
     bool one_ok = draw_plain(sc, shade, 1, SR_PATH_DIRECT, NULL, width, height, &one, &one_stats);
-    /* Odd thread counts draw the first slots directly while the others bin
-     * (at the fuzzer's at most 48 slots, one chunk: one thread takes it). */
+    /* Odd thread counts draw the first slots directly while the others bin;
+     * chunks of 1 to 7 slots split the fuzzer's few among the threads. */
     sr_draw_path path = sc->threads % 2 ? SR_PATH_DIRECT_FIRST : SR_PATH_TILES;
     bool many_ok = draw_plain(sc, shade, sc->threads, path, ws, width, height, &many, &many_stats);
     bool again_ok = true;

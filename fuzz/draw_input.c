@@ -287,6 +287,7 @@ bool scene_decode(reader *r, scene *sc)
     uint8_t t = take_u8(r);
     sc->threads = (t & 0x18) == 0x18 ? 2 + (t & 3) : 0;
     sc->big = t & 4;
+    sc->chunk_slots = t >> 5;
     return true;
 }
 

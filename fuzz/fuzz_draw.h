@@ -66,6 +66,7 @@ typedef struct scene {
     bool reversed_z; /* the framebuffer's depth convention: clear 0, GREATER */
     int threads;     /* for the threaded draw compared with one thread, or 0: none */
     bool big;        /* that comparison on a framebuffer of several tiles */
+    uint32_t chunk_slots; /* its slots per chunk of the binning (sr_draw_study), 0: the draw's own */
 } scene;
 
 typedef struct draw_run {

@@ -12,8 +12,8 @@ typedef struct drawn {
     sr_stats stats;
 } drawn;
 
-static void draw_with_threads(const sr_draw_desc *base, int width, int height, bool reversed, int threads,
-                              sr_draw_path path, drawn *out)
+static void draw_split(const sr_draw_desc *base, int width, int height, bool reversed, int threads,
+                       sr_draw_path path, uint32_t chunk_slots, drawn *out)
 {
     sr_error err;
     cr_assert(sr_framebuffer_create(&out->fb, width, height, &err), "%s", err.message);
@@ -21,11 +21,18 @@ static void draw_with_threads(const sr_draw_desc *base, int width, int height, b
     sr_framebuffer_clear(&out->fb, 0x123456);
     sr_draw_desc desc = *base;
     sr_draw_study study = base->study ? *base->study : (sr_draw_study){ 0 };
-    study.path = path; /* not the cost estimate's choice: both paths on these small scenes */
+    study.path = path; /* not the cost estimate's choice: every path on these small scenes */
+    study.chunk_slots = chunk_slots;
     desc.study = &study;
     desc.threads = threads;
     out->stats = (sr_stats){ 0 };
     cr_assert(sr_draw(&out->fb, &desc, &out->stats, &err), "%s", err.message);
+}
+
+static void draw_with_threads(const sr_draw_desc *base, int width, int height, bool reversed, int threads,
+                              sr_draw_path path, drawn *out)
+{
+    draw_split(base, width, height, reversed, threads, path, 0, out);
 }
 
 static void assert_same_drawing(const drawn *one, const drawn *many, int threads)
@@ -52,6 +59,11 @@ static void assert_same_for_all_thread_counts(const sr_draw_desc *desc, int widt
         for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
             drawn many;
             draw_with_threads(desc, width, height, reversed, counts[c], threaded_paths[p], &many);
+            assert_same_drawing(&one, &many, counts[c]);
+            sr_framebuffer_destroy(&many.fb);
+            /* Chunks of 3 slots: every thread's list of a tile in many
+             * segments, the threads' interleaved slot by slot. */
+            draw_split(desc, width, height, reversed, counts[c], threaded_paths[p], 3, &many);
             assert_same_drawing(&one, &many, counts[c]);
             sr_framebuffer_destroy(&many.fb);
         }

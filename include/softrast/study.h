@@ -108,6 +108,7 @@ typedef struct sr_draw_study {
     bool count_hits;                  /* count coverage instead of shading: see below */
     sr_draw_times *times;             /* optional: the phases' wall time is added here */
     sr_draw_path path;                /* SR_PATH_BY_COST: one thread or the tiles by the cost estimate */
+    uint32_t chunk_slots;             /* 0: the draw's own; else triangle slots per chunk of the tiles' binning */
 } sr_draw_study;
 
 /* path: a draw takes several threads, and the tiled path, only when its
@@ -119,7 +120,12 @@ typedef struct sr_draw_study {
  * SR_PATH_DIRECT_FIRST on the tiles with the first thread drawing the
  * first triangles directly while the others bin the rest (the estimate's
  * choice for pixel-sized triangles of a mesh mostly in view), so tests
- * keep every path exercised on small scenes. All draw the same pixels. */
+ * keep every path exercised on small scenes. All draw the same pixels.
+ *
+ * chunk_slots: the tiles' binning hands triangle slots to the threads in
+ * chunks, about 8 a thread of 256 to 16384 slots; a few slots a chunk split
+ * a small mesh among the threads as a large one is (tests, the fuzzer).
+ * Each chunk a thread bins from the last down costs a mark per tile. */
 
 /* count_hits: every pixel a fan triangle covers gets color += 1 (the caller
  * clears color to 0 first), so after the draw each pixel holds the number of

@@ -25,6 +25,8 @@
 
 static uint32_t setup_chunk(const sr_draw_state *st)
 {
+    if (st->study.chunk_slots)
+        return st->study.chunk_slots;
     uint32_t size = st->slots / (SETUP_CHUNKS_PER_THREAD * (uint32_t)st->threads);
     return size < SETUP_CHUNK_MIN ? SETUP_CHUNK_MIN : size > SETUP_CHUNK_MAX ? SETUP_CHUNK_MAX : size;
 }
