@@ -253,8 +253,8 @@ static bool takes_tiles(const sr_draw_state *st)
  * first"). Where many vertices lie outside a plane, the camera is in or
  * near the mesh, whose triangles near it cover many pixels each and draw
  * faster from a strip held in cache (the inside scene: 80 % outside,
- * 32.1 ms a frame at 2 threads binned, 33.7 direct first; the dense
- * torus: 4 % outside, 26.2 against 24.4 ms in depth shading). */
+ * 32.9 ms a frame at 2 threads binned, 34.0 direct first; the dense
+ * torus: 4 % outside, 25.0 against 24.1 ms in depth shading). */
 #define DIRECT_FIRST_MAX_OUTSIDE 8 /* fewer than one vertex in this many outside */
 
 static bool mostly_in_view(const sr_draw_state *st)
