@@ -36,28 +36,8 @@ static uint32_t setup_chunk(const sr_draw_state *st)
  * (st->direct_first), until the two meet. */
 typedef struct setup_phase {
     sr_draw_state *st;
-    uint32_t chunk_size;
-    atomic_uint_fast64_t ends; /* the next chunk from the front << 32 | one past the next from the back */
+    sr_chunks slots;
 } setup_phase;
-
-/* The next chunk's slots [first, end), from the front or the back; false
- * when every chunk is taken. */
-static bool chunk_take(setup_phase *ph, bool front, uint32_t *first, uint32_t *end)
-{
-    uint_fast64_t ends = atomic_load(&ph->ends), taken;
-    uint32_t chunk;
-    do {
-        uint32_t lo = (uint32_t)(ends >> 32), hi = (uint32_t)ends;
-        if (lo >= hi)
-            return false;
-        chunk = front ? lo : hi - 1;
-        taken = front ? ends + ((uint_fast64_t)1 << 32) : ends - 1;
-    } while (!atomic_compare_exchange_weak(&ph->ends, &ends, taken));
-    uint64_t start = (uint64_t)chunk * ph->chunk_size;
-    *first = (uint32_t)start;
-    *end = start + ph->chunk_size < ph->st->slots ? (uint32_t)(start + ph->chunk_size) : ph->st->slots;
-    return true;
-}
 
 typedef struct raster_phase {
     sr_draw_state *st;
@@ -240,16 +220,18 @@ static void setup_chunks(void *ctx, int t)
     if (t == 0 && st->direct_first) {
         if (st->desc->clear)
             sr_framebuffer_clear(st->fb, st->desc->clear_color);
-        while (chunk_take(ph, true, &first, &end))
+        while (sr_chunks_take(&ph->slots, &first, &end))
             sr_draw_direct(st, w, first, end);
         return;
     }
     sr_fan_sink sink = { .store = store_clip_verts, .triangle = bin_triangle, .st = st, .work = w };
-    while (chunk_take(ph, !st->direct_first, &first, &end)) {
-        if (st->direct_first && !chunk_mark(st, w))
-            return;
-        sr_draw_primitives(&sink, first, end);
+    if (!st->direct_first) {
+        while (sr_chunks_take(&ph->slots, &first, &end))
+            sr_draw_primitives(&sink, first, end);
+        return;
     }
+    while (sr_chunks_take_last(&ph->slots, &first, &end) && chunk_mark(st, w))
+        sr_draw_primitives(&sink, first, end);
 }
 
 static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_thread_work *binner, uint32_t ref)
@@ -457,8 +439,8 @@ static void raster_tiles(void *ctx, int t)
 bool sr_draw_binned(sr_draw_state *st)
 {
     sr_draw_times *times = st->study.times;
-    setup_phase setup = { .st = st, .chunk_size = setup_chunk(st) };
-    atomic_init(&setup.ends, (uint32_t)(((uint64_t)st->slots + setup.chunk_size - 1) / setup.chunk_size));
+    setup_phase setup = { .st = st };
+    sr_chunks_init(&setup.slots, st->slots, setup_chunk(st));
     sr_parallel_run(&st->ws->pool, st->threads, setup_chunks, &setup, times ? &times->primitives : NULL);
     for (int t = 0; t < st->threads; t++)
         if (st->ws->threads[t].out_of_memory)

@@ -96,13 +96,12 @@ typedef struct sr_worker {
  * time a draw asks for more threads than there are, asleep between draws,
  * joined when the workspace is destroyed. */
 typedef struct sr_pool {
-    bool ready; /* lock and done initialized */
     pthread_mutex_t lock;
     pthread_cond_t done;   /* pending reached 0 */
     bool caller_sleeping;  /* in pthread_cond_wait on done: under lock */
     bool stopping;         /* under lock */
     atomic_int pending;    /* the phase's workers whose fn has not returned */
-    int started;           /* 0, or 1 + the workers running: the caller's */
+    int started;           /* 0 (lock and done not initialized yet), or 1 + the workers running: the caller's */
     uint64_t phase;        /* phases handed out: the caller's */
     void (*fn)(void *ctx, int t); /* the phase's, written before go moves on */
     void *ctx;
@@ -166,17 +165,20 @@ void sr_parallel_run(sr_pool *pool, int threads, void (*fn)(void *ctx, int t), v
 void sr_pool_stop(sr_pool *pool);
 
 /* Work handed out in chunks to whichever thread asks next, so a thread that
- * is slow (or waits for a core) leaves its share to the others. Each thread
- * gets its chunks in increasing order. */
+ * is slow (or waits for a core) leaves its share to the others; taken from
+ * the front, each thread gets its chunks in increasing order, from the
+ * back in decreasing order, and the two ends meet (bin.c's direct first). */
 typedef struct sr_chunks {
-    atomic_uint next; /* chunk index */
+    atomic_uint_fast64_t ends; /* the next chunk from the front << 32 | one past the next from the back */
     uint32_t count, size;
 } sr_chunks;
 
 void sr_chunks_init(sr_chunks *c, uint32_t count, uint32_t size);
 
-/* The next chunk's items [first, end); false when none is left. */
+/* The next chunk's items [first, end) from the front, or the last one
+ * left; false when none is left. */
 bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end);
+bool sr_chunks_take_last(sr_chunks *c, uint32_t *first, uint32_t *end);
 
 /* The binned path: primitives into per-thread tile bins, then each tile
  * rasterized by one thread in submission order. False when out of memory. */

@@ -5,19 +5,36 @@
 
 void sr_chunks_init(sr_chunks *c, uint32_t count, uint32_t size)
 {
-    atomic_init(&c->next, 0);
+    atomic_init(&c->ends, ((uint64_t)count + size - 1) / size);
     c->count = count;
     c->size = size;
 }
 
-bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end)
+static bool chunks_take(sr_chunks *c, bool front, uint32_t *first, uint32_t *end)
 {
-    uint64_t start = (uint64_t)atomic_fetch_add(&c->next, 1) * c->size;
-    if (start >= c->count)
-        return false;
+    uint_fast64_t ends = atomic_load(&c->ends), taken;
+    uint32_t chunk;
+    do {
+        uint32_t lo = (uint32_t)(ends >> 32), hi = (uint32_t)ends;
+        if (lo >= hi)
+            return false;
+        chunk = front ? lo : hi - 1;
+        taken = front ? ends + ((uint_fast64_t)1 << 32) : ends - 1;
+    } while (!atomic_compare_exchange_weak(&c->ends, &ends, taken));
+    uint64_t start = (uint64_t)chunk * c->size;
     *first = (uint32_t)start;
     *end = start + c->size < c->count ? (uint32_t)(start + c->size) : c->count;
     return true;
+}
+
+bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end)
+{
+    return chunks_take(c, true, first, end);
+}
+
+bool sr_chunks_take_last(sr_chunks *c, uint32_t *first, uint32_t *end)
+{
+    return chunks_take(c, false, first, end);
 }
 
 /* fn(ctx, t), and the CPU time the calling thread spent in it when timed. */
@@ -96,7 +113,7 @@ static void *worker_run(void *arg)
 
 static bool pool_ready(sr_pool *pool)
 {
-    if (pool->ready)
+    if (pool->started > 0)
         return true;
     if (pthread_mutex_init(&pool->lock, NULL) != 0)
         return false;
@@ -104,7 +121,6 @@ static bool pool_ready(sr_pool *pool)
         pthread_mutex_destroy(&pool->lock);
         return false;
     }
-    pool->ready = true;
     pool->started = 1;
     return true;
 }
@@ -186,7 +202,7 @@ void sr_parallel_run(sr_pool *pool, int threads, void (*fn)(void *ctx, int t), v
 
 void sr_pool_stop(sr_pool *pool)
 {
-    if (!pool->ready)
+    if (pool->started == 0)
         return;
     pthread_mutex_lock(&pool->lock);
     pool->stopping = true;

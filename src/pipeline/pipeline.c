@@ -236,17 +236,6 @@ static bool pixel_sized_slots(const sr_draw_state *st)
     return (int64_t)st->slots * TILES_ONE_THREAD_PIXELS_PER_SLOT > pixel_count(st);
 }
 
-static bool takes_tiles(const sr_draw_state *st)
-{
-    if (st->study.observer)
-        return false; /* it sees every triangle, in order, from the direct path */
-    if (st->study.path != SR_PATH_BY_COST)
-        return st->study.path != SR_PATH_DIRECT;
-    if (all_outside_one_plane(st))
-        return false;
-    return st->threads > 1 || (pixel_count(st) >= TILES_MIN_PIXELS && !pixel_sized_slots(st));
-}
-
 /* Pixel-sized triangle slots of a mesh mostly in view: where one thread
  * would draw them directly, the first of several does so for as many slots
  * as the others take to bin the rest (docs/performance.md, "Direct
@@ -263,6 +252,20 @@ static bool mostly_in_view(const sr_draw_state *st)
     for (int t = 0; t < st->threads; t++)
         outside += st->ws->threads[t].vertices_outside;
     return outside * DIRECT_FIRST_MAX_OUTSIDE < st->vertex_count;
+}
+
+/* After the vertex phase: the study's path, or the cost estimate's. */
+static sr_draw_path path_of(const sr_draw_state *st)
+{
+    if (st->study.observer)
+        return SR_PATH_DIRECT; /* it sees every triangle, in order, from the direct path */
+    if (st->study.path != SR_PATH_BY_COST)
+        return st->study.path;
+    if (all_outside_one_plane(st))
+        return SR_PATH_DIRECT;
+    if (st->threads > 1)
+        return pixel_sized_slots(st) && mostly_in_view(st) ? SR_PATH_DIRECT_FIRST : SR_PATH_TILES;
+    return pixel_count(st) >= TILES_MIN_PIXELS && !pixel_sized_slots(st) ? SR_PATH_TILES : SR_PATH_DIRECT;
 }
 
 /* A mesh outside the view: every assembled triangle is rejected, nothing
@@ -359,10 +362,9 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         if (!run_vertex_phase(st, &ph, err))
             return false;
     }
-    bool binned = draws && takes_tiles(st);
-    st->direct_first = binned && (st->study.path == SR_PATH_BY_COST
-                                      ? st->threads > 1 && pixel_sized_slots(st) && mostly_in_view(st)
-                                      : st->study.path == SR_PATH_DIRECT_FIRST);
+    sr_draw_path path = draws ? path_of(st) : SR_PATH_DIRECT;
+    bool binned = path != SR_PATH_DIRECT;
+    st->direct_first = path == SR_PATH_DIRECT_FIRST;
     /* Nothing is written before every check has passed; the binned path
      * clears each tile as it draws it, or, drawing directly first, thread 0
      * clears the framebuffer before it draws. */

@@ -224,8 +224,8 @@ tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_in
         int n = __builtin_ctzll(m), i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
         int64_t px = sr_subpixel_centre(i, s->bits), py = sr_subpixel_centre(j, s->bits);
         float z_row = (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
-        /* The edges only for the varyings: depth and id shading may leave
-         * them unset (setup_in). */
+        /* The edges only for the varyings: a mode without leaves them unset
+         * when the mask came from binning (setup_in). */
         bool edges = mode_reads_varyings(mode);
         fragments += fill_pixel(s, fb, mode, greater, interp, shade, id, (size_t)j * (size_t)fb->width + (size_t)i,
                                 z_row, (float)(i - s->ref_x), edges ? sr_edge_at(&s->e[1], px, py) : 0,
@@ -454,10 +454,10 @@ static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int6
 {
     const sr_screen_vertex *v[3];
     order_clockwise(tri, area2, v);
-    /* With the mask known, depth and id shading have no use for the edges:
-     * the mask is the coverage (drawn by tiny_loop; counting hits walks the
-     * rows with the edges), and the depth plane comes from the vertices. */
-    if (mask_known && (mode == SR_SHADE_DEPTH || mode == SR_SHADE_ID)) {
+    /* With the mask known, a mode that reads no varyings has no use for the
+     * edges: the mask is the coverage (tiny_loop), and the depth plane
+     * comes from the vertices. */
+    if (mask_known && !mode_reads_varyings(mode)) {
         s->bits = subpixel_bits;
         s->box = box;
     } else {
@@ -466,8 +466,9 @@ static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int6
     /* A tiny box's pixels are tested first, so a triangle that covers none
      * of them (a fifth of the dense torus's) skips the depth plane; the
      * binned path tests them while binning and passes the mask on. */
-    s->tiny = !box_is_tiny(box) ? 0 : mask_known ? mask : tiny_coverage(s);
-    sr_box_cover c = box_is_tiny(box) ? (s->tiny ? SR_COVER_PARTIAL : SR_COVER_NONE) : sr_raster_classify(s, box);
+    bool tiny = box_is_tiny(box);
+    s->tiny = !tiny ? 0 : mask_known ? mask : tiny_coverage(s);
+    sr_box_cover c = tiny ? (s->tiny ? SR_COVER_PARTIAL : SR_COVER_NONE) : sr_raster_classify(s, box);
     if (c == SR_COVER_NONE)
         return false;
     interpolants_make(v, area2 > 0 ? area2 : -area2, mode_reads_varyings(mode) ? shade->layout.count : 0, s);
@@ -552,7 +553,7 @@ uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
     if (*simd)
         return kernel(s, shade, fb, triangle_id);
     if (mode == SR_RASTER_COUNT_HITS) /* past the enum's cases, so not in the switch */
-        return raster_loop(s, fb, SR_RASTER_COUNT_HITS, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
+        return raster_pixels(s, fb, SR_RASTER_COUNT_HITS, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(s, fb, SR_SHADE_ID, shade, triangle_id);
     case SR_SHADE_COLOR:   return raster_mode(s, fb, SR_SHADE_COLOR, shade, triangle_id);

@@ -192,9 +192,9 @@ uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int s
  * pixel centres: the mask the set-up makes. The binned path tests a tiny
  * triangle within one tile while binning, drops it when the mask is empty
  * and draws it with sr_raster_tiny_triangle, which takes the mask (non-zero,
- * of a box that sr_raster_box_is_tiny) instead of testing again; in depth
- * and id shading it then makes no edges (e, step_x are left unset: the
- * tiny loop reads them only for varyings). */
+ * of a box that sr_raster_box_is_tiny) instead of testing again; in a mode
+ * that reads no varyings it then makes no edges (e, step_x are left unset:
+ * the tiny loop reads them only for varyings). */
 bool sr_raster_box_is_tiny(sr_raster_rect box);
 uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
                              int subpixel_bits);
