@@ -16,11 +16,25 @@
 
 /* ---- random numbers (test_rng.h) -------------------------------------- */
 
+/* Uniform in log between lo and hi (both > 0). */
+static inline double log_uniform(test_rng *r, double lo, double hi)
+{
+    return lo * pow(hi / lo, rng_unit(r));
+}
+
 /* ±10^e with e uniform in [lo_exp, hi_exp]: magnitudes spread over decades. */
 static inline double rng_log_signed(test_rng *r, double lo_exp, double hi_exp)
 {
     double m = pow(10.0, rng_uniform(r, lo_exp, hi_exp));
     return rng_below(r, 2) ? m : -m;
+}
+
+/* The error a draw lets a cut vertex carry (sr_clip_config.ndc_tolerance):
+ * half a subpixel step in NDC over the framebuffer's longer side, no guard
+ * band (pipeline.c, sr_draw). */
+static inline double draw_clip_tolerance(int width, int height)
+{
+    return 1.0 / ((double)SR_SUBPIXEL_ONE * (width > height ? width : height));
 }
 
 /* ---- vertices ---------------------------------------------------------- */

@@ -136,11 +136,6 @@ static int planes_through(mpq_t *const c, unsigned planes, const sr_clip_depth *
 
 /* ---- conformance-style triangles ---- */
 
-static double log_uniform(test_rng *r, double lo, double hi)
-{
-    return lo * pow(hi / lo, rng_unit(r));
-}
-
 /* x/w, y/w up to 30000 outside the sides (half of them at 15000 to 30000,
  * as conformance suites place corners). */
 static double conformance_ratio(test_rng *r)

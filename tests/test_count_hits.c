@@ -8,7 +8,7 @@
 
 #include "raster_reference.h"
 
-#define COUNT_W 328 /* many groups of SIMD lanes, the last partial */
+#define COUNT_W 328 /* rows of many pixels; counting hits takes the scalar loop alone */
 #define COUNT_H (6 * SR_TILE_ROWS_MAX + 2) /* six tiles (strips of rows) and a partial seventh */
 #define COUNT_TRIANGLES 400
 
@@ -124,9 +124,10 @@ Test(count_hits, random_triangles_match_the_reference_at_every_thread_count)
  * which tile draws them) and half a pixel either side, and triangles over
  * every tile, on a framebuffer 3 tiles tall; the vertical edges at the same
  * spacing test shared vertical edges on the way. */
-#define BORDER_T ((int64_t)SR_TILE_ROWS(4 * SR_TILE_ROWS_MAX))
+#define BORDER_T ((int64_t)SR_TILE_ROWS_MAX)
 #define BORDER_W ((int)(4 * BORDER_T))
 #define BORDER_H ((int)(3 * BORDER_T))
+_Static_assert(SR_TILE_ROWS(BORDER_W) == BORDER_T, "the border framebuffer's strips are BORDER_T rows");
 #define TS (BORDER_T * ONE) /* a tile's rows in subpixels */
 #define PS(n) ((int64_t)(n) * ONE) /* n pixels in subpixels */
 static const ref_point tile_border_tris[][3] = {

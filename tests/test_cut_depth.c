@@ -39,11 +39,6 @@ static const double F = FLT_EPSILON / 2.0; /* a float rounding, relative */
 
 /* ---- random triangles in clip space, double and float ---- */
 
-static double log_uniform(test_rng *r, double lo, double hi)
-{
-    return lo * pow(hi / lo, rng_unit(r));
-}
-
 /* x/w or y/w: mostly near the screen, one in four up to 30000 outside. */
 static double screen_ratio(test_rng *r)
 {
@@ -225,6 +220,13 @@ typedef struct polygon_vertex {
     int line1, line2; /* the lines it lies on */
 } polygon_vertex;
 
+/* Two mappings of a vertex alike, bit for bit. */
+static bool same_mapping(const sr_screen_vertex *a, const sr_screen_vertex *b)
+{
+    return a->x == b->x && a->y == b->y && a->x_off == b->x_off && a->y_off == b->y_off && a->z == b->z &&
+           a->inv_w == b->inv_w;
+}
+
 /* A corner of the triangle (on two of its edges) maps as the vertex phase
  * maps that vertex, bit for bit. */
 static void check_corner(const double tri_d[3][4], const polygon_vertex *v, const sr_viewport *vp, int n)
@@ -232,10 +234,8 @@ static void check_corner(const double tri_d[3][4], const polygon_vertex *v, cons
     int k = (v->line1 + 1) % 3 == v->line2 ? v->line2 : v->line1; /* edge k runs from vertex k to k + 1 */
     sr_screen_vertex want;
     cr_assert(sr_viewport_map_d(v->clip, tri_d[k], 0, vp, &want));
-    const sr_screen_vertex *got = v->s;
-    cr_assert(got->x == want.x && got->y == want.y && got->x_off == want.x_off && got->y_off == want.y_off &&
-                  got->z == want.z && got->inv_w == want.inv_w,
-              "triangle %d: its vertex %d maps otherwise than the vertex phase maps it", n, k);
+    cr_assert(same_mapping(v->s, &want), "triangle %d: its vertex %d maps otherwise than the vertex phase maps it", n,
+              k);
 }
 
 /* A cut: its depth-plane inputs within the bound of the exact point on its
@@ -283,7 +283,7 @@ static bool clip_and_map(sr_clip_precision precision, const double tri_d[3][4], 
     if (!any || all)
         return false;
     *poly = poly3(v[0], v[1], v[2]);
-    sr_clip_config cfg = { .precision = precision, .ndc_tolerance = 0.5 / (SR_SUBPIXEL_ONE * VIEW_W),
+    sr_clip_config cfg = { .precision = precision, .ndc_tolerance = draw_clip_tolerance(VIEW_W, VIEW_H),
                            .depth = vp->depth };
     if (sr_clip_polygon(poly, any, SR_VARYINGS_AT, &cfg) < 3)
         return false;
@@ -400,7 +400,7 @@ Test(cut_depth, a_cut_of_a_shared_edge_maps_alike_in_both_triangles)
             const sr_screen_vertex *a = &sa[i], *b = &sb[j];
             cr_assert(a->x == b->x && a->y == b->y, "pair %d, precision %d, plane %d: snapped apart", n, precision,
                       p - SR_CLIP_ON_PLANE);
-            cr_assert(a->x_off == b->x_off && a->y_off == b->y_off && a->z == b->z && a->inv_w == b->inv_w,
+            cr_assert(same_mapping(a, b),
                       "pair %d, precision %d, plane %d: x_off %a / %a, y_off %a / %a, z %a / %a", n, precision,
                       p - SR_CLIP_ON_PLANE, a->x_off, b->x_off, a->y_off, b->y_off, a->z, b->z);
             shared++;
@@ -426,8 +426,7 @@ Test(cut_depth, a_vertex_whose_lines_do_not_meet_in_front_maps_from_its_float_po
         sr_screen_vertex s[3], want;
         cr_assert(sr_viewport_map_polygon(&poly, tri_d, 0, &vp, s));
         cr_assert(sr_viewport_map(&poly.vert[1], 0, &vp, &want));
-        cr_assert(s[1].x == want.x && s[1].y == want.y && s[1].x_off == want.x_off && s[1].y_off == want.y_off &&
-                      s[1].z == want.z && s[1].inv_w == want.inv_w,
+        cr_assert(same_mapping(&s[1], &want),
                   "lines %d, %d: x_off %a, y_off %a, z %a; from float %a, %a, %a", pairs[k][0], pairs[k][1],
                   s[1].x_off, s[1].y_off, s[1].z, want.x_off, want.y_off, want.z);
     }

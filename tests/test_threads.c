@@ -115,34 +115,47 @@ Test(threads, dense_torus_lambert_matches_one_thread)
     sr_mesh_free(&torus);
 }
 
-/* The cost estimate's own choice on a mesh of pixel-sized triangles wholly
- * in view (the first thread draws the first triangles directly while the
- * others bin the rest): what the one-thread direct path draws, with the
- * clear inside the draw and without. */
-Test(threads, cost_estimate_on_a_dense_mesh_in_view_matches_one_thread)
+/* The cost estimate's own choice on a mesh of pixel-sized triangles:
+ * wholly in view, the first thread draws the first triangles directly
+ * while the others bin the rest; from inside it (most vertices outside a
+ * plane), the tiles alone. Either way what the one-thread direct path
+ * draws, with the clear inside the draw and without. */
+static void assert_estimate_takes(const sr_draw_desc *desc, sr_draw_path want)
 {
-    sr_mesh torus;
     sr_error err;
-    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 200, 100, &err), "%s", err.message);
-    sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT, .clear_color = 0x123456 };
-    look(&desc, (vec3){ 0, 2.5f, -4.5f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
     drawn one;
-    draw_with_threads(&desc, 301, 173, false, 1, SR_PATH_DIRECT, &one);
+    draw_with_threads(desc, 301, 173, false, 1, SR_PATH_DIRECT, &one);
     cr_assert_gt(one.stats.fragments, 0, "the scene drew nothing: the comparison would prove nothing");
     for (int clear = 0; clear < 2; clear++)
         for (int threads = 2; threads <= 16; threads *= 2) {
             drawn many;
             cr_assert(sr_framebuffer_create(&many.fb, 301, 173, &err), "%s", err.message);
             sr_framebuffer_clear(&many.fb, clear ? 0xABCDEF : 0x123456);
-            sr_draw_desc d = desc;
+            sr_draw_times times = { 0 };
+            sr_draw_desc d = *desc;
             d.threads = threads;
             d.clear = clear;
+            d.study = &(sr_draw_study){ .times = &times };
             many.stats = (sr_stats){ 0 };
             cr_assert(sr_draw(&many.fb, &d, &many.stats, &err), "%s", err.message);
+            cr_assert_eq(times.path, want, "%d threads took path %d", threads, (int)times.path);
             assert_same_drawing(&one, &many, threads);
             sr_framebuffer_destroy(&many.fb);
         }
     sr_framebuffer_destroy(&one.fb);
+}
+
+Test(threads, cost_estimate_on_a_dense_mesh_matches_one_thread)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 200, 100, &err), "%s", err.message);
+    sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT, .clear_color = 0x123456 };
+    look(&desc, (vec3){ 0, 2.5f, -4.5f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+    assert_estimate_takes(&desc, SR_PATH_DIRECT_FIRST);
+    desc.cull = SR_CULL_NONE; /* in the tube, along it, as the bench's inside scene */
+    look(&desc, (vec3){ 1.1f, 0.1f, 0.0f }, (vec3){ 0.9f, 0.0f, 1.0f }, 60.0f, 301.0f / 173.0f);
+    assert_estimate_takes(&desc, SR_PATH_TILES);
     sr_mesh_free(&torus);
 }
 
@@ -257,39 +270,34 @@ Test(threads, observer_sees_every_drawn_triangle_once_in_order)
     sr_mesh_free(&torus);
 }
 
-/* A framebuffer in buffers of the caller's own, exactly width * height
- * (no slack after the last row), holding another picture: desc.clear on the
- * tiles at these thread counts gives what the direct path drew after
- * sr_framebuffer_clear, bit for bit. */
-static void assert_caller_buffers_cleared_on_the_tiles(const sr_draw_desc *desc, const drawn *want, int width,
-                                                       int height)
+/* desc.clear into buffers of the caller's own, exactly width * height (no
+ * slack after the last row), holding another picture nearer than most of
+ * the scene: on each threaded path, at one thread and at `threads`, what
+ * the direct path drew after sr_framebuffer_clear (want), bit for bit. */
+static void assert_cleared_by_the_draw(const sr_draw_desc *desc, const drawn *want, int threads)
 {
-    size_t n = (size_t)width * height;
-    for (int run = 0; run < 4; run++) {
-        int threads = run % 2 ? 3 : 1;
-        sr_framebuffer fb = { .width = width, .height = height, .color = malloc(n * sizeof *fb.color),
-                              .depth = malloc(n * sizeof *fb.depth) };
-        cr_assert(fb.color && fb.depth);
-        for (size_t i = 0; i < n; i++) {
-            fb.color[i] = 0xABCDEF;
-            fb.depth[i] = 0.5f;
+    size_t n = (size_t)want->fb.width * want->fb.height;
+    const int counts[] = { 1, threads };
+    for (size_t p = 0; p < THREADED_PATHS; p++)
+        for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
+            drawn cleared = { .fb = { .width = want->fb.width, .height = want->fb.height,
+                                      .reversed_z = want->fb.reversed_z, .color = malloc(n * sizeof(uint32_t)),
+                                      .depth = malloc(n * sizeof(float)) } };
+            cr_assert(cleared.fb.color && cleared.fb.depth);
+            for (size_t i = 0; i < n; i++) {
+                cleared.fb.color[i] = 0xABCDEF;
+                cleared.fb.depth[i] = 0.5f;
+            }
+            sr_draw_desc d = *desc;
+            d.clear = true;
+            d.threads = counts[c];
+            d.study = &(sr_draw_study){ .path = threaded_paths[p] };
+            sr_error err;
+            cr_assert(sr_draw(&cleared.fb, &d, &cleared.stats, &err), "%s", err.message);
+            assert_same_drawing(want, &cleared, counts[c]);
+            free(cleared.fb.color);
+            free(cleared.fb.depth);
         }
-        sr_draw_desc clearing = *desc;
-        clearing.clear = true;
-        clearing.threads = threads;
-        clearing.study = &(sr_draw_study){ .path = threaded_paths[run / 2] };
-        sr_stats stats = { 0 };
-        sr_error err;
-        cr_assert(sr_draw(&fb, &clearing, &stats, &err), "%s", err.message);
-        cr_assert_eq(memcmp(want->fb.color, fb.color, n * sizeof *fb.color), 0, "%dx%d, %d threads: color", width,
-                     height, threads);
-        cr_assert_eq(memcmp(want->fb.depth, fb.depth, n * sizeof *fb.depth), 0, "%dx%d, %d threads: depth", width,
-                     height, threads);
-        cr_assert_eq(memcmp(&want->stats, &stats, sizeof stats), 0, "%dx%d, %d threads: stats", width, height,
-                     threads);
-        free(fb.color);
-        free(fb.depth);
-    }
 }
 
 /* Tiles are strips of SR_TILE_ROWS(width) rows: fewer than SR_TILE_ROWS_MAX
@@ -310,7 +318,7 @@ Test(threads, strips_of_every_width_match_one_thread)
         assert_same_for_all_thread_counts(&desc, w, h, false);
         drawn direct;
         draw_with_threads(&desc, w, h, false, 1, SR_PATH_DIRECT, &direct);
-        assert_caller_buffers_cleared_on_the_tiles(&desc, &direct, w, h);
+        assert_cleared_by_the_draw(&desc, &direct, 3);
         sr_framebuffer_destroy(&direct.fb);
     }
     sr_mesh_free(&room);
@@ -318,40 +326,20 @@ Test(threads, strips_of_every_width_match_one_thread)
 
 /* desc.clear into a framebuffer holding another picture: the same pixels,
  * depths and counts as sr_framebuffer_clear then the direct path's draw, on
- * the tiles at one thread and at several (each tile cleared by the thread
- * that draws it). */
+ * the tiles (each tile cleared by the thread that draws it) and drawing
+ * directly first (the first thread clears before it draws), at one thread
+ * and at several, in both depth conventions. */
 Test(threads, clear_inside_the_draw_matches_clear_before_it)
 {
     sr_mesh torus;
     sr_error err;
     cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
-    size_t n = (size_t)301 * 173;
     for (int reversed = 0; reversed < 2; reversed++) {
         sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT, .clear_color = 0x123456 };
         look_reversed(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f, reversed);
         drawn before;
         draw_with_threads(&desc, 301, 173, reversed, 1, SR_PATH_DIRECT, &before);
-        for (int run = 0; run < 4; run++) {
-            int threads = run % 2 ? 4 : 1;
-            drawn inside = { .fb = { 0 } };
-            cr_assert(sr_framebuffer_create(&inside.fb, 301, 173, &err), "%s", err.message);
-            inside.fb.reversed_z = reversed;
-            for (size_t i = 0; i < n; i++) { /* another picture, nearer than most of the torus */
-                inside.fb.color[i] = 0xABCDEF;
-                inside.fb.depth[i] = 0.5f;
-            }
-            sr_draw_desc clearing = desc;
-            clearing.clear = true;
-            clearing.threads = threads;
-            clearing.study = &(sr_draw_study){ .path = threaded_paths[run / 2] };
-            cr_assert(sr_draw(&inside.fb, &clearing, &inside.stats, &err), "%s", err.message);
-            cr_assert_eq(memcmp(before.fb.color, inside.fb.color, n * sizeof *before.fb.color), 0,
-                         "color differs, %d threads", threads);
-            cr_assert_eq(memcmp(before.fb.depth, inside.fb.depth, n * sizeof *before.fb.depth), 0,
-                         "depth differs, %d threads", threads);
-            cr_assert_eq(memcmp(&before.stats, &inside.stats, sizeof before.stats), 0, "stats differ");
-            sr_framebuffer_destroy(&inside.fb);
-        }
+        assert_cleared_by_the_draw(&desc, &before, 4);
         sr_framebuffer_destroy(&before.fb);
     }
     sr_mesh_free(&torus);
@@ -408,9 +396,8 @@ Test(threads, one_thread_takes_the_tiles_for_few_triangles_on_many_pixels)
         times = (sr_draw_times){ { 0 } };
         cr_assert(sr_draw(&by_cost.fb, &desc, &by_cost.stats, &err), "%s", err.message);
         cr_assert_eq(times.raster.wall > 0.0, i == 0, "%dx%d: tiles taken %d", w, h, times.raster.wall > 0.0);
-        size_t n = (size_t)w * h;
-        cr_assert_eq(memcmp(direct.fb.color, by_cost.fb.color, n * sizeof *direct.fb.color), 0, "%dx%d color", w, h);
-        cr_assert_eq(memcmp(direct.fb.depth, by_cost.fb.depth, n * sizeof *direct.fb.depth), 0, "%dx%d depth", w, h);
+        cr_assert_eq(times.path, i == 0 ? SR_PATH_TILES : SR_PATH_DIRECT, "%dx%d: path %d", w, h, (int)times.path);
+        assert_same_drawing(&direct, &by_cost, 1);
         cr_assert_gt(direct.stats.fragments, 0);
         sr_framebuffer_destroy(&direct.fb);
         sr_framebuffer_destroy(&by_cost.fb);

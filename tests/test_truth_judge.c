@@ -3,6 +3,7 @@
  * (src/studies/truth_outline.h), against closed forms on small scenes. */
 #include <math.h>
 
+#include "clip_helpers.h"
 #include "scene_helpers.h"
 #include "studies/bench_scenes.h"
 #include "studies/report.h"
@@ -200,8 +201,7 @@ static void float_points(const vertex_errors *v, uint32_t id, const sr_screen_ve
         poly.vert[k] = clip;
         planes |= sr_clip_outcode_with(clip.v, &v->vp.depth);
     }
-    int side = v->vp.width > v->vp.height ? v->vp.width : v->vp.height;
-    sr_clip_config cfg = { .ndc_tolerance = 1.0 / ((double)SR_SUBPIXEL_ONE * side), .depth = v->vp.depth };
+    sr_clip_config cfg = { .ndc_tolerance = draw_clip_tolerance(v->vp.width, v->vp.height), .depth = v->vp.depth };
     if (planes)
         sr_clip_polygon(&poly, planes, SR_VARYINGS_AT, &cfg);
     for (int k = 0; k < 3; k++) {

@@ -319,11 +319,12 @@ typedef struct sr_draw_desc {
  * for a desc that cannot be drawn: no mesh, an index out of range, a shading
  * mode whose inputs the mesh lacks (normals, uvs, colors, texture), a
  * non-finite mesh origin; then fb is untouched. Out of memory for the tile
- * bins is also false, and may leave fb partly drawn. Bad geometry (NaN, inf, anything behind the eye)
- * is not an error: it is dropped or clipped and counted in stats. With
- * threads > 1, or few triangles for many pixels, the screen is cut into
- * tiles (strips of whole rows) drawn in parallel; the image and depth are
- * bit-identical for every thread count and every path. */
+ * bins is also false, and may leave fb partly drawn. Bad geometry (NaN,
+ * inf, anything behind the eye) is not an error: it is dropped or clipped
+ * and counted in stats. Where the draw's cost estimate says they pay
+ * (softrast/study.h, sr_draw_study.path), threads share the draw and the
+ * screen is cut into tiles (strips of whole rows); the image, depth and
+ * counts are bit-identical for every thread count and every path. */
 SR_API bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
 
 #endif

@@ -60,8 +60,9 @@ typedef enum sr_simd {
  * snaps every vertex from float clip coordinates (a cut vertex: the
  * clipper's) but keeps the offsets (and z) of its position in double (a
  * mesh vertex's clip position; a clipped polygon's vertex, the triangle's
- * point on its two lines), which may lie past 1/2 by the float transform's
- * and the clipper's error. Coverage is decided on the snapped x, y; the
+ * point on its two lines, or its float position where those lines do not
+ * meet in front of the eye), which may lie past 1/2 by the float
+ * transform's and the clipper's error. Coverage is decided on the snapped x, y; the
  * depth plane goes through the unsnapped points. */
 typedef struct sr_screen_vertex {
     int64_t x, y;
@@ -89,14 +90,17 @@ typedef struct sr_phase_time {
     double wall, cpu;
 } sr_phase_time;
 
+typedef enum sr_draw_path { SR_PATH_BY_COST = 0, SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_DIRECT_FIRST } sr_draw_path;
+
 typedef struct sr_draw_times {
     sr_phase_time vertex;     /* stage 1, outcodes, mapping of the inside vertices */
-    sr_phase_time primitives; /* stages 2-7; tiled path: and binning; direct path: and rasterization */
-    sr_phase_time raster;     /* tiled path (at any thread count): the tiles */
-    double total;             /* wall ms of the whole sr_draw, its serial checks and set-up included */
+    /* stages 2-7; tiled path: and binning; direct path: and rasterization;
+     * direct first: and thread 0's rasterization */
+    sr_phase_time primitives;
+    sr_phase_time raster; /* tiled path (at any thread count): the tiles */
+    double total;         /* wall ms of the whole sr_draw, its serial checks and set-up included */
+    sr_draw_path path;    /* the path the last draw took (SR_PATH_DIRECT for a mesh out of view) */
 } sr_draw_times;
-
-typedef enum sr_draw_path { SR_PATH_BY_COST = 0, SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_DIRECT_FIRST } sr_draw_path;
 
 typedef struct sr_draw_study {
     int subpixel_bits;                /* 0: SR_SUBPIXEL_BITS; else SR_MIN..SR_MAX_SUBPIXEL_BITS */

@@ -363,6 +363,8 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
             return false;
     }
     sr_draw_path path = draws ? path_of(st) : SR_PATH_DIRECT;
+    if (st->study.times)
+        st->study.times->path = path;
     bool binned = path != SR_PATH_DIRECT;
     st->direct_first = path == SR_PATH_DIRECT_FIRST;
     /* Nothing is written before every check has passed; the binned path
