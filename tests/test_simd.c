@@ -9,6 +9,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "pipeline/cull.h"
 #include "pipeline/draw_internal.h"
 #include "pipeline/raster_setup.h"
 #include "softrast_private.h"
@@ -293,9 +294,9 @@ Test(simd, the_textured_room_through_its_walls_matches_the_scalar_loop)
 }
 
 /* The per-triangle shortcuts (sr_interp): constant 1/w under an orthographic
- * camera, and a flat normal there, against the scalar loop taking the same
- * shortcuts, in every mode that reads varyings; under a perspective camera
- * flat normals take the general loop. */
+ * camera, and a flat normal there and under a perspective camera, against
+ * the scalar loop taking the same shortcuts, in every mode that reads
+ * varyings. */
 Test(simd, flat_normals_and_orthographic_triangles_match_the_scalar_loop)
 {
     static const uint32_t texels[6] = { 0xFF0000, 0x00FF00, 0x0000FF, 0xFFFFFF, 0x123456, 0xABCDEF };
@@ -327,6 +328,73 @@ Test(simd, flat_normals_and_orthographic_triangles_match_the_scalar_loop)
         }
     }
     sr_mesh_free(&soup);
+}
+
+/* How sr_raster_setup shades a gray lambert triangle seen in perspective
+ * (1/w differs at its corners) whose vertex 0 has normal N0 and the others
+ * n1 and n2, each varying being normal/w as the vertex stage makes it. */
+static const float N0[3] = { 0.0f, 0.6f, -0.8f };
+
+static sr_interp perspective_interp(const float n1[3], const float n2[3], float *lambert)
+{
+    const float *normals[3] = { N0, n1, n2 };
+    const float inv_w[3] = { 0.5f, 0.25f, 3.0f };
+    const int64_t xy[3][2] = { { 0, 0 }, { 40 << SR_SUBPIXEL_BITS, 0 }, { 0, 30 << SR_SUBPIXEL_BITS } };
+    sr_screen_vertex v[3];
+    for (int i = 0; i < 3; i++) {
+        v[i] = (sr_screen_vertex){ .x = xy[i][0], .y = xy[i][1], .z = 0.5f, .inv_w = inv_w[i] };
+        for (int k = 0; k < 3; k++)
+            v[i].var_w[k] = normals[i][k] * inv_w[i];
+    }
+    const sr_screen_vertex *tri[3] = { &v[0], &v[1], &v[2] };
+    sr_shade_context c = { .layout = { .count = 3, .color = -1, .uv = -1, .normal = 0 },
+                           .light_dir = { 0.0f, 0.0f, -1.0f } };
+    sr_raster_rect box = sr_raster_scan_box_of(tri, (sr_raster_rect){ 0, 0, 64, 64 }, SR_SUBPIXEL_BITS);
+    sr_tri_setup s;
+    cr_assert(sr_raster_setup(tri, sr_cull_area2(tri[0], tri[1], tri[2]), box, SR_SUBPIXEL_BITS, SR_SHADE_LAMBERT,
+                              &c, &s));
+    *lambert = s.lambert;
+    return s.interp;
+}
+
+/* Normals that point one way, whatever their lengths and up to a float step
+ * of rounding, light the triangle once with the unit normal's intensity;
+ * normals a thousandth of a radian apart, or opposite, are lit per pixel. */
+Test(simd, perspective_flat_normals_are_lit_once)
+{
+    sr_shade_context c = { .light_dir = { 0.0f, 0.0f, -1.0f } };
+    float want = sr_shade_lambert_intensity(&c, N0), lambert;
+    cr_assert_gt(want, SR_LAMBERT_AMBIENT + 0.5f, "the light must reach the normal for the test to tell");
+    const float longer[3] = { 0.0f, 1.5f, -2.0f }, a_step[3] = { 0.0f, nextafterf(0.6f, 1.0f), -0.8f };
+    cr_assert_eq(perspective_interp(longer, a_step, &lambert), SR_INTERP_PERSPECTIVE_FLAT_NORMAL);
+    cr_assert_float_eq(lambert, want, 1e-6f, "lit once with %.9g, the normal's intensity is %.9g", lambert, want);
+    const float turned[3] = { 0.0f, 0.6008f, -0.7994f }, opposite[3] = { 0.0f, -0.6f, 0.8f };
+    cr_assert_eq(perspective_interp(longer, turned, &lambert), SR_INTERP_PERSPECTIVE);
+    cr_assert_eq(perspective_interp(opposite, longer, &lambert), SR_INTERP_PERSPECTIVE);
+}
+
+/* A layout without a normal (color shading) in perspective is never lit
+ * as a flat normal, whatever its varyings (parallel here). The fuzzer found
+ * the first version's set-up pointing at varying −1 for such a layout,
+ * which clang's UBSan reports and GCC's does not: its input is
+ * fuzz/regressions/draw/perspective_flat_normal_of_no_normal. */
+Test(simd, perspective_color_has_no_normal_to_test)
+{
+    sr_screen_vertex v[3] = { { .x = 0, .y = 0, .z = 0.5f, .inv_w = 0.5f, .var_w = { 0.1f, 0.2f, 0.3f } },
+                              { .x = 40 << SR_SUBPIXEL_BITS, .y = 0, .z = 0.5f, .inv_w = 0.25f,
+                                .var_w = { 0.05f, 0.1f, 0.15f } },
+                              { .x = 0, .y = 30 << SR_SUBPIXEL_BITS, .z = 0.5f, .inv_w = 3.0f,
+                                .var_w = { 0.3f, 0.6f, 0.9f } } };
+    const sr_screen_vertex *tri[3] = { &v[0], &v[1], &v[2] };
+    sr_shade_context c = { .layout = { .count = 3, .color = 0, .uv = -1, .normal = -1 } };
+    sr_raster_rect box = sr_raster_scan_box_of(tri, (sr_raster_rect){ 0, 0, 64, 64 }, SR_SUBPIXEL_BITS);
+    const sr_shade modes[] = { SR_SHADE_COLOR, SR_SHADE_LAMBERT };
+    for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {
+        sr_tri_setup s;
+        cr_assert(sr_raster_setup(tri, sr_cull_area2(tri[0], tri[1], tri[2]), box, SR_SUBPIXEL_BITS, modes[m], &c,
+                                  &s));
+        cr_assert_eq(s.interp, SR_INTERP_PERSPECTIVE, "mode %d", modes[m]);
+    }
 }
 
 /* Gray lambert quads facing an orthographic camera come out one color per

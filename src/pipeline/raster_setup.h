@@ -36,7 +36,27 @@ typedef enum sr_interp {
      * the interpolated normal is var0 · w at every pixel, so its lambert
      * intensity is computed once per triangle. */
     SR_INTERP_FLAT_NORMAL,
+    /* Perspective, lambert, and the three vertices' normals pointing the
+     * same way (their normal/w varyings parallel, sr_raster_normals_parallel):
+     * the interpolated normal points that way at every pixel, and the
+     * intensity does not see its length, so it is computed once per
+     * triangle, from vertex 0's; the varyings after the normal divide by
+     * 1/w per pixel as under SR_INTERP_PERSPECTIVE. A faceted mesh (face
+     * normals) seen in perspective. */
+    SR_INTERP_PERSPECTIVE_FLAT_NORMAL,
 } sr_interp;
+
+/* 1/w is interpolated and divided per pixel. */
+static inline bool sr_interp_divides(sr_interp interp)
+{
+    return interp == SR_INTERP_PERSPECTIVE || interp == SR_INTERP_PERSPECTIVE_FLAT_NORMAL;
+}
+
+/* The lambert intensity is the triangle's (sr_tri_setup.lambert). */
+static inline bool sr_interp_flat_normal(sr_interp interp)
+{
+    return interp == SR_INTERP_FLAT_NORMAL || interp == SR_INTERP_PERSPECTIVE_FLAT_NORMAL;
+}
 
 /* The rows of a tiny box and the stride of its mask (sr_tri_setup.tiny):
  * 64 bits hold 8 × 8 pixels. */
@@ -64,8 +84,8 @@ typedef struct sr_tri_setup {
      * 0: the rows are solved and tested as for any box. */
     uint64_t tiny;
     sr_interp interp;
-    float w;       /* 1/iw0, when interp is not SR_INTERP_PERSPECTIVE */
-    float lambert; /* the intensity, when interp is SR_INTERP_FLAT_NORMAL */
+    float w;       /* 1/iw0, when interp does not divide (sr_interp_divides) */
+    float lambert; /* the intensity, when sr_interp_flat_normal */
 } sr_tri_setup;
 
 static inline int64_t sr_edge_at(const sr_edge *e, int64_t px, int64_t py)

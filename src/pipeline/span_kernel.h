@@ -173,19 +173,19 @@ typedef struct triangle_lanes {
 /* Gray lambert with a flat normal is one color over the whole triangle. */
 static inline __attribute__((always_inline)) bool color_per_triangle(sr_shade mode, albedo a, sr_interp interp)
 {
-    return mode == SR_SHADE_LAMBERT && a == ALBEDO_GRAY && interp == SR_INTERP_FLAT_NORMAL;
+    return mode == SR_SHADE_LAMBERT && a == ALBEDO_GRAY && sr_interp_flat_normal(interp);
 }
 
 /* The varyings a kernel interpolates: with a flat normal, only those after it. */
 static inline __attribute__((always_inline)) int first_varying(sr_interp interp)
 {
-    return interp == SR_INTERP_FLAT_NORMAL ? SECOND_VARYING : 0;
+    return sr_interp_flat_normal(interp) ? SECOND_VARYING : 0;
 }
 
 static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, const triangle_lanes *t,
                                                                  sr_interp interp, int count, lanes *p)
 {
-    vf w = interp == SR_INTERP_PERSPECTIVE ? 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2) : t->w;
+    vf w = sr_interp_divides(interp) ? 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2) : t->w;
     /* Unrolled, so the varyings stay in registers: as a loop (GCC 12 does
      * not unroll it at -O2) each went through the stack on its way to the
      * shading (fly 1-2 % slower). 8 is SR_MAX_VARYINGS: the pragma takes
@@ -389,7 +389,7 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     case SR_SHADE_TEXTURE:
         return sample_lanes(t, c, var[0], var[1]);
     case SR_SHADE_LAMBERT: {
-        vf k = interp == SR_INTERP_FLAT_NORMAL ? t->lambert : lambert_lanes(c, var);
+        vf k = sr_interp_flat_normal(interp) ? t->lambert : lambert_lanes(c, var);
         if (a == ALBEDO_TEXTURE)
             return lit_texel_lanes(sample_split_lanes(t, c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
         rgb_lanes base = albedo_lanes(a, var);
@@ -501,7 +501,9 @@ span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *
 {
     if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_FLAT_NORMAL)
         return span_rows(s, c, fb, mode, a, SR_INTERP_FLAT_NORMAL, greater, id);
-    if (varying_count(mode, a) > 0 && s->interp != SR_INTERP_PERSPECTIVE)
+    if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_PERSPECTIVE_FLAT_NORMAL)
+        return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, greater, id);
+    if (varying_count(mode, a) > 0 && !sr_interp_divides(s->interp))
         return span_rows(s, c, fb, mode, a, SR_INTERP_AFFINE, greater, id);
     return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, id);
 }
