@@ -27,7 +27,7 @@ static const sr_simd vector_loops[] = { SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX5
 /* Random triangles in front of the camera, many wider than the span
  * threshold, with random normals (some zero; with `flat`, every other
  * triangle has one normal at its three vertices, which an orthographic camera
- * shades once per triangle), uvs well outside [0, 1] (wrapping) and colors
+ * shades once per triangle, and a perspective one too from 32 pixels), uvs well outside [0, 1] (wrapping) and colors
  * outside [0, 1] (clamping). With `reach` > 0, a triangle's second and third
  * vertices lie within reach · depth of its first on each axis (at 90° and
  * FB_SIDE pixels, reach 0.15 makes triangles up to about 24 pixels wide). */
@@ -330,71 +330,106 @@ Test(simd, flat_normals_and_orthographic_triangles_match_the_scalar_loop)
     sr_mesh_free(&soup);
 }
 
-/* How sr_raster_setup shades a gray lambert triangle seen in perspective
- * (1/w differs at its corners) whose vertex 0 has normal N0 and the others
- * n1 and n2, each varying being normal/w as the vertex stage makes it. */
-static const float N0[3] = { 0.0f, 0.6f, -0.8f };
-
-static sr_interp perspective_interp(const float n1[3], const float n2[3], float *lambert)
+/* The set-up of a triangle of width × height / 2 pixels (its corners at
+ * (0, 0), (width, 0), (0, height)) seen in perspective, 1/w differing at
+ * its corners: its varyings are var_w (normal/w, or color/w), drawn in
+ * `mode` with `layout`, lit from straight ahead. */
+static sr_tri_setup perspective_setup(const float var_w[3][3], const float inv_w[3], int width, int height,
+                                      sr_varying_layout layout, sr_shade mode)
 {
-    const float *normals[3] = { N0, n1, n2 };
-    const float inv_w[3] = { 0.5f, 0.25f, 3.0f };
-    const int64_t xy[3][2] = { { 0, 0 }, { 40 << SR_SUBPIXEL_BITS, 0 }, { 0, 30 << SR_SUBPIXEL_BITS } };
+    const int64_t xy[3][2] = { { 0, 0 }, { width, 0 }, { 0, height } };
     sr_screen_vertex v[3];
     for (int i = 0; i < 3; i++) {
-        v[i] = (sr_screen_vertex){ .x = xy[i][0], .y = xy[i][1], .z = 0.5f, .inv_w = inv_w[i] };
-        for (int k = 0; k < 3; k++)
-            v[i].var_w[k] = normals[i][k] * inv_w[i];
+        v[i] = (sr_screen_vertex){ .x = xy[i][0] << SR_SUBPIXEL_BITS, .y = xy[i][1] << SR_SUBPIXEL_BITS,
+                                   .z = 0.5f, .inv_w = inv_w[i] };
+        memcpy(v[i].var_w, var_w[i], 3 * sizeof(float));
     }
     const sr_screen_vertex *tri[3] = { &v[0], &v[1], &v[2] };
-    sr_shade_context c = { .layout = { .count = 3, .color = -1, .uv = -1, .normal = 0 },
-                           .light_dir = { 0.0f, 0.0f, -1.0f } };
-    sr_raster_rect box = sr_raster_scan_box_of(tri, (sr_raster_rect){ 0, 0, 64, 64 }, SR_SUBPIXEL_BITS);
+    sr_shade_context c = { .layout = layout, .light_dir = { 0.0f, 0.0f, -1.0f } };
+    sr_raster_rect box = sr_raster_scan_box_of(tri, (sr_raster_rect){ 0, 0, 128, 128 }, SR_SUBPIXEL_BITS);
     sr_tri_setup s;
-    cr_assert(sr_raster_setup(tri, sr_cull_area2(tri[0], tri[1], tri[2]), box, SR_SUBPIXEL_BITS, SR_SHADE_LAMBERT,
-                              &c, &s));
-    *lambert = s.lambert;
-    return s.interp;
+    cr_assert(sr_raster_setup(tri, sr_cull_area2(tri[0], tri[1], tri[2]), box, SR_SUBPIXEL_BITS, mode, &c, &s));
+    return s;
 }
 
-/* Normals that point one way, whatever their lengths and up to a float step
- * of rounding, light the triangle once with the unit normal's intensity;
- * normals a thousandth of a radian apart, or opposite, are lit per pixel. */
+static const sr_varying_layout NORMAL_ONLY = { .count = 3, .color = -1, .uv = -1, .normal = 0 };
+
+/* Gray lambert with normals n[i] at the corners, as the vertex stage makes
+ * the varyings: normal · 1/w. */
+static sr_tri_setup lambert_setup(const float n[3][3], const float inv_w[3], int width, int height)
+{
+    float var_w[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++)
+            var_w[i][k] = n[i][k] * inv_w[i];
+    return perspective_setup(var_w, inv_w, width, height, NORMAL_ONLY, SR_SHADE_LAMBERT);
+}
+
+/* N0 turned by `angle` radians about x. */
+static void turned_normal(double angle, float out[3])
+{
+    double a = atan2(0.6, 0.8) + angle;
+    out[0] = 0.0f;
+    out[1] = (float)sin(a);
+    out[2] = (float)-cos(a);
+}
+
+static const float N0[3] = { 0.0f, 0.6f, -0.8f };
+static const float INV_W[3] = { 0.5f, 0.25f, 3.0f };
+
+/* Normals that point one way, whatever their lengths and up to rounding,
+ * light a triangle of 32 pixels or more once, with the unit normal's
+ * intensity (made unit in double: here normal/w squared overflows a
+ * float); normals 2^-18 radians apart or opposite are lit per pixel, and
+ * so is a triangle of 31 pixels. */
 Test(simd, perspective_flat_normals_are_lit_once)
 {
     sr_shade_context c = { .light_dir = { 0.0f, 0.0f, -1.0f } };
-    float want = sr_shade_lambert_intensity(&c, N0), lambert;
+    float want = sr_shade_lambert_intensity(&c, N0);
     cr_assert_gt(want, SR_LAMBERT_AMBIENT + 0.5f, "the light must reach the normal for the test to tell");
-    const float longer[3] = { 0.0f, 1.5f, -2.0f }, a_step[3] = { 0.0f, nextafterf(0.6f, 1.0f), -0.8f };
-    cr_assert_eq(perspective_interp(longer, a_step, &lambert), SR_INTERP_PERSPECTIVE_FLAT_NORMAL);
-    cr_assert_float_eq(lambert, want, 1e-6f, "lit once with %.9g, the normal's intensity is %.9g", lambert, want);
-    const float turned[3] = { 0.0f, 0.6008f, -0.7994f }, opposite[3] = { 0.0f, -0.6f, 0.8f };
-    cr_assert_eq(perspective_interp(longer, turned, &lambert), SR_INTERP_PERSPECTIVE);
-    cr_assert_eq(perspective_interp(opposite, longer, &lambert), SR_INTERP_PERSPECTIVE);
+    float near[3], apart[3];
+    turned_normal(0x1p-22, near);
+    turned_normal(0x1p-18, apart);
+    const float longer[3] = { 0.0f, 1.5f, -2.0f }, opposite[3] = { 0.0f, -0.6f, 0.8f };
+    sr_tri_setup s = lambert_setup((const float[3][3]){ { N0[0], N0[1], N0[2] }, { longer[0], longer[1], longer[2] },
+                                                        { near[0], near[1], near[2] } },
+                                   INV_W, 40, 30);
+    cr_assert_eq(s.interp, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, "normals 2^-22 apart, one longer");
+    cr_assert_float_eq(s.lambert, want, 1e-6f, "lit once with %.9g, the normal's intensity is %.9g", s.lambert, want);
+    s = lambert_setup((const float[3][3]){ { N0[0], N0[1], N0[2] }, { N0[0], N0[1], N0[2] }, { N0[0], N0[1], N0[2] } },
+                      (const float[3]){ 1e25f, 0.25f, 3.0f }, 40, 30);
+    cr_assert_eq(s.interp, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, "1/w of 1e25 at a corner");
+    cr_assert_float_eq(s.lambert, want, 1e-6f, "1/w of 1e25 at a corner: %.9g, not %.9g", s.lambert, want);
+    s = lambert_setup((const float[3][3]){ { N0[0], N0[1], N0[2] }, { N0[0], N0[1], N0[2] },
+                                           { apart[0], apart[1], apart[2] } },
+                      INV_W, 40, 30);
+    cr_assert_eq(s.interp, SR_INTERP_PERSPECTIVE, "normals 2^-18 apart");
+    s = lambert_setup((const float[3][3]){ { N0[0], N0[1], N0[2] }, { opposite[0], opposite[1], opposite[2] },
+                                           { N0[0], N0[1], N0[2] } },
+                      INV_W, 40, 30);
+    cr_assert_eq(s.interp, SR_INTERP_PERSPECTIVE, "opposite normals");
+    const float same[3][3] = { { N0[0], N0[1], N0[2] }, { N0[0], N0[1], N0[2] }, { N0[0], N0[1], N0[2] } };
+    cr_assert_eq(lambert_setup(same, INV_W, 64, 1).interp, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, "32 pixels");
+    cr_assert_eq(lambert_setup(same, INV_W, 62, 1).interp, SR_INTERP_PERSPECTIVE, "31 pixels");
 }
 
 /* A layout without a normal (color shading) in perspective is never lit
- * as a flat normal, whatever its varyings (parallel here). The fuzzer found
- * the first version's set-up pointing at varying −1 for such a layout,
- * which clang's UBSan reports and GCC's does not: its input is
- * fuzz/regressions/draw/perspective_flat_normal_of_no_normal. */
+ * as a flat normal, in color or lambert mode: its varyings are parallel at
+ * the three corners, and so would be a "normal" read from varying −1 on
+ * (inv_w, the float before var_w), so a set-up that looked for a normal
+ * where the layout has none would take them for a flat one. (The fuzzer
+ * found the first version forming the pointer to varying −1 before it
+ * checked the layout, which clang's UBSan reports and GCC's does not:
+ * fuzz/regressions/draw/perspective_flat_normal_of_no_normal.) */
 Test(simd, perspective_color_has_no_normal_to_test)
 {
-    sr_screen_vertex v[3] = { { .x = 0, .y = 0, .z = 0.5f, .inv_w = 0.5f, .var_w = { 0.1f, 0.2f, 0.3f } },
-                              { .x = 40 << SR_SUBPIXEL_BITS, .y = 0, .z = 0.5f, .inv_w = 0.25f,
-                                .var_w = { 0.05f, 0.1f, 0.15f } },
-                              { .x = 0, .y = 30 << SR_SUBPIXEL_BITS, .z = 0.5f, .inv_w = 3.0f,
-                                .var_w = { 0.3f, 0.6f, 0.9f } } };
-    const sr_screen_vertex *tri[3] = { &v[0], &v[1], &v[2] };
-    sr_shade_context c = { .layout = { .count = 3, .color = 0, .uv = -1, .normal = -1 } };
-    sr_raster_rect box = sr_raster_scan_box_of(tri, (sr_raster_rect){ 0, 0, 64, 64 }, SR_SUBPIXEL_BITS);
+    const float color_w[3][3] = { { 0.1f, 0.2f, 0.7f }, { 0.05f, 0.1f, 0.9f }, { 0.3f, 0.6f, 0.2f } };
+    const sr_varying_layout color_only = { .count = 3, .color = 0, .uv = -1, .normal = -1 };
     const sr_shade modes[] = { SR_SHADE_COLOR, SR_SHADE_LAMBERT };
-    for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {
-        sr_tri_setup s;
-        cr_assert(sr_raster_setup(tri, sr_cull_area2(tri[0], tri[1], tri[2]), box, SR_SUBPIXEL_BITS, modes[m], &c,
-                                  &s));
-        cr_assert_eq(s.interp, SR_INTERP_PERSPECTIVE, "mode %d", modes[m]);
-    }
+    for (size_t m = 0; m < sizeof modes / sizeof *modes; m++)
+        cr_assert_eq(perspective_setup(color_w, (const float[3]){ 0.5f, 0.25f, 1.5f }, 40, 30, color_only, modes[m])
+                         .interp,
+                     SR_INTERP_PERSPECTIVE, "mode %d", modes[m]);
 }
 
 /* Gray lambert quads facing an orthographic camera come out one color per

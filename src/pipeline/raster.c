@@ -412,29 +412,38 @@ raster_mode(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_co
     return raster_interp(s, fb, mode, SR_INTERP_PERSPECTIVE, shade, id);
 }
 
+/* The dot product of a and b, in double, where the products of floats are
+ * exact. */
+static double dot_d(const float a[3], const float b[3])
+{
+    return (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
+}
+
 /* Normals a and b point the same way: within about 2^-20 radians, which
  * the rounding of a normal/w varying to float (2^-24 relative per
  * component) stays inside, and which no mesh's smooth normals come near (a
- * torus of 10M triangles turns hers by about 2^-9 from vertex to vertex).
- * In double, where the products of floats are exact. */
+ * torus of 10M triangles turns hers by 2^-8 to 2^-9 from vertex to
+ * vertex). A subnormal varying (w past about 1e32) rounds more coarsely
+ * and may fail the test: that triangle is lit per pixel. */
 #define PARALLEL_SIN2 0x1p-40 /* the squared sine of that angle */
 
 static bool normals_parallel(const float a[3], const float b[3])
 {
-    double cross[3] = { (double)a[1] * b[2] - (double)a[2] * b[1], (double)a[2] * b[0] - (double)a[0] * b[2],
-                        (double)a[0] * b[1] - (double)a[1] * b[0] };
-    double dot = (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
-    double a2 = (double)a[0] * a[0] + (double)a[1] * a[1] + (double)a[2] * a[2];
-    double b2 = (double)b[0] * b[0] + (double)b[1] * b[1] + (double)b[2] * b[2];
-    double sin2 = cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2];
-    return dot > 0.0 && sin2 <= PARALLEL_SIN2 * a2 * b2;
+    double c[3] = { (double)a[1] * b[2] - (double)a[2] * b[1], (double)a[2] * b[0] - (double)a[0] * b[2],
+                    (double)a[0] * b[1] - (double)a[1] * b[0] };
+    double sin2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    return dot_d(a, b) > 0.0 && sin2 <= PARALLEL_SIN2 * dot_d(a, a) * dot_d(b, b);
 }
 
 /* Under a perspective camera, only triangles of at least this many pixels
- * are tested for a flat normal (area2 in subpixel units): on pixel-sized
- * ones the test costs what it saves (the dense torus 1.9 % slower with
- * every triangle tested). Their area, not their box, so every path and
- * thread count decides alike. */
+ * are tested for a flat normal. The test is two cross products in double,
+ * about what lighting one pixel costs; on the dense torus, whose smooth
+ * triangles are a pixel or two and never pass, testing every triangle cost
+ * 1.9 %, and 32 pixels keeps the test to triangles whose pixels repay it
+ * many times over. The triangle's area decides, not its box (which a tile
+ * clips), so every path and thread count decides alike; a face's
+ * triangles under the limit are lit per pixel, which may differ from the
+ * once-per-triangle value by one step of a channel (sr_interp). */
 #define FLAT_TEST_MIN_PIXELS 32
 
 /* What the triangle lets the loops leave out per pixel (sr_interp), from
@@ -456,7 +465,7 @@ static void interp_choose(setup *s, const sr_screen_vertex *const v[3], int64_t 
         if (normals_parallel(n0, v[1]->var_w + at) && normals_parallel(n0, v[2]->var_w + at)) {
             /* Unit length in double first: normal/w may be too long or
              * short for its squared length in float. */
-            double length = sqrt((double)n0[0] * n0[0] + (double)n0[1] * n0[1] + (double)n0[2] * n0[2]);
+            double length = sqrt(dot_d(n0, n0));
             float n[3] = { (float)(n0[0] / length), (float)(n0[1] / length), (float)(n0[2] / length) };
             s->interp = SR_INTERP_PERSPECTIVE_FLAT_NORMAL;
             s->lambert = sr_shade_lambert_intensity(shade, n);

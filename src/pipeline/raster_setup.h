@@ -23,9 +23,11 @@ typedef struct sr_edge {
 } sr_edge;
 
 /* What a triangle lets the per-pixel loops leave out, chosen once per
- * triangle in its set-up (sr_raster_setup). Each choice computes per triangle
- * exactly the float values the general loop would compute per pixel, so the
- * image does not depend on it. */
+ * triangle in its set-up (sr_raster_setup), the same choice in every loop,
+ * path and thread count. Each choice but SR_INTERP_PERSPECTIVE_FLAT_NORMAL
+ * computes per triangle exactly the float values the general loop would
+ * compute per pixel, so the image does not depend on it; that one may put
+ * an 8-bit channel one step from where the general loop would. */
 typedef enum sr_interp {
     SR_INTERP_PERSPECTIVE, /* 1/w varies: one division per pixel */
     /* The three 1/w equal (an orthographic camera, or a triangle facing the
@@ -36,13 +38,17 @@ typedef enum sr_interp {
      * the interpolated normal is var0 · w at every pixel, so its lambert
      * intensity is computed once per triangle. */
     SR_INTERP_FLAT_NORMAL,
-    /* Perspective, lambert, and the three vertices' normals pointing the
-     * same way (their normal/w varyings parallel, sr_raster_normals_parallel):
-     * the interpolated normal points that way at every pixel, and the
-     * intensity does not see its length, so it is computed once per
-     * triangle, from vertex 0's; the varyings after the normal divide by
+    /* Perspective, lambert, a triangle of 32 pixels or more
+     * (FLAT_TEST_MIN_PIXELS in raster.c), and
+     * the three vertices' normals pointing the same way (their normal/w
+     * varyings parallel: normals_parallel in raster.c): the interpolated
+     * normal points that way at every pixel, and the intensity does not see
+     * its length, so it is computed once per triangle, from vertex 0's
+     * normal/w made unit length; the varyings after the normal divide by
      * 1/w per pixel as under SR_INTERP_PERSPECTIVE. A faceted mesh (face
-     * normals) seen in perspective. */
+     * normals) seen in perspective. Per pixel, the normal would carry the
+     * rounding of its interpolation, so a channel on a rounding boundary
+     * can come out one step apart from the general loop's. */
     SR_INTERP_PERSPECTIVE_FLAT_NORMAL,
 } sr_interp;
 

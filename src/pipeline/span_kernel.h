@@ -161,8 +161,8 @@ static inline __attribute__((always_inline)) int varying_count(sr_shade mode, al
 /* What a triangle's kernel computes once instead of per pixel (sr_interp),
  * held in registers across its rows. */
 typedef struct triangle_lanes {
-    vf w;       /* when not SR_INTERP_PERSPECTIVE */
-    vf lambert; /* when SR_INTERP_FLAT_NORMAL */
+    vf w;       /* when the interp does not divide (sr_interp_divides) */
+    vf lambert; /* when sr_interp_flat_normal */
     vi color;   /* when color_per_triangle */
     /* c->texture, when given, copied: the compiler must assume that a
      * store of a pixel may change what c points to, so it would load the
@@ -190,6 +190,7 @@ static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_se
      * not unroll it at -O2) each went through the stack on its way to the
      * shading (fly 1-2 % slower). 8 is SR_MAX_VARYINGS: the pragma takes
      * no macro. */
+    _Static_assert(SR_MAX_VARYINGS == 8, "the unroll count below");
 #pragma GCC unroll 8
     for (int k = first_varying(interp); k < count; k++)
         p->var[k] = (s->var0[k] + p->l1 * s->dvar1[k] + p->l2 * s->dvar2[k]) * w;
