@@ -39,16 +39,16 @@ typedef enum sr_interp {
      * intensity is computed once per triangle. */
     SR_INTERP_FLAT_NORMAL,
     /* Perspective, lambert, a triangle of 32 pixels or more
-     * (FLAT_TEST_MIN_PIXELS in raster.c), and
-     * the three vertices' normals pointing the same way (their normal/w
-     * varyings parallel: normals_parallel in raster.c): the interpolated
-     * normal points that way at every pixel, and the intensity does not see
-     * its length, so it is computed once per triangle, from vertex 0's
-     * normal/w made unit length; the varyings after the normal divide by
-     * 1/w per pixel as under SR_INTERP_PERSPECTIVE. A faceted mesh (face
-     * normals) seen in perspective. Per pixel, the normal would carry the
-     * rounding of its interpolation, so a channel on a rounding boundary
-     * can come out one step apart from the general loop's. */
+     * (FLAT_TEST_MIN_PIXELS in raster.c), and the three vertices' normals
+     * pointing the same way (their normal/w varyings parallel:
+     * normals_parallel in raster.c): the interpolated normal points that
+     * way at every pixel, and the intensity does not see its length, so it
+     * is computed once per triangle, from vertex 0's normal/w made unit
+     * length; the varyings after the normal divide by 1/w per pixel as
+     * under SR_INTERP_PERSPECTIVE. A faceted mesh (face normals) seen in
+     * perspective. Per pixel, the normal would carry the rounding of its
+     * interpolation, so a channel on a rounding boundary can come out one
+     * step apart from the general loop's. */
     SR_INTERP_PERSPECTIVE_FLAT_NORMAL,
 } sr_interp;
 
