@@ -96,15 +96,22 @@ static inline uint32_t sr_shade_sample_nearest(const sr_texture *tex, float fu, 
 #define SR_SHADE_WEIGHT_BITS 8
 #define SR_SHADE_WEIGHT_ONE (1u << SR_SHADE_WEIGHT_BITS)
 
-/* The two texels around coordinate c (texel centres at half-integers),
- * wrapped, and the weight of the second in 0..SR_SHADE_WEIGHT_ONE. c lies in
- * [-0.5, n - 0.5]. */
-static inline uint32_t sr_shade_bilinear_pair(float c, int n, int *i0, int *i1)
+/* The two texels around wrapped coordinate f in [0, 1] along a side of n
+ * texels (texel centres at half-integers), wrapped, and the weight of the
+ * second in 0..SR_SHADE_WEIGHT_ONE − 1. One conversion gives both: the
+ * position f·n in units of 1/SR_SHADE_WEIGHT_ONE texel, rounded to nearest
+ * (halves up), plus half a texel (so it is never negative), has the texel
+ * past the left one in its top bits and the weight in its low bits. f·n·ONE
+ * stays within 2^22 (SR_MAX_TEXTURE_SIDE·ONE), where a float still holds
+ * halves, so the rounding is exact. The SIMD kernels do the same operations
+ * (span_kernel.h, bilinear_pair_lanes). */
+static inline uint32_t sr_shade_bilinear_pair(float f, int n, int *i0, int *i1)
 {
-    int lo = sr_shade_floor_int(c);
+    int q = (int)(f * (float)(n * (int)SR_SHADE_WEIGHT_ONE) + 0.5f) + (int)SR_SHADE_WEIGHT_ONE / 2;
+    int lo = (q >> SR_SHADE_WEIGHT_BITS) - 1;
     *i0 = lo < 0 ? n - 1 : lo;
     *i1 = lo + 1 >= n ? 0 : lo + 1;
-    return (uint32_t)((c - (float)lo) * (float)SR_SHADE_WEIGHT_ONE + 0.5f);
+    return (uint32_t)q & (SR_SHADE_WEIGHT_ONE - 1);
 }
 
 /* (a·(1 − w) + b·w) per channel of two packed texels, in exact integers,
@@ -125,9 +132,9 @@ static inline uint32_t sr_shade_lerp_texels(uint32_t a, uint32_t b, uint32_t w)
 static inline uint32_t sr_shade_sample_bilinear(const sr_texture *tex, float fu, float fv)
 {
     int x0, x1, y0, y1;
-    uint32_t wx = sr_shade_bilinear_pair(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1);
+    uint32_t wx = sr_shade_bilinear_pair(fu, tex->width, &x0, &x1);
     /* Image rows run top down, v bottom up. */
-    uint32_t wy = sr_shade_bilinear_pair((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1);
+    uint32_t wy = sr_shade_bilinear_pair(1.0f - fv, tex->height, &y0, &y1);
     uint32_t top = sr_shade_lerp_texels(sr_shade_texel(tex, x0, y0), sr_shade_texel(tex, x1, y0), wx);
     uint32_t bottom = sr_shade_lerp_texels(sr_shade_texel(tex, x0, y1), sr_shade_texel(tex, x1, y1), wx);
     return sr_shade_lerp_texels(top, bottom, wy);
@@ -161,14 +168,21 @@ static inline void sr_shade_albedo(const sr_shade_context *c, const float *var, 
         rgb[i] = c->layout.color >= 0 ? var[c->layout.color + i] : SR_LAMBERT_GRAY;
 }
 
-/* A packed texel lit by intensity k, each channel k·t rounded to nearest:
- * k is in [0.2, 1] up to a rounding and never NaN, so k·t + 0.5 stays below
- * 256 and no clamp is needed (the SIMD kernels do the same operations). */
+/* A packed texel lit by intensity k: k in 8.8 fixed point (rounded to
+ * nearest), then each channel k·t rounded to nearest in integers, within
+ * one step of k·t (half from each rounding). k is in [0.2, 1] up to a
+ * rounding and never NaN, so k in fixed point is at most 256 and each
+ * channel at most 255. The SIMD kernels do the same operations on 16-bit
+ * halves of the texel (span_kernel.h, lit_texel_lanes), where three float
+ * conversions per channel cost fly 5 % (docs/performance.md, "Fly's
+ * per-pixel work"). */
+#define SR_SHADE_LIT_BITS 8
+
 static inline uint32_t sr_shade_lit_texel(uint32_t t, float k)
 {
-    uint32_t out = 0;
+    uint32_t k_fixed = (uint32_t)(k * (float)(1u << SR_SHADE_LIT_BITS) + 0.5f), out = 0;
     for (int shift = 16; shift >= 0; shift -= 8)
-        out |= (uint32_t)(k * (float)((t >> shift) & 0xFF) + 0.5f) << shift;
+        out |= ((((t >> shift) & 0xFF) * k_fixed + (1u << (SR_SHADE_LIT_BITS - 1))) >> SR_SHADE_LIT_BITS) << shift;
     return out;
 }
 

@@ -263,15 +263,24 @@ static inline __attribute__((always_inline)) vi sample_nearest_lanes(const sr_te
     return gather_texels(tex, y * tex->width + x) & 0xFFFFFF;
 }
 
-/* sr_shade_bilinear_pair per lane. */
-static inline __attribute__((always_inline)) vi bilinear_pair_lanes(vf c, int n, vi *i0, vi *i1)
+/* sr_shade_bilinear_pair per lane. A side of a power of two wraps by a
+ * mask (the same texels: lo lies in [−1, n − 1]), which took fly 5 %
+ * faster than the selects; n is the same for every group, so the branch
+ * is always predicted. */
+static inline __attribute__((always_inline)) vi bilinear_pair_lanes(vf f, int n, vi *i0, vi *i1)
 {
-    vf lo_f = floor_lanes(c);
-    vi lo = __builtin_convertvector(lo_f, vi);
-    vi zero = { 0 };
-    *i0 = select_i(lo < 0, zero + (n - 1), lo);
-    *i1 = select_i(lo + 1 >= n, zero, lo + 1);
-    return __builtin_convertvector((c - lo_f) * (float)SR_SHADE_WEIGHT_ONE + 0.5f, vi);
+    vi q = __builtin_convertvector(f * (float)(n * (int)SR_SHADE_WEIGHT_ONE) + 0.5f, vi) +
+           (int)SR_SHADE_WEIGHT_ONE / 2;
+    vi lo = (q >> SR_SHADE_WEIGHT_BITS) - 1;
+    if ((n & (n - 1)) == 0) {
+        *i0 = lo & (n - 1);
+        *i1 = (lo + 1) & (n - 1);
+    } else {
+        vi zero = { 0 };
+        *i0 = select_i(lo < 0, zero + (n - 1), lo);
+        *i1 = select_i(lo + 1 >= n, zero, lo + 1);
+    }
+    return q & (int)(SR_SHADE_WEIGHT_ONE - 1);
 }
 
 /* Texels as 16-bit halves of their lanes: red and blue (0x00RR00BB) in
@@ -317,8 +326,8 @@ static inline __attribute__((always_inline)) vi pack_split(split_texels t)
 static inline __attribute__((always_inline)) split_texels sample_bilinear_lanes(const sr_texture *tex, vf fu, vf fv)
 {
     vi x0, x1, y0, y1;
-    vu16 wx = weight_halves(bilinear_pair_lanes(fu * (float)tex->width - 0.5f, tex->width, &x0, &x1));
-    vu16 wy = weight_halves(bilinear_pair_lanes((1.0f - fv) * (float)tex->height - 0.5f, tex->height, &y0, &y1));
+    vu16 wx = weight_halves(bilinear_pair_lanes(fu, tex->width, &x0, &x1));
+    vu16 wy = weight_halves(bilinear_pair_lanes(1.0f - fv, tex->height, &y0, &y1));
     vi row0 = y0 * tex->width, row1 = y1 * tex->width;
     split_texels top =
         lerp_split(split_lanes(gather_texels(tex, row0 + x0)), split_lanes(gather_texels(tex, row0 + x1)), wx);
@@ -355,14 +364,16 @@ static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_con
     return select_f(len2 > zero, lit, zero + SR_LAMBERT_AMBIENT);
 }
 
-/* sr_shade_lit_texel per lane, on a split texel: red, green, blue. */
+/* sr_shade_lit_texel per lane, on a split texel: each 16-bit half (red and
+ * blue; green and the top byte, dropped at the end) times k in 8.8 fixed
+ * point, rounded: a channel times k stays below 2^16. */
 static inline __attribute__((always_inline)) vi lit_texel_lanes(split_texels t, vf k)
 {
-    vi channel[3] = { (vi)t.rb >> 16, (vi)t.g & 0xFF, (vi)t.rb & 0xFF };
-    vi out = { 0 };
-    for (int i = 0; i < 3; i++)
-        out |= __builtin_convertvector(k * __builtin_convertvector(channel[i], vf) + 0.5f, vi) << (16 - 8 * i);
-    return out;
+    vi k_fixed = __builtin_convertvector(k * (float)(1u << SR_SHADE_LIT_BITS) + 0.5f, vi);
+    vu16 k2 = weight_halves(k_fixed);
+    const uint16_t half = 1u << (SR_SHADE_LIT_BITS - 1);
+    vu16 rb = (t.rb * k2 + half) >> SR_SHADE_LIT_BITS, g = (t.g * k2 + half) >> SR_SHADE_LIT_BITS;
+    return ((vi)rb | (vi)g << 8) & 0xFFFFFF;
 }
 
 /* sr_shade_albedo per lane: vertex colors or gray. */
