@@ -191,7 +191,9 @@ Test(simd, random_triangles_match_the_scalar_loop_in_every_mode)
     } modes[] = {
         { SR_SHADE_ID, 0, NULL },      { SR_SHADE_DEPTH, 0, NULL },   { SR_SHADE_COLOR, 0, NULL },
         { SR_SHADE_NORMAL, 0, NULL },  { SR_SHADE_LAMBERT, 0, NULL }, { SR_SHADE_LAMBERT, SR_FILTER_BILINEAR, &tex },
-        { SR_SHADE_TEXTURE, SR_FILTER_BILINEAR, &tex }, { SR_SHADE_TEXTURE, SR_FILTER_NEAREST, &tex },
+        { SR_SHADE_LAMBERT, SR_FILTER_NEAREST, &tex },  { SR_SHADE_LAMBERT, SR_FILTER_BILINEAR, &tiny },
+        { SR_SHADE_LAMBERT, SR_FILTER_NEAREST, &tiny }, { SR_SHADE_TEXTURE, SR_FILTER_BILINEAR, &tex },
+        { SR_SHADE_TEXTURE, SR_FILTER_NEAREST, &tex },
         { SR_SHADE_TEXTURE, SR_FILTER_BILINEAR, &tiny }, { SR_SHADE_TEXTURE, SR_FILTER_NEAREST, &tiny },
     };
     for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {

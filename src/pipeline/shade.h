@@ -103,7 +103,8 @@ static inline uint32_t sr_shade_sample_nearest(const sr_texture *tex, float fu, 
  * (halves up), plus half a texel (so it is never negative), has the texel
  * past the left one in its top bits and the weight in its low bits. f·n·ONE
  * stays within 2^22 (SR_MAX_TEXTURE_SIDE·ONE), where a float still holds
- * halves, so the rounding is exact. The SIMD kernels do the same operations
+ * halves, so adding ½ rounds nothing (the product itself is rounded where
+ * n is not a power of two). The SIMD kernels do the same operations
  * (span_kernel.h, bilinear_pair_lanes). */
 static inline uint32_t sr_shade_bilinear_pair(float f, int n, int *i0, int *i1)
 {
@@ -169,18 +170,20 @@ static inline void sr_shade_albedo(const sr_shade_context *c, const float *var, 
 }
 
 /* A packed texel lit by intensity k: k in 8.8 fixed point (rounded to
- * nearest), then each channel k·t rounded to nearest in integers, within
- * one step of k·t (half from each rounding). k is in [0.2, 1] up to a
- * rounding and never NaN, so k in fixed point is at most 256 and each
- * channel at most 255. The SIMD kernels do the same operations on 16-bit
- * halves of the texel (span_kernel.h, lit_texel_lanes), where three float
- * conversions per channel cost fly 5 % (docs/performance.md, "Fly's
- * per-pixel work"). */
+ * nearest, at most 1), then each channel k·t rounded to nearest in
+ * integers, within one step of k·t (half from each rounding). k is in
+ * [0.2, 1] up to a rounding and never NaN; the clamp keeps a k past
+ * 1 + 2^-9 (a normal too short to square in float) from carrying a channel
+ * into the next. The SIMD kernels do the same operations on 16-bit halves
+ * of the texel (span_kernel.h, lit_texel_lanes), where each channel went
+ * to float and back (docs/performance.md, "Fly's per-pixel work"). */
 #define SR_SHADE_LIT_BITS 8
+#define SR_SHADE_LIT_ONE (1u << SR_SHADE_LIT_BITS)
 
 static inline uint32_t sr_shade_lit_texel(uint32_t t, float k)
 {
-    uint32_t k_fixed = (uint32_t)(k * (float)(1u << SR_SHADE_LIT_BITS) + 0.5f), out = 0;
+    uint32_t k_fixed = (uint32_t)(k * (float)SR_SHADE_LIT_ONE + 0.5f), out = 0;
+    k_fixed = k_fixed < SR_SHADE_LIT_ONE ? k_fixed : SR_SHADE_LIT_ONE;
     for (int shift = 16; shift >= 0; shift -= 8)
         out |= ((((t >> shift) & 0xFF) * k_fixed + (1u << (SR_SHADE_LIT_BITS - 1))) >> SR_SHADE_LIT_BITS) << shift;
     return out;
