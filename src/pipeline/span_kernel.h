@@ -256,11 +256,23 @@ typedef struct rgb_lanes {
     vf c[3];
 } rgb_lanes;
 
+/* The index of row y's first texel, y · width: a shift where the width is
+ * a power of two (the same for every group, so the branch is always
+ * predicted), which took fly 3 % and fill 2 % faster than the 32-bit
+ * multiply (two operations and ten cycles of latency on the way to the
+ * gathers). */
+static inline __attribute__((always_inline)) vi texel_row_lanes(vi y, int width)
+{
+    if ((width & (width - 1)) == 0)
+        return y << __builtin_ctz((unsigned)width);
+    return y * width;
+}
+
 static inline __attribute__((always_inline)) vi sample_nearest_lanes(const sr_texture *tex, vf fu, vf fv)
 {
     vi x = texel_index_lanes(fu, tex->width);
     vi y = (tex->height - 1) - texel_index_lanes(fv, tex->height);
-    return gather_texels(tex, y * tex->width + x) & 0xFFFFFF;
+    return gather_texels(tex, texel_row_lanes(y, tex->width) + x) & 0xFFFFFF;
 }
 
 /* sr_shade_bilinear_pair per lane. A side of a power of two wraps by a
@@ -328,7 +340,7 @@ static inline __attribute__((always_inline)) split_texels sample_bilinear_lanes(
     vi x0, x1, y0, y1;
     vu16 wx = weight_halves(bilinear_pair_lanes(fu, tex->width, &x0, &x1));
     vu16 wy = weight_halves(bilinear_pair_lanes(1.0f - fv, tex->height, &y0, &y1));
-    vi row0 = y0 * tex->width, row1 = y1 * tex->width;
+    vi row0 = texel_row_lanes(y0, tex->width), row1 = texel_row_lanes(y1, tex->width);
     split_texels top =
         lerp_split(split_lanes(gather_texels(tex, row0 + x0)), split_lanes(gather_texels(tex, row0 + x1)), wx);
     split_texels bottom =
