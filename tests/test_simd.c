@@ -26,9 +26,11 @@ static const sr_simd vector_loops[] = { SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX5
 
 /* Random triangles in front of the camera, many wider than the span
  * threshold, with random normals (some zero; with `flat`, every other
- * triangle has one normal at its three vertices, which an orthographic camera
- * shades once per triangle, and a perspective one too from 32 pixels), uvs well outside [0, 1] (wrapping) and colors
- * outside [0, 1] (clamping). With `reach` > 0, a triangle's second and third
+ * triangle has one normal at its three vertices, which an orthographic
+ * camera shades once per triangle, and a perspective one too from 32
+ * pixels), uvs well outside [0, 1] (wrapping; one triangle in 13 at a tiny
+ * negative uv, whose fraction rounds to 1) and colors outside [0, 1]
+ * (clamping). With `reach` > 0, a triangle's second and third
  * vertices lie within reach · depth of its first on each axis (at 90° and
  * FB_SIDE pixels, reach 0.15 makes triangles up to about 24 pixels wide). */
 static void soup_make(sr_mesh *mesh, int triangles, bool flat, double reach)
@@ -53,6 +55,8 @@ static void soup_make(sr_mesh *mesh, int triangles, bool flat, double reach)
         }
         mesh->uvs[i][0] = i % 23 == 0 ? HUGE_UV : (float)rng_uniform(&rng, -3.0, 3.0);
         mesh->uvs[i][1] = i % 29 == 0 ? -HUGE_UV : (float)rng_uniform(&rng, -3.0, 3.0);
+        if ((i / 3) % 13 == 5) /* a triangle at a tiny negative uv: its fraction rounds to 1 */
+            mesh->uvs[i][0] = mesh->uvs[i][1] = -0x1p-30f;
         mesh->indices[i] = i;
         if (flat && i % 6 >= 3 && i % 3 > 0)
             glm_vec3_copy(mesh->normals[i - i % 3], mesh->normals[i]);

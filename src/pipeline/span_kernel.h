@@ -223,13 +223,22 @@ static inline __attribute__((always_inline)) vf floor_lanes(vf x)
 #endif
 }
 
-static inline __attribute__((always_inline)) vf wrap_unit_lanes(vf t)
+/* sr_shade_wrap_unit per lane, but for its last step: the fraction of t in
+ * [0, 1], where 1 is what rounding makes of a tiny negative t. */
+static inline __attribute__((always_inline)) vf fraction_lanes(vf t)
 {
     vf zero = { 0 };
     vi finite = (vf)((vi)t & 0x7FFFFFFF) < SR_SHADE_NO_FRACTION;
     vf kept = select_f(finite, t, zero);
-    vf f = kept - floor_lanes(kept);
-    return select_f(f < 1.0f, f, zero);
+    return kept - floor_lanes(kept);
+}
+
+/* The last step, 1 wrapped to 0, which only the nearest filter needs: the
+ * bilinear position at 1 is its position at 0 (bilinear_pair_lanes: both
+ * give texels n − 1 and 0 at weight one half), on either axis. */
+static inline __attribute__((always_inline)) vf below_one_lanes(vf f)
+{
+    return select_f(f < 1.0f, f, (vf){ 0 });
 }
 
 static inline __attribute__((always_inline)) vi texel_index_lanes(vf f, int n)
@@ -352,9 +361,10 @@ static inline __attribute__((always_inline)) split_texels sample_bilinear_lanes(
 static inline __attribute__((always_inline)) vi sample_lanes(const triangle_lanes *t, const sr_shade_context *c, vf u,
                                                              vf v)
 {
-    vf fu = wrap_unit_lanes(u), fv = wrap_unit_lanes(v);
-    return c->filter == SR_FILTER_NEAREST ? sample_nearest_lanes(&t->texture, fu, fv)
-                                          : pack_split(sample_bilinear_lanes(&t->texture, fu, fv));
+    vf fu = fraction_lanes(u), fv = fraction_lanes(v);
+    return c->filter == SR_FILTER_NEAREST
+               ? sample_nearest_lanes(&t->texture, below_one_lanes(fu), below_one_lanes(fv))
+               : pack_split(sample_bilinear_lanes(&t->texture, fu, fv));
 }
 
 /* The same, split, for lit_texel_lanes: the bilinear filter's texels are
@@ -362,9 +372,10 @@ static inline __attribute__((always_inline)) vi sample_lanes(const triangle_lane
 static inline __attribute__((always_inline)) split_texels sample_split_lanes(const triangle_lanes *t,
                                                                              const sr_shade_context *c, vf u, vf v)
 {
-    vf fu = wrap_unit_lanes(u), fv = wrap_unit_lanes(v);
-    return c->filter == SR_FILTER_NEAREST ? split_lanes(sample_nearest_lanes(&t->texture, fu, fv))
-                                          : sample_bilinear_lanes(&t->texture, fu, fv);
+    vf fu = fraction_lanes(u), fv = fraction_lanes(v);
+    return c->filter == SR_FILTER_NEAREST
+               ? split_lanes(sample_nearest_lanes(&t->texture, below_one_lanes(fu), below_one_lanes(fv)))
+               : sample_bilinear_lanes(&t->texture, fu, fv);
 }
 
 static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_context *c, const vf *n)
