@@ -185,7 +185,7 @@ static inline uint32_t sr_shade_lit_texel(uint32_t t, float k)
     uint32_t k_fixed = (uint32_t)(k * (float)SR_SHADE_LIT_ONE + 0.5f), out = 0;
     k_fixed = k_fixed < SR_SHADE_LIT_ONE ? k_fixed : SR_SHADE_LIT_ONE;
     for (int shift = 16; shift >= 0; shift -= 8)
-        out |= ((((t >> shift) & 0xFF) * k_fixed + (1u << (SR_SHADE_LIT_BITS - 1))) >> SR_SHADE_LIT_BITS) << shift;
+        out |= ((((t >> shift) & 0xFF) * k_fixed + SR_SHADE_LIT_ONE / 2) >> SR_SHADE_LIT_BITS) << shift;
     return out;
 }
 

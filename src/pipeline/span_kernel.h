@@ -394,7 +394,7 @@ static inline __attribute__((always_inline)) vi lit_texel_lanes(split_texels t, 
 {
     vi k_fixed = __builtin_convertvector(k * (float)SR_SHADE_LIT_ONE + 0.5f, vi);
     vu16 k2 = weight_halves(select_i(k_fixed < (int)SR_SHADE_LIT_ONE, k_fixed, (vi){ 0 } + (int)SR_SHADE_LIT_ONE));
-    const uint16_t half = 1u << (SR_SHADE_LIT_BITS - 1);
+    const uint16_t half = SR_SHADE_LIT_ONE / 2;
     vu16 rb = (t.rb * k2 + half) >> SR_SHADE_LIT_BITS, g = (t.g * k2 + half) >> SR_SHADE_LIT_BITS;
     return ((vi)rb | (vi)g << 8) & 0xFFFFFF;
 }
