@@ -7,6 +7,7 @@
  * their calls). */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "pipeline/cull.h"
@@ -18,6 +19,7 @@
 #define SOUP_TRIANGLES 60
 #define NARROW_SOUP_TRIANGLES 3000
 #define SOUP_SEED 0x51D51D
+#define TINY_REACH 0.02 /* triangles up to about 3 pixels wide: each one a tiny box */
 #define FB_SIDE (5 * SR_TILE_ROWS_MAX + 1) /* odd, so rows end in partial groups of lanes; 5 tiles and a row */
 #define HUGE_UV 3e7f /* past 2^23, where a float has no fraction left to wrap */
 #define TILED_THREADS 3
@@ -264,22 +266,133 @@ Test(simd, bilinear_seams_and_narrow_textures_match_the_scalar_loop)
 
 /* Narrow triangles, 1 to about 24 pixels wide: the scalar loop tests each
  * pixel of a box narrower than its span threshold, the kernels take boxes
- * from SIMD_MIN_WIDTH up (raster.c), so both thresholds are crossed. */
+ * from SIMD_MIN_WIDTH up (raster.c), so both thresholds are crossed, and
+ * the vector loops defer the shading of tiny boxes to the tiny queue in
+ * every mode with varyings (raster_setup.h, sr_tiny_queue). */
 Test(simd, narrow_triangles_match_the_scalar_loop)
 {
+    static const uint32_t texels[6] = { 0xFF0000, 0x00FF00, 0x0000FF, 0xFFFFFF, 0x123456, 0xABCDEF };
+    sr_texture tex = { .width = 3, .height = 2, .texels = (uint32_t *)texels };
     sr_mesh soup;
     soup_make(&soup, NARROW_SOUP_TRIANGLES, false, 0.15);
-    static const sr_shade modes[] = { SR_SHADE_DEPTH, SR_SHADE_NORMAL, SR_SHADE_LAMBERT };
+    static const struct {
+        sr_shade shade;
+        bool textured;
+    } modes[] = { { SR_SHADE_DEPTH, false },  { SR_SHADE_NORMAL, false },  { SR_SHADE_LAMBERT, false },
+                  { SR_SHADE_COLOR, false },  { SR_SHADE_TEXTURE, true }, { SR_SHADE_LAMBERT, true } };
     for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {
         for (int reversed = 0; reversed < 2; reversed++) {
-            sr_draw_desc desc = { .mesh = &soup, .shade = modes[m], .cull = SR_CULL_NONE };
+            sr_draw_desc desc = { .mesh = &soup, .shade = modes[m].shade, .cull = SR_CULL_NONE,
+                                  .texture = modes[m].textured ? &tex : NULL, .filter = SR_FILTER_BILINEAR };
             look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);
             char what[64];
-            snprintf(what, sizeof what, "narrow triangles, mode %d%s", modes[m], reversed ? " reversed" : "");
+            snprintf(what, sizeof what, "narrow triangles, mode %d%s%s", modes[m].shade,
+                     modes[m].textured ? " textured" : "", reversed ? " reversed" : "");
             assert_vector_loops_match_scalar(&desc, reversed, what);
         }
     }
     sr_mesh_free(&soup);
+}
+
+/* Two draws of tiny triangles into one framebuffer, in the same mode
+ * with two varying layouts (gray lambert, then lambert of the vertex
+ * colors), against the scalar loop after each draw: a draw's tiny
+ * triangles are all shaded, with its own layout, when it returns (the
+ * tiny queue is one per thread and outlives a draw). */
+static void draw_into(sr_framebuffer *fb, const sr_mesh *mesh, sr_simd simd, float eye_z)
+{
+    sr_error err;
+    sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_LAMBERT, .cull = SR_CULL_NONE,
+                          .study = &(sr_draw_study){ .simd = simd, .path = SR_PATH_DIRECT } };
+    look(&desc, (const float[6]){ 0, 0, eye_z, 0, 0, 1 }, 90.0f, false);
+    cr_assert(sr_draw(fb, &desc, NULL, &err), "%s", err.message);
+}
+
+Test(simd, consecutive_draws_shade_their_own_tiny_triangles)
+{
+    sr_mesh soup;
+    soup_make(&soup, NARROW_SOUP_TRIANGLES, false, TINY_REACH);
+    sr_mesh gray = soup;
+    gray.colors = NULL;
+    const sr_mesh *meshes[2] = { &gray, &soup };
+    for (size_t v = 0; v < sizeof vector_loops / sizeof *vector_loops; v++) {
+        const char *name = sr_simd_name(sr_raster_simd_resolve(vector_loops[v]));
+        sr_framebuffer want, fb;
+        scene_fb_make(&want, FB_SIDE, FB_SIDE);
+        scene_fb_make(&fb, FB_SIDE, FB_SIDE);
+        sr_framebuffer_clear(&want, 0x123456);
+        sr_framebuffer_clear(&fb, 0x123456);
+        size_t n = scene_pixel_count(&want);
+        uint32_t *first = malloc(n * sizeof *first);
+        cr_assert_not_null(first);
+        for (int d = 0; d < 2; d++) {
+            draw_into(&want, meshes[d], SR_SIMD_SCALAR, -0.1f * (float)d);
+            draw_into(&fb, meshes[d], vector_loops[v], -0.1f * (float)d);
+            cr_assert_eq(memcmp(fb.color, want.color, n * sizeof *fb.color), 0, "%s, draw %d: colors differ", name, d);
+            cr_assert_eq(memcmp(fb.depth, want.depth, n * sizeof *fb.depth), 0, "%s, draw %d: depths differ", name, d);
+            if (d == 0)
+                memcpy(first, want.color, n * sizeof *first);
+        }
+        size_t changed = 0;
+        for (size_t i = 0; i < n; i++)
+            changed += first[i] != want.color[i];
+        cr_assert_gt(changed, n / 64, "the second draw changed only %zu pixels", changed);
+        free(first);
+        sr_framebuffer_destroy(&fb);
+        sr_framebuffer_destroy(&want);
+    }
+    sr_mesh_free(&soup);
+}
+
+/* One shading context used for two tiny triangles, its layout changed
+ * between them (gray lambert, then lambert of the vertex colors): the
+ * second is shaded with the new layout, as the scalar loop shades it,
+ * though the queue sees the same context, framebuffer and mode. */
+static void draw_tiny_twice(sr_simd simd, sr_framebuffer *fb)
+{
+    sr_shade_context c = { .layout = { .count = 3, .normal = 0, .color = -1, .uv = -1 },
+                           .light_dir = { 0.0f, 0.6f, 0.8f }, .simd = simd };
+    const float inv_w[3] = { 1.0f, 0.75f, 0.5f };
+    sr_screen_vertex tri[3];
+    for (int k = 0; k < 3; k++) {
+        tri[k] = (sr_screen_vertex){ .x = (int64_t)((k == 1 ? 5 : 1) << SR_SUBPIXEL_BITS),
+                                     .y = (int64_t)((k == 2 ? 5 : 1) << SR_SUBPIXEL_BITS), .z = 0.5f,
+                                     .inv_w = inv_w[k] };
+        const float var[6] = { 0.2f * (float)k, 0.5f, 1.0f, 1.0f, 0.25f * (float)k, 0.5f };
+        for (int i = 0; i < 6; i++)
+            tri[k].var_w[i] = var[i] * inv_w[k];
+    }
+    sr_raster_rect rect = { 0, 0, fb->width, fb->height };
+    int64_t area2 = sr_cull_area2(&tri[0], &tri[1], &tri[2]);
+    cr_assert_gt(sr_raster_triangle(fb, rect, SR_SUBPIXEL_BITS, SR_SHADE_LAMBERT, &c, tri, area2, 0), 0u);
+    c.layout = (sr_varying_layout){ .count = 6, .normal = 0, .color = 3, .uv = -1 };
+    for (int k = 0; k < 3; k++)
+        tri[k].z = 0.25f; /* in front of the first */
+    cr_assert_gt(sr_raster_triangle(fb, rect, SR_SUBPIXEL_BITS, SR_SHADE_LAMBERT, &c, tri, area2, 0), 0u);
+}
+
+Test(simd, a_context_used_again_is_shaded_with_its_new_layout)
+{
+    sr_framebuffer want;
+    scene_fb_make(&want, 8, 8);
+    sr_framebuffer_clear(&want, 0);
+    draw_tiny_twice(SR_SIMD_SCALAR, &want);
+    size_t n = scene_pixel_count(&want), gray = 0;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t p = want.color[i];
+        gray += p != 0 && (p >> 16 & 0xFF) == (p >> 8 & 0xFF) && (p >> 8 & 0xFF) == (p & 0xFF);
+    }
+    cr_assert_eq(gray, 0u, "a pixel of the second triangle is gray: the colors did not reach it");
+    for (size_t v = 0; v < sizeof vector_loops / sizeof *vector_loops; v++) {
+        sr_framebuffer fb;
+        scene_fb_make(&fb, 8, 8);
+        sr_framebuffer_clear(&fb, 0);
+        draw_tiny_twice(vector_loops[v], &fb);
+        cr_assert_eq(memcmp(fb.color, want.color, n * sizeof *fb.color), 0, "%s: colors differ",
+                     sr_simd_name(sr_raster_simd_resolve(vector_loops[v])));
+        sr_framebuffer_destroy(&fb);
+    }
+    sr_framebuffer_destroy(&want);
 }
 
 Test(simd, the_textured_room_through_its_walls_matches_the_scalar_loop)

@@ -339,8 +339,10 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
                 others_id = id;
             }
         }
-        if (from < 0)
+        if (from < 0) {
+            sr_raster_flush();
             return fragments;
+        }
         const sr_thread_work *w = &st->ws->threads[from];
         bin_walk *b = &walk[from];
         for (; walk_segment(st, w, tile, b); b->at++) {

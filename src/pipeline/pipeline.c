@@ -306,6 +306,7 @@ void sr_draw_direct(const sr_draw_state *st, sr_thread_work *w, uint32_t first, 
 {
     sr_fan_sink sink = { .store = store_in_place, .triangle = raster_now, .st = st, .work = w };
     sr_draw_primitives(&sink, first, end);
+    sr_raster_flush();
 }
 
 static void draw_all_direct(void *ctx, int t)

@@ -149,15 +149,6 @@ static void interpolants_make(const sr_screen_vertex *const v[3], int64_t area2,
     }
 }
 
-/* z at the pixel k pixels right of the row's reference pixel, clamped: the
- * unsnapped triangle's plane may step a hair outside [0, 1] at a pixel the
- * snapped triangle covers and the unsnapped one does not, and rounding may. */
-static inline float depth_at(const setup *s, float z_row, float k)
-{
-    float z = z_row + s->dz_pixel * k;
-    return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;
-}
-
 static inline void varyings_at(const setup *s, sr_interp interp, float l1, float l2, float *var)
 {
     float w = sr_interp_divides(interp) ? 1.0f / (s->iw0 + l1 * s->diw1 + l2 * s->diw2) : s->w;
@@ -170,12 +161,6 @@ static inline bool mode_reads_varyings(sr_shade mode)
     return mode != SR_SHADE_ID && mode != SR_SHADE_DEPTH && mode != SR_RASTER_COUNT_HITS;
 }
 
-/* LESS for the standard depth convention, GREATER for reversed z. */
-static inline bool depth_passes(float z, float stored, bool greater)
-{
-    return greater ? z > stored : z < stored;
-}
-
 /* Depth test, depth write and shading of covered pixel i of a row; returns
  * 1 if the fragment passed. Counting hits, the pixel only counts one more. */
 static inline __attribute__((always_inline)) uint64_t
@@ -186,8 +171,8 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_i
         fb->color[at]++;
         return 1;
     }
-    float z = depth_at(s, z_row, k);
-    if (!depth_passes(z, fb->depth[at], greater))
+    float z = sr_depth_at(s, z_row, k);
+    if (!sr_depth_passes(z, fb->depth[at], greater))
         return 0;
     fb->depth[at] = z;
     if (mode != SR_SHADE_DEPTH) {
@@ -223,7 +208,7 @@ tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_in
     for (uint64_t m = s->tiny; m; m &= m - 1) {
         int n = __builtin_ctzll(m), i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
         int64_t px = sr_subpixel_centre(i, s->bits), py = sr_subpixel_centre(j, s->bits);
-        float z_row = (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
+        float z_row = sr_row_z(s, j);
         /* The edges only for the varyings: a mode without leaves them unset
          * when the mask came from binning (setup_in). */
         bool edges = mode_reads_varyings(mode);
@@ -495,9 +480,11 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
                             uint32_t triangle_id)
 {
     bool simd;
-    return sr_raster_triangle_on(fb, rect, subpixel_bits, mode, shade,
-                                 (const sr_screen_vertex *const[3]){ &tri[0], &tri[1], &tri[2] }, area2,
-                                 triangle_id, &simd);
+    uint64_t fragments = sr_raster_triangle_on(fb, rect, subpixel_bits, mode, shade,
+                                               (const sr_screen_vertex *const[3]){ &tri[0], &tri[1], &tri[2] },
+                                               area2, triangle_id, &simd);
+    sr_raster_flush();
+    return fragments;
 }
 
 /* sr_raster_setup, inlined where the box was just found: passed by value
@@ -603,9 +590,113 @@ void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
     s->tiny = 0; /* the mask is the whole box's */
 }
 
+/* The tiny queue (raster_setup.h, sr_tiny_queue): one per thread, since
+ * a thread draws its triangles in order; it holds the pixels of one
+ * framebuffer, shading context and mode at a time. */
+typedef struct tiny_queue {
+    sr_tiny_queue q;
+    sr_framebuffer *fb;
+    const sr_shade_context *shade;
+    sr_shade mode;
+    sr_tiny_shader shader; /* for fb, shade and mode; NULL: none, the tiny loop draws */
+} tiny_queue;
+
+static _Thread_local tiny_queue tiny_pending;
+
+void sr_raster_flush(void)
+{
+    tiny_queue *t = &tiny_pending;
+    sr_tiny_queue *q = &t->q;
+    if (q->pixels == 0)
+        return;
+    for (int l = q->pixels; l < q->pixels + SR_SIMD_MAX_LANES; l++) {
+        q->l1[l] = q->l2[l] = 0.0f;
+        q->triangle[l] = q->triangle[q->pixels - 1];
+    }
+    t->shader(q, t->shade, t->fb);
+    q->pixels = q->triangles = 0;
+}
+
+static sr_tiny_shader tiny_shader(const sr_shade_context *shade, sr_shade mode)
+{
+    switch (sr_raster_simd_resolve(shade->simd)) {
+    case SR_SIMD_AVX512: return sr_tiny_shader_avx512(mode, &shade->layout);
+    case SR_SIMD_AVX2: return sr_tiny_shader_avx2(mode, &shade->layout);
+    case SR_SIMD_SSE2: return sr_tiny_shader_sse2(mode, &shade->layout);
+    default:           return NULL;
+    }
+}
+
+/* The queue for a tiny triangle of fb, shade and mode whose 1/w varies,
+ * flushed to make room for one more, or NULL where the tiny loop draws
+ * it (no shader: the scalar loop was asked for, or the layout is not one
+ * the kernels know). */
+static sr_tiny_queue *tiny_queue_for(sr_framebuffer *fb, const sr_shade_context *shade, sr_shade mode)
+{
+    tiny_queue *t = &tiny_pending;
+    /* The shader is looked up again whenever the queue is empty: a later
+     * draw's context may lie where an earlier one's did. */
+    if (t->q.pixels == 0 || t->fb != fb || t->shade != shade || t->mode != mode) {
+        sr_raster_flush();
+        t->fb = fb;
+        t->shade = shade;
+        t->mode = mode;
+        t->shader = tiny_shader(shade, mode);
+    }
+    if (!t->shader)
+        return NULL;
+    if (t->q.pixels > SR_TINY_QUEUE_PIXELS - SR_TINY_SIDE * SR_TINY_SIDE || t->q.triangles == SR_TINY_QUEUE_TRIANGLES)
+        sr_raster_flush();
+    return &t->q;
+}
+
+/* The tiny loop's depth tests, its passing pixels queued with their λ1
+ * and λ2 (the loop's values) and the triangle's interpolants. */
+static inline __attribute__((always_inline)) uint64_t tiny_queue_push(const setup *s, sr_framebuffer *fb, bool greater,
+                                                                      sr_tiny_queue *q)
+{
+    int p = q->pixels, t = q->triangles;
+    for (uint64_t m = s->tiny; m; m &= m - 1) {
+        int n = __builtin_ctzll(m), i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
+        size_t at = (size_t)j * (size_t)fb->width + (size_t)i;
+        float z = sr_depth_at(s, sr_row_z(s, j), (float)(i - s->ref_x));
+        if (!sr_depth_passes(z, fb->depth[at], greater))
+            continue;
+        fb->depth[at] = z;
+        int64_t px = sr_subpixel_centre(i, s->bits), py = sr_subpixel_centre(j, s->bits);
+        q->l1[p] = (float)sr_edge_at(&s->e[1], px, py) * s->inv_area2;
+        q->l2[p] = (float)sr_edge_at(&s->e[2], px, py) * s->inv_area2;
+        q->at[p] = at;
+        q->triangle[p] = t;
+        p++;
+    }
+    uint64_t passed = (uint64_t)(p - q->pixels);
+    if (passed == 0)
+        return 0;
+    q->param[SR_TINY_IW0][t] = s->iw0;
+    q->param[SR_TINY_DIW1][t] = s->diw1;
+    q->param[SR_TINY_DIW2][t] = s->diw2;
+    for (int k = 0; k < s->varyings; k++) {
+        q->param[SR_TINY_VAR0 + k][t] = s->var0[k];
+        q->param[SR_TINY_DVAR1 + k][t] = s->dvar1[k];
+        q->param[SR_TINY_DVAR2 + k][t] = s->dvar2[k];
+    }
+    q->pixels = p;
+    q->triangles = t + 1;
+    return passed;
+}
+
 uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,
                               uint32_t triangle_id, bool *simd)
 {
+    if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && mode_reads_varyings(mode)) {
+        sr_tiny_queue *q = tiny_queue_for(fb, shade, mode);
+        *simd = q != NULL;
+        if (q)
+            return fb->reversed_z ? tiny_queue_push(s, fb, true, q) : tiny_queue_push(s, fb, false, q);
+    }
+    if (tiny_pending.q.pixels > 0) /* what comes later draws over what is queued */
+        sr_raster_flush();
     sr_span_kernel kernel = s->box.x1 - s->box.x0 >= SIMD_MIN_WIDTH ? span_kernel(shade, mode, fb->reversed_z) : NULL;
     *simd = kernel && edges_fit_double(s);
     if (*simd)

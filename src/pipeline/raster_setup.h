@@ -125,6 +125,28 @@ static inline void sr_edge_span(int64_t e, int64_t step, int64_t bias, int64_t *
     }
 }
 
+/* z at the centre of row j's pixel ref_x, in double rounded to float: the
+ * same value in every loop. */
+static inline float sr_row_z(const sr_tri_setup *s, int j)
+{
+    return (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
+}
+
+/* z at the pixel k pixels right of the row's reference pixel, clamped: the
+ * unsnapped triangle's plane may step a hair outside [0, 1] at a pixel the
+ * snapped triangle covers and the unsnapped one does not, and rounding may. */
+static inline float sr_depth_at(const sr_tri_setup *s, float z_row, float k)
+{
+    float z = z_row + s->dz_pixel * k;
+    return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;
+}
+
+/* LESS for the standard depth convention, GREATER for reversed z. */
+static inline bool sr_depth_passes(float z, float stored, bool greater)
+{
+    return greater ? z > stored : z < stored;
+}
+
 /* Row j of the scan box: the pixel index and edge values where its
  * candidate pixels start, and how many there are: the whole row, or with
  * `spans` exactly the covered run, found by solving each edge's inequality
@@ -158,7 +180,7 @@ static SR_ALWAYS_INLINE void sr_row_make(const sr_tri_setup *s, const sr_framebu
     for (int k = 0; k < 3; k++)
         r->e[k] = e[k] + lo * s->step_x[k];
     r->at = (size_t)j * (size_t)fb->width + (size_t)s->box.x0 + (size_t)lo;
-    r->z = (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
+    r->z = sr_row_z(s, j);
     r->k = (float)(s->box.x0 + lo - s->ref_x); /* exact: boxes are far narrower than 2^24 pixels */
 }
 
@@ -228,6 +250,51 @@ uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int sub
                                  const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                                  uint64_t mask, uint32_t triangle_id);
 
+/* The shading of tiny triangles' pixels, deferred (raster.c, "The tiny
+ * queue"): a tiny triangle whose 1/w varies tests and writes its depths
+ * at once and queues the pixels that passed, with their λ1 and λ2 (as
+ * every loop computes them) and its own interpolants; a SIMD shader then
+ * colors the queue SPAN_LANES pixels at a time, each lane with its own
+ * triangle's interpolants, and stores the colors in the queue's order,
+ * which is submission order. One triangle's few pixels filled few lanes,
+ * and a division of 16 lanes costs the divider as much as about six of
+ * one (docs/performance.md, "Tiny triangles' shading"). */
+#define SR_TINY_QUEUE_PIXELS 512
+#define SR_TINY_QUEUE_TRIANGLES 128
+enum {
+    SR_TINY_IW0,
+    SR_TINY_DIW1,
+    SR_TINY_DIW2,
+    SR_TINY_VAR0,
+    SR_TINY_DVAR1 = SR_TINY_VAR0 + SR_MAX_VARYINGS,
+    SR_TINY_DVAR2 = SR_TINY_DVAR1 + SR_MAX_VARYINGS,
+    SR_TINY_PARAMS = SR_TINY_DVAR2 + SR_MAX_VARYINGS,
+};
+
+typedef struct sr_tiny_queue {
+    int pixels, triangles;
+    /* Per queued pixel, and a group of lanes past the last: the padding
+     * repeats the last triangle with λ 0 and is never stored. */
+    float l1[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES], l2[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
+    int32_t triangle[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
+    size_t at[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
+    /* Per queued triangle, each interpolant a row (param[SR_TINY_VAR0 + k]
+     * is var0[k]), a group of lanes long past the last: a group of pixels
+     * spans at most SR_SIMD_MAX_LANES triangles, each having one pixel at
+     * least, so a shader loads the group's first triangle's row on and
+     * picks each lane's by its offset. */
+    float param[SR_TINY_PARAMS][SR_TINY_QUEUE_TRIANGLES + SR_SIMD_MAX_LANES];
+} sr_tiny_queue;
+
+/* Colors the queue's pixels in fb (a shading mode with varyings, the
+ * queued triangles' 1/w varying). */
+typedef void (*sr_tiny_shader)(const sr_tiny_queue *q, const sr_shade_context *c, sr_framebuffer *fb);
+
+/* Shades the queued pixels of this thread's tiny triangles, if any: the
+ * direct path and every tile call it when they are done, and the
+ * rasterizer before anything else it draws. */
+void sr_raster_flush(void);
+
 /* The kernel for a shading mode, depth test and varying layout (each kernel
  * is compiled for one layout, so its varyings stay in registers), or NULL
  * where the instruction set is not built in (AVX2 and AVX-512 off x86-64)
@@ -235,15 +302,25 @@ uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int sub
  * those). */
 sr_span_kernel sr_span_kernel_sse2(sr_shade mode, bool greater, const sr_varying_layout *layout);
 
-/* The getter of a kernel file built without its instruction set. */
-#define SR_SPAN_KERNEL_ABSENT(getter)                                                                         \
+/* The tiny queue's shader for a mode and layout, on the same terms. */
+sr_tiny_shader sr_tiny_shader_sse2(sr_shade mode, const sr_varying_layout *layout);
+
+/* The getters of a kernel file built without its instruction set. */
+#define SR_SPAN_KERNEL_ABSENT(getter, tiny_getter)                                                            \
     sr_span_kernel getter(sr_shade mode, bool greater, const sr_varying_layout *layout)                       \
     {                                                                                                         \
         (void)mode, (void)greater, (void)layout;                                                              \
+        return NULL;                                                                                          \
+    }                                                                                                         \
+    sr_tiny_shader tiny_getter(sr_shade mode, const sr_varying_layout *layout)                                \
+    {                                                                                                         \
+        (void)mode, (void)layout;                                                                             \
         return NULL;                                                                                          \
     }
 
 sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater, const sr_varying_layout *layout);
 sr_span_kernel sr_span_kernel_avx512(sr_shade mode, bool greater, const sr_varying_layout *layout);
+sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_varying_layout *layout);
+sr_tiny_shader sr_tiny_shader_avx512(sr_shade mode, const sr_varying_layout *layout);
 
 #endif

@@ -2,10 +2,10 @@
  * time, in GCC/Clang vector extensions. Included once per instruction set:
  * span_sse2.c (4 lanes), span_avx2.c (8, built with -mavx2) and
  * span_avx512.c (16, built with -mavx512f/dq/bw/vl). Each defines
- * SPAN_LANES, SPAN_LANE_INDICES (0, 1, … SPAN_LANES − 1) and
- * SPAN_KERNEL_GETTER first, and may define SPAN_SQRT, SPAN_MOVEMASK,
- * SPAN_GATHER and SPAN_FLOOR with the instruction set's intrinsics (else
- * generic lane loops stand in).
+ * SPAN_LANES, SPAN_LANE_INDICES (0, 1, … SPAN_LANES − 1),
+ * SPAN_KERNEL_GETTER and SPAN_TINY_GETTER first, and may define SPAN_SQRT,
+ * SPAN_MOVEMASK, SPAN_GATHER, SPAN_FLOOR and SPAN_PERMUTE with the
+ * instruction set's intrinsics (else generic lane loops stand in).
  *
  * Every lane does exactly the float operations of the scalar loop and of
  * shade.h, in the same order and without fused multiply-adds (the Makefile
@@ -543,6 +543,61 @@ span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *
     return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, id);
 }
 
+/* v's lanes picked by index (each in [0, SPAN_LANES)). */
+static inline __attribute__((always_inline)) vf permute_lanes(vf v, vi index)
+{
+#ifdef SPAN_PERMUTE
+    return SPAN_PERMUTE(v, index);
+#else
+    vf out;
+    for (int l = 0; l < SPAN_LANES; l++)
+        out[l] = v[index[l]];
+    return out;
+#endif
+}
+
+/* Interpolant k of each lane's triangle: the row from the group's first
+ * triangle on, picked by each lane's offset from it. */
+static inline __attribute__((always_inline)) vf tiny_param(const sr_tiny_queue *q, int k, int base, vi offset)
+{
+    vf row;
+    memcpy(&row, &q->param[k][base], sizeof row);
+    return permute_lanes(row, offset);
+}
+
+/* The tiny queue's pixels (raster_setup.h, sr_tiny_queue), SPAN_LANES at a
+ * time: λ1 and λ2 as queued, 1/w and the varyings from each lane's
+ * triangle in varyings_lanes's operations, then the mode's shading. */
+static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny_queue *q, const sr_shade_context *c,
+                                                                   sr_framebuffer *fb, sr_shade mode, albedo a)
+{
+    triangle_lanes t = { .w = { 0 } };
+    if (c->texture)
+        t.texture = *c->texture;
+    for (int g = 0; g < q->pixels; g += SPAN_LANES) {
+        int base = q->triangle[g];
+        vi offset;
+        memcpy(&offset, q->triangle + g, sizeof offset);
+        offset -= base;
+        lanes p;
+        memcpy(&p.l1, q->l1 + g, sizeof p.l1);
+        memcpy(&p.l2, q->l2 + g, sizeof p.l2);
+        vf w = 1.0f / (tiny_param(q, SR_TINY_IW0, base, offset) + p.l1 * tiny_param(q, SR_TINY_DIW1, base, offset) +
+                       p.l2 * tiny_param(q, SR_TINY_DIW2, base, offset));
+        _Static_assert(SR_MAX_VARYINGS == 8, "the unroll count below");
+#pragma GCC unroll 8
+        for (int k = 0; k < varying_count(mode, a); k++)
+            p.var[k] = (tiny_param(q, SR_TINY_VAR0 + k, base, offset) +
+                        p.l1 * tiny_param(q, SR_TINY_DVAR1 + k, base, offset) +
+                        p.l2 * tiny_param(q, SR_TINY_DVAR2 + k, base, offset)) *
+                       w;
+        vi colors = shade_lanes(mode, a, SR_INTERP_PERSPECTIVE, &t, c, p.var, 0);
+        int live = q->pixels - g < SPAN_LANES ? q->pixels - g : SPAN_LANES;
+        for (int l = 0; l < live; l++)
+            fb->color[q->at[g + l]] = (uint32_t)colors[l];
+    }
+}
+
 #define SPAN_KERNEL(mode, a, greater, name)                                                                   \
     static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id)  \
     {                                                                                                         \
@@ -560,6 +615,19 @@ SPAN_KERNELS(SR_SHADE_COLOR, ALBEDO_NONE, span_color)
 SPAN_KERNELS(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)
 SPAN_KERNELS(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
 SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, span_depth)
+
+#define TINY_SHADER(mode, a, name)                                                                             \
+    static void name##_tiny(const sr_tiny_queue *q, const sr_shade_context *c, sr_framebuffer *fb)            \
+    {                                                                                                         \
+        tiny_queue_shade(q, c, fb, mode, a);                                                                  \
+    }
+
+TINY_SHADER(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)
+TINY_SHADER(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)
+TINY_SHADER(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, span_lambert_texture)
+TINY_SHADER(SR_SHADE_COLOR, ALBEDO_NONE, span_color)
+TINY_SHADER(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)
+TINY_SHADER(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
 
 /* The layout each kernel was compiled for, as sr_vertex_layout makes it. */
 static bool layout_is(const sr_varying_layout *l, int count, int color, int uv, int normal)
@@ -602,4 +670,20 @@ sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater, const sr_varying_
 {
     const sr_span_kernel *pair = kernel_pair(mode, layout);
     return pair ? pair[greater] : NULL;
+}
+
+sr_tiny_shader SPAN_TINY_GETTER(sr_shade mode, const sr_varying_layout *layout)
+{
+    static const sr_tiny_shader lambert[] = { [ALBEDO_GRAY] = span_lambert_gray_tiny,
+                                              [ALBEDO_COLOR] = span_lambert_color_tiny,
+                                              [ALBEDO_TEXTURE] = span_lambert_texture_tiny };
+    if (!kernel_pair(mode, layout)) /* the layouts the kernels were compiled for */
+        return NULL;
+    switch (mode) {
+    case SR_SHADE_LAMBERT: return lambert[lambert_albedo(layout)];
+    case SR_SHADE_COLOR:   return span_color_tiny;
+    case SR_SHADE_NORMAL:  return span_normal_tiny;
+    case SR_SHADE_TEXTURE: return span_texture_tiny;
+    default:               return NULL; /* no varyings: nothing to defer */
+    }
 }

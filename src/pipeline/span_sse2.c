@@ -8,4 +8,5 @@
 #define SPAN_LANE_INDICES 0, 1, 2, 3
 #define SPAN_LANES 4
 #define SPAN_KERNEL_GETTER sr_span_kernel_sse2
+#define SPAN_TINY_GETTER sr_tiny_shader_sse2
 #include "span_kernel.h"
