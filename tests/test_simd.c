@@ -275,19 +275,30 @@ Test(simd, narrow_triangles_match_the_scalar_loop)
     sr_texture tex = { .width = 3, .height = 2, .texels = (uint32_t *)texels };
     sr_mesh soup;
     soup_make(&soup, NARROW_SOUP_TRIANGLES, false, 0.15);
+    sr_mesh gray = soup; /* lambert of no vertex colors: gray */
+    gray.colors = NULL;
     static const struct {
         sr_shade shade;
-        bool textured;
-    } modes[] = { { SR_SHADE_DEPTH, false },  { SR_SHADE_NORMAL, false },  { SR_SHADE_LAMBERT, false },
-                  { SR_SHADE_COLOR, false },  { SR_SHADE_TEXTURE, true }, { SR_SHADE_LAMBERT, true } };
+        bool textured, gray;
+        sr_filter filter;
+    } modes[] = { { SR_SHADE_DEPTH, false, false, 0 },
+                  { SR_SHADE_NORMAL, false, false, 0 },
+                  { SR_SHADE_LAMBERT, false, false, 0 },
+                  { SR_SHADE_LAMBERT, false, true, 0 },
+                  { SR_SHADE_COLOR, false, false, 0 },
+                  { SR_SHADE_TEXTURE, true, false, SR_FILTER_BILINEAR },
+                  { SR_SHADE_TEXTURE, true, false, SR_FILTER_NEAREST },
+                  { SR_SHADE_LAMBERT, true, false, SR_FILTER_BILINEAR } };
     for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {
         for (int reversed = 0; reversed < 2; reversed++) {
-            sr_draw_desc desc = { .mesh = &soup, .shade = modes[m].shade, .cull = SR_CULL_NONE,
-                                  .texture = modes[m].textured ? &tex : NULL, .filter = SR_FILTER_BILINEAR };
+            sr_draw_desc desc = { .mesh = modes[m].gray ? &gray : &soup, .shade = modes[m].shade,
+                                  .cull = SR_CULL_NONE, .texture = modes[m].textured ? &tex : NULL,
+                                  .filter = modes[m].filter };
             look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);
-            char what[64];
-            snprintf(what, sizeof what, "narrow triangles, mode %d%s%s", modes[m].shade,
-                     modes[m].textured ? " textured" : "", reversed ? " reversed" : "");
+            char what[80];
+            snprintf(what, sizeof what, "narrow triangles, mode %d%s%s filter %d%s", modes[m].shade,
+                     modes[m].gray ? " gray" : "", modes[m].textured ? " textured" : "", modes[m].filter,
+                     reversed ? " reversed" : "");
             assert_vector_loops_match_scalar(&desc, reversed, what);
         }
     }
@@ -302,10 +313,18 @@ Test(simd, narrow_triangles_match_the_scalar_loop)
 static void draw_into(sr_framebuffer *fb, const sr_mesh *mesh, sr_simd simd, float eye_z)
 {
     sr_error err;
-    sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_LAMBERT, .cull = SR_CULL_NONE,
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_LAMBERT, .cull = SR_CULL_NONE, .workspace = ws,
                           .study = &(sr_draw_study){ .simd = simd, .path = SR_PATH_DIRECT } };
     look(&desc, (const float[6]){ 0, 0, eye_z, 0, 0, 1 }, 90.0f, false);
     cr_assert(sr_draw(fb, &desc, NULL, &err), "%s", err.message);
+    /* Every box is tiny here: the vector loops' draws are the queue's. */
+    if (simd == SR_SIMD_SCALAR)
+        cr_assert_eq(sr_workspace_simd_draws(ws), 0u, "the scalar loop used the tiny queue");
+    else
+        cr_assert_gt(sr_workspace_simd_draws(ws), 0u, "the tiny queue never shaded");
+    sr_workspace_destroy(ws);
 }
 
 Test(simd, consecutive_draws_shade_their_own_tiny_triangles)

@@ -143,7 +143,9 @@ typedef struct sr_draw_study {
 
 /* How many rasterizer calls of the last draw with this workspace a SIMD
  * kernel made (a call is a fan triangle, or on the tiles its share of one
- * tile; narrow ones take the scalar loop): tests check the kernels ran. */
+ * tile; narrow ones take the scalar loop, and a tiny one whose pixels a
+ * SIMD shader colors counts if any pixel passed): tests check the kernels
+ * ran. */
 SR_API uint64_t sr_workspace_simd_draws(const sr_workspace *ws);
 
 #endif

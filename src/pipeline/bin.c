@@ -268,7 +268,7 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, u
     int64_t area2 = sr_cull_area2(tri[0], tri[1], tri[2]);
     if (rec->tiny)
         return sr_raster_tiny_triangle(st->fb, box, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2,
-                                       rec->tiny, rec->id);
+                                       rec->tiny, rec->id, simd);
     return sr_raster_triangle_in_box(st->fb, box, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2,
                                      rec->id, simd);
 }

@@ -197,24 +197,39 @@ static inline bool wide(const setup *s)
     return s->box.x1 - s->box.x0 >= SPAN_MIN_WIDTH;
 }
 
-/* A tiny box's covered pixels (sr_tri_setup.tiny), in the rows' order. The
- * values are the row loop's: z at row j is the same double rounded to float,
- * k the same small integer, and E at a pixel centre the same exact integer. */
+/* Bit n of a tiny box's mask (sr_tri_setup.tiny): its pixel (i, j), the
+ * pixel's index in fb, its z_row and k, and its centre for the edges. The
+ * values are the row loop's: z at row j is the same double rounded to
+ * float, k the same small integer, and E at a pixel centre the same exact
+ * integer. */
+typedef struct tiny_pixel {
+    size_t at;
+    float z_row, k;
+    int64_t px, py;
+} tiny_pixel;
+
+static inline __attribute__((always_inline)) tiny_pixel tiny_pixel_of(const setup *s, const sr_framebuffer *fb, int n)
+{
+    int i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
+    return (tiny_pixel){ .at = (size_t)j * (size_t)fb->width + (size_t)i, .z_row = sr_row_z(s, j),
+                         .k = (float)(i - s->ref_x), .px = sr_subpixel_centre(i, s->bits),
+                         .py = sr_subpixel_centre(j, s->bits) };
+}
+
+/* A tiny box's covered pixels, in the rows' order. */
 static inline __attribute__((always_inline)) uint64_t
 tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
           const sr_shade_context *shade, uint32_t id)
 {
     uint64_t fragments = 0;
     for (uint64_t m = s->tiny; m; m &= m - 1) {
-        int n = __builtin_ctzll(m), i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
-        int64_t px = sr_subpixel_centre(i, s->bits), py = sr_subpixel_centre(j, s->bits);
-        float z_row = sr_row_z(s, j);
+        tiny_pixel p = tiny_pixel_of(s, fb, __builtin_ctzll(m));
         /* The edges only for the varyings: a mode without leaves them unset
          * when the mask came from binning (setup_in). */
         bool edges = mode_reads_varyings(mode);
-        fragments += fill_pixel(s, fb, mode, greater, interp, shade, id, (size_t)j * (size_t)fb->width + (size_t)i,
-                                z_row, (float)(i - s->ref_x), edges ? sr_edge_at(&s->e[1], px, py) : 0,
-                                edges ? sr_edge_at(&s->e[2], px, py) : 0);
+        fragments += fill_pixel(s, fb, mode, greater, interp, shade, id, p.at, p.z_row, p.k,
+                                edges ? sr_edge_at(&s->e[1], p.px, p.py) : 0,
+                                edges ? sr_edge_at(&s->e[2], p.px, p.py) : 0);
     }
     return fragments;
 }
@@ -569,10 +584,9 @@ uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int s
 
 uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
                                  const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
-                                 uint64_t mask, uint32_t triangle_id)
+                                 uint64_t mask, uint32_t triangle_id, bool *simd)
 {
-    bool simd;
-    return triangle_in_box(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, true, mask, &simd);
+    return triangle_in_box(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, true, mask, simd);
 }
 
 uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
@@ -592,20 +606,22 @@ void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
 
 /* The tiny queue (raster_setup.h, sr_tiny_queue): one per thread, since
  * a thread draws its triangles in order; it holds the pixels of one
- * framebuffer, shading context and mode at a time. */
-typedef struct tiny_queue {
+ * framebuffer, shading context and mode at a time, whose shader it keeps
+ * until sr_raster_flush: a later draw's context may lie where an earlier
+ * one's did. */
+typedef struct tiny_queue_state {
     sr_tiny_queue q;
-    sr_framebuffer *fb;
+    sr_framebuffer *fb; /* NULL: no context, the shader not looked up */
     const sr_shade_context *shade;
     sr_shade mode;
     sr_tiny_shader shader; /* for fb, shade and mode; NULL: none, the tiny loop draws */
-} tiny_queue;
+} tiny_queue_state;
 
-static _Thread_local tiny_queue tiny_pending;
+static _Thread_local tiny_queue_state tiny_pending;
 
-void sr_raster_flush(void)
+/* Colors the queued pixels; the context stays. */
+static void tiny_queue_drain(tiny_queue_state *t)
 {
-    tiny_queue *t = &tiny_pending;
     sr_tiny_queue *q = &t->q;
     if (q->pixels == 0)
         return;
@@ -615,6 +631,12 @@ void sr_raster_flush(void)
     }
     t->shader(q, t->shade, t->fb);
     q->pixels = q->triangles = 0;
+}
+
+void sr_raster_flush(void)
+{
+    tiny_queue_drain(&tiny_pending);
+    tiny_pending.fb = NULL;
 }
 
 static sr_tiny_shader tiny_shader(const sr_shade_context *shade, sr_shade mode)
@@ -627,17 +649,15 @@ static sr_tiny_shader tiny_shader(const sr_shade_context *shade, sr_shade mode)
     }
 }
 
-/* The queue for a tiny triangle of fb, shade and mode whose 1/w varies,
+/* The queue for a tiny triangle of fb, shade and mode (SR_INTERP_PERSPECTIVE),
  * flushed to make room for one more, or NULL where the tiny loop draws
  * it (no shader: the scalar loop was asked for, or the layout is not one
  * the kernels know). */
 static sr_tiny_queue *tiny_queue_for(sr_framebuffer *fb, const sr_shade_context *shade, sr_shade mode)
 {
-    tiny_queue *t = &tiny_pending;
-    /* The shader is looked up again whenever the queue is empty: a later
-     * draw's context may lie where an earlier one's did. */
-    if (t->q.pixels == 0 || t->fb != fb || t->shade != shade || t->mode != mode) {
-        sr_raster_flush();
+    tiny_queue_state *t = &tiny_pending;
+    if (t->fb != fb || t->shade != shade || t->mode != mode) {
+        tiny_queue_drain(t);
         t->fb = fb;
         t->shade = shade;
         t->mode = mode;
@@ -646,7 +666,7 @@ static sr_tiny_queue *tiny_queue_for(sr_framebuffer *fb, const sr_shade_context 
     if (!t->shader)
         return NULL;
     if (t->q.pixels > SR_TINY_QUEUE_PIXELS - SR_TINY_SIDE * SR_TINY_SIDE || t->q.triangles == SR_TINY_QUEUE_TRIANGLES)
-        sr_raster_flush();
+        tiny_queue_drain(t);
     return &t->q;
 }
 
@@ -657,16 +677,14 @@ static inline __attribute__((always_inline)) uint64_t tiny_queue_push(const setu
 {
     int p = q->pixels, t = q->triangles;
     for (uint64_t m = s->tiny; m; m &= m - 1) {
-        int n = __builtin_ctzll(m), i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
-        size_t at = (size_t)j * (size_t)fb->width + (size_t)i;
-        float z = sr_depth_at(s, sr_row_z(s, j), (float)(i - s->ref_x));
-        if (!sr_depth_passes(z, fb->depth[at], greater))
+        tiny_pixel px = tiny_pixel_of(s, fb, __builtin_ctzll(m));
+        float z = sr_depth_at(s, px.z_row, px.k);
+        if (!sr_depth_passes(z, fb->depth[px.at], greater))
             continue;
-        fb->depth[at] = z;
-        int64_t px = sr_subpixel_centre(i, s->bits), py = sr_subpixel_centre(j, s->bits);
-        q->l1[p] = (float)sr_edge_at(&s->e[1], px, py) * s->inv_area2;
-        q->l2[p] = (float)sr_edge_at(&s->e[2], px, py) * s->inv_area2;
-        q->at[p] = at;
+        fb->depth[px.at] = z;
+        q->l1[p] = (float)sr_edge_at(&s->e[1], px.px, px.py) * s->inv_area2;
+        q->l2[p] = (float)sr_edge_at(&s->e[2], px.px, px.py) * s->inv_area2;
+        q->at[p] = px.at;
         q->triangle[p] = t;
         p++;
     }
@@ -691,12 +709,16 @@ uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
 {
     if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && mode_reads_varyings(mode)) {
         sr_tiny_queue *q = tiny_queue_for(fb, shade, mode);
-        *simd = q != NULL;
-        if (q)
-            return fb->reversed_z ? tiny_queue_push(s, fb, true, q) : tiny_queue_push(s, fb, false, q);
+        if (q) {
+            uint64_t passed = fb->reversed_z ? tiny_queue_push(s, fb, true, q) : tiny_queue_push(s, fb, false, q);
+            *simd = passed > 0; /* the shader colors them */
+            return passed;
+        }
     }
-    if (tiny_pending.q.pixels > 0) /* what comes later draws over what is queued */
-        sr_raster_flush();
+    /* What comes later draws over what is queued. A mode without
+     * varyings queues nothing, and the queue is empty between draws. */
+    if (mode_reads_varyings(mode))
+        tiny_queue_drain(&tiny_pending);
     sr_span_kernel kernel = s->box.x1 - s->box.x0 >= SIMD_MIN_WIDTH ? span_kernel(shade, mode, fb->reversed_z) : NULL;
     *simd = kernel && edges_fit_double(s);
     if (*simd)

@@ -248,10 +248,11 @@ uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2
                              int subpixel_bits);
 uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
                                  const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
-                                 uint64_t mask, uint32_t triangle_id);
+                                 uint64_t mask, uint32_t triangle_id, bool *simd);
 
 /* The shading of tiny triangles' pixels, deferred (raster.c, "The tiny
- * queue"): a tiny triangle whose 1/w varies tests and writes its depths
+ * queue"): a tiny triangle of SR_INTERP_PERSPECTIVE, in a layout the
+ * kernels were compiled for, tests and writes its depths
  * at once and queues the pixels that passed, with their λ1 and λ2 (as
  * every loop computes them) and its own interpolants; a SIMD shader then
  * colors the queue SPAN_LANES pixels at a time, each lane with its own
@@ -290,9 +291,14 @@ typedef struct sr_tiny_queue {
  * queued triangles' 1/w varying). */
 typedef void (*sr_tiny_shader)(const sr_tiny_queue *q, const sr_shade_context *c, sr_framebuffer *fb);
 
-/* Shades the queued pixels of this thread's tiny triangles, if any: the
- * direct path and every tile call it when they are done, and the
- * rasterizer before anything else it draws. */
+/* Shades the queued pixels of this thread's tiny triangles, if any, and
+ * forgets the context their shader was looked up for: the direct path and
+ * every tile call it when they are done (the rasterizer shades the queue
+ * before anything else it draws). sr_raster_triangle_on,
+ * sr_raster_triangle_in_box, sr_raster_tiny_triangle and
+ * sr_raster_setup_draw may return with colors still queued: until this
+ * thread's flush, the caller must neither change the shading context or
+ * the framebuffer they were given nor clear or read its colors. */
 void sr_raster_flush(void);
 
 /* The kernel for a shading mode, depth test and varying layout (each kernel
