@@ -607,27 +607,26 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
 #define SPAN_KERNELS(mode, a, name) SPAN_KERNEL(mode, a, false, name##_less) SPAN_KERNEL(mode, a, true, name##_greater)
 #define KERNEL_PAIR(name) { name##_less, name##_greater }
 
-SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)
-SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)
-SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, span_lambert_texture)
-SPAN_KERNELS(SR_SHADE_ID, ALBEDO_NONE, span_id)
-SPAN_KERNELS(SR_SHADE_COLOR, ALBEDO_NONE, span_color)
-SPAN_KERNELS(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)
-SPAN_KERNELS(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
-SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, span_depth)
-
 #define TINY_SHADER(mode, a, name)                                                                             \
     static void name##_tiny(const sr_tiny_queue *q, const sr_shade_context *c, sr_framebuffer *fb)            \
     {                                                                                                         \
         tiny_queue_shade(q, c, fb, mode, a);                                                                  \
     }
 
-TINY_SHADER(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)
-TINY_SHADER(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)
-TINY_SHADER(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, span_lambert_texture)
-TINY_SHADER(SR_SHADE_COLOR, ALBEDO_NONE, span_color)
-TINY_SHADER(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)
-TINY_SHADER(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
+/* The modes and layouts with varyings: each has span kernels and a tiny
+ * queue shader. */
+#define WITH_VARYINGS(X)                                                                                      \
+    X(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)                                                       \
+    X(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)                                                     \
+    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, span_lambert_texture)                                                 \
+    X(SR_SHADE_COLOR, ALBEDO_NONE, span_color)                                                                \
+    X(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)                                                              \
+    X(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
+
+WITH_VARYINGS(SPAN_KERNELS)
+WITH_VARYINGS(TINY_SHADER)
+SPAN_KERNELS(SR_SHADE_ID, ALBEDO_NONE, span_id)
+SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, span_depth)
 
 /* The layout each kernel was compiled for, as sr_vertex_layout makes it. */
 static bool layout_is(const sr_varying_layout *l, int count, int color, int uv, int normal)
