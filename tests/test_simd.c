@@ -305,6 +305,43 @@ Test(simd, narrow_triangles_match_the_scalar_loop)
     sr_mesh_free(&soup);
 }
 
+/* A tilted grid of quads about 6 pixels on a side, each two triangles of
+ * about 18 pixels that all pass the depth test: the tiny queue fills by
+ * its pixels (448) long before its triangles (128) and is shaded then, as
+ * the scalar loop shades them. */
+#define GRID_QUADS 26
+Test(simd, tiny_boxes_of_many_pixels_match_the_scalar_loop)
+{
+    sr_mesh grid;
+    sr_error err;
+    uint32_t side = GRID_QUADS + 1;
+    cr_assert(sr_mesh_alloc(&grid, side * side, 6 * GRID_QUADS * GRID_QUADS, true, false, true, &err), "%s",
+              err.message);
+    test_rng rng = { SOUP_SEED };
+    for (uint32_t r = 0; r < side; r++)
+        for (uint32_t c = 0; c < side; c++) {
+            uint32_t i = r * side + c;
+            float x = -2.0f + 4.0f * (float)c / GRID_QUADS, y = -2.0f + 4.0f * (float)r / GRID_QUADS;
+            glm_vec3_copy((vec3){ x, y, 2.5f + 0.4f * x }, grid.positions[i]); /* tilted: 1/w varies */
+            for (int k = 0; k < 3; k++) {
+                grid.normals[i][k] = (float)rng_uniform(&rng, -1.0, 1.0);
+                grid.colors[i][k] = (float)rng_uniform(&rng, 0.0, 1.0);
+            }
+        }
+    uint32_t *idx = grid.indices;
+    for (uint32_t r = 0; r < GRID_QUADS; r++)
+        for (uint32_t c = 0; c < GRID_QUADS; c++) {
+            uint32_t v = r * side + c;
+            const uint32_t quad[6] = { v, v + 1, v + side, v + 1, v + side + 1, v + side };
+            memcpy(idx, quad, sizeof quad);
+            idx += 6;
+        }
+    sr_draw_desc desc = { .mesh = &grid, .shade = SR_SHADE_LAMBERT, .cull = SR_CULL_NONE };
+    look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, false);
+    assert_vector_loops_match_scalar(&desc, false, "tiny boxes of many pixels");
+    sr_mesh_free(&grid);
+}
+
 /* Two draws of tiny triangles into one framebuffer, in the same mode
  * with two varying layouts (gray lambert, then lambert of the vertex
  * colors), against the scalar loop after each draw: a draw's tiny
