@@ -268,7 +268,7 @@ Test(simd, bilinear_seams_and_narrow_textures_match_the_scalar_loop)
  * pixel of a box narrower than its span threshold, the kernels take boxes
  * from SIMD_MIN_WIDTH up (raster.c), so both thresholds are crossed, and
  * the vector loops defer the shading of tiny boxes to the tiny queue in
- * every mode with varyings (raster_setup.h, sr_tiny_queue). */
+ * every mode with varyings (tiny_queue.h, sr_tiny_queue). */
 Test(simd, narrow_triangles_match_the_scalar_loop)
 {
     static const uint32_t texels[6] = { 0xFF0000, 0x00FF00, 0x0000FF, 0xFFFFFF, 0x123456, 0xABCDEF };
@@ -305,10 +305,10 @@ Test(simd, narrow_triangles_match_the_scalar_loop)
     sr_mesh_free(&soup);
 }
 
-/* A tilted grid of quads about 6 pixels on a side, each two triangles of
- * about 18 pixels that all pass the depth test: the tiny queue fills by
- * its pixels (448) long before its triangles (128) and is shaded then, as
- * the scalar loop shades them. */
+/* A tilted grid of quads 4 to 7 pixels on a side (depth 1.7 to 3.3), each
+ * two triangles of about 12 pixels that all pass the depth test: the tiny
+ * queue fills by its pixels (448) long before its triangles (128) and is
+ * shaded then, as the scalar loop shades them. */
 #define GRID_QUADS 26
 Test(simd, tiny_boxes_of_many_pixels_match_the_scalar_loop)
 {

@@ -12,6 +12,7 @@
 #include "draw_internal.h"
 #include "cull.h"
 #include "raster.h"
+#include "tiny_queue.h"
 #include "target/framebuffer.h"
 
 /* Slots go to the threads in chunks, about 8 a thread, so one that waits
@@ -340,7 +341,7 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
             }
         }
         if (from < 0) {
-            sr_raster_flush();
+            sr_tiny_queue_flush();
             return fragments;
         }
         const sr_thread_work *w = &st->ws->threads[from];

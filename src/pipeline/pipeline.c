@@ -11,6 +11,7 @@
 #include "core/clock.h"
 #include "core/dmat4.h"
 #include "raster.h"
+#include "tiny_queue.h"
 
 static int subpixel_bits(const sr_draw_study *d)
 {
@@ -306,7 +307,7 @@ void sr_draw_direct(const sr_draw_state *st, sr_thread_work *w, uint32_t first, 
 {
     sr_fan_sink sink = { .store = store_in_place, .triangle = raster_now, .st = st, .work = w };
     sr_draw_primitives(&sink, first, end);
-    sr_raster_flush();
+    sr_tiny_queue_flush();
 }
 
 static void draw_all_direct(void *ctx, int t)

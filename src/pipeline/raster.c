@@ -1,10 +1,9 @@
-#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "raster_setup.h"
 #include "raster.h"
-
+#include "tiny_queue.h"
 
 typedef sr_edge edge;
 
@@ -197,25 +196,6 @@ static inline bool wide(const setup *s)
     return s->box.x1 - s->box.x0 >= SPAN_MIN_WIDTH;
 }
 
-/* Bit n of a tiny box's mask (sr_tri_setup.tiny): its pixel (i, j), the
- * pixel's index in fb, its z_row and k, and its centre for the edges. The
- * values are the row loop's: z at row j is the same double rounded to
- * float, k the same small integer, and E at a pixel centre the same exact
- * integer. */
-typedef struct tiny_pixel {
-    size_t at;
-    float z_row, k;
-    int64_t px, py;
-} tiny_pixel;
-
-static inline __attribute__((always_inline)) tiny_pixel tiny_pixel_of(const setup *s, const sr_framebuffer *fb, int n)
-{
-    int i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
-    return (tiny_pixel){ .at = (size_t)j * (size_t)fb->width + (size_t)i, .z_row = sr_row_z(s, j),
-                         .k = (float)(i - s->ref_x), .px = sr_subpixel_centre(i, s->bits),
-                         .py = sr_subpixel_centre(j, s->bits) };
-}
-
 /* A tiny box's covered pixels, in the rows' order. */
 static inline __attribute__((always_inline)) uint64_t
 tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
@@ -223,7 +203,7 @@ tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_in
 {
     uint64_t fragments = 0;
     for (uint64_t m = s->tiny; m; m &= m - 1) {
-        tiny_pixel p = tiny_pixel_of(s, fb, __builtin_ctzll(m));
+        sr_tiny_pixel p = sr_tiny_pixel_of(s, fb, __builtin_ctzll(m));
         /* The edges only for the varyings: a mode without leaves them unset
          * when the mask came from binning (setup_in). */
         bool edges = mode_reads_varyings(mode);
@@ -273,57 +253,6 @@ static bool edges_fit_double(const setup *s)
             if (llabs(sr_edge_at(&s->e[k], xs[c & 1], ys[c >> 1])) >= SIMD_EDGE_LIMIT)
                 return false;
     return true;
-}
-
-/* The best loop this build and this CPU have. */
-static sr_simd simd_probe(void)
-{
-    static const sr_varying_layout none = { .count = 0, .color = -1, .uv = -1, .normal = -1 };
-    bool avx512 = sr_span_kernel_avx512(SR_SHADE_ID, false, &none) != NULL;
-    bool avx2 = sr_span_kernel_avx2(SR_SHADE_ID, false, &none) != NULL;
-#if defined(__x86_64__) || defined(__i386__)
-    avx512 = avx512 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
-    avx2 = avx2 && __builtin_cpu_supports("avx2");
-#endif
-    return avx512 ? SR_SIMD_AVX512 : avx2 ? SR_SIMD_AVX2 : SR_SIMD_SSE2;
-}
-
-/* Probed once; threads racing on the first draw all store the same value. */
-static sr_simd simd_best(void)
-{
-    static _Atomic int best = SR_SIMD_AUTO;
-    int b = atomic_load_explicit(&best, memory_order_relaxed);
-    if (b == SR_SIMD_AUTO) {
-        b = simd_probe();
-        atomic_store_explicit(&best, b, memory_order_relaxed);
-    }
-    return (sr_simd)b;
-}
-
-sr_simd sr_raster_simd_resolve(sr_simd want)
-{
-    sr_simd best = simd_best();
-    if (want == SR_SIMD_AUTO || want >= SR_SIMD_COUNT)
-        return best;
-    return want > best ? best : want;
-}
-
-const char *const sr_simd_names[SR_SIMD_COUNT + 1] = { "auto", "scalar", "sse2", "avx2", "avx512", NULL };
-
-const char *sr_simd_name(sr_simd simd)
-{
-    return (unsigned)simd < SR_SIMD_COUNT ? sr_simd_names[simd] : "unknown";
-}
-
-static sr_span_kernel span_kernel(const sr_shade_context *shade, sr_shade mode, bool greater)
-{
-    switch (sr_raster_simd_resolve(shade->simd)) {
-    case SR_SIMD_AVX512: return sr_span_kernel_avx512(mode, greater, &shade->layout);
-    case SR_SIMD_AVX2: return sr_span_kernel_avx2(mode, greater, &shade->layout);
-    case SR_SIMD_SSE2: return sr_span_kernel_sse2(mode, greater, &shade->layout);
-    default:           return NULL;
-    }
 }
 
 /* Narrower than the SIMD kernels take, and at most SR_TINY_SIDE rows
@@ -498,7 +427,7 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
     uint64_t fragments = sr_raster_triangle_on(fb, rect, subpixel_bits, mode, shade,
                                                (const sr_screen_vertex *const[3]){ &tri[0], &tri[1], &tri[2] },
                                                area2, triangle_id, &simd);
-    sr_raster_flush();
+    sr_tiny_queue_flush();
     return fragments;
 }
 
@@ -604,122 +533,22 @@ void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
     s->tiny = 0; /* the mask is the whole box's */
 }
 
-/* The tiny queue (raster_setup.h, sr_tiny_queue): one per thread, since
- * a thread draws its triangles in order; it holds the pixels of one
- * framebuffer, shading context and mode at a time, whose shader it keeps
- * until sr_raster_flush: a later draw's context may lie where an earlier
- * one's did. */
-typedef struct tiny_queue_state {
-    sr_tiny_queue q;
-    sr_framebuffer *fb; /* NULL: no context, the shader not looked up */
-    const sr_shade_context *shade;
-    sr_shade mode;
-    sr_tiny_shader shader; /* for fb, shade and mode; NULL: none, the tiny loop draws */
-} tiny_queue_state;
-
-static _Thread_local tiny_queue_state tiny_pending;
-
-/* Colors the queued pixels; the context stays. */
-static void tiny_queue_drain(tiny_queue_state *t)
-{
-    sr_tiny_queue *q = &t->q;
-    if (q->pixels == 0)
-        return;
-    for (int l = q->pixels; l < q->pixels + SR_SIMD_MAX_LANES; l++) {
-        q->l1[l] = q->l2[l] = 0.0f;
-        q->triangle[l] = q->triangle[q->pixels - 1];
-    }
-    t->shader(q, t->shade, t->fb);
-    q->pixels = q->triangles = 0;
-}
-
-void sr_raster_flush(void)
-{
-    tiny_queue_drain(&tiny_pending);
-    tiny_pending.fb = NULL;
-}
-
-static sr_tiny_shader tiny_shader(const sr_shade_context *shade, sr_shade mode)
-{
-    switch (sr_raster_simd_resolve(shade->simd)) {
-    case SR_SIMD_AVX512: return sr_tiny_shader_avx512(mode, &shade->layout);
-    case SR_SIMD_AVX2: return sr_tiny_shader_avx2(mode, &shade->layout);
-    case SR_SIMD_SSE2: return sr_tiny_shader_sse2(mode, &shade->layout);
-    default:           return NULL;
-    }
-}
-
-/* The queue for a tiny triangle of fb, shade and mode (SR_INTERP_PERSPECTIVE),
- * flushed to make room for one more, or NULL where the tiny loop draws
- * it (no shader: the scalar loop was asked for, or the layout is not one
- * the kernels know). */
-static sr_tiny_queue *tiny_queue_for(sr_framebuffer *fb, const sr_shade_context *shade, sr_shade mode)
-{
-    tiny_queue_state *t = &tiny_pending;
-    if (t->fb != fb || t->shade != shade || t->mode != mode) {
-        tiny_queue_drain(t);
-        t->fb = fb;
-        t->shade = shade;
-        t->mode = mode;
-        t->shader = tiny_shader(shade, mode);
-    }
-    if (!t->shader)
-        return NULL;
-    if (t->q.pixels > SR_TINY_QUEUE_PIXELS - SR_TINY_SIDE * SR_TINY_SIDE || t->q.triangles == SR_TINY_QUEUE_TRIANGLES)
-        tiny_queue_drain(t);
-    return &t->q;
-}
-
-/* The tiny loop's depth tests, its passing pixels queued with their λ1
- * and λ2 (the loop's values) and the triangle's interpolants. */
-static inline __attribute__((always_inline)) uint64_t tiny_queue_push(const setup *s, sr_framebuffer *fb, bool greater,
-                                                                      sr_tiny_queue *q)
-{
-    int p = q->pixels, t = q->triangles;
-    for (uint64_t m = s->tiny; m; m &= m - 1) {
-        tiny_pixel px = tiny_pixel_of(s, fb, __builtin_ctzll(m));
-        float z = sr_depth_at(s, px.z_row, px.k);
-        if (!sr_depth_passes(z, fb->depth[px.at], greater))
-            continue;
-        fb->depth[px.at] = z;
-        q->l1[p] = (float)sr_edge_at(&s->e[1], px.px, px.py) * s->inv_area2;
-        q->l2[p] = (float)sr_edge_at(&s->e[2], px.px, px.py) * s->inv_area2;
-        q->at[p] = px.at;
-        q->triangle[p] = t;
-        p++;
-    }
-    uint64_t passed = (uint64_t)(p - q->pixels);
-    if (passed == 0)
-        return 0;
-    q->param[SR_TINY_IW0][t] = s->iw0;
-    q->param[SR_TINY_DIW1][t] = s->diw1;
-    q->param[SR_TINY_DIW2][t] = s->diw2;
-    for (int k = 0; k < s->varyings; k++) {
-        q->param[SR_TINY_VAR0 + k][t] = s->var0[k];
-        q->param[SR_TINY_DVAR1 + k][t] = s->dvar1[k];
-        q->param[SR_TINY_DVAR2 + k][t] = s->dvar2[k];
-    }
-    q->pixels = p;
-    q->triangles = t + 1;
-    return passed;
-}
-
 uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,
                               uint32_t triangle_id, bool *simd)
 {
     if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && mode_reads_varyings(mode)) {
-        sr_tiny_queue *q = tiny_queue_for(fb, shade, mode);
-        if (q) {
-            uint64_t passed = fb->reversed_z ? tiny_queue_push(s, fb, true, q) : tiny_queue_push(s, fb, false, q);
-            *simd = passed > 0; /* the shader colors them */
+        bool queued;
+        uint64_t passed = sr_tiny_queue_push(s, fb, mode, shade, &queued);
+        if (queued) {
+            *simd = passed > 0; /* a SIMD shader colors them */
             return passed;
         }
     }
     /* What comes later draws over what is queued. A mode without
      * varyings queues nothing, and the queue is empty between draws. */
     if (mode_reads_varyings(mode))
-        tiny_queue_drain(&tiny_pending);
-    sr_span_kernel kernel = s->box.x1 - s->box.x0 >= SIMD_MIN_WIDTH ? span_kernel(shade, mode, fb->reversed_z) : NULL;
+        sr_tiny_queue_drain();
+    sr_span_kernel kernel = s->box.x1 - s->box.x0 >= SIMD_MIN_WIDTH ? sr_span_kernel_for(shade, mode, fb->reversed_z) : NULL;
     *simd = kernel && edges_fit_double(s);
     if (*simd)
         return kernel(s, shade, fb, triangle_id);

@@ -147,6 +147,24 @@ static inline bool sr_depth_passes(float z, float stored, bool greater)
     return greater ? z > stored : z < stored;
 }
 
+/* Bit n of a tiny box's mask (sr_tri_setup.tiny): the pixel's index in fb,
+ * its z_row and k, and its centre for the edges. The values are the row
+ * loop's: z at row j is the same double rounded to float, k the same small
+ * integer, and E at a pixel centre the same exact integer. */
+typedef struct sr_tiny_pixel {
+    size_t at;
+    float z_row, k;
+    int64_t px, py;
+} sr_tiny_pixel;
+
+static SR_ALWAYS_INLINE sr_tiny_pixel sr_tiny_pixel_of(const sr_tri_setup *s, const sr_framebuffer *fb, int n)
+{
+    int i = s->box.x0 + n % SR_TINY_SIDE, j = s->box.y0 + n / SR_TINY_SIDE;
+    return (sr_tiny_pixel){ .at = (size_t)j * (size_t)fb->width + (size_t)i, .z_row = sr_row_z(s, j),
+                            .k = (float)(i - s->ref_x), .px = sr_subpixel_centre(i, s->bits),
+                            .py = sr_subpixel_centre(j, s->bits) };
+}
+
 /* Row j of the scan box: the pixel index and edge values where its
  * candidate pixels start, and how many there are: the whole row, or with
  * `spans` exactly the covered run, found by solving each edge's inequality
@@ -250,57 +268,6 @@ uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int sub
                                  const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                                  uint64_t mask, uint32_t triangle_id, bool *simd);
 
-/* The shading of tiny triangles' pixels, deferred (raster.c, "The tiny
- * queue"): a tiny triangle of SR_INTERP_PERSPECTIVE, in a layout the
- * kernels were compiled for, tests and writes its depths
- * at once and queues the pixels that passed, with their λ1 and λ2 (as
- * every loop computes them) and its own interpolants; a SIMD shader then
- * colors the queue SPAN_LANES pixels at a time, each lane with its own
- * triangle's interpolants, and stores the colors in the queue's order,
- * which is submission order. One triangle's few pixels filled few lanes,
- * and a division of 16 lanes costs the divider as much as about six of
- * one (docs/performance.md, "Tiny triangles' shading"). */
-#define SR_TINY_QUEUE_PIXELS 512
-#define SR_TINY_QUEUE_TRIANGLES 128
-enum {
-    SR_TINY_IW0,
-    SR_TINY_DIW1,
-    SR_TINY_DIW2,
-    SR_TINY_VAR0,
-    SR_TINY_DVAR1 = SR_TINY_VAR0 + SR_MAX_VARYINGS,
-    SR_TINY_DVAR2 = SR_TINY_DVAR1 + SR_MAX_VARYINGS,
-    SR_TINY_PARAMS = SR_TINY_DVAR2 + SR_MAX_VARYINGS,
-};
-
-typedef struct sr_tiny_queue {
-    int pixels, triangles;
-    /* Per queued pixel, and a group of lanes past the last: the padding
-     * repeats the last triangle with λ 0 and is never stored. */
-    float l1[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES], l2[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
-    int32_t triangle[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
-    size_t at[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
-    /* Per queued triangle, each interpolant a row (param[SR_TINY_VAR0 + k]
-     * is var0[k]), a group of lanes long past the last: a group of pixels
-     * spans at most SR_SIMD_MAX_LANES triangles, each having one pixel at
-     * least, so a shader loads the group's first triangle's row on and
-     * picks each lane's by its offset. */
-    float param[SR_TINY_PARAMS][SR_TINY_QUEUE_TRIANGLES + SR_SIMD_MAX_LANES];
-} sr_tiny_queue;
-
-/* Colors the queue's pixels in fb (a shading mode with varyings, the
- * queued triangles' 1/w varying). */
-typedef void (*sr_tiny_shader)(const sr_tiny_queue *q, const sr_shade_context *c, sr_framebuffer *fb);
-
-/* Shades the queued pixels of this thread's tiny triangles, if any, and
- * forgets the context their shader was looked up for: the direct path and
- * every tile call it when they are done (the rasterizer shades the queue
- * before anything else it draws). sr_raster_triangle_on,
- * sr_raster_triangle_in_box, sr_raster_tiny_triangle and
- * sr_raster_setup_draw may return with colors still queued: until this
- * thread's flush, the caller must neither change the shading context or
- * the framebuffer they were given nor clear or read its colors. */
-void sr_raster_flush(void);
-
 /* The kernel for a shading mode, depth test and varying layout (each kernel
  * is compiled for one layout, so its varyings stay in registers), or NULL
  * where the instruction set is not built in (AVX2 and AVX-512 off x86-64)
@@ -308,10 +275,8 @@ void sr_raster_flush(void);
  * those). */
 sr_span_kernel sr_span_kernel_sse2(sr_shade mode, bool greater, const sr_varying_layout *layout);
 
-/* The tiny queue's shader for a mode and layout, on the same terms. */
-sr_tiny_shader sr_tiny_shader_sse2(sr_shade mode, const sr_varying_layout *layout);
-
-/* The getters of a kernel file built without its instruction set. */
+/* The getters of a kernel file built without its instruction set (the
+ * file includes tiny_queue.h, which declares sr_tiny_shader). */
 #define SR_SPAN_KERNEL_ABSENT(getter, tiny_getter)                                                            \
     sr_span_kernel getter(sr_shade mode, bool greater, const sr_varying_layout *layout)                       \
     {                                                                                                         \
@@ -326,7 +291,9 @@ sr_tiny_shader sr_tiny_shader_sse2(sr_shade mode, const sr_varying_layout *layou
 
 sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater, const sr_varying_layout *layout);
 sr_span_kernel sr_span_kernel_avx512(sr_shade mode, bool greater, const sr_varying_layout *layout);
-sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_varying_layout *layout);
-sr_tiny_shader sr_tiny_shader_avx512(sr_shade mode, const sr_varying_layout *layout);
+
+/* The kernel for the loop shade->simd resolves to on this CPU, or NULL
+ * (the scalar loop; or a layout no kernel was compiled for). */
+sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater);
 
 #endif

@@ -1,7 +1,7 @@
 /* The 16-lane span kernels, built with AVX-512 (F, BW, DQ, VL; the Makefile
  * adds the flags for this file on x86-64) and chosen at run time only on a
  * CPU that has them. No FMA, as in span_avx2.c. */
-#include "raster_setup.h"
+#include "tiny_queue.h"
 
 #if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512BW__) && defined(__AVX512VL__)
 #include <immintrin.h>

@@ -19,7 +19,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "raster_setup.h"
+#include "tiny_queue.h"
 
 _Static_assert(SPAN_LANES <= SR_SIMD_MAX_LANES, "raster.c checks edge values exact only SR_SIMD_MAX_LANES past a box");
 
@@ -565,7 +565,7 @@ static inline __attribute__((always_inline)) vf tiny_param(const sr_tiny_queue *
     return permute_lanes(row, offset);
 }
 
-/* The tiny queue's pixels (raster_setup.h, sr_tiny_queue), SPAN_LANES at a
+/* The tiny queue's pixels (tiny_queue.h, sr_tiny_queue), SPAN_LANES at a
  * time: λ1 and λ2 as queued, 1/w and the varyings from each lane's
  * triangle in varyings_lanes's operations, then the mode's shading. */
 static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny_queue *q, const sr_shade_context *c,

@@ -1,0 +1,68 @@
+/* Which per-pixel loop runs: the CPU probed once, a request resolved to
+ * what it has, and the SIMD kernel or tiny queue shader for a draw's mode
+ * and layout in that loop. */
+#include <stdatomic.h>
+
+#include "raster.h"
+#include "tiny_queue.h"
+
+/* The best loop this build and this CPU have. */
+static sr_simd simd_probe(void)
+{
+    static const sr_varying_layout none = { .count = 0, .color = -1, .uv = -1, .normal = -1 };
+    bool avx512 = sr_span_kernel_avx512(SR_SHADE_ID, false, &none) != NULL;
+    bool avx2 = sr_span_kernel_avx2(SR_SHADE_ID, false, &none) != NULL;
+#if defined(__x86_64__) || defined(__i386__)
+    avx512 = avx512 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+    avx2 = avx2 && __builtin_cpu_supports("avx2");
+#endif
+    return avx512 ? SR_SIMD_AVX512 : avx2 ? SR_SIMD_AVX2 : SR_SIMD_SSE2;
+}
+
+/* Probed once; threads racing on the first draw all store the same value. */
+static sr_simd simd_best(void)
+{
+    static _Atomic int best = SR_SIMD_AUTO;
+    int b = atomic_load_explicit(&best, memory_order_relaxed);
+    if (b == SR_SIMD_AUTO) {
+        b = simd_probe();
+        atomic_store_explicit(&best, b, memory_order_relaxed);
+    }
+    return (sr_simd)b;
+}
+
+sr_simd sr_raster_simd_resolve(sr_simd want)
+{
+    sr_simd best = simd_best();
+    if (want == SR_SIMD_AUTO || want >= SR_SIMD_COUNT)
+        return best;
+    return want > best ? best : want;
+}
+
+const char *const sr_simd_names[SR_SIMD_COUNT + 1] = { "auto", "scalar", "sse2", "avx2", "avx512", NULL };
+
+const char *sr_simd_name(sr_simd simd)
+{
+    return (unsigned)simd < SR_SIMD_COUNT ? sr_simd_names[simd] : "unknown";
+}
+
+sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater)
+{
+    switch (sr_raster_simd_resolve(shade->simd)) {
+    case SR_SIMD_AVX512: return sr_span_kernel_avx512(mode, greater, &shade->layout);
+    case SR_SIMD_AVX2: return sr_span_kernel_avx2(mode, greater, &shade->layout);
+    case SR_SIMD_SSE2: return sr_span_kernel_sse2(mode, greater, &shade->layout);
+    default:           return NULL;
+    }
+}
+
+sr_tiny_shader sr_tiny_shader_for(const sr_shade_context *shade, sr_shade mode)
+{
+    switch (sr_raster_simd_resolve(shade->simd)) {
+    case SR_SIMD_AVX512: return sr_tiny_shader_avx512(mode, &shade->layout);
+    case SR_SIMD_AVX2: return sr_tiny_shader_avx2(mode, &shade->layout);
+    case SR_SIMD_SSE2: return sr_tiny_shader_sse2(mode, &shade->layout);
+    default:           return NULL;
+    }
+}

@@ -1,0 +1,105 @@
+#include "tiny_queue.h"
+
+/* The tiny queue (tiny_queue.h): one per thread, since
+ * a thread draws its triangles in order; it holds the pixels of one
+ * framebuffer, shading context and mode at a time, whose shader it keeps
+ * until sr_tiny_queue_flush: a later draw's context may lie where an earlier
+ * one's did. */
+typedef struct tiny_queue_state {
+    sr_tiny_queue q;
+    sr_framebuffer *fb; /* NULL: no context, the shader not looked up */
+    const sr_shade_context *shade;
+    sr_shade mode;
+    sr_tiny_shader shader; /* for fb, shade and mode; NULL: none, the tiny loop draws */
+} tiny_queue_state;
+
+static _Thread_local tiny_queue_state tiny_pending;
+
+/* Colors the queued pixels; the context stays. */
+static void tiny_queue_drain(tiny_queue_state *t)
+{
+    sr_tiny_queue *q = &t->q;
+    if (q->pixels == 0)
+        return;
+    for (int l = q->pixels; l < q->pixels + SR_SIMD_MAX_LANES; l++) {
+        q->l1[l] = q->l2[l] = 0.0f;
+        q->triangle[l] = q->triangle[q->pixels - 1];
+    }
+    t->shader(q, t->shade, t->fb);
+    q->pixels = q->triangles = 0;
+}
+
+void sr_tiny_queue_drain(void)
+{
+    tiny_queue_drain(&tiny_pending);
+}
+
+void sr_tiny_queue_flush(void)
+{
+    tiny_queue_drain(&tiny_pending);
+    tiny_pending.fb = NULL;
+}
+
+/* The queue for a tiny triangle of fb, shade and mode (SR_INTERP_PERSPECTIVE),
+ * flushed to make room for one more, or NULL where the tiny loop draws
+ * it (no shader: the scalar loop was asked for, or the layout is not one
+ * the kernels know). */
+static sr_tiny_queue *tiny_queue_for(sr_framebuffer *fb, const sr_shade_context *shade, sr_shade mode)
+{
+    tiny_queue_state *t = &tiny_pending;
+    if (t->fb != fb || t->shade != shade || t->mode != mode) {
+        tiny_queue_drain(t);
+        t->fb = fb;
+        t->shade = shade;
+        t->mode = mode;
+        t->shader = sr_tiny_shader_for(shade, mode);
+    }
+    if (!t->shader)
+        return NULL;
+    if (t->q.pixels > SR_TINY_QUEUE_PIXELS - SR_TINY_SIDE * SR_TINY_SIDE || t->q.triangles == SR_TINY_QUEUE_TRIANGLES)
+        tiny_queue_drain(t);
+    return &t->q;
+}
+
+/* The tiny loop's depth tests, its passing pixels queued with their λ1
+ * and λ2 (the loop's values) and the triangle's interpolants. */
+static SR_ALWAYS_INLINE uint64_t push(const sr_tri_setup *s, sr_framebuffer *fb, bool greater, sr_tiny_queue *q)
+{
+    int p = q->pixels, t = q->triangles;
+    for (uint64_t m = s->tiny; m; m &= m - 1) {
+        sr_tiny_pixel px = sr_tiny_pixel_of(s, fb, __builtin_ctzll(m));
+        float z = sr_depth_at(s, px.z_row, px.k);
+        if (!sr_depth_passes(z, fb->depth[px.at], greater))
+            continue;
+        fb->depth[px.at] = z;
+        q->l1[p] = (float)sr_edge_at(&s->e[1], px.px, px.py) * s->inv_area2;
+        q->l2[p] = (float)sr_edge_at(&s->e[2], px.px, px.py) * s->inv_area2;
+        q->at[p] = px.at;
+        q->triangle[p] = t;
+        p++;
+    }
+    uint64_t passed = (uint64_t)(p - q->pixels);
+    if (passed == 0)
+        return 0;
+    q->param[SR_TINY_IW0][t] = s->iw0;
+    q->param[SR_TINY_DIW1][t] = s->diw1;
+    q->param[SR_TINY_DIW2][t] = s->diw2;
+    for (int k = 0; k < s->varyings; k++) {
+        q->param[SR_TINY_VAR0 + k][t] = s->var0[k];
+        q->param[SR_TINY_DVAR1 + k][t] = s->dvar1[k];
+        q->param[SR_TINY_DVAR2 + k][t] = s->dvar2[k];
+    }
+    q->pixels = p;
+    q->triangles = t + 1;
+    return passed;
+}
+
+uint64_t sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                            bool *queued)
+{
+    sr_tiny_queue *q = tiny_queue_for(fb, shade, mode);
+    *queued = q != NULL;
+    if (!q)
+        return 0;
+    return fb->reversed_z ? push(s, fb, true, q) : push(s, fb, false, q);
+}

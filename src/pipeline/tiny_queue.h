@@ -1,0 +1,80 @@
+/* tiny_queue.h — the shading of tiny triangles' pixels, deferred. Not
+ * public API. A tiny triangle of SR_INTERP_PERSPECTIVE, in a layout the
+ * kernels were compiled for, tests and writes its depths at once and
+ * queues the pixels that passed, with their λ1 and λ2 (as
+ * every loop computes them) and its own interpolants; a SIMD shader then
+ * colors the queue SPAN_LANES pixels at a time, each lane with its own
+ * triangle's interpolants, and stores the colors in the queue's order,
+ * which is submission order. One triangle's few pixels filled few lanes,
+ * and a division of 16 lanes costs the divider as much as about six of
+ * one (docs/performance.md, "Tiny triangles' shading"). */
+#ifndef SOFTRAST_PIPELINE_TINY_QUEUE_H
+#define SOFTRAST_PIPELINE_TINY_QUEUE_H
+
+#include "raster_setup.h"
+
+#define SR_TINY_QUEUE_PIXELS 512
+#define SR_TINY_QUEUE_TRIANGLES 128
+enum {
+    SR_TINY_IW0,
+    SR_TINY_DIW1,
+    SR_TINY_DIW2,
+    SR_TINY_VAR0,
+    SR_TINY_DVAR1 = SR_TINY_VAR0 + SR_MAX_VARYINGS,
+    SR_TINY_DVAR2 = SR_TINY_DVAR1 + SR_MAX_VARYINGS,
+    SR_TINY_PARAMS = SR_TINY_DVAR2 + SR_MAX_VARYINGS,
+};
+
+typedef struct sr_tiny_queue {
+    int pixels, triangles;
+    /* Per queued pixel, and a group of lanes past the last: the padding
+     * repeats the last triangle with λ 0 and is never stored. */
+    float l1[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES], l2[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
+    int32_t triangle[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
+    size_t at[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
+    /* Per queued triangle, each interpolant a row (param[SR_TINY_VAR0 + k]
+     * is var0[k]), a group of lanes long past the last: a group of pixels
+     * spans at most SR_SIMD_MAX_LANES triangles, each having one pixel at
+     * least, so a shader loads the group's first triangle's row on and
+     * picks each lane's by its offset. */
+    float param[SR_TINY_PARAMS][SR_TINY_QUEUE_TRIANGLES + SR_SIMD_MAX_LANES];
+} sr_tiny_queue;
+
+/* Colors the queue's pixels in fb (a shading mode with varyings, the
+ * queued triangles' 1/w varying). */
+typedef void (*sr_tiny_shader)(const sr_tiny_queue *q, const sr_shade_context *c, sr_framebuffer *fb);
+
+/* The tiny queue's shader for a mode and layout, as the span kernels'
+ * getters (raster_setup.h) give theirs; and the one for the loop
+ * shade->simd resolves to on this CPU, or NULL (the scalar loop; a mode
+ * without varyings; a layout no shader was compiled for). */
+sr_tiny_shader sr_tiny_shader_sse2(sr_shade mode, const sr_varying_layout *layout);
+sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_varying_layout *layout);
+sr_tiny_shader sr_tiny_shader_avx512(sr_shade mode, const sr_varying_layout *layout);
+sr_tiny_shader sr_tiny_shader_for(const sr_shade_context *shade, sr_shade mode);
+
+/* A tiny triangle of SR_INTERP_PERSPECTIVE in a mode with varyings (the
+ * rasterizer's call): its depths tested and written, the pixels that
+ * passed queued on this thread's queue; returns how many passed.
+ * *queued is false, and nothing is done, where no shader takes fb, shade
+ * and mode: the tiny loop draws it then. */
+uint64_t sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                            bool *queued);
+
+/* Shades this thread's queued pixels, if any, and keeps the context their
+ * shader was looked up for: the rasterizer calls it before anything else
+ * it draws, since that draws over what is queued. */
+void sr_tiny_queue_drain(void);
+
+/* Shades the queued pixels of this thread's tiny triangles, if any, and
+ * forgets the context their shader was looked up for: the direct path and
+ * every tile call it when they are done (the rasterizer shades the queue
+ * before anything else it draws). sr_raster_triangle_on,
+ * sr_raster_triangle_in_box, sr_raster_tiny_triangle and
+ * sr_raster_setup_draw may return with colors still queued: until this
+ * thread's flush, the caller must neither change the shading context or
+ * the framebuffer they were given nor clear or read its colors. */
+void sr_tiny_queue_flush(void);
+
+
+#endif
