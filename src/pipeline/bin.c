@@ -89,38 +89,26 @@ static uint64_t entry_cost(sr_raster_rect share, sr_box_cover c)
     return SETUP_PIXELS + (c == SR_COVER_ALL ? area : area / 2);
 }
 
-/* Appends an entry to a tile's bin with its estimated cost. */
-static void bin_push(sr_thread_work *w, sr_bin *bin, uint32_t entry, uint64_t cost)
+/* A new entry at the end of a tile's bin, its estimated cost counted;
+ * NULL when out of memory. */
+static sr_bin_entry *bin_push(sr_thread_work *w, sr_bin *bin, uint64_t cost)
 {
-    uint32_t *slot = sr_array_push(&bin->entries, sizeof *slot);
-    if (!slot) {
-        w->out_of_memory = true;
-        return;
-    }
-    *slot = entry;
-    bin->cost += cost;
-}
-
-/* A new record, with its id set; NULL when out of memory or past what a
- * bin entry can name. */
-static sr_record *record_new(sr_thread_work *w, uint32_t id)
-{
-    sr_record *rec = w->records.count < SR_BIN_RECORD ? sr_array_push(&w->records, sizeof *rec) : NULL;
-    if (!rec) {
+    sr_bin_entry *e = sr_array_push(&bin->entries, sizeof *e);
+    if (!e) {
         w->out_of_memory = true;
         return NULL;
     }
-    rec->id = id;
-    return rec;
+    bin->cost += cost;
+    return e;
 }
 
 /* A triangle whose scan box spans several tiles is set up here, once (as
  * llvmpipe's set-up does before binning), and goes only to the tiles whose
  * share of the box its edges reach, each entry saying whether the share is
- * covered whole. One within a tile is set up by the tile, from the record;
+ * covered whole. One within a tile is set up by the tile, from its entry;
  * if its box is tiny, its pixel centres are tested here, while its vertices
- * are in L1: one that covers none gets no record (a fifth of the dense
- * torus's), and the others' records carry the mask, so the tile does not
+ * are in L1: one that covers none gets no entry (a fifth of the dense
+ * torus's), and the others' entries carry the mask, so the tile does not
  * test them again. */
 static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
                          int64_t area2, uint32_t id, bool clipped)
@@ -128,23 +116,23 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
     (void)clipped;
     sr_thread_work *w = sink->work;
     const sr_draw_state *st = sink->st;
+    if (id & SR_BIN_STORED) { /* a strip of 2^31 slots: past what an entry can name */
+        w->out_of_memory = true;
+        return;
+    }
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
     sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
-        return; /* covers no pixel centre: no record */
+        return; /* covers no pixel centre: no entry */
     int first = box.y0 / st->tile_rows, last = (box.y1 - 1) / st->tile_rows;
     if (first == last) {
         bool tiny_box = sr_raster_box_is_tiny(box);
         uint64_t tiny = tiny_box ? sr_raster_tiny_mask(tri, area2, box, st->vp.subpixel_bits) : 0;
         if (tiny_box && !tiny)
-            return; /* covers no pixel centre: no record */
-        sr_record *rec = record_new(w, id);
-        if (!rec)
-            return;
-        memcpy(rec->ref, ref, sizeof rec->ref);
-        rec->tiny = tiny;
-        bin_push(w, &w->bins[first], (uint32_t)(w->records.count - 1),
-                 entry_cost(box, SR_COVER_PARTIAL));
+            return; /* covers no pixel centre: no entry */
+        sr_bin_entry *e = bin_push(w, &w->bins[first], entry_cost(box, SR_COVER_PARTIAL));
+        if (e)
+            *e = (sr_bin_entry){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .tiny = tiny };
         return;
     }
     sr_tri_setup *setup = sr_array_push(&w->setups, sizeof *setup);
@@ -153,19 +141,16 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
         return;
     }
     if (!sr_raster_setup(tri, area2, box, st->vp.subpixel_bits, st->mode, &st->shade, setup)) {
-        w->setups.count--; /* no pixel of the box is inside: no record */
+        w->setups.count--; /* no pixel of the box is inside: no entry */
         return;
     }
-    sr_record *rec = record_new(w, id);
-    if (!rec)
-        return;
-    rec->setup = (uint32_t)(w->setups.count - 1);
-    uint32_t index = (uint32_t)(w->records.count - 1) | SR_BIN_SETUP;
+    uint32_t index = (uint32_t)(w->setups.count - 1);
     for (int tile = first; tile <= last; tile++) {
         sr_raster_rect share = box_in(box, tile_rect(st, tile));
         sr_box_cover c = sr_raster_classify(setup, share);
-        if (c != SR_COVER_NONE)
-            bin_push(w, &w->bins[tile], index | (c == SR_COVER_ALL ? SR_BIN_COVERED : 0), entry_cost(share, c));
+        sr_bin_entry *e = c != SR_COVER_NONE ? bin_push(w, &w->bins[tile], entry_cost(share, c)) : NULL;
+        if (e)
+            *e = (sr_bin_entry){ .stored = { index, c == SR_COVER_ALL }, .id = id | SR_BIN_STORED };
     }
 }
 
@@ -187,7 +172,6 @@ static bool work_reset(sr_thread_work *w, size_t tiles)
     w->clip_verts.count = 0;
     w->chunk_marks.count = 0;
     w->chunks_binned = 0;
-    w->records.count = 0;
     w->setups.count = 0;
     w->out_of_memory = false;
     return true;
@@ -242,25 +226,24 @@ static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_threa
     return &((const sr_screen_vertex *)binner->clip_verts.data)[ref - st->vertex_count];
 }
 
-static uint32_t entry_at(const sr_thread_work *w, int tile, size_t i)
+static const sr_bin_entry *entry_at(const sr_thread_work *w, int tile, size_t i)
 {
-    return ((const uint32_t *)w->bins[tile].entries.data)[i];
+    return &((const sr_bin_entry *)w->bins[tile].entries.data)[i];
 }
 
-static const sr_record *record_of(const sr_thread_work *w, uint32_t entry)
+static uint32_t id_of(const sr_bin_entry *e)
 {
-    return &((const sr_record *)w->records.data)[entry & SR_BIN_RECORD];
+    return e->id & ~SR_BIN_STORED;
 }
 
 /* One bin entry's triangle over the tile's share of its scan box. */
-static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, uint32_t entry, sr_raster_rect tile,
-                             bool *simd)
+static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, const sr_bin_entry *rec,
+                             sr_raster_rect tile, bool *simd)
 {
-    const sr_record *rec = record_of(w, entry);
-    if (entry & SR_BIN_SETUP) {
-        sr_tri_setup s = ((const sr_tri_setup *)w->setups.data)[rec->setup];
-        sr_raster_setup_share(&s, box_in(s.box, tile), entry & SR_BIN_COVERED);
-        return sr_raster_setup_draw(st->fb, &s, st->mode, &st->shade, rec->id, simd);
+    if (rec->id & SR_BIN_STORED) {
+        sr_tri_setup s = ((const sr_tri_setup *)w->setups.data)[rec->stored.setup];
+        sr_raster_setup_share(&s, box_in(s.box, tile), rec->stored.covered);
+        return sr_raster_setup_draw(st->fb, &s, st->mode, &st->shade, id_of(rec), simd);
     }
     const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
                                              vertex_of(st, w, rec->ref[2]) };
@@ -275,13 +258,11 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, u
 }
 
 /* A tile prefetches the screen vertices (or the stored set-up) of the
- * record this many entries ahead, and that record twice as far ahead: its
- * triangles are set up from records, vertices and set-ups the binning
- * wrote and read long before (whole-process CPU at 2 threads, the
- * vertices: depth 0.976, dense 0.986, 8 pairs; the records too: 0.985,
- * 0.991, 10 pairs; the set-ups too, whose copy had 40 % of the tile
- * loop's samples: median frame depth 26.4 -> 25.5 ms, dense 33.6 -> 32.9,
- * 3 alternating runs). */
+ * entry this many entries ahead: its triangles are set up from vertices
+ * and set-ups the binning wrote and read long before (whole-process CPU
+ * at 2 threads, the vertices: depth 0.976, dense 0.986, 8 pairs; the
+ * set-ups too, whose copy had 40 % of the tile loop's samples: median
+ * frame depth 26.4 -> 25.5 ms, dense 33.6 -> 32.9, 3 alternating runs). */
 #define PREFETCH_ENTRIES 8
 
 /* A thread's list for a tile, walked in submission order: taken from the
@@ -323,15 +304,15 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
                                    : (bin_walk){ .end = u->bins[tile].entries.count };
     }
     for (;;) {
-        /* The thread whose next record comes first, drawn up to the first
-         * record of the others'. */
+        /* The thread whose next entry comes first, drawn up to the first
+         * entry of the others'. */
         int from = -1;
         uint32_t first_id = 0, others_id = UINT32_MAX;
         for (int t = 0; t < st->threads; t++) {
             const sr_thread_work *u = &st->ws->threads[t];
             if (!walk_segment(st, u, tile, &walk[t]))
                 continue;
-            uint32_t id = record_of(u, entry_at(u, tile, walk[t].at))->id;
+            uint32_t id = id_of(entry_at(u, tile, walk[t].at));
             if (from < 0 || id < first_id) {
                 others_id = from < 0 ? others_id : first_id;
                 from = t;
@@ -348,23 +329,21 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
         bin_walk *b = &walk[from];
         for (; walk_segment(st, w, tile, b); b->at++) {
             /* In the loop's body: gcc drops a call of a function of prefetches. */
-            if (b->end - b->at > 2 * PREFETCH_ENTRIES)
-                __builtin_prefetch(record_of(w, entry_at(w, tile, b->at + 2 * PREFETCH_ENTRIES)));
             if (b->end - b->at > PREFETCH_ENTRIES) {
-                uint32_t ahead_entry = entry_at(w, tile, b->at + PREFETCH_ENTRIES);
-                const sr_record *ahead = record_of(w, ahead_entry);
-                if (!(ahead_entry & SR_BIN_SETUP)) {
+                const sr_bin_entry *ahead = entry_at(w, tile, b->at + PREFETCH_ENTRIES);
+                if (!(ahead->id & SR_BIN_STORED)) {
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[0]));
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[1]));
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[2]));
                 } else {
-                    const char *setup = (const char *)&((const sr_tri_setup *)w->setups.data)[ahead->setup];
+                    const char *setup =
+                        (const char *)&((const sr_tri_setup *)w->setups.data)[ahead->stored.setup];
                     for (size_t line = 0; line < sizeof(sr_tri_setup); line += 64)
                         __builtin_prefetch(setup + line);
                 }
             }
-            uint32_t entry = entry_at(w, tile, b->at);
-            if (record_of(w, entry)->id > others_id)
+            const sr_bin_entry *entry = entry_at(w, tile, b->at);
+            if (id_of(entry) > others_id)
                 break;
             bool simd = false;
             fragments += raster_entry(st, w, entry, rect, &simd);

@@ -24,40 +24,41 @@
  * functions cannot overflow whatever the precision asked for. */
 #define SR_FIXED_POINT_BITS 30
 
-/* A fan triangle in a bin: its id and either, for one within a tile, its
- * three vertices as references (below the mesh's vertex count: the shared
- * screen vertex; from there on: the binning thread's clip vertices), from
- * which the tile finds its scan box and area and sets it up, and a tiny
- * box's covered pixels (0 for a box that is not tiny), or, for one whose
- * box spans tiles (its bin entries flagged SR_BIN_SETUP), its set-up in
- * the binning thread's `setups`, which holds its scan box. 24 bytes: what
- * the tile can find again from the vertices it reads anyway is not
+/* A fan triangle in a tile's bin: its id and either, for one within the
+ * tile, its three vertices as references (below the mesh's vertex count:
+ * the shared screen vertex; from there on: the binning thread's clip
+ * vertices), from which the tile finds its scan box and area and sets it
+ * up, and a tiny box's covered pixels (0 for a box that is not tiny), or,
+ * for one whose box spans tiles (SR_BIN_STORED in its id), its set-up in
+ * the binning thread's `setups`, which holds its scan box, and whether the
+ * tile's share of that box is covered whole (sr_raster_classify), so its
+ * rows need no solving. 24 bytes, written into the bin itself: the tile
+ * reads its bin from start to end, with no record elsewhere to wait for,
+ * and what it can find again from the vertices it reads anyway is not
  * written and read back through memory. */
-typedef struct sr_record {
+typedef struct sr_bin_entry {
     union {
         uint32_t ref[3];
-        uint32_t setup;
+        struct {
+            uint32_t setup;
+            uint32_t covered;
+        } stored;
     };
-    uint32_t id;
+    uint32_t id;   /* the slot's, SR_BIN_STORED or'd in; a slot from 2^31 on is past what an entry can name */
     uint64_t tiny; /* sr_raster_tiny_mask, never 0 for a tiny box */
-} sr_record;
+} sr_bin_entry;
 
-/* A bin entry's flags: the record's triangle was set up while binning
- * (SR_BIN_SETUP), and the tile's share of its box is covered whole
- * (sr_raster_classify), so its rows need no solving. */
-#define SR_BIN_COVERED 0x80000000u
-#define SR_BIN_SETUP 0x40000000u
-#define SR_BIN_RECORD 0x3FFFFFFFu /* the record index's bits */
+#define SR_BIN_STORED 0x80000000u
 
 /* One thread's list of a tile: bin entries, and the estimated cost of
  * drawing them (bin.c, tile_cost), which orders the tiles. */
 typedef struct sr_bin {
-    sr_array entries; /* uint32_t */
+    sr_array entries; /* sr_bin_entry */
     uint64_t cost;
 } sr_bin;
 
 /* One thread's share of a draw: its counts, and in the binned path the clip
- * vertices, records and per-tile lists of record indices it made. Aligned
+ * vertices, set-ups and per-tile bins it made. Aligned
  * apart so one thread's counters never share a cache line with another's. */
 #define SR_CACHE_LINE 128
 typedef struct sr_thread_work {
@@ -65,9 +66,8 @@ typedef struct sr_thread_work {
     sr_clip_counts cuts;
     uint64_t simd_draws; /* rasterizer calls a SIMD kernel made */
     sr_array clip_verts; /* sr_screen_vertex */
-    sr_array records;    /* sr_record */
-    sr_array setups;     /* sr_tri_setup, of the records that span tiles */
-    sr_bin *bins;        /* one per tile: record indices, SR_BIN_COVERED or'd in */
+    sr_array setups;     /* sr_tri_setup, of the triangles that span tiles */
+    sr_bin *bins;        /* one per tile */
     size_t bin_count;
     /* uint32_t: for each chunk of slots it took from the back (st->
      * direct_first), in that order, every tile's entry count before it. */

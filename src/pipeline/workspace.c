@@ -24,7 +24,6 @@ uint64_t sr_workspace_simd_draws(const sr_workspace *ws)
 static void thread_work_free(sr_thread_work *w)
 {
     sr_array_free(&w->clip_verts);
-    sr_array_free(&w->records);
     sr_array_free(&w->setups);
     sr_array_free(&w->chunk_marks);
     for (size_t i = 0; i < w->bin_count; i++)
