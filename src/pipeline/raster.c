@@ -548,7 +548,8 @@ uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
      * varyings queues nothing, and the queue is empty between draws. */
     if (mode_reads_varyings(mode))
         sr_tiny_queue_drain();
-    sr_span_kernel kernel = s->box.x1 - s->box.x0 >= SIMD_MIN_WIDTH ? sr_span_kernel_for(shade, mode, fb->reversed_z) : NULL;
+    int width = s->box.x1 - s->box.x0;
+    sr_span_kernel kernel = width >= SIMD_MIN_WIDTH ? sr_span_kernel_for(shade, mode, fb->reversed_z, width) : NULL;
     *simd = kernel && edges_fit_double(s);
     if (*simd)
         return kernel(s, shade, fb, triangle_id);

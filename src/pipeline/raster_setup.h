@@ -275,25 +275,21 @@ uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int sub
  * those). */
 sr_span_kernel sr_span_kernel_sse2(sr_shade mode, bool greater, const sr_varying_layout *layout);
 
-/* The getters of a kernel file built without its instruction set (the
- * file includes tiny_queue.h, which declares sr_tiny_shader). */
-#define SR_SPAN_KERNEL_ABSENT(getter, tiny_getter)                                                            \
+/* The getter of a kernel file built without its instruction set. */
+#define SR_SPAN_KERNEL_ABSENT(getter)                                                                         \
     sr_span_kernel getter(sr_shade mode, bool greater, const sr_varying_layout *layout)                       \
     {                                                                                                         \
         (void)mode, (void)greater, (void)layout;                                                              \
-        return NULL;                                                                                          \
-    }                                                                                                         \
-    sr_tiny_shader tiny_getter(sr_shade mode, const sr_varying_layout *layout)                                \
-    {                                                                                                         \
-        (void)mode, (void)layout;                                                                             \
         return NULL;                                                                                          \
     }
 
 sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater, const sr_varying_layout *layout);
 sr_span_kernel sr_span_kernel_avx512(sr_shade mode, bool greater, const sr_varying_layout *layout);
 
-/* The kernel for the loop shade->simd resolves to on this CPU, or NULL
- * (the scalar loop; or a layout no kernel was compiled for). */
-sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater);
+/* The kernel for the loop shade->simd resolves to on this CPU and a box
+ * `width` pixels wide, or NULL (the scalar loop; or a layout no kernel was
+ * compiled for): the AVX-512 loop draws boxes under SR_AVX512_MIN_WIDTH
+ * with the AVX2 kernels (simd_select.c). */
+sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater, int width);
 
 #endif

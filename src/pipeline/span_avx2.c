@@ -17,5 +17,6 @@
 #define SPAN_TINY_GETTER sr_tiny_shader_avx2
 #include "span_kernel.h"
 #else
-SR_SPAN_KERNEL_ABSENT(sr_span_kernel_avx2, sr_tiny_shader_avx2)
+SR_SPAN_KERNEL_ABSENT(sr_span_kernel_avx2)
+SR_TINY_SHADER_ABSENT(sr_tiny_shader_avx2)
 #endif

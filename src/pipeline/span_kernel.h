@@ -2,10 +2,12 @@
  * time, in GCC/Clang vector extensions. Included once per instruction set:
  * span_sse2.c (4 lanes), span_avx2.c (8, built with -mavx2) and
  * span_avx512.c (16, built with -mavx512f/dq/bw/vl). Each defines
- * SPAN_LANES, SPAN_LANE_INDICES (0, 1, … SPAN_LANES − 1),
- * SPAN_KERNEL_GETTER and SPAN_TINY_GETTER first, and may define SPAN_SQRT,
- * SPAN_MOVEMASK, SPAN_GATHER, SPAN_FLOOR and SPAN_PERMUTE with the
- * instruction set's intrinsics (else generic lane loops stand in).
+ * SPAN_LANES, SPAN_LANE_INDICES (0, 1, … SPAN_LANES − 1) and
+ * SPAN_KERNEL_GETTER first, SPAN_TINY_GETTER where it builds the tiny
+ * queue's shaders (not span_avx512.c: simd_select.c gives the queue the
+ * AVX2 ones), and may define SPAN_SQRT, SPAN_MOVEMASK, SPAN_GATHER,
+ * SPAN_FLOOR and SPAN_PERMUTE with the instruction set's intrinsics (else
+ * generic lane loops stand in).
  *
  * Every lane does exactly the float operations of the scalar loop and of
  * shade.h, in the same order and without fused multiply-adds (the Makefile
@@ -543,6 +545,7 @@ span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *
     return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, id);
 }
 
+#ifdef SPAN_TINY_GETTER
 /* v's lanes picked by index (each in [0, SPAN_LANES)). */
 static inline __attribute__((always_inline)) vf permute_lanes(vf v, vi index)
 {
@@ -597,6 +600,7 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
             fb->color[q->at[g + l]] = (uint32_t)colors[l];
     }
 }
+#endif
 
 #define SPAN_KERNEL(mode, a, greater, name)                                                                   \
     static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id)  \
@@ -624,7 +628,9 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
     X(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
 
 WITH_VARYINGS(SPAN_KERNELS)
+#ifdef SPAN_TINY_GETTER
 WITH_VARYINGS(TINY_SHADER)
+#endif
 SPAN_KERNELS(SR_SHADE_ID, ALBEDO_NONE, span_id)
 SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, span_depth)
 
@@ -671,6 +677,7 @@ sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater, const sr_varying_
     return pair ? pair[greater] : NULL;
 }
 
+#ifdef SPAN_TINY_GETTER
 sr_tiny_shader SPAN_TINY_GETTER(sr_shade mode, const sr_varying_layout *layout)
 {
     static const sr_tiny_shader lambert[] = { [ALBEDO_GRAY] = span_lambert_gray_tiny,
@@ -686,3 +693,4 @@ sr_tiny_shader SPAN_TINY_GETTER(sr_shade mode, const sr_varying_layout *layout)
     default:               return NULL; /* no varyings: nothing to defer */
     }
 }
+#endif
