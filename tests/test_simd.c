@@ -168,8 +168,9 @@ Test(simd, auto_picks_the_best_loop_the_cpu_has)
     cr_assert_eq(sr_raster_simd_resolve(SR_SIMD_SCALAR), SR_SIMD_SCALAR);
     cr_assert_eq(sr_raster_simd_resolve(SR_SIMD_SSE2), SR_SIMD_SSE2);
 #if defined(__x86_64__)
-    bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-                  __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+    bool avx512 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") &&
+                  __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
+                  __builtin_cpu_supports("avx512vl");
     sr_simd best = avx512 ? SR_SIMD_AVX512 : __builtin_cpu_supports("avx2") ? SR_SIMD_AVX2 : SR_SIMD_SSE2;
 #else
     sr_simd best = SR_SIMD_SSE2;

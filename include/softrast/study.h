@@ -124,7 +124,9 @@ typedef struct sr_draw_study {
  * SR_PATH_DIRECT_FIRST on the tiles with the first thread drawing the
  * first triangles directly while the others bin the rest (the estimate's
  * choice for pixel-sized triangles of a mesh mostly in view), so tests
- * keep every path exercised on small scenes. All draw the same pixels.
+ * keep every path exercised on small scenes. All draw the same pixels. A
+ * draw of more than 2^31 triangle slots (a strip's) takes the direct path
+ * whatever its path asks.
  *
  * chunk_slots: the tiles' binning hands triangle slots to the threads in
  * chunks, about 8 a thread of 256 to 16384 slots; a few slots a chunk split

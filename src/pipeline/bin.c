@@ -90,10 +90,10 @@ static uint64_t entry_cost(sr_raster_rect share, sr_box_cover c)
 }
 
 /* A new entry at the end of a tile's bin, its estimated cost counted;
- * NULL when out of memory. */
+ * NULL when out of memory or past the 32-bit counts the chunk marks keep. */
 static sr_bin_entry *bin_push(sr_thread_work *w, sr_bin *bin, uint64_t cost)
 {
-    sr_bin_entry *e = sr_array_push(&bin->entries, sizeof *e);
+    sr_bin_entry *e = bin->entries.count < UINT32_MAX ? sr_array_push(&bin->entries, sizeof *e) : NULL;
     if (!e) {
         w->out_of_memory = true;
         return NULL;
@@ -116,10 +116,6 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
     (void)clipped;
     sr_thread_work *w = sink->work;
     const sr_draw_state *st = sink->st;
-    if (id & SR_BIN_STORED) { /* a strip of 2^31 slots: past what an entry can name */
-        w->out_of_memory = true;
-        return;
-    }
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
     sr_raster_rect box = sr_raster_scan_box_of(tri, all, st->vp.subpixel_bits);
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
@@ -135,7 +131,8 @@ static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3]
             *e = (sr_bin_entry){ .ref = { ref[0], ref[1], ref[2] }, .id = id, .tiny = tiny };
         return;
     }
-    sr_tri_setup *setup = sr_array_push(&w->setups, sizeof *setup);
+    /* Past UINT32_MAX set-ups an entry could not name the next. */
+    sr_tri_setup *setup = w->setups.count < UINT32_MAX ? sr_array_push(&w->setups, sizeof *setup) : NULL;
     if (!setup) {
         w->out_of_memory = true;
         return;

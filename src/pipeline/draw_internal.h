@@ -44,7 +44,7 @@ typedef struct sr_bin_entry {
             uint32_t covered;
         } stored;
     };
-    uint32_t id;   /* the slot's, SR_BIN_STORED or'd in; a slot from 2^31 on is past what an entry can name */
+    uint32_t id;   /* the slot's, SR_BIN_STORED or'd in: draws of more than 2^31 slots take the direct path */
     uint64_t tiny; /* sr_raster_tiny_mask, never 0 for a tiny box */
 } sr_bin_entry;
 

@@ -260,6 +260,8 @@ static sr_draw_path path_of(const sr_draw_state *st)
 {
     if (st->study.observer)
         return SR_PATH_DIRECT; /* it sees every triangle, in order, from the direct path */
+    if (st->slots > SR_BIN_STORED)
+        return SR_PATH_DIRECT; /* a bin entry names slots below 2^31 (a strip's can reach 2^32 - 3) */
     if (st->study.path != SR_PATH_BY_COST)
         return st->study.path;
     if (all_outside_one_plane(st))

@@ -617,8 +617,8 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
         tiny_queue_shade(q, c, fb, mode, a);                                                                  \
     }
 
-/* The modes and layouts with varyings: each has span kernels and a tiny
- * queue shader. */
+/* The modes and layouts with varyings: each has span kernels and, where
+ * the file builds them (SPAN_TINY_GETTER), a tiny queue shader. */
 #define WITH_VARYINGS(X)                                                                                      \
     X(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)                                                       \
     X(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)                                                     \

@@ -3,7 +3,8 @@
  * kernels were compiled for, tests and writes its depths at once and
  * queues the pixels that passed, with their λ1 and λ2 (as
  * every loop computes them) and its own interpolants; a SIMD shader then
- * colors the queue SPAN_LANES pixels at a time, each lane with its own
+ * colors the queue SPAN_LANES pixels at a time (4 or 8: the AVX-512 loop
+ * takes the AVX2 shader, simd_select.c), each lane with its own
  * triangle's interpolants, and stores the colors in the queue's order,
  * which is submission order. One triangle's few pixels filled few lanes,
  * and a division of 16 lanes costs the divider as much as about six of
