@@ -7,7 +7,6 @@
  * is bit-identical. */
 #include <stdatomic.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "draw_internal.h"
 #include "cull.h"
@@ -234,24 +233,24 @@ static uint32_t id_of(const sr_bin_entry *e)
 }
 
 /* One bin entry's triangle over the tile's share of its scan box. */
-static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, const sr_bin_entry *rec,
+static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, const sr_bin_entry *e,
                              sr_raster_rect tile, bool *simd)
 {
-    if (rec->id & SR_BIN_STORED) {
-        sr_tri_setup s = ((const sr_tri_setup *)w->setups.data)[rec->stored.setup];
-        sr_raster_setup_share(&s, box_in(s.box, tile), rec->stored.covered);
-        return sr_raster_setup_draw(st->fb, &s, st->mode, &st->shade, id_of(rec), simd);
+    if (e->id & SR_BIN_STORED) {
+        sr_tri_setup s = ((const sr_tri_setup *)w->setups.data)[e->stored.setup];
+        sr_raster_setup_share(&s, box_in(s.box, tile), e->stored.covered);
+        return sr_raster_setup_draw(st->fb, &s, st->mode, &st->shade, id_of(e), simd);
     }
-    const sr_screen_vertex *const tri[3] = { vertex_of(st, w, rec->ref[0]), vertex_of(st, w, rec->ref[1]),
-                                             vertex_of(st, w, rec->ref[2]) };
+    const sr_screen_vertex *const tri[3] = { vertex_of(st, w, e->ref[0]), vertex_of(st, w, e->ref[1]),
+                                             vertex_of(st, w, e->ref[2]) };
     /* The box lies within the tile: clamped to it, it is the one binned. */
     sr_raster_rect box = sr_raster_scan_box_of(tri, tile, st->vp.subpixel_bits);
     int64_t area2 = sr_cull_area2(tri[0], tri[1], tri[2]);
-    if (rec->tiny)
+    if (e->tiny)
         return sr_raster_tiny_triangle(st->fb, box, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2,
-                                       rec->tiny, rec->id, simd);
+                                       e->tiny, e->id, simd);
     return sr_raster_triangle_in_box(st->fb, box, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2,
-                                     rec->id, simd);
+                                     e->id, simd);
 }
 
 /* A tile prefetches the screen vertices (or the stored set-up) of the

@@ -48,6 +48,7 @@ typedef struct sr_bin_entry {
     uint64_t tiny; /* sr_raster_tiny_mask, never 0 for a tiny box */
 } sr_bin_entry;
 
+/* An entry's id flag: its triangle was set up while binning (`stored`). */
 #define SR_BIN_STORED 0x80000000u
 
 /* One thread's list of a tile: bin entries, and the estimated cost of

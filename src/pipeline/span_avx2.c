@@ -18,5 +18,10 @@
 #include "span_kernel.h"
 #else
 SR_SPAN_KERNEL_ABSENT(sr_span_kernel_avx2)
-SR_TINY_SHADER_ABSENT(sr_tiny_shader_avx2)
+
+sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_varying_layout *layout)
+{
+    (void)mode, (void)layout;
+    return NULL;
+}
 #endif

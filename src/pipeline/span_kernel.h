@@ -545,7 +545,75 @@ span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *
     return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, id);
 }
 
+#define SPAN_KERNEL(mode, a, greater, name)                                                                   \
+    static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id)  \
+    {                                                                                                         \
+        return span_triangle(s, c, fb, mode, a, greater, id);                                                 \
+    }
+
+#define SPAN_KERNELS(mode, a, name) SPAN_KERNEL(mode, a, false, name##_less) SPAN_KERNEL(mode, a, true, name##_greater)
+#define KERNEL_PAIR(name) { name##_less, name##_greater }
+
+/* The modes and layouts with varyings: each has span kernels and, where
+ * the file builds them (SPAN_TINY_GETTER, below), a tiny queue shader. */
+#define WITH_VARYINGS(X)                                                                                      \
+    X(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)                                                       \
+    X(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)                                                     \
+    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, span_lambert_texture)                                                 \
+    X(SR_SHADE_COLOR, ALBEDO_NONE, span_color)                                                                \
+    X(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)                                                              \
+    X(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
+
+WITH_VARYINGS(SPAN_KERNELS)
+SPAN_KERNELS(SR_SHADE_ID, ALBEDO_NONE, span_id)
+SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, span_depth)
+
+/* The layout each kernel was compiled for, as sr_vertex_layout makes it. */
+static bool layout_is(const sr_varying_layout *l, int count, int color, int uv, int normal)
+{
+    return l->count == count && l->color == color && l->uv == uv && l->normal == normal;
+}
+
+static albedo lambert_albedo(const sr_varying_layout *l)
+{
+    if (layout_is(l, 5, -1, SECOND_VARYING, 0))
+        return ALBEDO_TEXTURE;
+    if (layout_is(l, 6, SECOND_VARYING, -1, 0))
+        return ALBEDO_COLOR;
+    return layout_is(l, 3, -1, -1, 0) ? ALBEDO_GRAY : ALBEDO_NONE;
+}
+
+static const sr_span_kernel *kernel_pair(sr_shade mode, const sr_varying_layout *l)
+{
+    static const sr_span_kernel lambert[][2] = { [ALBEDO_GRAY] = KERNEL_PAIR(span_lambert_gray),
+                                                 [ALBEDO_COLOR] = KERNEL_PAIR(span_lambert_color),
+                                                 [ALBEDO_TEXTURE] = KERNEL_PAIR(span_lambert_texture) };
+    static const sr_span_kernel id[2] = KERNEL_PAIR(span_id), depth[2] = KERNEL_PAIR(span_depth),
+                                color[2] = KERNEL_PAIR(span_color), normal[2] = KERNEL_PAIR(span_normal),
+                                texture[2] = KERNEL_PAIR(span_texture);
+    switch (mode) {
+    case SR_SHADE_LAMBERT: {
+        albedo a = lambert_albedo(l);
+        return a == ALBEDO_NONE ? NULL : lambert[a];
+    }
+    case SR_SHADE_ID:      return id;
+    case SR_SHADE_DEPTH:   return depth;
+    case SR_SHADE_COLOR:   return layout_is(l, 3, 0, -1, -1) ? color : NULL;
+    case SR_SHADE_NORMAL:  return layout_is(l, 3, -1, -1, 0) ? normal : NULL;
+    case SR_SHADE_TEXTURE: return layout_is(l, 2, -1, 0, -1) ? texture : NULL;
+    default:               return NULL;
+    }
+}
+
+sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater, const sr_varying_layout *layout)
+{
+    const sr_span_kernel *pair = kernel_pair(mode, layout);
+    return pair ? pair[greater] : NULL;
+}
+
 #ifdef SPAN_TINY_GETTER
+/* The tiny queue's shaders, where the file builds them (not span_avx512.c). */
+
 /* v's lanes picked by index (each in [0, SPAN_LANES)). */
 static inline __attribute__((always_inline)) vf permute_lanes(vf v, vi index)
 {
@@ -600,16 +668,6 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
             fb->color[q->at[g + l]] = (uint32_t)colors[l];
     }
 }
-#endif
-
-#define SPAN_KERNEL(mode, a, greater, name)                                                                   \
-    static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id)  \
-    {                                                                                                         \
-        return span_triangle(s, c, fb, mode, a, greater, id);                                                 \
-    }
-
-#define SPAN_KERNELS(mode, a, name) SPAN_KERNEL(mode, a, false, name##_less) SPAN_KERNEL(mode, a, true, name##_greater)
-#define KERNEL_PAIR(name) { name##_less, name##_greater }
 
 #define TINY_SHADER(mode, a, name)                                                                             \
     static void name##_tiny(const sr_tiny_queue *q, const sr_shade_context *c, sr_framebuffer *fb)            \
@@ -617,67 +675,8 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
         tiny_queue_shade(q, c, fb, mode, a);                                                                  \
     }
 
-/* The modes and layouts with varyings: each has span kernels and, where
- * the file builds them (SPAN_TINY_GETTER), a tiny queue shader. */
-#define WITH_VARYINGS(X)                                                                                      \
-    X(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)                                                       \
-    X(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)                                                     \
-    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, span_lambert_texture)                                                 \
-    X(SR_SHADE_COLOR, ALBEDO_NONE, span_color)                                                                \
-    X(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)                                                              \
-    X(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
-
-WITH_VARYINGS(SPAN_KERNELS)
-#ifdef SPAN_TINY_GETTER
 WITH_VARYINGS(TINY_SHADER)
-#endif
-SPAN_KERNELS(SR_SHADE_ID, ALBEDO_NONE, span_id)
-SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, span_depth)
 
-/* The layout each kernel was compiled for, as sr_vertex_layout makes it. */
-static bool layout_is(const sr_varying_layout *l, int count, int color, int uv, int normal)
-{
-    return l->count == count && l->color == color && l->uv == uv && l->normal == normal;
-}
-
-static albedo lambert_albedo(const sr_varying_layout *l)
-{
-    if (layout_is(l, 5, -1, SECOND_VARYING, 0))
-        return ALBEDO_TEXTURE;
-    if (layout_is(l, 6, SECOND_VARYING, -1, 0))
-        return ALBEDO_COLOR;
-    return layout_is(l, 3, -1, -1, 0) ? ALBEDO_GRAY : ALBEDO_NONE;
-}
-
-static const sr_span_kernel *kernel_pair(sr_shade mode, const sr_varying_layout *l)
-{
-    static const sr_span_kernel lambert[][2] = { [ALBEDO_GRAY] = KERNEL_PAIR(span_lambert_gray),
-                                                 [ALBEDO_COLOR] = KERNEL_PAIR(span_lambert_color),
-                                                 [ALBEDO_TEXTURE] = KERNEL_PAIR(span_lambert_texture) };
-    static const sr_span_kernel id[2] = KERNEL_PAIR(span_id), depth[2] = KERNEL_PAIR(span_depth),
-                                color[2] = KERNEL_PAIR(span_color), normal[2] = KERNEL_PAIR(span_normal),
-                                texture[2] = KERNEL_PAIR(span_texture);
-    switch (mode) {
-    case SR_SHADE_LAMBERT: {
-        albedo a = lambert_albedo(l);
-        return a == ALBEDO_NONE ? NULL : lambert[a];
-    }
-    case SR_SHADE_ID:      return id;
-    case SR_SHADE_DEPTH:   return depth;
-    case SR_SHADE_COLOR:   return layout_is(l, 3, 0, -1, -1) ? color : NULL;
-    case SR_SHADE_NORMAL:  return layout_is(l, 3, -1, -1, 0) ? normal : NULL;
-    case SR_SHADE_TEXTURE: return layout_is(l, 2, -1, 0, -1) ? texture : NULL;
-    default:               return NULL;
-    }
-}
-
-sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater, const sr_varying_layout *layout)
-{
-    const sr_span_kernel *pair = kernel_pair(mode, layout);
-    return pair ? pair[greater] : NULL;
-}
-
-#ifdef SPAN_TINY_GETTER
 sr_tiny_shader SPAN_TINY_GETTER(sr_shade mode, const sr_varying_layout *layout)
 {
     static const sr_tiny_shader lambert[] = { [ALBEDO_GRAY] = span_lambert_gray_tiny,

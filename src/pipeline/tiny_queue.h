@@ -53,14 +53,6 @@ sr_tiny_shader sr_tiny_shader_sse2(sr_shade mode, const sr_varying_layout *layou
 sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_varying_layout *layout);
 sr_tiny_shader sr_tiny_shader_for(const sr_shade_context *shade, sr_shade mode);
 
-/* The shader getter of a kernel file built without its instruction set. */
-#define SR_TINY_SHADER_ABSENT(getter)                                                                         \
-    sr_tiny_shader getter(sr_shade mode, const sr_varying_layout *layout)                                     \
-    {                                                                                                         \
-        (void)mode, (void)layout;                                                                             \
-        return NULL;                                                                                          \
-    }
-
 /* A tiny triangle of SR_INTERP_PERSPECTIVE in a mode with varyings (the
  * rasterizer's call): its depths tested and written, the pixels that
  * passed queued on this thread's queue; returns how many passed.
