@@ -12,6 +12,7 @@
 #define SPAN_FLOOR(x) ((vf)_mm256_floor_ps((__m256)(x)))
 #define SPAN_STORE_WHERE(p, mask, v) _mm256_maskstore_epi32((int *)(p), (__m256i)(mask), (__m256i)(v))
 #define SPAN_PERMUTE(v, index) ((vf)_mm256_permutevar8x32_ps((__m256)(v), (__m256i)(index)))
+#define SPAN_MULHRS(a, b) ((vu16)_mm256_mulhrs_epi16((__m256i)(a), (__m256i)(b)))
 #define SPAN_LANES 8
 #define SPAN_KERNEL_GETTER sr_span_kernel_avx2
 #define SPAN_TINY_GETTER sr_tiny_shader_avx2

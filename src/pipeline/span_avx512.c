@@ -14,6 +14,7 @@
 #define SPAN_LOAD_FIRST(p, n) ((vi)_mm512_maskz_loadu_epi32((__mmask16)((1u << (n)) - 1u), (p)))
 #define SPAN_STORE_WHERE(p, mask, v) _mm512_mask_storeu_epi32((p), _mm512_movepi32_mask((__m512i)(mask)), (__m512i)(v))
 #define SPAN_LANE_INDICES 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15
+#define SPAN_MULHRS(a, b) ((vu16)_mm512_mulhrs_epi16((__m512i)(a), (__m512i)(b)))
 #define SPAN_LANES 16
 #define SPAN_KERNEL_GETTER sr_span_kernel_avx512
 #include "span_kernel.h"
