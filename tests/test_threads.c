@@ -270,6 +270,62 @@ Test(threads, observer_sees_every_drawn_triangle_once_in_order)
     sr_mesh_free(&torus);
 }
 
+typedef struct varyings_seen {
+    int layout_count;          /* the draw's varyings */
+    uint64_t triangles, clipped, with_varyings;
+    bool zero_past_layout;
+} varyings_seen;
+
+static void observe_varyings(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id)
+{
+    (void)id;
+    varyings_seen *v = user;
+    v->triangles++;
+    v->clipped += clipped;
+    for (int i = 0; i < 3; i++) {
+        for (int k = v->layout_count; k < SR_MAX_VARYINGS; k++)
+            v->zero_past_layout = v->zero_past_layout && tri[i].var_w[k] == 0.0f;
+        v->with_varyings += v->layout_count > 0 && tri[i].var_w[0] != 0.0f;
+    }
+}
+
+/* The vertex phase keeps only the layout's varyings (docs/performance.md,
+ * "Screen vertices sized by the layout"); the observer still gets whole
+ * vertices, the varyings past the layout 0, also where the workspace's last
+ * draw wrote a lambert normal there, and on clipped triangles. */
+Test(threads, observer_sees_the_layouts_varyings_and_zeros_past_them)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 24, 12, &err), "%s", err.message);
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    const struct {
+        sr_shade shade;
+        int layout_count;
+    } draws[] = { { SR_SHADE_LAMBERT, 3 }, { SR_SHADE_DEPTH, 0 }, { SR_SHADE_ID, 0 }, { SR_SHADE_NORMAL, 3 } };
+    for (size_t d = 0; d < sizeof draws / sizeof *draws; d++) {
+        varyings_seen seen = { .layout_count = draws[d].layout_count, .zero_past_layout = true };
+        sr_draw_desc desc = { .mesh = &torus, .shade = draws[d].shade, .workspace = ws, .cull = SR_CULL_NONE,
+                              .study = &(sr_draw_study){ .observer = observe_varyings, .observer_user = &seen } };
+        look(&desc, (vec3){ 0, 0.2f, -1.0f }, (vec3){ 0, 0, 0 }, 90.0f, 1.0f); /* inside the ring's far side */
+        sr_framebuffer fb;
+        cr_assert(sr_framebuffer_create(&fb, 64, 64, &err), "%s", err.message);
+        sr_framebuffer_clear(&fb, 0);
+        sr_stats stats = { 0 };
+        cr_assert(sr_draw(&fb, &desc, &stats, &err), "%s", err.message);
+        cr_assert_gt(seen.clipped, 0, "shade %d: no clipped triangle, the test would prove less", draws[d].shade);
+        cr_assert_eq(seen.triangles, stats.drawn);
+        cr_assert(seen.zero_past_layout, "shade %d: a varying past the layout's %d is not 0", draws[d].shade,
+                  draws[d].layout_count);
+        cr_assert(draws[d].layout_count == 0 || seen.with_varyings > 0, "shade %d: no varying seen",
+                  draws[d].shade);
+        sr_framebuffer_destroy(&fb);
+    }
+    sr_workspace_destroy(ws);
+    sr_mesh_free(&torus);
+}
+
 /* desc.clear into buffers of the caller's own, exactly width * height (no
  * slack after the last row), holding another picture nearer than most of
  * the scene: on each threaded path, at one thread and at `threads`, what

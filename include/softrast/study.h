@@ -75,7 +75,8 @@ typedef struct sr_screen_vertex {
 /* Sees every fan triangle that survives culling, before it is rasterized;
  * clipped: the triangle crossed a plane; id: its triangle slot. A draw with
  * one takes the direct path on one thread, whatever its threads and path
- * ask, and calls it in submission order. */
+ * ask, and calls it in submission order. var_w holds the draw's varyings
+ * (none in depth and id shading) and 0 past them. */
 typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id);
 
 /* Where a draw's time goes, added to by every draw whose study points at

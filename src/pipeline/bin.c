@@ -218,7 +218,7 @@ static void setup_chunks(void *ctx, int t)
 static const sr_screen_vertex *vertex_of(const sr_draw_state *st, const sr_thread_work *binner, uint32_t ref)
 {
     if (ref < st->vertex_count)
-        return &((const sr_screen_vertex *)st->ws->screen.data)[ref];
+        return sr_screen_at(st, ref);
     return &((const sr_screen_vertex *)binner->clip_verts.data)[ref - st->vertex_count];
 }
 

@@ -114,7 +114,7 @@ struct sr_workspace {
     sr_pool pool;
     sr_array verts;    /* sr_vertex_out, one per mesh vertex */
     sr_array outcodes; /* unsigned char */
-    sr_array screen;   /* sr_screen_vertex, valid where the outcode is 0 */
+    sr_array screen;   /* screen vertices, sr_draw_state.screen_stride bytes apart, valid where the outcode is 0 */
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
     sr_thread_work threads[SR_MAX_THREADS];
 };
@@ -127,6 +127,7 @@ typedef struct sr_draw_state {
     sr_shade mode;       /* desc's shading, or SR_RASTER_COUNT_HITS */
     sr_shade_context shade;
     sr_viewport vp;
+    size_t screen_stride; /* sr_screen_stride of the layout */
     const sr_vertex_transform *xf; /* the vertex phase's: clip from object, float and double */
     sr_clip_precision precision;
     double clip_tolerance; /* NDC error a cut vertex may carry: half a subpixel step */
@@ -139,6 +140,25 @@ typedef struct sr_draw_state {
      * rest from the last chunk down (bin.c). */
     bool direct_first;
 } sr_draw_state;
+
+/* The bytes between the shared screen vertices of a draw whose layout has
+ * `varyings` varyings: an sr_screen_vertex up to its last varying, rounded
+ * up to 16 bytes (32 for depth and id, 48 for lambert's normal, 64 with a
+ * uv or color too). The vertex phase writes them and the rasterizer reads
+ * them only up to var_w[varyings − 1], so a smaller array carries the same
+ * vertices: less memory to write and read back (docs/performance.md,
+ * "Screen vertices sized by the layout"). */
+static inline size_t sr_screen_stride(int varyings)
+{
+    size_t used = offsetof(sr_screen_vertex, var_w) + (size_t)varyings * sizeof(float);
+    return (used + 15) / 16 * 16;
+}
+
+/* The shared screen vertex i of the draw. */
+static inline sr_screen_vertex *sr_screen_at(const sr_draw_state *st, uint32_t i)
+{
+    return (sr_screen_vertex *)((char *)st->ws->screen.data + (size_t)i * st->screen_stride);
+}
 
 /* Receives the fan triangles that survive culling. `store` keeps a clipped
  * polygon's screen vertices for the triangles that follow and returns the

@@ -122,14 +122,13 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
     const sr_draw_state *st = ph->st;
     sr_vertex_out *verts = st->ws->verts.data;
     unsigned char *outcodes = st->ws->outcodes.data;
-    sr_screen_vertex *screen = st->ws->screen.data;
     sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, first, end - first, verts + first);
     for (uint32_t i = first; i < end; i++) {
         unsigned code = ph->inside ? 0 : sr_clip_outcode_with(verts[i].v, &st->vp.depth);
         for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
             if (!isfinite(verts[i].v[SR_VARYINGS_AT + k]))
                 code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
-        if (code == 0 && !map_inside(ph, &verts[i], i, &screen[i]))
+        if (code == 0 && !map_inside(ph, &verts[i], i, sr_screen_at(st, i)))
             code = SR_OUT_NONFINITE;
         outcodes[i] = (unsigned char)code;
         *outcodes_and &= code;
@@ -183,7 +182,7 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
     sr_workspace *ws = st->ws;
     if (!sr_array_reserve(&ws->verts, n, sizeof(sr_vertex_out)) ||
         !sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
-        !sr_array_reserve(&ws->screen, n, sizeof(sr_screen_vertex)))
+        n > SIZE_MAX / st->screen_stride || !sr_array_reserve(&ws->screen, n * st->screen_stride, 1))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
     sr_draw_times *times = st->study.times;
     sr_chunks_init(&ph->vertices, n, VERTEX_CHUNK);
@@ -290,6 +289,18 @@ static uint32_t store_in_place(sr_fan_sink *sink, const sr_screen_vertex *v, int
     return 0; /* the rasterizer gets the vertices themselves, no references */
 }
 
+/* The observer's copy of a fan triangle: its vertices whole, the varyings
+ * past the layout's zero (a shared vertex is sr_draw_state.screen_stride
+ * bytes long, a clipped one whole). */
+static void observe(const sr_draw_state *st, const sr_screen_vertex *const tri[3], bool clipped, uint32_t id)
+{
+    sr_screen_vertex copy[3] = { { 0 } };
+    size_t used = offsetof(sr_screen_vertex, var_w) + (size_t)st->shade.layout.count * sizeof(float);
+    for (int k = 0; k < 3; k++)
+        memcpy(&copy[k], tri[k], used);
+    st->study.observer(st->study.observer_user, copy, clipped, id);
+}
+
 static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
                        int64_t area2, uint32_t id, bool clipped)
 {
@@ -297,7 +308,7 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], 
     const sr_draw_state *st = sink->st;
     const sr_draw_study *s = &st->study;
     if (s->observer)
-        s->observer(s->observer_user, (const sr_screen_vertex[3]){ *tri[0], *tri[1], *tri[2] }, clipped, id);
+        observe(st, tri, clipped, id);
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
     bool simd = false;
     sink->work->stats.fragments +=
@@ -439,6 +450,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     int side = fb->width > fb->height ? fb->width : fb->height;
     st.clip_tolerance = 1.0 / ((double)((int64_t)1 << st.vp.subpixel_bits) * side * st.vp.guard);
     shade_context_make(desc, study.simd, &layout, &st.shade);
+    st.screen_stride = sr_screen_stride(layout.count);
     sr_stats scratch = { 0 };
     bool ok = draw_with(&st, stats ? stats : &scratch, err);
     if (!desc->workspace)

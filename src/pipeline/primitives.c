@@ -53,9 +53,11 @@ static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, const uint32
 /* An unclipped triangle uses the screen vertices the vertex phase mapped. */
 static void emit_inside(sr_fan_sink *sink, const uint32_t idx[3], uint32_t id)
 {
-    const sr_screen_vertex *screen = sink->st->ws->screen.data;
-    cull_and_emit(sink, (const sr_screen_vertex *const[3]){ &screen[idx[0]], &screen[idx[1]], &screen[idx[2]] }, idx,
-                  id, false);
+    const sr_draw_state *st = sink->st;
+    cull_and_emit(sink,
+                  (const sr_screen_vertex *const[3]){ sr_screen_at(st, idx[0]), sr_screen_at(st, idx[1]),
+                                                      sr_screen_at(st, idx[2]) },
+                  idx, id, false);
 }
 
 /* Stages 4 to 6 for triangle slot k, which crosses the planes in `planes`.
@@ -111,7 +113,8 @@ static void emit_slot(sr_fan_sink *sink, uint32_t k)
 void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
 {
     /* Read once: emit_slot's calls could write anything, for all gcc knows. */
-    const sr_screen_vertex *screen = sink->st->ws->screen.data;
+    const char *screen = sink->st->ws->screen.data;
+    size_t stride = sink->st->screen_stride;
     const sr_mesh *mesh = sink->st->desc->mesh;
     for (uint32_t k = first; k < end; k++) {
         if (end - k > PREFETCH_SLOTS) {
@@ -119,9 +122,9 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
              * prefetches, and a call of a function of them, as having no
              * side effects. */
             const uint32_t *idx = sr_assemble_slot_indices(mesh, k + PREFETCH_SLOTS);
-            __builtin_prefetch(&screen[idx[0]]);
-            __builtin_prefetch(&screen[idx[1]]);
-            __builtin_prefetch(&screen[idx[2]]);
+            __builtin_prefetch(screen + idx[0] * stride);
+            __builtin_prefetch(screen + idx[1] * stride);
+            __builtin_prefetch(screen + idx[2] * stride);
         }
         emit_slot(sink, k);
     }
