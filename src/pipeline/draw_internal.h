@@ -143,13 +143,18 @@ typedef struct sr_draw_state {
 
 /* The bytes between the shared screen vertices of a draw whose layout has
  * `varyings` varyings: an sr_screen_vertex up to its last varying, rounded
- * up to 16 bytes (32 for depth and id, 48 for lambert's normal, 64 with a
- * uv or color too). The vertex phase writes them and the rasterizer reads
- * them only up to var_w[varyings − 1], so a smaller array carries the same
- * vertices: less memory to write and read back (docs/performance.md,
- * "Screen vertices sized by the layout"). */
+ * up to 16 bytes (32 in depth and id shading; 48 in texture, color, normal
+ * and gray lambert; 64 in lambert with a uv or colors). The vertex phase
+ * writes them and the rasterizer reads them only up to
+ * var_w[varyings − 1], so a smaller array carries the same vertices: less
+ * memory to write and read back (docs/performance.md, "Screen vertices
+ * sized by the layout"). A pointer to one (sr_screen_at) points at fewer
+ * bytes than an sr_screen_vertex: read its members, never copy it whole. */
 static inline size_t sr_screen_stride(int varyings)
 {
+    _Static_assert(offsetof(sr_screen_vertex, var_w) + sizeof(((sr_screen_vertex *)0)->var_w) ==
+                       sizeof(sr_screen_vertex),
+                   "var_w is the screen vertex's last member: the stride cuts the vertex after its varyings");
     size_t used = offsetof(sr_screen_vertex, var_w) + (size_t)varyings * sizeof(float);
     return (used + 15) / 16 * 16;
 }

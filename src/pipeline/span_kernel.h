@@ -354,6 +354,7 @@ static inline __attribute__((always_inline)) vu16 weight_halves(vi w)
 static inline __attribute__((always_inline)) vu16 lerp_weight_halves(vi w)
 {
 #ifdef SPAN_MULHRS
+    _Static_assert(SR_SHADE_WEIGHT_BITS <= 15, "a weight below 2^15 once scaled: pmulhrsw's factor is signed");
     return weight_halves(w << (15 - SR_SHADE_WEIGHT_BITS));
 #else
     return weight_halves(w);
