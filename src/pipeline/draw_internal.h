@@ -112,7 +112,6 @@ typedef struct sr_pool {
 
 struct sr_workspace {
     sr_pool pool;
-    sr_array verts;    /* sr_vertex_out, one per mesh vertex */
     sr_array outcodes; /* unsigned char */
     sr_array screen;   /* screen vertices, sr_draw_state.screen_stride bytes apart, valid where the outcode is 0 */
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */

@@ -93,6 +93,11 @@ static void shade_context_make(const sr_draw_desc *d, sr_simd simd, const sr_var
 
 /* Vertices and indices go to the threads in chunks of these. */
 #define VERTEX_CHUNK 4096
+/* The clip vertices a chunk keeps at a time, on the stack (12 KB): only
+ * the outcodes and the screen vertices outlive the vertex phase, and the
+ * clipper transforms a clipped triangle's corners again (primitives.c), so
+ * a draw keeps no array of them. */
+#define VERTEX_BLOCK 256
 #define INDEX_CHUNK 65536
 
 typedef struct vertex_phase {
@@ -120,19 +125,23 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
                          uint32_t *outside)
 {
     const sr_draw_state *st = ph->st;
-    sr_vertex_out *verts = st->ws->verts.data;
     unsigned char *outcodes = st->ws->outcodes.data;
-    sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, first, end - first, verts + first);
-    for (uint32_t i = first; i < end; i++) {
-        unsigned code = ph->inside ? 0 : sr_clip_outcode_with(verts[i].v, &st->vp.depth);
-        for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
-            if (!isfinite(verts[i].v[SR_VARYINGS_AT + k]))
-                code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
-        if (code == 0 && !map_inside(ph, &verts[i], i, sr_screen_at(st, i)))
-            code = SR_OUT_NONFINITE;
-        outcodes[i] = (unsigned char)code;
-        *outcodes_and &= code;
-        *outside += code != 0;
+    for (uint32_t block = first; block < end; block += VERTEX_BLOCK) {
+        _Alignas(16) sr_vertex_out verts[VERTEX_BLOCK];
+        uint32_t n = end - block < VERTEX_BLOCK ? end - block : VERTEX_BLOCK;
+        sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, block, n, verts);
+        for (uint32_t j = 0; j < n; j++) {
+            uint32_t i = block + j;
+            unsigned code = ph->inside ? 0 : sr_clip_outcode_with(verts[j].v, &st->vp.depth);
+            for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
+                if (!isfinite(verts[j].v[SR_VARYINGS_AT + k]))
+                    code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
+            if (code == 0 && !map_inside(ph, &verts[j], i, sr_screen_at(st, i)))
+                code = SR_OUT_NONFINITE;
+            outcodes[i] = (unsigned char)code;
+            *outcodes_and &= code;
+            *outside += code != 0;
+        }
     }
 }
 
@@ -180,8 +189,7 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
 {
     uint32_t n = st->vertex_count;
     sr_workspace *ws = st->ws;
-    if (!sr_array_reserve(&ws->verts, n, sizeof(sr_vertex_out)) ||
-        !sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
+    if (!sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
         n > SIZE_MAX / st->screen_stride || !sr_array_reserve(&ws->screen, n * st->screen_stride, 1))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
     sr_draw_times *times = st->study.times;

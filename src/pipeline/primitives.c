@@ -68,8 +68,12 @@ static __attribute__((noinline)) void emit_clipped(sr_fan_sink *sink, const uint
                                                    uint32_t k)
 {
     const sr_draw_state *st = sink->st;
-    const sr_vertex_out *verts = st->ws->verts.data;
-    sr_polygon poly = { .count = 3, .vert = { verts[idx[0]], verts[idx[1]], verts[idx[2]] } };
+    sr_polygon poly = { .count = 3 };
+    for (int c = 0; c < 3; c++) { /* the vertex phase kept none: transformed again, the same bits */
+        _Alignas(16) sr_vertex_out corner;
+        sr_vertex_run(st->desc->mesh, st->xf, &st->shade.layout, idx[c], 1, &corner);
+        poly.vert[c] = corner;
+    }
     sink->work->stats.clipped++;
     sr_clip_config cfg = { .precision = st->precision, .ndc_tolerance = st->clip_tolerance,
                            .counts = &sink->work->cuts, .depth = st->vp.depth };

@@ -64,7 +64,8 @@ static inline void sr_vertex_mesh_clip_d(const sr_mesh *mesh, uint32_t i, const 
     }
 }
 
-/* Runs vertices [first, first + count) of mesh into out[0 .. count). */
+/* Runs vertices [first, first + count) of mesh into out[0 .. count), which
+ * is 16-byte aligned (cglm's vector stores; an sr_vertex_out is 48 bytes). */
 void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
                    uint32_t first, uint32_t count, sr_vertex_out *out);
 

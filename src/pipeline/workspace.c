@@ -37,7 +37,6 @@ void sr_workspace_destroy(sr_workspace *ws)
     if (!ws)
         return;
     sr_pool_stop(&ws->pool);
-    sr_array_free(&ws->verts);
     sr_array_free(&ws->outcodes);
     sr_array_free(&ws->screen);
     sr_array_free(&ws->tile_order);
