@@ -297,9 +297,9 @@ static uint32_t store_in_place(sr_fan_sink *sink, const sr_screen_vertex *v, int
     return 0; /* the rasterizer gets the vertices themselves, no references */
 }
 
-/* The observer's copy of a fan triangle: its vertices whole, the varyings
- * past the layout's zero (a shared vertex is sr_draw_state.screen_stride
- * bytes long, a clipped one whole). */
+/* The observer's copy of a fan triangle: its vertices whole, with 0 in the
+ * varyings past the layout's (a shared vertex is only
+ * sr_draw_state.screen_stride bytes long, a clipped one whole). */
 static void observe(const sr_draw_state *st, const sr_screen_vertex *const tri[3], bool clipped, uint32_t id)
 {
     sr_screen_vertex copy[3] = { { 0 } };
