@@ -278,7 +278,10 @@ typedef struct sr_stats {
 /* Scratch memory and worker threads a draw reuses from frame to frame
  * (transformed vertices, tile bins; the threads of a draw with threads > 1,
  * asleep between draws and ended by sr_workspace_destroy). Optional: a draw
- * without one makes and frees its own. One workspace serves one draw at a
+ * without one makes and frees its own, so its memory is fresh pages and its
+ * threads start anew every time: keep one for a loop of draws (a 1M-triangle
+ * torus at 1920x1080 took 50 ms a draw without one against 41 with one on
+ * one thread, 30 against 22 on two). One workspace serves one draw at a
  * time: never use it from two threads at once, nor in a child of fork()
  * (the child has none of its threads). */
 typedef struct sr_workspace sr_workspace;
