@@ -473,5 +473,8 @@ Test(shading, a_lit_texel_is_each_channel_times_the_intensity_rounded)
                           shift, t, k, got, want);
         }
     }
+    /* 1 + 2^-9 is the smallest k whose 8.8 value rounds past 256 (to 257):
+     * the first the clamp must catch, or 255 · 257 carries a channel over. */
+    cr_assert_eq(sr_shade_lit_texel(0xFFFFFF, 1.0f + 0x1p-9f), 0xFFFFFFu, "k = 1 + 2^-9 must be clamped, not carried");
     cr_assert_eq(sr_shade_lit_texel(0xFFFFFF, 1.01f), 0xFFFFFFu, "k past 1 + 2^-9 must be clamped, not carried");
 }

@@ -140,6 +140,16 @@ typedef struct sr_draw_state {
     bool direct_first;
 } sr_draw_state;
 
+/* The bytes of an sr_screen_vertex up to its last varying, with
+ * `varyings` of them: all that a draw's rasterizer reads of it. */
+static inline size_t sr_screen_used(int varyings)
+{
+    _Static_assert(offsetof(sr_screen_vertex, var_w) + sizeof(((sr_screen_vertex *)0)->var_w) ==
+                       sizeof(sr_screen_vertex),
+                   "var_w is the screen vertex's last member: the stride cuts the vertex after its varyings");
+    return offsetof(sr_screen_vertex, var_w) + (size_t)varyings * sizeof(float);
+}
+
 /* The bytes between the shared screen vertices of a draw whose layout has
  * `varyings` varyings: an sr_screen_vertex up to its last varying, rounded
  * up to 16 bytes (32 in depth and id shading; 48 in texture, color, normal
@@ -151,11 +161,7 @@ typedef struct sr_draw_state {
  * bytes than an sr_screen_vertex: read its members, never copy it whole. */
 static inline size_t sr_screen_stride(int varyings)
 {
-    _Static_assert(offsetof(sr_screen_vertex, var_w) + sizeof(((sr_screen_vertex *)0)->var_w) ==
-                       sizeof(sr_screen_vertex),
-                   "var_w is the screen vertex's last member: the stride cuts the vertex after its varyings");
-    size_t used = offsetof(sr_screen_vertex, var_w) + (size_t)varyings * sizeof(float);
-    return (used + 15) / 16 * 16;
+    return (sr_screen_used(varyings) + 15) / 16 * 16;
 }
 
 /* The shared screen vertex i of the draw. */

@@ -303,9 +303,8 @@ static uint32_t store_in_place(sr_fan_sink *sink, const sr_screen_vertex *v, int
 static void observe(const sr_draw_state *st, const sr_screen_vertex *const tri[3], bool clipped, uint32_t id)
 {
     sr_screen_vertex copy[3] = { { 0 } };
-    size_t used = offsetof(sr_screen_vertex, var_w) + (size_t)st->shade.layout.count * sizeof(float);
     for (int k = 0; k < 3; k++)
-        memcpy(&copy[k], tri[k], used);
+        memcpy(&copy[k], tri[k], sr_screen_used(st->shade.layout.count));
     st->study.observer(st->study.observer_user, copy, clipped, id);
 }
 
