@@ -184,10 +184,15 @@ static inline __attribute__((always_inline)) int first_varying(sr_interp interp)
     return sr_interp_flat_normal(interp) ? SECOND_VARYING : 0;
 }
 
+/* A plane at the lanes' λ1 and λ2 (p a lanes), c0 + λ1·c1 + λ2·c2 in this
+ * order, as the scalar loop rounds it; the coefficients scalars (one
+ * triangle's, broadcast) or vectors (each lane's triangle's). */
+#define PLANE_LANES(c0, c1, c2, p) ((c0) + (p).l1 * (c1) + (p).l2 * (c2))
+
 static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_setup *s, const triangle_lanes *t,
                                                                  sr_interp interp, int count, lanes *p)
 {
-    vf w = sr_interp_divides(interp) ? 1.0f / (s->iw0 + p->l1 * s->diw1 + p->l2 * s->diw2) : t->w;
+    vf w = sr_interp_divides(interp) ? 1.0f / PLANE_LANES(s->iw0, s->diw1, s->diw2, *p) : t->w;
     /* Unrolled, so the varyings stay in registers: as a loop (GCC 12 does
      * not unroll it at -O2) each went through the stack on its way to the
      * shading (fly 1-2 % slower). 8 is SR_MAX_VARYINGS: the pragma takes
@@ -195,7 +200,7 @@ static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_se
     _Static_assert(SR_MAX_VARYINGS == 8, "the unroll count below");
 #pragma GCC unroll 8
     for (int k = first_varying(interp); k < count; k++)
-        p->var[k] = (s->var0[k] + p->l1 * s->dvar1[k] + p->l2 * s->dvar2[k]) * w;
+        p->var[k] = PLANE_LANES(s->var0[k], s->dvar1[k], s->dvar2[k], *p) * w;
 }
 
 /* sr_shade_channel per lane. */
@@ -379,18 +384,9 @@ static inline __attribute__((always_inline)) split_texels sample_bilinear_lanes(
     return lerp_split(top, bottom, wy);
 }
 
-/* sr_shade_sample_packed per lane. */
-static inline __attribute__((always_inline)) vi sample_lanes(const triangle_lanes *t, const sr_shade_context *c, vf u,
-                                                             vf v)
-{
-    vf fu = fraction_lanes(u), fv = fraction_lanes(v);
-    return c->filter == SR_FILTER_NEAREST
-               ? sample_nearest_lanes(&t->texture, below_one_lanes(fu), below_one_lanes(fv))
-               : pack_split(sample_bilinear_lanes(&t->texture, fu, fv));
-}
-
-/* The same, split, for lit_texel_lanes: the bilinear filter's texels are
- * split already, so they are not packed to be taken apart again. */
+/* sr_shade_sample_packed per lane, split for lit_texel_lanes: the bilinear
+ * filter's texels are split already, so they are not packed to be taken
+ * apart again. */
 static inline __attribute__((always_inline)) split_texels sample_split_lanes(const triangle_lanes *t,
                                                                              const sr_shade_context *c, vf u, vf v)
 {
@@ -398,6 +394,13 @@ static inline __attribute__((always_inline)) split_texels sample_split_lanes(con
     return c->filter == SR_FILTER_NEAREST
                ? split_lanes(sample_nearest_lanes(&t->texture, below_one_lanes(fu), below_one_lanes(fv)))
                : sample_bilinear_lanes(&t->texture, fu, fv);
+}
+
+/* The same, packed (pack_split undoes split_lanes on a 24-bit texel). */
+static inline __attribute__((always_inline)) vi sample_lanes(const triangle_lanes *t, const sr_shade_context *c, vf u,
+                                                             vf v)
+{
+    return pack_split(sample_split_lanes(t, c, u, v));
 }
 
 static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_context *c, const vf *n)
@@ -673,14 +676,14 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
         lanes p;
         memcpy(&p.l1, q->l1 + g, sizeof p.l1);
         memcpy(&p.l2, q->l2 + g, sizeof p.l2);
-        vf w = 1.0f / (tiny_param(q, SR_TINY_IW0, base, offset) + p.l1 * tiny_param(q, SR_TINY_DIW1, base, offset) +
-                       p.l2 * tiny_param(q, SR_TINY_DIW2, base, offset));
+        vf w = 1.0f / PLANE_LANES(tiny_param(q, SR_TINY_IW0, base, offset), tiny_param(q, SR_TINY_DIW1, base, offset),
+                                  tiny_param(q, SR_TINY_DIW2, base, offset), p);
         _Static_assert(SR_MAX_VARYINGS == 8, "the unroll count below");
 #pragma GCC unroll 8
         for (int k = 0; k < varying_count(mode, a); k++)
-            p.var[k] = (tiny_param(q, SR_TINY_VAR0 + k, base, offset) +
-                        p.l1 * tiny_param(q, SR_TINY_DVAR1 + k, base, offset) +
-                        p.l2 * tiny_param(q, SR_TINY_DVAR2 + k, base, offset)) *
+            p.var[k] = PLANE_LANES(tiny_param(q, SR_TINY_VAR0 + k, base, offset),
+                                   tiny_param(q, SR_TINY_DVAR1 + k, base, offset),
+                                   tiny_param(q, SR_TINY_DVAR2 + k, base, offset), p) *
                        w;
         vi colors = shade_lanes(mode, a, SR_INTERP_PERSPECTIVE, &t, c, p.var, 0);
         int live = q->pixels - g < SPAN_LANES ? q->pixels - g : SPAN_LANES;
