@@ -105,6 +105,9 @@ Test(knobs, settings_that_could_overflow_are_refused)
     cr_assert_not(draw((sr_draw_study){ .guard_band = -1.0f }, ids, depth, &err));
     cr_assert_not(draw((sr_draw_study){ .guard_band = SR_MAX_GUARD_BAND * 2 }, ids, depth, &err));
     cr_assert_not(draw((sr_draw_study){ .clip_precision = (sr_clip_precision)7 }, ids, depth, &err));
+    cr_assert(draw((sr_draw_study){ .path = SR_PATH_ROWS }, ids, depth, &err), "%s", err.message);
+    cr_assert_not(draw((sr_draw_study){ .path = (sr_draw_path)(SR_PATH_ROWS + 1) }, ids, depth, &err));
+    cr_assert_not_null(strstr(err.message, "unknown draw path"), "%s", err.message);
     sr_framebuffer big;
     cr_assert(sr_framebuffer_create(&big, 16384, 1, &err), "%s", err.message);
     sr_draw_desc desc = { .mesh = &room, .study = &(sr_draw_study){ .subpixel_bits = 16, .guard_band = 2.0f } };

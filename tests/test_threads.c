@@ -45,9 +45,10 @@ static void assert_same_drawing(const drawn *one, const drawn *many, int threads
     cr_assert_eq(memcmp(&one->stats, &many->stats, sizeof one->stats), 0, "stats differ with %d threads", threads);
 }
 
-/* The threaded paths: the tiles alone, and the first thread drawing the
- * first triangles directly while the others bin the rest. */
-static const sr_draw_path threaded_paths[] = { SR_PATH_TILES, SR_PATH_DIRECT_FIRST };
+/* The threaded paths: the tiles alone, the first thread drawing the
+ * first triangles directly while the others bin the rest, and each thread
+ * drawing its band of rows. */
+static const sr_draw_path threaded_paths[] = { SR_PATH_TILES, SR_PATH_DIRECT_FIRST, SR_PATH_ROWS };
 #define THREADED_PATHS (sizeof threaded_paths / sizeof *threaded_paths)
 
 static void assert_same_for_all_thread_counts(const sr_draw_desc *desc, int width, int height, bool reversed)
@@ -152,10 +153,10 @@ Test(threads, cost_estimate_on_a_dense_mesh_matches_one_thread)
     cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 200, 100, &err), "%s", err.message);
     sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT, .clear_color = 0x123456 };
     look(&desc, (vec3){ 0, 2.5f, -4.5f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
-    assert_estimate_takes(&desc, SR_PATH_DIRECT_FIRST);
+    assert_estimate_takes(&desc, SR_PATH_ROWS);
     desc.cull = SR_CULL_NONE; /* in the tube, along it, as the bench's inside scene */
     look(&desc, (vec3){ 1.1f, 0.1f, 0.0f }, (vec3){ 0.9f, 0.0f, 1.0f }, 60.0f, 301.0f / 173.0f);
-    assert_estimate_takes(&desc, SR_PATH_TILES);
+    assert_estimate_takes(&desc, SR_PATH_ROWS);
     sr_mesh_free(&torus);
 }
 

@@ -91,14 +91,21 @@ typedef struct sr_phase_time {
     double wall, cpu;
 } sr_phase_time;
 
-typedef enum sr_draw_path { SR_PATH_BY_COST = 0, SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_DIRECT_FIRST } sr_draw_path;
+typedef enum sr_draw_path {
+    SR_PATH_BY_COST = 0,
+    SR_PATH_DIRECT,
+    SR_PATH_TILES,
+    SR_PATH_DIRECT_FIRST,
+    SR_PATH_ROWS
+} sr_draw_path;
 
 typedef struct sr_draw_times {
     sr_phase_time vertex;     /* stage 1, outcodes, mapping of the inside vertices */
     /* stages 2-7; tiled path: and binning; direct path: and rasterization;
-     * direct first: and thread 0's rasterization */
+     * direct first: and thread 0's rasterization; row bands: stages 2-3
+     * (each slot's verdict) */
     sr_phase_time primitives;
-    sr_phase_time raster; /* tiled path (at any thread count): the tiles */
+    sr_phase_time raster; /* tiled path (at any thread count): the tiles; row bands: stages 4-10 */
     double total;         /* wall ms of the whole sr_draw, its serial checks and set-up included */
     sr_draw_path path;    /* the path the last draw took (SR_PATH_DIRECT for a mesh out of view) */
 } sr_draw_times;
@@ -121,18 +128,20 @@ typedef struct sr_draw_study {
  * and not every vertex outside one plane), and takes the tiles on one thread
  * when its triangles are few for its pixels (docs/performance.md, "One
  * thread or tiles"). SR_PATH_DIRECT draws on one thread without tiles,
- * SR_PATH_TILES on the tiles at the draw's thread count, one included, and
+ * SR_PATH_TILES on the tiles at the draw's thread count, one included,
  * SR_PATH_DIRECT_FIRST on the tiles with the first thread drawing the
- * first triangles directly while the others bin the rest (the estimate's
- * choice for pixel-sized triangles of a mesh mostly in view), so tests
- * keep every path exercised on small scenes. All draw the same pixels. A
- * draw of more than 2^31 triangle slots (a strip's) takes the direct path
+ * first triangles directly while the others bin the rest, and SR_PATH_ROWS
+ * with each thread drawing its band of rows (the estimate's choice for
+ * triangle slots many for the pixels on several threads), so tests keep
+ * every path exercised on small scenes. All draw the same pixels. A draw
+ * of more than 2^31 triangle slots (a strip's) takes the direct path
  * whatever its path asks.
  *
- * chunk_slots: the tiles' binning hands triangle slots to the threads in
- * chunks, about 8 a thread of 256 to 16384 slots; a few slots a chunk split
- * a small mesh among the threads as a large one is (tests, the fuzzer).
- * Each chunk a thread bins from the last down costs a mark per tile. */
+ * chunk_slots: the tiles' binning, and the row bands' verdicts, hand
+ * triangle slots to the threads in chunks (binning: about 8 a thread of
+ * 256 to 16384 slots; verdicts: 16384); a few slots a chunk split a small
+ * mesh among the threads as a large one is (tests, the fuzzer). Each chunk
+ * a thread bins from the last down costs a mark per tile. */
 
 /* count_hits: every pixel a fan triangle covers gets color += 1 (the caller
  * clears color to 0 first), so after the draw each pixel holds the number of

@@ -10,6 +10,7 @@
 #include <stdatomic.h>
 #include <stddef.h>
 
+#include "assemble.h"
 #include "clip.h"
 #include "core/array.h"
 #include "raster.h"
@@ -20,6 +21,9 @@
 #include "viewport.h"
 
 #define SR_MAX_THREADS 64
+/* The row-band path (rows.c) splits the rows between its threads in bands,
+ * this many over the framebuffer's height (below 255, the band of none). */
+#define SR_ROW_BANDS 128
 /* Snapped coordinates stay below 2^SR_FIXED_POINT_BITS so the 64-bit edge
  * functions cannot overflow whatever the precision asked for. */
 #define SR_FIXED_POINT_BITS 30
@@ -77,7 +81,7 @@ typedef struct sr_thread_work {
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
-    uint32_t vertices_outside; /* of the thread's vertices: those outside a plane or non-finite */
+    uint32_t band_triangles[SR_ROW_BANDS]; /* of the slots it gave a verdict, kept ones per first band (rows.c) */
 } sr_thread_work;
 
 /* A worker thread of the pool: its index t, and the phases it is handed.
@@ -115,6 +119,8 @@ struct sr_workspace {
     sr_array outcodes; /* unsigned char */
     sr_array screen;   /* screen vertices, sr_draw_state.screen_stride bytes apart, valid where the outcode is 0 */
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
+    sr_array row_bands;    /* unsigned char: the band of rows of each vertex inside, when st->band_rows */
+    sr_array slot_bands;   /* sr_band_span: the row-band path's bands each slot may cover */
     sr_thread_work threads[SR_MAX_THREADS];
 };
 
@@ -134,6 +140,7 @@ typedef struct sr_draw_state {
     int threads;
     uint32_t vertex_count, slots;
     int tile_rows, tiles; /* the binned path's tiles: strips of whole rows */
+    int band_rows;        /* > 0: the vertex phase notes each inside vertex's band of this many rows */
     /* The binned path on several threads: thread 0 clears the framebuffer
      * and draws the first chunks of slots directly while the others bin the
      * rest from the last chunk down (bin.c). */
@@ -179,12 +186,56 @@ struct sr_fan_sink {
     void (*triangle)(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3], int64_t area2,
                      uint32_t id, bool clipped);
     const sr_draw_state *st;
-    sr_thread_work *work;
+    sr_thread_work *work; /* counts the triangles */
+    /* Drawing as they come (pipeline.c's sr_draw_direct, rows.c): the rows
+     * drawn, and the work that counts their fragments. */
+    sr_raster_rect rect;
+    sr_thread_work *pixels;
 };
 
 /* Stages 2 to 7 for triangle slots [first, end): assembly, classification,
  * clipping, fan, viewport (of cut vertices) and culling, into sink. */
 void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end);
+
+/* Stages 2 and 3 for slot k: its indices into idx, counted in stats, and
+ * the OR of its vertices' outcodes (0: inside every plane), or
+ * SR_SLOT_GONE when it has no triangle (a strip's degenerate or restart
+ * slot) or was rejected (counted). */
+#define SR_SLOT_GONE (~0u)
+static inline unsigned sr_slot_verdict(const sr_mesh *mesh, const unsigned char *outcodes, sr_stats *stats,
+                                       uint32_t k, uint32_t idx[3])
+{
+    if (!sr_assemble_triangle(mesh, k, idx))
+        return SR_SLOT_GONE;
+    stats->triangles++;
+    unsigned c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]], any = c0 | c1 | c2;
+    if (any & SR_OUT_NONFINITE) {
+        stats->rejected++;
+        stats->nonfinite++;
+        return SR_SLOT_GONE;
+    }
+    if (c0 & c1 & c2) {
+        sr_clip_count_rejected(stats, c0 & c1 & c2, 1);
+        return SR_SLOT_GONE;
+    }
+    return any;
+}
+
+/* Adds every count of `from` to `to`. */
+void sr_stats_add(sr_stats *to, const sr_stats *from);
+
+/* The bands of rows a slot's triangle may cover: from 255, past every
+ * band, when the verdict left no triangle; every band when a vertex lies
+ * outside a plane. */
+typedef struct sr_band_span {
+    unsigned char first, last;
+} sr_band_span;
+
+/* Stages 4 to 7 for the slots of [first, end) whose span meets bands
+ * [lo, hi] (rows.c): into `own` where the span starts there, the thread
+ * that counts the slot, else into `shared`. */
+void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, uint32_t first, uint32_t end,
+                        const sr_band_span *spans, unsigned lo, unsigned hi);
 
 /* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread and
  * the others on the pool's workers (started as needed), and returns when
@@ -219,5 +270,14 @@ bool sr_draw_binned(sr_draw_state *st);
  * in w: every fan triangle straight to the rasterizer, over the whole
  * framebuffer, in submission order (pipeline.c). */
 void sr_draw_direct(const sr_draw_state *st, sr_thread_work *w, uint32_t first, uint32_t end);
+
+/* A sink that draws each fan triangle as it comes over `rect`, its
+ * fragments counted in `pixels` and its triangles in `work`. */
+sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_raster_rect rect,
+                           sr_thread_work *pixels);
+
+/* The row-band path (rows.c): every thread draws the triangles of its own
+ * band of rows as they come, in submission order. */
+bool sr_draw_rows(sr_draw_state *st);
 
 #endif

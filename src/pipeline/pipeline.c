@@ -35,7 +35,7 @@ static bool check_accuracy_knobs(const sr_framebuffer *fb, const sr_draw_study *
         return sr_error_set(err, "unknown SIMD choice %d", (int)d->simd);
     if ((unsigned)d->clip_precision >= SR_CLIP_PRECISIONS)
         return sr_error_set(err, "unknown clip precision %d", (int)d->clip_precision);
-    if ((unsigned)d->path > SR_PATH_DIRECT_FIRST)
+    if ((unsigned)d->path > SR_PATH_ROWS)
         return sr_error_set(err, "unknown draw path %d", (int)d->path);
     int side = fb->width > fb->height ? fb->width : fb->height;
     double extent = ceil(guard_band(d)) * side * (double)((int64_t)1 << bits);
@@ -117,15 +117,25 @@ static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t 
     return sr_viewport_map_d(v, clip_d, st->shade.layout.count, &st->vp, out);
 }
 
+/* The band of rows of a vertex inside, for the row-band path (rows.c):
+ * its snapped point's row, clamped to the framebuffer. */
+static unsigned char row_band(const sr_draw_state *st, const sr_screen_vertex *v)
+{
+    int64_t row = v->y < 0 ? 0 : v->y >> st->vp.subpixel_bits;
+    if (row >= st->fb->height)
+        row = st->fb->height - 1;
+    return (unsigned char)(row / st->band_rows);
+}
+
 /* Stages 1 and 3 per unique vertex, and stage 6 for those inside every
  * plane, so an unclipped triangle maps none of its corners again. A vertex
  * inside whose divide fails (a non-finite varying, w below 2^-128) is marked
- * non-finite: the triangles that use it are dropped and counted. */
-static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, unsigned *outcodes_and,
-                         uint32_t *outside)
+ * non-finite: the triangles that use it are dropped and counted. For the
+ * row-band path, each vertex inside gets its band of rows. */
+static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, unsigned *outcodes_and)
 {
     const sr_draw_state *st = ph->st;
-    unsigned char *outcodes = st->ws->outcodes.data;
+    unsigned char *outcodes = st->ws->outcodes.data, *bands = st->ws->row_bands.data;
     for (uint32_t block = first; block < end; block += VERTEX_BLOCK) {
         _Alignas(16) sr_vertex_out verts[VERTEX_BLOCK];
         uint32_t n = end - block < VERTEX_BLOCK ? end - block : VERTEX_BLOCK;
@@ -139,8 +149,9 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
             if (code == 0 && !map_inside(ph, &verts[j], i, sr_screen_at(st, i)))
                 code = SR_OUT_NONFINITE;
             outcodes[i] = (unsigned char)code;
+            if (code == 0 && st->band_rows)
+                bands[i] = row_band(st, sr_screen_at(st, i));
             *outcodes_and &= code;
-            *outside += code != 0;
         }
     }
 }
@@ -154,11 +165,9 @@ static void vertex_phase_run(void *ctx, int t)
     const sr_draw_state *st = ph->st;
     uint32_t first, end;
     unsigned outcodes_and = ~0u;
-    uint32_t outside = 0;
     while (sr_chunks_take(&ph->vertices, &first, &end))
-        vertex_chunk(ph, first, end, &outcodes_and, &outside);
+        vertex_chunk(ph, first, end, &outcodes_and);
     st->ws->threads[t].outcodes_and = outcodes_and;
-    st->ws->threads[t].vertices_outside = outside;
     bool past_end = false;
     while (sr_chunks_take(&ph->indices, &first, &end))
         past_end = past_end || !sr_assemble_indices_valid_in(st->desc->mesh, first, end);
@@ -190,6 +199,7 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
     uint32_t n = st->vertex_count;
     sr_workspace *ws = st->ws;
     if (!sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
+        (st->band_rows && !sr_array_reserve(&ws->row_bands, n, sizeof(unsigned char))) ||
         n > SIZE_MAX / st->screen_stride || !sr_array_reserve(&ws->screen, n * st->screen_stride, 1))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
     sr_draw_times *times = st->study.times;
@@ -244,22 +254,16 @@ static bool pixel_sized_slots(const sr_draw_state *st)
     return (int64_t)st->slots * TILES_ONE_THREAD_PIXELS_PER_SLOT > pixel_count(st);
 }
 
-/* Pixel-sized triangle slots of a mesh mostly in view: where one thread
- * would draw them directly, the first of several does so for as many slots
- * as the others take to bin the rest (docs/performance.md, "Direct
- * first"). Where many vertices lie outside a plane, the camera is in or
- * near the mesh, whose triangles near it cover many pixels each and draw
- * faster from a strip held in cache (the inside scene: 80 % outside,
- * 32.9 ms a frame at 2 threads binned, 34.0 direct first; the dense
- * torus: 4 % outside, 25.0 against 24.1 ms in depth shading). */
-#define DIRECT_FIRST_MAX_OUTSIDE 8 /* fewer than one vertex in this many outside */
-
-static bool mostly_in_view(const sr_draw_state *st)
+/* Before the vertex phase: whether it notes the bands of rows of the
+ * row-band path (rows.c), the estimate's choice for pixel-sized triangle
+ * slots on several threads. */
+static bool rows_wanted(const sr_draw_state *st)
 {
-    uint64_t outside = 0;
-    for (int t = 0; t < st->threads; t++)
-        outside += st->ws->threads[t].vertices_outside;
-    return outside * DIRECT_FIRST_MAX_OUTSIDE < st->vertex_count;
+    if (st->study.observer || st->slots > SR_BIN_STORED)
+        return false;
+    if (st->study.path != SR_PATH_BY_COST)
+        return st->study.path == SR_PATH_ROWS;
+    return st->threads > 1 && pixel_sized_slots(st);
 }
 
 /* After the vertex phase: the study's path, or the cost estimate's. */
@@ -274,7 +278,7 @@ static sr_draw_path path_of(const sr_draw_state *st)
     if (all_outside_one_plane(st))
         return SR_PATH_DIRECT;
     if (st->threads > 1)
-        return pixel_sized_slots(st) && mostly_in_view(st) ? SR_PATH_DIRECT_FIRST : SR_PATH_TILES;
+        return st->band_rows ? SR_PATH_ROWS : SR_PATH_TILES;
     return pixel_count(st) >= TILES_MIN_PIXELS && !pixel_sized_slots(st) ? SR_PATH_TILES : SR_PATH_DIRECT;
 }
 
@@ -316,16 +320,22 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], 
     const sr_draw_study *s = &st->study;
     if (s->observer)
         observe(st, tri, clipped, id);
-    sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };
     bool simd = false;
-    sink->work->stats.fragments +=
-        sr_raster_triangle_on(st->fb, all, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2, id, &simd);
-    sink->work->simd_draws += simd;
+    sink->pixels->stats.fragments +=
+        sr_raster_triangle_on(st->fb, sink->rect, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2, id, &simd);
+    sink->pixels->simd_draws += simd;
+}
+
+sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_raster_rect rect,
+                           sr_thread_work *pixels)
+{
+    return (sr_fan_sink){ .store = store_in_place, .triangle = raster_now, .st = st, .work = work, .rect = rect,
+                          .pixels = pixels };
 }
 
 void sr_draw_direct(const sr_draw_state *st, sr_thread_work *w, uint32_t first, uint32_t end)
 {
-    sr_fan_sink sink = { .store = store_in_place, .triangle = raster_now, .st = st, .work = w };
+    sr_fan_sink sink = sr_direct_sink(st, w, (sr_raster_rect){ 0, 0, st->fb->width, st->fb->height }, w);
     sr_draw_primitives(&sink, first, end);
     sr_tiny_queue_flush();
 }
@@ -337,7 +347,7 @@ static void draw_all_direct(void *ctx, int t)
     sr_draw_direct(st, &st->ws->threads[0], 0, st->slots);
 }
 
-static void add_stats(sr_stats *to, const sr_stats *from)
+void sr_stats_add(sr_stats *to, const sr_stats *from)
 {
     to->triangles += from->triangles;
     to->rejected += from->rejected;
@@ -379,6 +389,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         return index_error(st, err);
     if (!worth_threads(st))
         st->threads = 1;
+    st->band_rows = rows_wanted(st) ? (st->fb->height + SR_ROW_BANDS - 1) / SR_ROW_BANDS : 0;
     if (draws) {
         ph.inside = box == SR_BOX_INSIDE;
         if (!run_vertex_phase(st, &ph, err))
@@ -399,7 +410,9 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     } else if (draws) {
         if (!binned)
             sr_parallel_run(&st->ws->pool, 1, draw_all_direct, st, st->study.times ? &st->study.times->primitives : NULL);
-        else if (!sr_draw_binned(st))
+        else if (path == SR_PATH_ROWS && !sr_draw_rows(st))
+            return sr_error_set(err, "out of memory for the row bands of %u triangles", st->slots);
+        else if (path != SR_PATH_ROWS && !sr_draw_binned(st))
             return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
     }
     for (int t = 0; t < st->threads; t++) {
@@ -407,7 +420,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         w->stats.cuts_float = w->cuts.cuts[SR_CLIP_FLOAT];
         w->stats.cuts_double = w->cuts.cuts[SR_CLIP_DOUBLE];
         w->stats.cuts_exact = w->cuts.cuts[SR_CLIP_EXACT];
-        add_stats(stats, &w->stats);
+        sr_stats_add(stats, &w->stats);
     }
     return true;
 }

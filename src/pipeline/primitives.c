@@ -81,31 +81,23 @@ static __attribute__((noinline)) void emit_clipped(sr_fan_sink *sink, const uint
     emit_polygon(sink, &poly, idx, k);
 }
 
+/* Stage 4, when `planes` (the OR of its outcodes) says it crosses one, and
+ * on to the sink for a slot the verdict kept. */
+static void emit_kept(sr_fan_sink *sink, const uint32_t idx[3], unsigned planes, uint32_t k)
+{
+    if (!planes)
+        emit_inside(sink, idx, k);
+    else
+        emit_clipped(sink, idx, planes, k);
+}
+
 /* Stages 2 to 4 for triangle slot k. */
 static void emit_slot(sr_fan_sink *sink, uint32_t k)
 {
-    const sr_draw_state *st = sink->st;
-    sr_stats *stats = &sink->work->stats;
-    const unsigned char *outcodes = st->ws->outcodes.data;
     uint32_t idx[3];
-    if (!sr_assemble_triangle(st->desc->mesh, k, idx))
-        return;
-    stats->triangles++;
-    unsigned c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]], any = c0 | c1 | c2;
-    if (any & SR_OUT_NONFINITE) {
-        stats->rejected++;
-        stats->nonfinite++;
-        return;
-    }
-    if (c0 & c1 & c2) {
-        sr_clip_count_rejected(stats, c0 & c1 & c2, 1);
-        return;
-    }
-    if (!any) {
-        emit_inside(sink, idx, k);
-        return;
-    }
-    emit_clipped(sink, idx, any, k);
+    unsigned planes = sr_slot_verdict(sink->st->desc->mesh, sink->st->ws->outcodes.data, &sink->work->stats, k, idx);
+    if (planes != SR_SLOT_GONE)
+        emit_kept(sink, idx, planes, k);
 }
 
 /* The slots ahead whose screen vertices are prefetched. The vertex phase
@@ -115,6 +107,16 @@ static void emit_slot(sr_fan_sink *sink, uint32_t k)
  * 13 % of the depth torus's frame in perf at one thread, 2 % with it. */
 #define PREFETCH_SLOTS 16
 
+/* Three prefetches in the loop's body: gcc 12 dropped a loop of them, and
+ * a call of a function of them, as having no side effects. */
+#define PREFETCH_SLOT(mesh, screen, stride, k)                                                                \
+    do {                                                                                                      \
+        const uint32_t *ahead = sr_assemble_slot_indices(mesh, k);                                            \
+        __builtin_prefetch((screen) + ahead[0] * (stride));                                                   \
+        __builtin_prefetch((screen) + ahead[1] * (stride));                                                   \
+        __builtin_prefetch((screen) + ahead[2] * (stride));                                                   \
+    } while (0)
+
 void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
 {
     /* Read once: emit_slot's calls could write anything, for all gcc knows. */
@@ -122,15 +124,31 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
     size_t stride = sink->st->screen_stride;
     const sr_mesh *mesh = sink->st->desc->mesh;
     for (uint32_t k = first; k < end; k++) {
-        if (end - k > PREFETCH_SLOTS) {
-            /* Three calls in the loop's body: gcc 12 dropped a loop of
-             * prefetches, and a call of a function of them, as having no
-             * side effects. */
-            const uint32_t *idx = sr_assemble_slot_indices(mesh, k + PREFETCH_SLOTS);
-            __builtin_prefetch(screen + idx[0] * stride);
-            __builtin_prefetch(screen + idx[1] * stride);
-            __builtin_prefetch(screen + idx[2] * stride);
-        }
+        if (end - k > PREFETCH_SLOTS)
+            PREFETCH_SLOT(mesh, screen, stride, k + PREFETCH_SLOTS);
         emit_slot(sink, k);
+    }
+}
+
+void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, uint32_t first, uint32_t end,
+                        const sr_band_span *spans, unsigned lo, unsigned hi)
+{
+    const sr_draw_state *st = own->st;
+    const char *screen = st->ws->screen.data;
+    size_t stride = st->screen_stride;
+    const sr_mesh *mesh = st->desc->mesh;
+    const unsigned char *outcodes = st->ws->outcodes.data;
+    for (uint32_t k = first; k < end; k++) {
+        if (end - k > PREFETCH_SLOTS && spans[k + PREFETCH_SLOTS].first <= hi && spans[k + PREFETCH_SLOTS].last >= lo)
+            PREFETCH_SLOT(mesh, screen, stride, k + PREFETCH_SLOTS);
+        sr_band_span span = spans[k];
+        if (span.first > hi || span.last < lo)
+            continue;
+        uint32_t idx[3];
+        sr_assemble_triangle(mesh, k, idx); /* it has a triangle: the verdict kept it */
+        /* A span of every band may be of a triangle that crosses a plane. */
+        bool every = span.first == 0 && span.last == SR_ROW_BANDS - 1;
+        unsigned planes = every ? outcodes[idx[0]] | outcodes[idx[1]] | outcodes[idx[2]] : 0;
+        emit_kept(span.first >= lo ? own : shared, idx, planes, k);
     }
 }

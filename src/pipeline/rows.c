@@ -1,0 +1,123 @@
+/* The row-band path: each of the draw's threads owns a band of whole rows
+ * of the framebuffer and draws, in submission order, every triangle that
+ * may cover one of its rows, straight into them as the one-thread path
+ * does. A first phase gives each triangle slot its verdict once (rejected
+ * slots are counted there and go to no thread) and the threads whose rows
+ * it may cover: from the bands of rows of its vertices, which the vertex
+ * phase noted, or every thread where a vertex lies outside a plane. The
+ * rows are split where each thread gets about as many vertices inside.
+ * A pixel sees the same triangles in the same order with the same edge
+ * values as on the one-thread path, so the image is bit-identical; a
+ * triangle over several bands is set up by each of their threads, and
+ * counted by the first (docs/performance.md, "Rows by band"). */
+#include <string.h>
+
+#include "draw_internal.h"
+#include "tiny_queue.h"
+#include "target/framebuffer.h"
+
+/* Slots per chunk of the verdicts. */
+#define VERDICT_CHUNK 16384
+
+typedef struct rows_phase {
+    sr_draw_state *st;
+    sr_chunks slots;
+    int first_band[SR_MAX_THREADS + 1]; /* thread t draws bands first_band[t] .. first_band[t + 1] - 1 */
+} rows_phase;
+
+_Static_assert(SR_ROW_BANDS < 255, "band 255 is past every band");
+static const sr_band_span no_triangle = { 255, 0 }, every_band = { 0, SR_ROW_BANDS - 1 };
+
+/* The bands a kept slot's triangle may cover: from its highest vertex's
+ * to its lowest one's (its covered pixel centres lie between their rows),
+ * or every band when a vertex lies outside a plane (its clipped polygon
+ * may reach anywhere). */
+static sr_band_span span_of(const unsigned char *bands, const uint32_t idx[3], unsigned planes)
+{
+    if (planes)
+        return every_band;
+    unsigned a = bands[idx[0]], b = bands[idx[1]], c = bands[idx[2]];
+    unsigned lo = a < b ? a : b, hi = a < b ? b : a;
+    return (sr_band_span){ (unsigned char)(c < lo ? c : lo), (unsigned char)(c > hi ? c : hi) };
+}
+
+static void verdicts(void *ctx, int t)
+{
+    rows_phase *ph = ctx;
+    const sr_draw_state *st = ph->st;
+    const sr_mesh *mesh = st->desc->mesh;
+    const unsigned char *outcodes = st->ws->outcodes.data, *bands = st->ws->row_bands.data;
+    sr_band_span *spans = st->ws->slot_bands.data;
+    /* Local: stores to the thread's would alias every pointer above. */
+    sr_stats counted = { 0 };
+    uint32_t per_band[SR_ROW_BANDS] = { 0 };
+    uint32_t first, end, idx[3];
+    while (sr_chunks_take(&ph->slots, &first, &end))
+        for (uint32_t k = first; k < end; k++) {
+            unsigned planes = sr_slot_verdict(mesh, outcodes, &counted, k, idx);
+            spans[k] = planes == SR_SLOT_GONE ? no_triangle : span_of(bands, idx, planes);
+            if (planes == 0)
+                per_band[spans[k].first]++;
+        }
+    sr_thread_work *w = &st->ws->threads[t];
+    sr_stats_add(&w->stats, &counted);
+    memcpy(w->band_triangles, per_band, sizeof per_band);
+}
+
+/* Thread t's bands start where the kept triangles inside (counted at
+ * their first band) of the bands before reach t / T of them all, evenly by
+ * bands when there are none. */
+static void split_bands(rows_phase *ph)
+{
+    const sr_draw_state *st = ph->st;
+    int threads = st->threads, bands = (st->fb->height + st->band_rows - 1) / st->band_rows;
+    uint64_t count[SR_ROW_BANDS] = { 0 }, total = 0;
+    for (int t = 0; t < threads; t++)
+        for (int b = 0; b < bands; b++)
+            count[b] += st->ws->threads[t].band_triangles[b];
+    for (int b = 0; b < bands; b++)
+        total += count[b];
+    uint64_t whole = total ? total : (uint64_t)bands, before = 0;
+    int t = 0;
+    ph->first_band[0] = 0;
+    for (int b = 0; b < bands; b++) {
+        while (t + 1 < threads && before * (uint64_t)threads >= (uint64_t)(t + 1) * whole)
+            ph->first_band[++t] = b;
+        before += total ? count[b] : 1;
+    }
+    while (t < threads) /* the threads past the last band draw none */
+        ph->first_band[++t] = bands;
+}
+
+static void draw_band(void *ctx, int t)
+{
+    rows_phase *ph = ctx;
+    const sr_draw_state *st = ph->st;
+    int lo = ph->first_band[t], hi = ph->first_band[t + 1] - 1;
+    if (lo > hi)
+        return;
+    int y1 = (hi + 1) * st->band_rows;
+    sr_raster_rect rows = { 0, lo * st->band_rows, st->fb->width, y1 < st->fb->height ? y1 : st->fb->height };
+    if (st->desc->clear)
+        sr_framebuffer_clear_rows(st->fb, rows.y0, rows.y1, st->desc->clear_color);
+    sr_thread_work *w = &st->ws->threads[t];
+    /* A slot another thread counts: its counts go nowhere, its fragments
+     * (this thread's rows') to w. */
+    sr_thread_work uncounted = { .stats = { 0 } };
+    sr_fan_sink own = sr_direct_sink(st, w, rows, w), shared = sr_direct_sink(st, &uncounted, rows, w);
+    sr_draw_kept_slots(&own, &shared, 0, st->slots, st->ws->slot_bands.data, (unsigned)lo, (unsigned)hi);
+    sr_tiny_queue_flush();
+}
+
+bool sr_draw_rows(sr_draw_state *st)
+{
+    if (!sr_array_reserve(&st->ws->slot_bands, st->slots, sizeof(sr_band_span)))
+        return false;
+    sr_draw_times *times = st->study.times;
+    rows_phase ph = { .st = st };
+    sr_chunks_init(&ph.slots, st->slots, st->study.chunk_slots ? st->study.chunk_slots : VERDICT_CHUNK);
+    sr_parallel_run(&st->ws->pool, st->threads, verdicts, &ph, times ? &times->primitives : NULL);
+    split_bands(&ph);
+    sr_parallel_run(&st->ws->pool, st->threads, draw_band, &ph, times ? &times->raster : NULL);
+    return true;
+}
