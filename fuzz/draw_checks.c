@@ -290,11 +290,12 @@ static bool draw_plain(const scene *sc, sr_shade shade, int threads, sr_draw_pat
 }
 
 /* softrast.h, sr_draw: "the image and depth are bit-identical for every
- * thread count and either path" (and so are the counts): the tiles against
+ * thread count and every path" (and so are the counts): the tiles against
  * the direct path. Drawn in the decoded shading mode (id if the mesh cannot
  * be shaded so), on the scene's framebuffer or on one several tiles tall
  * (strips of SR_TILE_ROWS rows), the threaded draw reusing one workspace,
- * on the tiles alone or with the first thread drawing directly. */
+ * on the tiles alone, with the first thread drawing directly, or on the
+ * row bands. */
 static void check_threads(const scene *sc)
 {
     if (!sc->indices_valid || sc->threads == 0)

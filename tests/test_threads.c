@@ -1,4 +1,4 @@
-/* The threaded, tiled path draws exactly what the one-thread path draws:
+/* The threaded paths (tiles, direct first, row bands) draw exactly what the one-thread path draws:
  * the same ids, colors and depths, bit for bit, and the same counts, for
  * every thread count. */
 #include <criterion/criterion.h>
@@ -103,6 +103,26 @@ Test(threads, room_ids_and_depth_match_one_thread_through_walls)
     sr_mesh_free(&room);
 }
 
+/* Inside a wide guard band a vertex inside every plane may lie far off the
+ * framebuffer: the row bands clamp its row, the tiles its box. Coarse
+ * snapping and a forced loop on top. */
+Test(threads, room_through_a_guard_band_matches_one_thread)
+{
+    sr_mesh room;
+    sr_error err;
+    cr_assert(sr_obj_load(&room, "assets/room.obj", &err), "%s", err.message);
+    static float eyes[][6] = { { -8, 3, -8, 4, 1.5f, 6 }, { -5, 2, 0, -25, 2, 0 } };
+    const sr_draw_study knobs[] = { { .guard_band = 8.0f }, { .guard_band = 64.0f, .subpixel_bits = 4 },
+                                    { .guard_band = 1.5f, .simd = SR_SIMD_SCALAR } };
+    for (size_t i = 0; i < sizeof eyes / sizeof *eyes; i++)
+        for (size_t k = 0; k < sizeof knobs / sizeof *knobs; k++) {
+            sr_draw_desc desc = { .mesh = &room, .shade = SR_SHADE_DEPTH, .study = &knobs[k] };
+            look(&desc, eyes[i], eyes[i] + 3, 100.0f, 200.0f / 131.0f);
+            assert_same_for_all_thread_counts(&desc, 200, 131, false);
+        }
+    sr_mesh_free(&room);
+}
+
 Test(threads, dense_torus_lambert_matches_one_thread)
 {
     sr_mesh torus;
@@ -116,11 +136,10 @@ Test(threads, dense_torus_lambert_matches_one_thread)
     sr_mesh_free(&torus);
 }
 
-/* The cost estimate's own choice on a mesh of pixel-sized triangles:
- * wholly in view, the first thread draws the first triangles directly
- * while the others bin the rest; from inside it (most vertices outside a
- * plane), the tiles alone. Either way what the one-thread direct path
- * draws, with the clear inside the draw and without. */
+/* The cost estimate's own choice on a mesh of pixel-sized triangles, wholly
+ * in view and from inside it (most vertices outside a plane): the row
+ * bands. Either way what the one-thread direct path draws, with the clear
+ * inside the draw and without. */
 static void assert_estimate_takes(const sr_draw_desc *desc, sr_draw_path want)
 {
     sr_error err;

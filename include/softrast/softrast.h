@@ -312,8 +312,9 @@ typedef struct sr_draw_desc {
     const sr_draw_study *study; /* optional measurement knobs (softrast/study.h); NULL: the defaults */
     /* true: the draw first clears fb as sr_framebuffer_clear(fb, clear_color)
      * would, on the tiles each tile just before its triangles (while it is
-     * in cache, and in parallel), or, where the first thread draws the
-     * first triangles directly, that thread before it draws. */
+     * in cache, and in parallel), on the row bands each thread its rows
+     * before it draws, or, where the first thread draws the first
+     * triangles directly, that thread before it draws. */
     bool clear;
     uint32_t clear_color;
 } sr_draw_desc;
@@ -326,7 +327,7 @@ typedef struct sr_draw_desc {
  * inf, anything behind the eye) is not an error: it is dropped or clipped
  * and counted in stats. Where the draw's cost estimate says they pay
  * (softrast/study.h, sr_draw_study.path), threads share the draw and the
- * screen is cut into tiles (strips of whole rows); the image, depth and
+ * screen is cut into tiles or bands (strips of whole rows); the image, depth and
  * counts are bit-identical for every thread count and every path. */
 SR_API bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
 

@@ -119,12 +119,12 @@ typedef struct sr_draw_study {
     void *observer_user;
     bool count_hits;                  /* count coverage instead of shading: see below */
     sr_draw_times *times;             /* optional: the phases' wall time is added here */
-    sr_draw_path path;                /* SR_PATH_BY_COST: one thread or the tiles by the cost estimate */
-    uint32_t chunk_slots;             /* 0: the draw's own; else triangle slots per chunk of the tiles' binning */
+    sr_draw_path path;                /* SR_PATH_BY_COST: the path by the cost estimate (below) */
+    uint32_t chunk_slots;             /* 0: the draw's own; else slots per chunk of the binning or the verdicts */
 } sr_draw_study;
 
-/* path: a draw takes several threads, and the tiled path, only when its
- * cost estimate says they pay (many triangle slots or a large framebuffer,
+/* path: a draw takes several threads (the row bands, or the tiles), or the
+ * tiles on one, only when its cost estimate says they pay (many triangle slots or a large framebuffer,
  * and not every vertex outside one plane), and takes the tiles on one thread
  * when its triangles are few for its pixels (docs/performance.md, "One
  * thread or tiles"). SR_PATH_DIRECT draws on one thread without tiles,
@@ -150,12 +150,12 @@ typedef struct sr_draw_study {
  * functions and top-left rule); nothing is depth tested, depth is not
  * written, desc.shade is not used and no vertex attribute is read, and
  * sr_stats.fragments counts the hits. It runs on any number of threads (each
- * tile is counted by one) and gives the same counts on all; only the scalar
+ * tile, or each thread's band of rows, is counted by one) and gives the same counts on all; only the scalar
  * per-pixel loop counts (sr_workspace_simd_draws stays 0). */
 
 /* How many rasterizer calls of the last draw with this workspace a SIMD
  * kernel made (a call is a fan triangle, or on the tiles its share of one
- * tile; narrow ones take the scalar loop, and a tiny one whose pixels a
+ * tile, on the row bands its share of one thread's rows; narrow ones take the scalar loop, and a tiny one whose pixels a
  * SIMD shader colors counts if any pixel passed): tests check the kernels
  * ran. */
 SR_API uint64_t sr_workspace_simd_draws(const sr_workspace *ws);

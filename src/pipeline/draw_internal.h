@@ -21,8 +21,9 @@
 #include "viewport.h"
 
 #define SR_MAX_THREADS 64
-/* The row-band path (rows.c) splits the rows between its threads in bands,
- * this many over the framebuffer's height (below 255, the band of none). */
+/* The row-band path (rows.c) splits the rows between its threads in bands
+ * of ⌈height / SR_ROW_BANDS⌉ rows, at most this many (below 255, the band
+ * of none). */
 #define SR_ROW_BANDS 128
 /* Snapped coordinates stay below 2^SR_FIXED_POINT_BITS so the 64-bit edge
  * functions cannot overflow whatever the precision asked for. */
@@ -81,7 +82,7 @@ typedef struct sr_thread_work {
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
-    uint32_t band_triangles[SR_ROW_BANDS]; /* of the slots it gave a verdict, kept ones per first band (rows.c) */
+    uint32_t band_triangles[SR_ROW_BANDS]; /* of the slots it gave a verdict, kept ones inside every plane per first band (rows.c) */
 } sr_thread_work;
 
 /* A worker thread of the pool: its index t, and the phases it is handed.

@@ -408,12 +408,14 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     if (box == SR_BOX_OUTSIDE) {
         reject_all(st, outside);
     } else if (draws) {
-        if (!binned)
+        if (!binned) {
             sr_parallel_run(&st->ws->pool, 1, draw_all_direct, st, st->study.times ? &st->study.times->primitives : NULL);
-        else if (path == SR_PATH_ROWS && !sr_draw_rows(st))
-            return sr_error_set(err, "out of memory for the row bands of %u triangles", st->slots);
-        else if (path != SR_PATH_ROWS && !sr_draw_binned(st))
+        } else if (path == SR_PATH_ROWS) {
+            if (!sr_draw_rows(st))
+                return sr_error_set(err, "out of memory for the row bands of %u triangles", st->slots);
+        } else if (!sr_draw_binned(st)) {
             return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
+        }
     }
     for (int t = 0; t < st->threads; t++) {
         sr_thread_work *w = &st->ws->threads[t];

@@ -5,7 +5,9 @@
  * slots are counted there and go to no thread) and the threads whose rows
  * it may cover: from the bands of rows of its vertices, which the vertex
  * phase noted, or every thread where a vertex lies outside a plane. The
- * rows are split where each thread gets about as many vertices inside.
+ * rows are split where the kept triangles inside every plane, counted at
+ * their first band, reach equal shares (evenly by bands when there are
+ * none).
  * A pixel sees the same triangles in the same order with the same edge
  * values as on the one-thread path, so the image is bit-identical; a
  * triangle over several bands is set up by each of their threads, and
