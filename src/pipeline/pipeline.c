@@ -146,11 +146,12 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
             for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
                 if (!isfinite(verts[j].v[SR_VARYINGS_AT + k]))
                     code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
-            if (code == 0 && !map_inside(ph, &verts[j], i, sr_screen_at(st, i)))
+            sr_screen_vertex *screen = sr_screen_at(st, i);
+            if (code == 0 && !map_inside(ph, &verts[j], i, screen))
                 code = SR_OUT_NONFINITE;
             outcodes[i] = (unsigned char)code;
             if (code == 0 && st->band_rows)
-                bands[i] = row_band(st, sr_screen_at(st, i));
+                bands[i] = row_band(st, screen);
             *outcodes_and &= code;
         }
     }
@@ -254,12 +255,20 @@ static bool pixel_sized_slots(const sr_draw_state *st)
     return (int64_t)st->slots * TILES_ONE_THREAD_PIXELS_PER_SLOT > pixel_count(st);
 }
 
+/* Whatever the path asked: an observer sees every triangle, in order, from
+ * the direct path, and a bin entry names slots below 2^31 (a strip's can
+ * reach 2^32 - 3). */
+static bool direct_only(const sr_draw_state *st)
+{
+    return st->study.observer || st->slots > SR_BIN_STORED;
+}
+
 /* Before the vertex phase: whether it notes the bands of rows of the
  * row-band path (rows.c), the estimate's choice for pixel-sized triangle
  * slots on several threads. */
 static bool rows_wanted(const sr_draw_state *st)
 {
-    if (st->study.observer || st->slots > SR_BIN_STORED)
+    if (direct_only(st))
         return false;
     if (st->study.path != SR_PATH_BY_COST)
         return st->study.path == SR_PATH_ROWS;
@@ -269,10 +278,8 @@ static bool rows_wanted(const sr_draw_state *st)
 /* After the vertex phase: the study's path, or the cost estimate's. */
 static sr_draw_path path_of(const sr_draw_state *st)
 {
-    if (st->study.observer)
-        return SR_PATH_DIRECT; /* it sees every triangle, in order, from the direct path */
-    if (st->slots > SR_BIN_STORED)
-        return SR_PATH_DIRECT; /* a bin entry names slots below 2^31 (a strip's can reach 2^32 - 3) */
+    if (direct_only(st))
+        return SR_PATH_DIRECT;
     if (st->study.path != SR_PATH_BY_COST)
         return st->study.path;
     if (all_outside_one_plane(st))

@@ -130,6 +130,11 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
     }
 }
 
+static bool span_meets(sr_band_span span, unsigned lo, unsigned hi)
+{
+    return span.first <= hi && span.last >= lo;
+}
+
 void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, uint32_t first, uint32_t end,
                         const sr_band_span *spans, unsigned lo, unsigned hi)
 {
@@ -139,10 +144,10 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, uint32_t first, u
     const sr_mesh *mesh = st->desc->mesh;
     const unsigned char *outcodes = st->ws->outcodes.data;
     for (uint32_t k = first; k < end; k++) {
-        if (end - k > PREFETCH_SLOTS && spans[k + PREFETCH_SLOTS].first <= hi && spans[k + PREFETCH_SLOTS].last >= lo)
+        if (end - k > PREFETCH_SLOTS && span_meets(spans[k + PREFETCH_SLOTS], lo, hi))
             PREFETCH_SLOT(mesh, screen, stride, k + PREFETCH_SLOTS);
         sr_band_span span = spans[k];
-        if (span.first > hi || span.last < lo)
+        if (!span_meets(span, lo, hi))
             continue;
         uint32_t idx[3];
         sr_assemble_triangle(mesh, k, idx); /* it has a triangle: the verdict kept it */
