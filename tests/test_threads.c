@@ -2,10 +2,13 @@
  * the same ids, colors and depths, bit for bit, and the same counts, for
  * every thread count. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "pipeline/draw_internal.h"
 #include "softrast_private.h"
+#include "test_rng.h"
 
 typedef struct drawn {
     sr_framebuffer fb;
@@ -204,6 +207,112 @@ Test(threads, one_workspace_matches_one_thread_as_the_thread_count_changes)
     sr_workspace_destroy(desc.workspace);
     sr_framebuffer_destroy(&one.fb);
     sr_mesh_free(&torus);
+}
+
+/* The row bands split the rows by the costs the last draw with the
+ * workspace measured, per framebuffer height: draws of other scenes, into
+ * other heights, on other thread counts, with one workspace, each draw
+ * what the one-thread path draws. */
+Test(threads, row_bands_of_one_workspace_match_one_thread_across_scenes_and_heights)
+{
+    static const struct {
+        bool room;
+        int height, threads;
+    } draws[] = { { false, 173, 2 }, { true, 173, 2 }, { false, 173, 3 }, { false, 90, 2 },
+                  { true, 173, 7 },  { false, 173, 2 }, { true, 90, 16 }, { false, 90, 1 } };
+    sr_mesh torus, room;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    cr_assert(sr_obj_load(&room, "assets/room.obj", &err), "%s", err.message);
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    for (size_t i = 0; i < sizeof draws / sizeof *draws; i++) {
+        sr_draw_desc desc = { .mesh = draws[i].room ? &room : &torus, .shade = SR_SHADE_DEPTH };
+        float aspect = 301.0f / (float)draws[i].height;
+        if (draws[i].room)
+            look(&desc, (vec3){ -8, 3, -8 }, (vec3){ 4, 1.5f, 6 }, 75.0f, aspect);
+        else
+            look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, aspect);
+        drawn one, many;
+        draw_with_threads(&desc, 301, draws[i].height, false, 1, SR_PATH_DIRECT, &one);
+        cr_assert_gt(one.stats.fragments, 0, "draw %zu drew nothing: the comparison would prove nothing", i);
+        desc.workspace = ws;
+        draw_with_threads(&desc, 301, draws[i].height, false, draws[i].threads, SR_PATH_ROWS, &many);
+        assert_same_drawing(&one, &many, draws[i].threads);
+        sr_framebuffer_destroy(&many.fb);
+        sr_framebuffer_destroy(&one.fb);
+    }
+    sr_workspace_destroy(ws);
+    sr_mesh_free(&room);
+    sr_mesh_free(&torus);
+}
+
+/* The cost before a border of the split, with costs c. */
+static double cost_before(const double *c, int border)
+{
+    double sum = 0.0;
+    for (int b = 0; b < border; b++)
+        sum += c[b];
+    return sum;
+}
+
+static void assert_split(const double *cost, int bands, int threads, const int *want)
+{
+    int got[SR_MAX_THREADS + 1];
+    sr_rows_split(cost, bands, threads, got);
+    for (int t = 0; t <= threads; t++)
+        cr_assert_eq(got[t], want[t], "%d bands over %d threads: thread %d starts at band %d, not %d", bands,
+                     threads, t, got[t], want[t]);
+}
+
+/* A band goes to the thread whose share it brings nearer: the border lies
+ * before a heavy band whose middle is past the share (a border at the
+ * first band past the share would give the first thread 5 of 6), and
+ * after it when its middle is not; a band heavier than a share can leave a
+ * thread none; no cost, or one that is not a number, splits by bands. */
+Test(threads, row_split_puts_each_border_nearest_its_share)
+{
+    assert_split((const double[]){ 1, 1, 1, 1, 1, 1, 1, 1 }, 8, 2, (const int[]){ 0, 4, 8 });
+    assert_split((const double[]){ 1, 1, 3, 1 }, 4, 2, (const int[]){ 0, 2, 4 });
+    assert_split((const double[]){ 1, 3, 1, 1 }, 4, 2, (const int[]){ 0, 2, 4 });
+    assert_split((const double[]){ 4, 1, 1, 1, 1 }, 5, 2, (const int[]){ 0, 1, 5 });
+    assert_split((const double[]){ 9, 1, 1 }, 3, 3, (const int[]){ 0, 0, 1, 3 }); /* thread 0: none */
+    assert_split((const double[]){ 0, 0, 0, 0, 0, 0 }, 6, 3, (const int[]){ 0, 2, 4, 6 });
+    assert_split((const double[]){ 1, NAN, 1, 1 }, 4, 2, (const int[]){ 0, 2, 4 });
+    assert_split((const double[]){ 1, INFINITY, 1, 1 }, 4, 2, (const int[]){ 0, 2, 4 });
+    assert_split((const double[]){ 5, 5 }, 2, 5, (const int[]){ 0, 0, 1, 1, 2, 2 }); /* more threads than bands */
+}
+
+/* Random costs, 1 to 64 threads: the split is a partition of the bands in
+ * order, and each border lies where the cost before it is nearest its
+ * share of all, among every border between its neighbours. */
+Test(threads, row_split_borders_are_nearest_their_shares_on_random_costs)
+{
+    test_rng rng = { 14 };
+    for (int trial = 0; trial < 2000; trial++) {
+        int bands = 1 + rng_below(&rng, SR_ROW_BANDS), threads = 1 + rng_below(&rng, SR_MAX_THREADS);
+        double cost[SR_ROW_BANDS], total = 0.0;
+        for (int b = 0; b < bands; b++) {
+            /* some empty bands, some heavy ones */
+            cost[b] = rng_below(&rng, 4) == 0 ? 0.0 : rng_uniform(&rng, 0.0, 1.0) * (rng_below(&rng, 8) ? 1 : 50);
+            total += cost[b];
+        }
+        int first[SR_MAX_THREADS + 1];
+        sr_rows_split(cost, bands, threads, first);
+        cr_assert_eq(first[0], 0);
+        cr_assert_eq(first[threads], bands, "trial %d: the threads end at band %d of %d", trial, first[threads],
+                     bands);
+        for (int t = 1; t <= threads; t++) {
+            cr_assert_leq(first[t - 1], first[t], "trial %d: thread %d starts before thread %d", trial, t, t - 1);
+            if (t == threads || !(total > 0.0))
+                continue;
+            double share = total * t / threads, here = fabs(cost_before(cost, first[t]) - share);
+            for (int border = first[t - 1]; border <= first[t + 1] && border <= bands; border++)
+                cr_assert_leq(here, fabs(cost_before(cost, border) - share) + 1e-9 * total,
+                              "trial %d: thread %d starts at band %d, %g from its share; band %d is nearer", trial, t,
+                              first[t], here, border);
+        }
+    }
 }
 
 /* Destroying a workspace joins its sleeping workers, or has none to join

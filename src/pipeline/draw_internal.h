@@ -24,7 +24,7 @@
 /* The row-band path (rows.c) splits the rows between its threads in bands
  * of ⌈height / SR_ROW_BANDS⌉ rows, at most this many (below 255, the band
  * of none). */
-#define SR_ROW_BANDS 128
+#define SR_ROW_BANDS 254
 /* Snapped coordinates stay below 2^SR_FIXED_POINT_BITS so the 64-bit edge
  * functions cannot overflow whatever the precision asked for. */
 #define SR_FIXED_POINT_BITS 30
@@ -83,6 +83,7 @@ typedef struct sr_thread_work {
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
     uint32_t band_triangles[SR_ROW_BANDS]; /* of the slots it gave a verdict, kept ones inside every plane per first band (rows.c) */
+    double band_cpu_ms; /* the CPU time it drew its band of rows in (rows.c) */
 } sr_thread_work;
 
 /* A worker thread of the pool: its index t, and the phases it is handed.
@@ -115,6 +116,14 @@ typedef struct sr_pool {
     sr_worker workers[SR_MAX_THREADS]; /* [0] unused: thread 0 is the caller */
 } sr_pool;
 
+/* What the row-band path's last draw with the workspace measured
+ * (rows.c): each band's CPU time per kept triangle inside, that of the
+ * thread that drew it. The next draw into as many rows splits them by it. */
+typedef struct sr_band_costs {
+    int height; /* the framebuffer's, of the draw that measured them; 0: none yet */
+    double per_triangle[SR_ROW_BANDS];
+} sr_band_costs;
+
 struct sr_workspace {
     sr_pool pool;
     sr_array outcodes; /* unsigned char */
@@ -122,6 +131,7 @@ struct sr_workspace {
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
     sr_array row_bands;    /* unsigned char: the band of rows of each vertex inside, when st->band_rows */
     sr_array slot_bands;   /* sr_band_span: the row-band path's bands each slot may cover */
+    sr_band_costs band_costs; /* of the row-band path's last draw */
     sr_thread_work threads[SR_MAX_THREADS];
 };
 
@@ -280,5 +290,12 @@ sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_ras
 /* The row-band path (rows.c): every thread draws the triangles of its own
  * band of rows as they come, in submission order. */
 bool sr_draw_rows(sr_draw_state *st);
+
+/* Splits bands 0 .. bands-1 between `threads` threads by their costs:
+ * thread t draws bands first_band[t] .. first_band[t + 1] - 1 (threads + 1
+ * entries), a band going to the later of two threads when the middle of
+ * its cost lies past their border's share; evenly by bands when the costs
+ * sum to nothing or to no finite number. */
+void sr_rows_split(const double *cost, int bands, int threads, int *first_band);
 
 #endif

@@ -5,16 +5,20 @@
  * slots are counted there and go to no thread) and the threads whose rows
  * it may cover: from the bands of rows of its vertices, which the vertex
  * phase noted, or every thread where a vertex lies outside a plane. The
- * rows are split where the kept triangles inside every plane, counted at
- * their first band, reach equal shares (evenly by bands when there are
- * none).
+ * rows are split where the estimated cost reaches equal shares: the kept
+ * triangles inside every plane, counted at their first band, each weighed
+ * by the CPU time per triangle that the last draw with the workspace took
+ * on that band (evenly by bands when there are none). The weights change
+ * only who draws which rows, never a pixel.
  * A pixel sees the same triangles in the same order with the same edge
  * values as on the one-thread path, so the image is bit-identical; a
  * triangle over several bands is set up by each of their threads, and
  * counted by the first (docs/performance.md, "Rows by band"). */
+#include <math.h>
 #include <string.h>
 
 #include "draw_internal.h"
+#include "core/clock.h"
 #include "tiny_queue.h"
 #include "target/framebuffer.h"
 
@@ -66,29 +70,58 @@ static void verdicts(void *ctx, int t)
     memcpy(w->band_triangles, per_band, sizeof per_band);
 }
 
-/* Thread t's bands start where the kept triangles inside (counted at
- * their first band) of the bands before reach t / T of them all, evenly by
- * bands when there are none. */
-static void split_bands(rows_phase *ph)
+void sr_rows_split(const double *cost, int bands, int threads, int *first_band)
 {
-    const sr_draw_state *st = ph->st;
-    int threads = st->threads, bands = (st->fb->height + st->band_rows - 1) / st->band_rows;
-    uint64_t count[SR_ROW_BANDS] = { 0 }, total = 0;
-    for (int t = 0; t < threads; t++)
-        for (int b = 0; b < bands; b++)
-            count[b] += st->ws->threads[t].band_triangles[b];
+    double total = 0.0;
     for (int b = 0; b < bands; b++)
-        total += count[b];
-    uint64_t whole = total ? total : (uint64_t)bands, before = 0;
+        total += cost[b];
+    bool by_bands = !(total > 0.0 && isfinite(total));
+    double whole = by_bands ? bands : total, before = 0.0;
     int t = 0;
-    ph->first_band[0] = 0;
+    first_band[0] = 0;
     for (int b = 0; b < bands; b++) {
-        while (t + 1 < threads && before * (uint64_t)threads >= (uint64_t)(t + 1) * whole)
-            ph->first_band[++t] = b;
-        before += total ? count[b] : 1;
+        double here = by_bands ? 1.0 : cost[b];
+        while (t + 1 < threads && (before + here / 2) * threads >= (t + 1) * whole)
+            first_band[++t] = b;
+        before += here;
     }
     while (t < threads) /* the threads past the last band draw none */
-        ph->first_band[++t] = bands;
+        first_band[++t] = bands;
+}
+
+/* A band's cost: its kept triangles inside (counted at their first band)
+ * times their cost as the last draw into as many rows measured it, or 1. */
+static void split_bands(rows_phase *ph, const uint64_t count[SR_ROW_BANDS], int bands)
+{
+    const sr_draw_state *st = ph->st;
+    const sr_band_costs *costs = &st->ws->band_costs;
+    bool measured = costs->height == st->fb->height;
+    double cost[SR_ROW_BANDS];
+    for (int b = 0; b < bands; b++)
+        cost[b] = (double)count[b] * (measured ? costs->per_triangle[b] : 1.0);
+    sr_rows_split(cost, bands, st->threads, ph->first_band);
+}
+
+/* Each band's cost per kept triangle: its thread's CPU time over the kept
+ * triangles of its bands, or over all of them for a thread with none. */
+static void measure_costs(const rows_phase *ph, const uint64_t count[SR_ROW_BANDS])
+{
+    const sr_draw_state *st = ph->st;
+    sr_band_costs *costs = &st->ws->band_costs;
+    uint64_t kept[SR_MAX_THREADS] = { 0 }, all_kept = 0;
+    double all_ms = 0.0;
+    for (int t = 0; t < st->threads; t++) {
+        for (int b = ph->first_band[t]; b < ph->first_band[t + 1]; b++)
+            kept[t] += count[b];
+        all_kept += kept[t];
+        all_ms += st->ws->threads[t].band_cpu_ms;
+    }
+    costs->height = all_kept ? st->fb->height : 0;
+    for (int t = 0; t < st->threads && all_kept; t++) {
+        double per = kept[t] ? st->ws->threads[t].band_cpu_ms / (double)kept[t] : all_ms / (double)all_kept;
+        for (int b = ph->first_band[t]; b < ph->first_band[t + 1]; b++)
+            costs->per_triangle[b] = per;
+    }
 }
 
 static void draw_band(void *ctx, int t)
@@ -96,19 +129,22 @@ static void draw_band(void *ctx, int t)
     rows_phase *ph = ctx;
     const sr_draw_state *st = ph->st;
     int lo = ph->first_band[t], hi = ph->first_band[t + 1] - 1;
+    sr_thread_work *w = &st->ws->threads[t];
+    w->band_cpu_ms = 0.0;
     if (lo > hi)
         return;
+    double start = sr_clock_ms(CLOCK_THREAD_CPUTIME_ID);
     int y1 = (hi + 1) * st->band_rows;
     sr_raster_rect rows = { 0, lo * st->band_rows, st->fb->width, y1 < st->fb->height ? y1 : st->fb->height };
     if (st->desc->clear)
         sr_framebuffer_clear_rows(st->fb, rows.y0, rows.y1, st->desc->clear_color);
-    sr_thread_work *w = &st->ws->threads[t];
     /* A slot another thread counts: its counts go nowhere, its fragments
      * (this thread's rows') to w. */
     sr_thread_work uncounted = { .stats = { 0 } };
     sr_fan_sink own = sr_direct_sink(st, w, rows, w), shared = sr_direct_sink(st, &uncounted, rows, w);
     sr_draw_kept_slots(&own, &shared, 0, st->slots, st->ws->slot_bands.data, (unsigned)lo, (unsigned)hi);
     sr_tiny_queue_flush();
+    w->band_cpu_ms = sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) - start;
 }
 
 bool sr_draw_rows(sr_draw_state *st)
@@ -119,7 +155,13 @@ bool sr_draw_rows(sr_draw_state *st)
     rows_phase ph = { .st = st };
     sr_chunks_init(&ph.slots, st->slots, st->study.chunk_slots ? st->study.chunk_slots : VERDICT_CHUNK);
     sr_parallel_run(&st->ws->pool, st->threads, verdicts, &ph, times ? &times->primitives : NULL);
-    split_bands(&ph);
+    int bands = (st->fb->height + st->band_rows - 1) / st->band_rows;
+    uint64_t count[SR_ROW_BANDS] = { 0 };
+    for (int t = 0; t < st->threads; t++)
+        for (int b = 0; b < bands; b++)
+            count[b] += st->ws->threads[t].band_triangles[b];
+    split_bands(&ph, count, bands);
     sr_parallel_run(&st->ws->pool, st->threads, draw_band, &ph, times ? &times->raster : NULL);
+    measure_costs(&ph, count);
     return true;
 }
