@@ -310,13 +310,13 @@ static void check_threads(const scene *sc)
     bool one_ok = draw_plain(sc, shade, 1, SR_PATH_DIRECT, NULL, width, height, &one, &one_stats);
     /* The thread count picks the threaded path; chunks of 1 to 7 slots
      * split the fuzzer's few among the threads. */
-    static const sr_draw_path paths[] = { SR_PATH_TILES, SR_PATH_DIRECT_FIRST, SR_PATH_ROWS };
-    sr_draw_path path = paths[sc->threads % 3];
+    static const sr_draw_path paths[] = { SR_PATH_TILES, SR_PATH_ROWS };
+    sr_draw_path path = paths[sc->threads % 2];
     bool many_ok = draw_plain(sc, shade, sc->threads, path, ws, width, height, &many, &many_stats);
     bool again_ok = true;
     if (sc->big) { /* the workspace again, as a viewer reuses it every frame, on the other threaded path */
         sr_framebuffer_destroy(&many);
-        path = paths[(sc->threads + 1) % 3];
+        path = paths[(sc->threads + 1) % 2];
         again_ok = draw_plain(sc, shade, sc->threads, path, ws, width, height, &many, &many_stats);
     }
     CHECK(one_ok && many_ok && again_ok, "sr_draw failed: %d with one thread, %d/%d with %d", one_ok, many_ok,

@@ -1,4 +1,4 @@
-/* The threaded paths (tiles, direct first, row bands) draw exactly what the one-thread path draws:
+/* The threaded paths (tiles, row bands) draw exactly what the one-thread path draws:
  * the same ids, colors and depths, bit for bit, and the same counts, for
  * every thread count. */
 #include <criterion/criterion.h>
@@ -48,10 +48,8 @@ static void assert_same_drawing(const drawn *one, const drawn *many, int threads
     cr_assert_eq(memcmp(&one->stats, &many->stats, sizeof one->stats), 0, "stats differ with %d threads", threads);
 }
 
-/* The threaded paths: the tiles alone, the first thread drawing the
- * first triangles directly while the others bin the rest, and each thread
- * drawing its band of rows. */
-static const sr_draw_path threaded_paths[] = { SR_PATH_TILES, SR_PATH_DIRECT_FIRST, SR_PATH_ROWS };
+/* The threaded paths: the tiles, and each thread drawing its band of rows. */
+static const sr_draw_path threaded_paths[] = { SR_PATH_TILES, SR_PATH_ROWS };
 #define THREADED_PATHS (sizeof threaded_paths / sizeof *threaded_paths)
 
 static void assert_same_for_all_thread_counts(const sr_draw_desc *desc, int width, int height, bool reversed)

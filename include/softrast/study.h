@@ -95,15 +95,13 @@ typedef enum sr_draw_path {
     SR_PATH_BY_COST = 0,
     SR_PATH_DIRECT,
     SR_PATH_TILES,
-    SR_PATH_DIRECT_FIRST,
     SR_PATH_ROWS
 } sr_draw_path;
 
 typedef struct sr_draw_times {
     sr_phase_time vertex;     /* stage 1, outcodes, mapping of the inside vertices */
     /* stages 2-7; tiled path: and binning; direct path: and rasterization;
-     * direct first: and thread 0's rasterization; row bands: stages 2-3
-     * (each slot's verdict) */
+     * row bands: stages 2-3 (each slot's verdict) */
     sr_phase_time primitives;
     sr_phase_time raster; /* tiled path (at any thread count): the tiles; row bands: stages 4-10 */
     double total;         /* wall ms of the whole sr_draw, its serial checks and set-up included */
@@ -129,8 +127,7 @@ typedef struct sr_draw_study {
  * when its triangles are few for its pixels (docs/performance.md, "One
  * thread or tiles"). SR_PATH_DIRECT draws on one thread without tiles,
  * SR_PATH_TILES on the tiles at the draw's thread count, one included,
- * SR_PATH_DIRECT_FIRST on the tiles with the first thread drawing the
- * first triangles directly while the others bin the rest, and SR_PATH_ROWS
+ * and SR_PATH_ROWS
  * with each thread drawing its band of rows (the estimate's choice for
  * triangle slots many for the pixels on several threads), so tests keep
  * every path exercised on small scenes. All draw the same pixels. A draw
@@ -140,8 +137,7 @@ typedef struct sr_draw_study {
  * chunk_slots: the tiles' binning, and the row bands' verdicts, hand
  * triangle slots to the threads in chunks (binning: about 8 a thread of
  * 256 to 16384 slots; verdicts: 16384); a few slots a chunk split a small
- * mesh among the threads as a large one is (tests, the fuzzer). Each chunk
- * a thread bins from the last down costs a mark per tile. */
+ * mesh among the threads as a large one is (tests, the fuzzer). */
 
 /* count_hits: every pixel a fan triangle covers gets color += 1 (the caller
  * clears color to 0 first), so after the draw each pixel holds the number of

@@ -1,10 +1,8 @@
 /* The tiled path, on one thread or several: set up triangles in chunks of
  * slots, bin the fan triangles into tiles, draw each tile on one thread in
- * submission order; or, drawing directly first, the first thread draws the
- * first chunks straight into the framebuffer while the others bin the rest,
- * which the tiles draw after. A tile's pixels see the same triangles in the
- * same order with the same edge values as on the direct path, so the image
- * is bit-identical. */
+ * submission order. A tile's pixels see the same triangles in the same
+ * order with the same edge values as on the direct path, so the image is
+ * bit-identical. */
 #include <stdatomic.h>
 #include <stdlib.h>
 
@@ -31,9 +29,6 @@ static uint32_t setup_chunk(const sr_draw_state *st)
     return size < SETUP_CHUNK_MIN ? SETUP_CHUNK_MIN : size > SETUP_CHUNK_MAX ? SETUP_CHUNK_MAX : size;
 }
 
-/* The chunks of slots, taken from both ends: the last chunk down by the
- * binning threads, the first up by a thread that draws directly
- * (st->direct_first), until the two meet. */
 typedef struct setup_phase {
     sr_draw_state *st;
     sr_chunks slots;
@@ -89,10 +84,10 @@ static uint64_t entry_cost(sr_raster_rect share, sr_box_cover c)
 }
 
 /* A new entry at the end of a tile's bin, its estimated cost counted;
- * NULL when out of memory or past the 32-bit counts the chunk marks keep. */
+ * NULL when out of memory. */
 static sr_bin_entry *bin_push(sr_thread_work *w, sr_bin *bin, uint64_t cost)
 {
-    sr_bin_entry *e = bin->entries.count < UINT32_MAX ? sr_array_push(&bin->entries, sizeof *e) : NULL;
+    sr_bin_entry *e = sr_array_push(&bin->entries, sizeof *e);
     if (!e) {
         w->out_of_memory = true;
         return NULL;
@@ -166,25 +161,8 @@ static bool work_reset(sr_thread_work *w, size_t tiles)
         w->bins[i].cost = 0;
     }
     w->clip_verts.count = 0;
-    w->chunk_marks.count = 0;
-    w->chunks_binned = 0;
     w->setups.count = 0;
     w->out_of_memory = false;
-    return true;
-}
-
-/* Every tile's entry count before the chunk a thread takes from the back:
- * where its segment starts (bin_walk). */
-static bool chunk_mark(const sr_draw_state *st, sr_thread_work *w)
-{
-    uint32_t *marks = sr_array_grow(&w->chunk_marks, (size_t)st->tiles, sizeof *marks);
-    if (!marks) {
-        w->out_of_memory = true;
-        return false;
-    }
-    for (int tile = 0; tile < st->tiles; tile++)
-        marks[tile] = (uint32_t)w->bins[tile].entries.count;
-    w->chunks_binned++;
     return true;
 }
 
@@ -198,20 +176,8 @@ static void setup_chunks(void *ctx, int t)
         return;
     }
     uint32_t first, end;
-    if (t == 0 && st->direct_first) {
-        if (st->desc->clear)
-            sr_framebuffer_clear(st->fb, st->desc->clear_color);
-        while (sr_chunks_take(&ph->slots, &first, &end))
-            sr_draw_direct(st, w, first, end);
-        return;
-    }
     sr_fan_sink sink = { .store = store_clip_verts, .triangle = bin_triangle, .st = st, .work = w };
-    if (!st->direct_first) {
-        while (sr_chunks_take(&ph->slots, &first, &end))
-            sr_draw_primitives(&sink, first, end);
-        return;
-    }
-    while (sr_chunks_take_last(&ph->slots, &first, &end) && chunk_mark(st, w))
+    while (sr_chunks_take(&ph->slots, &first, &end))
         sr_draw_primitives(&sink, first, end);
 }
 
@@ -261,44 +227,16 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, c
  * frame depth 26.4 -> 25.5 ms, dense 33.6 -> 32.9, 3 alternating runs). */
 #define PREFETCH_ENTRIES 8
 
-/* A thread's list for a tile, walked in submission order: taken from the
- * back, its chunks' segments from the last taken (the first in slot order)
- * up, each in the order it was binned. */
-typedef struct bin_walk {
-    size_t at, end; /* the entries left of the current segment */
-    uint32_t segment; /* the current segment's chunk, in the order taken (before the first: their count) */
-} bin_walk;
-
-/* Moves to the next segment that has entries; false when none has. */
-static bool walk_segment(const sr_draw_state *st, const sr_thread_work *w, int tile, bin_walk *b)
-{
-    const uint32_t *marks = w->chunk_marks.data;
-    while (b->at == b->end && b->segment > 0) {
-        b->segment--;
-        b->at = marks[(size_t)b->segment * (size_t)st->tiles + (size_t)tile];
-        b->end = b->segment + 1 < w->chunks_binned
-                     ? marks[(size_t)(b->segment + 1) * (size_t)st->tiles + (size_t)tile]
-                     : w->bins[tile].entries.count;
-    }
-    return b->at < b->end;
-}
-
 /* The binning threads' lists for the tile merged by slot: a slot's fan
  * triangles are all one thread's, each walked in slot order, so the merge
  * is submission order. */
 static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_draws)
 {
     sr_raster_rect rect = tile_rect(st, tile);
-    if (st->desc->clear && !st->direct_first) /* else thread 0 cleared the framebuffer */
+    if (st->desc->clear)
         sr_framebuffer_clear_rows(st->fb, rect.y0, rect.y1, st->desc->clear_color);
     uint64_t fragments = 0;
-    bin_walk walk[SR_MAX_THREADS];
-    for (int t = 0; t < st->threads; t++) {
-        const sr_thread_work *u = &st->ws->threads[t];
-        /* Chunks taken from the front make one segment, in order. */
-        walk[t] = u->chunks_binned ? (bin_walk){ .segment = u->chunks_binned }
-                                   : (bin_walk){ .end = u->bins[tile].entries.count };
-    }
+    size_t at[SR_MAX_THREADS] = { 0 }; /* each thread's next entry in the tile's list */
     for (;;) {
         /* The thread whose next entry comes first, drawn up to the first
          * entry of the others'. */
@@ -306,9 +244,9 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
         uint32_t first_id = 0, others_id = UINT32_MAX;
         for (int t = 0; t < st->threads; t++) {
             const sr_thread_work *u = &st->ws->threads[t];
-            if (!walk_segment(st, u, tile, &walk[t]))
+            if (at[t] == u->bins[tile].entries.count)
                 continue;
-            uint32_t id = id_of(entry_at(u, tile, walk[t].at));
+            uint32_t id = id_of(entry_at(u, tile, at[t]));
             if (from < 0 || id < first_id) {
                 others_id = from < 0 ? others_id : first_id;
                 from = t;
@@ -322,11 +260,11 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
             return fragments;
         }
         const sr_thread_work *w = &st->ws->threads[from];
-        bin_walk *b = &walk[from];
-        for (; walk_segment(st, w, tile, b); b->at++) {
+        size_t *b = &at[from], end = w->bins[tile].entries.count;
+        for (; *b < end; (*b)++) {
             /* In the loop's body: gcc drops a call of a function of prefetches. */
-            if (b->end - b->at > PREFETCH_ENTRIES) {
-                const sr_bin_entry *ahead = entry_at(w, tile, b->at + PREFETCH_ENTRIES);
+            if (end - *b > PREFETCH_ENTRIES) {
+                const sr_bin_entry *ahead = entry_at(w, tile, *b + PREFETCH_ENTRIES);
                 if (!(ahead->id & SR_BIN_STORED)) {
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[0]));
                     __builtin_prefetch(vertex_of(st, w, ahead->ref[1]));
@@ -338,7 +276,7 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
                         __builtin_prefetch(setup + line);
                 }
             }
-            const sr_bin_entry *entry = entry_at(w, tile, b->at);
+            const sr_bin_entry *entry = entry_at(w, tile, *b);
             if (id_of(entry) > others_id)
                 break;
             bool simd = false;

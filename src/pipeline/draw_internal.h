@@ -75,10 +75,6 @@ typedef struct sr_thread_work {
     sr_array setups;     /* sr_tri_setup, of the triangles that span tiles */
     sr_bin *bins;        /* one per tile */
     size_t bin_count;
-    /* uint32_t: for each chunk of slots it took from the back (st->
-     * direct_first), in that order, every tile's entry count before it. */
-    sr_array chunk_marks;
-    uint32_t chunks_binned;
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
@@ -152,10 +148,6 @@ typedef struct sr_draw_state {
     uint32_t vertex_count, slots;
     int tile_rows, tiles; /* the binned path's tiles: strips of whole rows */
     int band_rows;        /* > 0: the vertex phase notes each inside vertex's band of this many rows */
-    /* The binned path on several threads: thread 0 clears the framebuffer
-     * and draws the first chunks of slots directly while the others bin the
-     * rest from the last chunk down (bin.c). */
-    bool direct_first;
 } sr_draw_state;
 
 /* The bytes of an sr_screen_vertex up to its last varying, with
@@ -198,7 +190,7 @@ struct sr_fan_sink {
                      uint32_t id, bool clipped);
     const sr_draw_state *st;
     sr_thread_work *work; /* counts the triangles */
-    /* Drawing as they come (pipeline.c's sr_draw_direct, rows.c): the rows
+    /* Drawing as they come (pipeline.c's direct path, rows.c): the rows
      * drawn, and the work that counts their fragments. */
     sr_raster_rect rect;
     sr_thread_work *pixels;
@@ -258,29 +250,21 @@ void sr_parallel_run(sr_pool *pool, int threads, void (*fn)(void *ctx, int t), v
 void sr_pool_stop(sr_pool *pool);
 
 /* Work handed out in chunks to whichever thread asks next, so a thread that
- * is slow (or waits for a core) leaves its share to the others; taken from
- * the front, each thread gets its chunks in increasing order, from the
- * back in decreasing order, and the two ends meet (bin.c's direct first). */
+ * is slow (or waits for a core) leaves its share to the others; each thread
+ * gets its chunks in increasing order. */
 typedef struct sr_chunks {
-    atomic_uint_fast64_t ends; /* the next chunk from the front << 32 | one past the next from the back */
+    atomic_uint_fast64_t next; /* the next chunk to hand out (past the last: none left) */
     uint32_t count, size;
 } sr_chunks;
 
 void sr_chunks_init(sr_chunks *c, uint32_t count, uint32_t size);
 
-/* The next chunk's items [first, end) from the front, or the last one
- * left; false when none is left. */
+/* The next chunk's items [first, end); false when none is left. */
 bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end);
-bool sr_chunks_take_last(sr_chunks *c, uint32_t *first, uint32_t *end);
 
 /* The binned path: primitives into per-thread tile bins, then each tile
  * rasterized by one thread in submission order. False when out of memory. */
 bool sr_draw_binned(sr_draw_state *st);
-
-/* The direct path for slots [first, end), on the calling thread, counted
- * in w: every fan triangle straight to the rasterizer, over the whole
- * framebuffer, in submission order (pipeline.c). */
-void sr_draw_direct(const sr_draw_state *st, sr_thread_work *w, uint32_t first, uint32_t end);
 
 /* A sink that draws each fan triangle as it comes over `rect`, its
  * fragments counted in `pixels` and its triangles in `work`. */

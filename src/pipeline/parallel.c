@@ -5,36 +5,21 @@
 
 void sr_chunks_init(sr_chunks *c, uint32_t count, uint32_t size)
 {
-    atomic_init(&c->ends, ((uint64_t)count + size - 1) / size);
+    atomic_init(&c->next, 0);
     c->count = count;
     c->size = size;
 }
 
-static bool chunks_take(sr_chunks *c, bool front, uint32_t *first, uint32_t *end)
+/* A 64-bit counter: each thread takes one past the last chunk at most
+ * once, so it cannot wrap. */
+bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end)
 {
-    uint_fast64_t ends = atomic_load(&c->ends), taken;
-    uint32_t chunk;
-    do {
-        uint32_t lo = (uint32_t)(ends >> 32), hi = (uint32_t)ends;
-        if (lo >= hi)
-            return false;
-        chunk = front ? lo : hi - 1;
-        taken = front ? ends + ((uint_fast64_t)1 << 32) : ends - 1;
-    } while (!atomic_compare_exchange_weak(&c->ends, &ends, taken));
-    uint64_t start = (uint64_t)chunk * c->size;
+    uint64_t start = (uint64_t)atomic_fetch_add(&c->next, 1) * c->size;
+    if (start >= c->count)
+        return false;
     *first = (uint32_t)start;
     *end = start + c->size < c->count ? (uint32_t)(start + c->size) : c->count;
     return true;
-}
-
-bool sr_chunks_take(sr_chunks *c, uint32_t *first, uint32_t *end)
-{
-    return chunks_take(c, true, first, end);
-}
-
-bool sr_chunks_take_last(sr_chunks *c, uint32_t *first, uint32_t *end)
-{
-    return chunks_take(c, false, first, end);
 }
 
 /* fn(ctx, t), and the CPU time the calling thread spent in it when timed. */

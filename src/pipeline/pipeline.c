@@ -340,18 +340,15 @@ sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_ras
                           .pixels = pixels };
 }
 
-void sr_draw_direct(const sr_draw_state *st, sr_thread_work *w, uint32_t first, uint32_t end)
-{
-    sr_fan_sink sink = sr_direct_sink(st, w, (sr_raster_rect){ 0, 0, st->fb->width, st->fb->height }, w);
-    sr_draw_primitives(&sink, first, end);
-    sr_tiny_queue_flush();
-}
-
+/* Every slot on the direct path, counted in thread 0's work. */
 static void draw_all_direct(void *ctx, int t)
 {
     (void)t;
     sr_draw_state *st = ctx;
-    sr_draw_direct(st, &st->ws->threads[0], 0, st->slots);
+    sr_thread_work *w = &st->ws->threads[0];
+    sr_fan_sink sink = sr_direct_sink(st, w, (sr_raster_rect){ 0, 0, st->fb->width, st->fb->height }, w);
+    sr_draw_primitives(&sink, 0, st->slots);
+    sr_tiny_queue_flush();
 }
 
 void sr_stats_add(sr_stats *to, const sr_stats *from)
@@ -406,10 +403,8 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     if (st->study.times)
         st->study.times->path = path;
     bool binned = path != SR_PATH_DIRECT;
-    st->direct_first = path == SR_PATH_DIRECT_FIRST;
-    /* Nothing is written before every check has passed; the binned path
-     * clears each tile as it draws it, or, drawing directly first, thread 0
-     * clears the framebuffer before it draws. */
+    /* Nothing is written before every check has passed; the tiles and the
+     * row bands clear the rows they draw, as they draw them. */
     if (st->desc->clear && !binned)
         sr_framebuffer_clear(st->fb, st->desc->clear_color);
     if (box == SR_BOX_OUTSIDE) {

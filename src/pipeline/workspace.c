@@ -25,7 +25,6 @@ static void thread_work_free(sr_thread_work *w)
 {
     sr_array_free(&w->clip_verts);
     sr_array_free(&w->setups);
-    sr_array_free(&w->chunk_marks);
     for (size_t i = 0; i < w->bin_count; i++)
         sr_array_free(&w->bins[i].entries);
     free(w->bins);
