@@ -294,8 +294,7 @@ static bool draw_plain(const scene *sc, sr_shade shade, int threads, sr_draw_pat
  * the direct path. Drawn in the decoded shading mode (id if the mesh cannot
  * be shaded so), on the scene's framebuffer or on one several tiles tall
  * (strips of SR_TILE_ROWS rows), the threaded draw reusing one workspace,
- * on the tiles alone, with the first thread drawing directly, or on the
- * row bands. */
+ * on the tiles or on the row bands. */
 static void check_threads(const scene *sc)
 {
     if (!sc->indices_valid || sc->threads == 0)

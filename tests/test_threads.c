@@ -245,6 +245,58 @@ Test(threads, row_bands_of_one_workspace_match_one_thread_across_scenes_and_heig
     sr_mesh_free(&torus);
 }
 
+/* Every band's measured cost of the last draw: finite, not negative, some
+ * above zero, kept for this mesh and height. */
+static void assert_costs_measured(const sr_workspace *ws, const sr_mesh *mesh, int height)
+{
+    const sr_band_costs *c = &ws->band_costs;
+    cr_assert_eq(c->height, height);
+    cr_assert_eq(c->mesh, mesh);
+    cr_assert_eq(c->slots, sr_mesh_triangle_slots(mesh));
+    int band_rows = (height + SR_ROW_BANDS - 1) / SR_ROW_BANDS, bands = (height + band_rows - 1) / band_rows;
+    double sum = 0.0;
+    for (int b = 0; b < bands; b++) {
+        cr_assert(isfinite(c->per_triangle[b]) && c->per_triangle[b] >= 0.0, "band %d's cost is %g", b,
+                  c->per_triangle[b]);
+        sum += c->per_triangle[b];
+    }
+    cr_assert_gt(sum, 0.0, "no band's cost was measured");
+}
+
+/* Whatever costs the workspace holds (one band heavier than all others
+ * together, NaN, infinite, negative, none), the row bands draw what one
+ * thread draws, and measure finite costs again. */
+Test(threads, row_bands_draw_alike_whatever_costs_the_workspace_holds)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_DEPTH };
+    look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+    drawn one, many;
+    draw_with_threads(&desc, 301, 173, false, 1, SR_PATH_DIRECT, &one);
+    desc.workspace = sr_workspace_create();
+    cr_assert_not_null(desc.workspace);
+    draw_with_threads(&desc, 301, 173, false, 2, SR_PATH_ROWS, &many);
+    assert_same_drawing(&one, &many, 2);
+    sr_framebuffer_destroy(&many.fb);
+    assert_costs_measured(desc.workspace, &torus, 173);
+    static const double poisons[] = { 1e300, NAN, INFINITY, -1.0, 0.0 };
+    for (size_t p = 0; p < sizeof poisons / sizeof *poisons; p++)
+        for (int threads = 2; threads <= 16; threads *= 2) {
+            sr_band_costs *c = &desc.workspace->band_costs;
+            for (int b = 0; b < SR_ROW_BANDS; b++) /* the first poisoned alone: it outweighs the rest */
+                c->per_triangle[b] = p == 0 && b > 0 ? 1.0 : poisons[p];
+            draw_with_threads(&desc, 301, 173, false, threads, SR_PATH_ROWS, &many);
+            assert_same_drawing(&one, &many, threads);
+            sr_framebuffer_destroy(&many.fb);
+            assert_costs_measured(desc.workspace, &torus, 173);
+        }
+    sr_workspace_destroy(desc.workspace);
+    sr_framebuffer_destroy(&one.fb);
+    sr_mesh_free(&torus);
+}
+
 /* The cost before a border of the split, with costs c. */
 static double cost_before(const double *c, int border)
 {

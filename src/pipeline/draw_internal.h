@@ -114,9 +114,12 @@ typedef struct sr_pool {
 
 /* What the row-band path's last draw with the workspace measured
  * (rows.c): each band's CPU time per kept triangle inside, that of the
- * thread that drew it. The next draw into as many rows splits them by it. */
+ * thread that drew it. The next draw of the same mesh into as many rows
+ * splits them by it (a frame of several meshes splits each by counts). */
 typedef struct sr_band_costs {
     int height; /* the framebuffer's, of the draw that measured them; 0: none yet */
+    const sr_mesh *mesh; /* the draw's, and its slots */
+    uint32_t slots;
     double per_triangle[SR_ROW_BANDS];
 } sr_band_costs;
 
@@ -278,8 +281,8 @@ bool sr_draw_rows(sr_draw_state *st);
 /* Splits bands 0 .. bands-1 between `threads` threads by their costs:
  * thread t draws bands first_band[t] .. first_band[t + 1] - 1 (threads + 1
  * entries), a band going to the later of two threads when the middle of
- * its cost lies past their border's share; evenly by bands when the costs
- * sum to nothing or to no finite number. */
+ * its cost lies at or past their border's share; evenly by bands when the
+ * costs sum to nothing or to no finite number. */
 void sr_rows_split(const double *cost, int bands, int threads, int *first_band);
 
 #endif

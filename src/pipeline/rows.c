@@ -7,8 +7,8 @@
  * phase noted, or every thread where a vertex lies outside a plane. The
  * rows are split where the estimated cost reaches equal shares: the kept
  * triangles inside every plane, counted at their first band, each weighed
- * by the CPU time per triangle that the last draw with the workspace took
- * on that band (evenly by bands when there are none). The weights change
+ * by the CPU time per triangle that the last draw of the mesh with the
+ * workspace took on that band (evenly by bands when there are none). The weights change
  * only who draws which rows, never a pixel.
  * A pixel sees the same triangles in the same order with the same edge
  * values as on the one-thread path, so the image is bit-identical; a
@@ -90,12 +90,13 @@ void sr_rows_split(const double *cost, int bands, int threads, int *first_band)
 }
 
 /* A band's cost: its kept triangles inside (counted at their first band)
- * times their cost as the last draw into as many rows measured it, or 1. */
+ * times their cost as the last draw of the mesh into as many rows measured
+ * it, or 1. */
 static void split_bands(rows_phase *ph, const uint64_t count[SR_ROW_BANDS], int bands)
 {
     const sr_draw_state *st = ph->st;
     const sr_band_costs *costs = &st->ws->band_costs;
-    bool measured = costs->height == st->fb->height;
+    bool measured = costs->height == st->fb->height && costs->mesh == st->desc->mesh && costs->slots == st->slots;
     double cost[SR_ROW_BANDS];
     for (int b = 0; b < bands; b++)
         cost[b] = (double)count[b] * (measured ? costs->per_triangle[b] : 1.0);
@@ -117,6 +118,8 @@ static void measure_costs(const rows_phase *ph, const uint64_t count[SR_ROW_BAND
         all_ms += st->ws->threads[t].band_cpu_ms;
     }
     costs->height = all_kept ? st->fb->height : 0;
+    costs->mesh = st->desc->mesh;
+    costs->slots = st->slots;
     for (int t = 0; t < st->threads && all_kept; t++) {
         double per = kept[t] ? st->ws->threads[t].band_cpu_ms / (double)kept[t] : all_ms / (double)all_kept;
         for (int b = ph->first_band[t]; b < ph->first_band[t + 1]; b++)
