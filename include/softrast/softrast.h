@@ -279,9 +279,9 @@ typedef struct sr_stats {
  * (transformed vertices, tile bins; the threads of a draw with threads > 1,
  * asleep between draws and ended by sr_workspace_destroy; the time each
  * thread's rows took, by which the next draw of the mesh splits them:
- * never a pixel changes with it). Optional: a draw
- * without one makes and frees its own, so its memory is fresh pages and its
- * threads start anew every time: keep one for a loop of draws (a 1M-triangle
+ * never a pixel changes with it). Optional: a draw without one makes and
+ * frees its own, so its memory is fresh pages and its threads start anew
+ * every time: keep one for a loop of draws (a 1M-triangle
  * torus at 1920x1080 took 50 ms a draw without one against 41 with one on
  * one thread, 30 against 22 on two). One workspace serves one draw at a
  * time: never use it from two threads at once, nor in a child of fork()
@@ -324,12 +324,13 @@ typedef struct sr_draw_desc {
  * for a desc that cannot be drawn: no mesh, an index out of range, a shading
  * mode whose inputs the mesh lacks (normals, uvs, colors, texture), a
  * non-finite mesh origin; then fb is untouched. Out of memory for the tile
- * bins or the row bands is also false, found before fb is touched. Bad geometry (NaN,
- * inf, anything behind the eye) is not an error: it is dropped or clipped
- * and counted in stats. Where the draw's cost estimate says they pay
- * (softrast/study.h, sr_draw_study.path), threads share the draw and the
- * screen is cut into tiles or bands (strips of whole rows); the image, depth and
- * counts are bit-identical for every thread count and every path. */
+ * bins or the row bands is also false, found before fb is touched. Bad
+ * geometry (NaN, inf, anything behind the eye) is not an error: it is
+ * dropped or clipped and counted in stats. Where the draw's cost estimate
+ * says they pay (softrast/study.h, sr_draw_study.path), threads share the
+ * draw and the screen is cut into tiles or bands (strips of whole rows);
+ * the image, depth and counts are bit-identical for every thread count
+ * and every path. */
 SR_API bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
 
 #endif

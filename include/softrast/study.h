@@ -122,15 +122,15 @@ typedef struct sr_draw_study {
 } sr_draw_study;
 
 /* path: a draw takes several threads (the row bands, or the tiles), or the
- * tiles on one, only when its cost estimate says they pay (many triangle slots or a large framebuffer,
- * and not every vertex outside one plane), and takes the tiles on one thread
- * when its triangles are few for its pixels (docs/performance.md, "One
- * thread or tiles"). SR_PATH_DIRECT draws on one thread without tiles,
- * SR_PATH_TILES on the tiles at the draw's thread count, one included,
- * and SR_PATH_ROWS
- * with each thread drawing its band of rows (the estimate's choice for
- * triangle slots many for the pixels on several threads), so tests keep
- * every path exercised on small scenes. All draw the same pixels. A draw
+ * tiles on one, only when its cost estimate says they pay (many triangle
+ * slots or a large framebuffer, and not every vertex outside one plane),
+ * and takes the tiles on one thread when its triangles are few for its
+ * pixels (docs/performance.md, "One thread or tiles"). SR_PATH_DIRECT
+ * draws on one thread without tiles, SR_PATH_TILES on the tiles at the
+ * draw's thread count, one included, and SR_PATH_ROWS with each thread
+ * drawing its band of rows (the estimate's choice for triangle slots many
+ * for the pixels on several threads), so tests keep every path exercised
+ * on small scenes. All draw the same pixels. A draw
  * of more than 2^31 triangle slots (a strip's) takes the direct path
  * whatever its path asks.
  *
@@ -145,15 +145,16 @@ typedef struct sr_draw_study {
  * where two overlap. Coverage is the rasterizer's own (the same exact edge
  * functions and top-left rule); nothing is depth tested, depth is not
  * written, desc.shade is not used and no vertex attribute is read, and
- * sr_stats.fragments counts the hits. It runs on any number of threads (each
- * tile, or each thread's band of rows, is counted by one) and gives the same counts on all; only the scalar
- * per-pixel loop counts (sr_workspace_simd_draws stays 0). */
+ * sr_stats.fragments counts the hits. It runs on any number of threads
+ * (each tile, or each thread's band of rows, is counted by one) and gives
+ * the same counts on all; only the scalar per-pixel loop counts
+ * (sr_workspace_simd_draws stays 0). */
 
 /* How many rasterizer calls of the last draw with this workspace a SIMD
  * kernel made (a call is a fan triangle, or on the tiles its share of one
- * tile, on the row bands its share of one thread's rows; narrow ones take the scalar loop, and a tiny one whose pixels a
- * SIMD shader colors counts if any pixel passed): tests check the kernels
- * ran. */
+ * tile, on the row bands its share of one thread's rows; narrow ones take
+ * the scalar loop, and a tiny one whose pixels a SIMD shader colors counts
+ * if any pixel passed): tests check the kernels ran. */
 SR_API uint64_t sr_workspace_simd_draws(const sr_workspace *ws);
 
 #endif

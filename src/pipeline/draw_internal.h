@@ -25,6 +25,18 @@
  * of ⌈height / SR_ROW_BANDS⌉ rows, at most this many (below 255, the band
  * of none). */
 #define SR_ROW_BANDS 254
+
+/* The rows of each band of a framebuffer `height` rows tall, and its bands. */
+static inline int sr_band_rows(int height)
+{
+    return (height + SR_ROW_BANDS - 1) / SR_ROW_BANDS;
+}
+
+static inline int sr_band_count(int height)
+{
+    int rows = sr_band_rows(height);
+    return (height + rows - 1) / rows;
+}
 /* Snapped coordinates stay below 2^SR_FIXED_POINT_BITS so the 64-bit edge
  * functions cannot overflow whatever the precision asked for. */
 #define SR_FIXED_POINT_BITS 30

@@ -393,7 +393,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         return index_error(st, err);
     if (!worth_threads(st))
         st->threads = 1;
-    st->band_rows = rows_wanted(st) ? (st->fb->height + SR_ROW_BANDS - 1) / SR_ROW_BANDS : 0;
+    st->band_rows = rows_wanted(st) ? sr_band_rows(st->fb->height) : 0;
     if (draws) {
         ph.inside = box == SR_BOX_INSIDE;
         if (!run_vertex_phase(st, &ph, err))

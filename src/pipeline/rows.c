@@ -8,8 +8,8 @@
  * rows are split where the estimated cost reaches equal shares: the kept
  * triangles inside every plane, counted at their first band, each weighed
  * by the CPU time per triangle that the last draw of the mesh with the
- * workspace took on that band (evenly by bands when there are none). The weights change
- * only who draws which rows, never a pixel.
+ * workspace took on that band (evenly by bands when there are none). The
+ * weights change only who draws which rows, never a pixel.
  * A pixel sees the same triangles in the same order with the same edge
  * values as on the one-thread path, so the image is bit-identical; a
  * triangle over several bands is set up by each of their threads, and
@@ -117,10 +117,12 @@ static void measure_costs(const rows_phase *ph, const uint64_t count[SR_ROW_BAND
         all_kept += kept[t];
         all_ms += st->ws->threads[t].band_cpu_ms;
     }
-    costs->height = all_kept ? st->fb->height : 0;
-    costs->mesh = st->desc->mesh;
-    costs->slots = st->slots;
-    for (int t = 0; t < st->threads && all_kept; t++) {
+    if (!all_kept) {
+        costs->height = 0; /* nothing measured */
+        return;
+    }
+    *costs = (sr_band_costs){ .height = st->fb->height, .mesh = st->desc->mesh, .slots = st->slots };
+    for (int t = 0; t < st->threads; t++) {
         double per = kept[t] ? st->ws->threads[t].band_cpu_ms / (double)kept[t] : all_ms / (double)all_kept;
         for (int b = ph->first_band[t]; b < ph->first_band[t + 1]; b++)
             costs->per_triangle[b] = per;
@@ -158,7 +160,7 @@ bool sr_draw_rows(sr_draw_state *st)
     rows_phase ph = { .st = st };
     sr_chunks_init(&ph.slots, st->slots, st->study.chunk_slots ? st->study.chunk_slots : VERDICT_CHUNK);
     sr_parallel_run(&st->ws->pool, st->threads, verdicts, &ph, times ? &times->primitives : NULL);
-    int bands = (st->fb->height + st->band_rows - 1) / st->band_rows;
+    int bands = sr_band_count(st->fb->height);
     uint64_t count[SR_ROW_BANDS] = { 0 };
     for (int t = 0; t < st->threads; t++)
         for (int b = 0; b < bands; b++)
