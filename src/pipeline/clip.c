@@ -49,39 +49,6 @@ double sr_clip_distance_with(sr_clip_plane plane, const float *c, const sr_clip_
     return expansion_signed_value(d, n);
 }
 
-/* The near and far bits under the model, for the vertex stage: a·w + b
- * rounds once, so its sign is exact; (w − a·w) − b rounds twice, by at most
- * 2^-53 of |w − a·w| and of the result, so a result past 4ε|w − a·w| has
- * the exact sign and only one closer to the plane pays for the expansion. */
-static unsigned depth_outcode(const float *c, const sr_clip_depth *depth)
-{
-    double w = c[SR_W], aw = (double)depth->a * w, rest = w - aw;
-    double near = aw + depth->b, far = rest - depth->b;
-    if (!(fabs(far) > 4.0 * DBL_EPSILON * fabs(rest)))
-        far = sr_clip_distance_with(SR_PLANE_FAR, c, depth);
-    return (unsigned)(near < 0.0) << SR_PLANE_NEAR | (unsigned)(far < 0.0) << SR_PLANE_FAR;
-}
-
-/* The outcode bit of one plane from the table. Called with each plane
- * spelled out, so the table folds away and no loop walks it per vertex. */
-static inline unsigned plane_bit(sr_clip_plane plane, const float *c)
-{
-    return (unsigned)(sr_clip_distance(plane, c) < 0.0) << plane;
-}
-
-unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth *depth)
-{
-    if (!isfinite(c[SR_X]) || !isfinite(c[SR_Y]) || !isfinite(c[SR_Z]) || !isfinite(c[SR_W]))
-        return SR_OUT_NONFINITE;
-    _Static_assert(SR_PLANE_NEAR == 0 && SR_PLANE_FAR == 1 && SR_CLIP_PLANES == 6,
-                   "near and far are the planes on z, the depth model's");
-    unsigned sides = plane_bit(SR_PLANE_LEFT, c) | plane_bit(SR_PLANE_RIGHT, c) | plane_bit(SR_PLANE_BOTTOM, c) |
-                     plane_bit(SR_PLANE_TOP, c);
-    if (depth && depth->on)
-        return sides | depth_outcode(c, depth);
-    return sides | plane_bit(SR_PLANE_NEAR, c) | plane_bit(SR_PLANE_FAR, c);
-}
-
 unsigned sr_clip_outcode(const float *c)
 {
     return sr_clip_outcode_with(c, NULL);

@@ -30,6 +30,8 @@
 #ifndef SOFTRAST_PIPELINE_CLIP_H
 #define SOFTRAST_PIPELINE_CLIP_H
 
+#include <float.h>
+#include <math.h>
 #include <stdint.h>
 
 #include "stages.h"
@@ -145,7 +147,32 @@ sr_clip_depth sr_clip_depth_of(const float projection[4][4]);
  * for float input and the value within about one double rounding of the
  * exact distance. */
 double sr_clip_distance_with(sr_clip_plane plane, const float *clip, const sr_clip_depth *depth);
-unsigned sr_clip_outcode_with(const float *clip, const sr_clip_depth *depth);
+
+/* sr_clip_outcode under a depth model (NULL or off: sr_clip_outcode's).
+ * Inline: the vertex phase takes one per vertex. The planes bounded by w
+ * are tested in float, s·c < −w: exact, as the sign of w + s·c is (a sum of
+ * floats is zero only where they cancel), and so is z < 0 for the near
+ * plane without a model. Under it, the near and far bits: a·w + b rounds
+ * once, so its sign is exact; (w − a·w) − b rounds twice, by at most 2^-53
+ * of |w − a·w| and of the result, so a result past 4ε|w − a·w| has the
+ * exact sign and only one closer to the plane pays for the expansion. */
+static inline unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth *depth)
+{
+    float x = c[SR_X], y = c[SR_Y], z = c[SR_Z], w = c[SR_W];
+    if (!isfinite(x) || !isfinite(y) || !isfinite(z) || !isfinite(w))
+        return SR_OUT_NONFINITE;
+    _Static_assert(SR_PLANE_NEAR == 0 && SR_PLANE_FAR == 1 && SR_CLIP_PLANES == 6,
+                   "near and far are the planes on z, the depth model's");
+    unsigned sides = (unsigned)(x < -w) << SR_PLANE_LEFT | (unsigned)(x > w) << SR_PLANE_RIGHT |
+                     (unsigned)(y < -w) << SR_PLANE_BOTTOM | (unsigned)(y > w) << SR_PLANE_TOP;
+    if (!depth || !depth->on)
+        return sides | (unsigned)(z < 0.0f) << SR_PLANE_NEAR | (unsigned)(z > w) << SR_PLANE_FAR;
+    double aw = (double)depth->a * w, rest = w - aw;
+    double near = aw + depth->b, far = rest - depth->b;
+    if (!(fabs(far) > 4.0 * DBL_EPSILON * fabs(rest)))
+        far = sr_clip_distance_with(SR_PLANE_FAR, c, depth);
+    return sides | (unsigned)(near < 0.0) << SR_PLANE_NEAR | (unsigned)(far < 0.0) << SR_PLANE_FAR;
+}
 
 /* The distance of a point in double (depth as above; a·w rounds too, as
  * does w − a·w), within a few roundings of the exact one. */
