@@ -128,24 +128,43 @@ static unsigned char row_band(const sr_draw_state *st, const sr_screen_vertex *v
 }
 
 /* Stages 1 and 3 per unique vertex, and stage 6 for those inside every
- * plane, so an unclipped triangle maps none of its corners again. A vertex
- * inside whose divide fails (a non-finite varying, w below 2^-128) is marked
- * non-finite: the triangles that use it are dropped and counted. For the
- * row-band path, each vertex inside gets its band of rows. */
+ * plane, so an unclipped triangle maps none of its corners again. Only a
+ * vertex inside gets its varyings: a clipped triangle transforms its
+ * corners again (primitives.c). A NaN or inf varying marks a vertex
+ * non-finite, inside or not (it decides how a rejected triangle is
+ * counted): outside, it is told from the mesh's values, a block at a time
+ * where they are all plainly finite (vertex.h). A vertex inside whose
+ * divide fails (w below 2^-128) is marked non-finite too: the triangles
+ * that use it are dropped and counted. For the row-band path, each vertex
+ * inside gets its band of rows. */
 static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, unsigned *outcodes_and)
 {
     const sr_draw_state *st = ph->st;
+    const sr_mesh *mesh = st->desc->mesh;
+    const sr_varying_layout *layout = &st->shade.layout;
     unsigned char *outcodes = st->ws->outcodes.data, *bands = st->ws->row_bands.data;
     for (uint32_t block = first; block < end; block += VERTEX_BLOCK) {
         _Alignas(16) sr_vertex_out verts[VERTEX_BLOCK];
         uint32_t n = end - block < VERTEX_BLOCK ? end - block : VERTEX_BLOCK;
-        sr_vertex_run(st->desc->mesh, &ph->xf, &st->shade.layout, block, n, verts);
+        unsigned char codes[VERTEX_BLOCK] = { 0 };
+        if (ph->inside)
+            sr_vertex_run(mesh, &ph->xf, layout, block, n, verts);
+        else
+            sr_vertex_run_inside(mesh, &ph->xf, layout, &st->vp.depth, block, n, verts, codes);
+        int block_finite = -1; /* not yet known */
         for (uint32_t j = 0; j < n; j++) {
             uint32_t i = block + j;
-            unsigned code = ph->inside ? 0 : sr_clip_outcode_with(verts[j].v, &st->vp.depth);
-            for (int k = 0; k < st->shade.layout.count && code != SR_OUT_NONFINITE; k++)
-                if (!isfinite(verts[j].v[SR_VARYINGS_AT + k]))
-                    code = SR_OUT_NONFINITE; /* a NaN or inf varying, inside or not */
+            unsigned code = codes[j];
+            if (code == 0) {
+                for (int k = 0; k < layout->count; k++)
+                    if (!isfinite(verts[j].v[SR_VARYINGS_AT + k]))
+                        code = SR_OUT_NONFINITE;
+            } else if (code != SR_OUT_NONFINITE) {
+                if (block_finite < 0)
+                    block_finite = sr_vertex_block_finite(mesh, &ph->xf, layout, block, n);
+                if (!block_finite && !sr_vertex_varyings_finite(mesh, &ph->xf, layout, i))
+                    code = SR_OUT_NONFINITE;
+            }
             sr_screen_vertex *screen = sr_screen_at(st, i);
             if (code == 0 && !map_inside(ph, &verts[j], i, screen))
                 code = SR_OUT_NONFINITE;

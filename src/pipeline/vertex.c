@@ -1,6 +1,9 @@
+#include <float.h>
+#include <math.h>
 #include <string.h>
 
 #include "vertex.h"
+#include "clip.h"
 #include "core/dmat4.h"
 
 static void add_varying(sr_varying_layout *l, int *slot, int size)
@@ -53,6 +56,24 @@ static void normal_matrix(const mat4 world, mat3 out)
         glm_mat3_scale(out, -1.0f);
 }
 
+/* The largest component a normal may have for the normal matrix to keep
+ * it finite: FLT_MAX over four times the largest row sum of |m|, so no
+ * sum of products rounds past float range, and at most FLT_MAX, so an
+ * infinite component is never within it; -1 (none) for a matrix with a
+ * non-finite entry. */
+static float normal_bound(const mat3 m)
+{
+    double largest = 0.0;
+    for (int r = 0; r < 3; r++) {
+        double row = fabs((double)m[0][r]) + fabs((double)m[1][r]) + fabs((double)m[2][r]);
+        if (!isfinite(row))
+            return -1.0f;
+        largest = row > largest ? row : largest;
+    }
+    double bound = FLT_MAX / (4.0 * largest);
+    return bound < FLT_MAX ? (float)bound : FLT_MAX;
+}
+
 void sr_vertex_make_transform_d(const sr_dmat4 *world, const sr_dmat4 *view, const sr_dmat4 *projection,
                                 const double origin[3], sr_vertex_transform *xf)
 {
@@ -63,6 +84,7 @@ void sr_vertex_make_transform_d(const sr_dmat4 *world, const sr_dmat4 *view, con
     mat4 world_f;
     sr_dmat4_to_mat4(world, world_f);
     normal_matrix(world_f, xf->normal_matrix);
+    xf->normal_bound = normal_bound(xf->normal_matrix);
 }
 
 void sr_vertex_make_transform(const mat4 world, const mat4 view, const mat4 projection,
@@ -96,12 +118,24 @@ static inline void position_w1(const float *xyz, vec4 out)
 
 /* The mesh, the layout and the matrices are read into locals
  * first: the loop's float stores to out could alias them as far as the
- * compiler knows, and it would load them again for every vertex. */
-void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
-                   uint32_t first, uint32_t count, sr_vertex_out *out)
+ * compiler knows, and it would load them again for every vertex. With
+ * codes, each position's outcode under *depth goes there, and only a
+ * vertex inside every plane gets its varyings. Inlined into both callers,
+ * so the one without codes tests none. */
+/* The positions prefetched ahead where the loop also classifies: its
+ * longer body let fewer loads of the position stream run ahead, and they
+ * waited for memory (the vertex phase of the depth torus 12.75 against
+ * 11.61 ms with it, inside 9.55 against 8.39, at one thread). The normals
+ * gained nothing from it. */
+#define POSITIONS_AHEAD 32
+
+static SR_ALWAYS_INLINE void run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
+                                 const sr_clip_depth *depth, uint32_t first, uint32_t count, sr_vertex_out *out,
+                                 unsigned char *codes)
 {
     const sr_mesh m = *mesh;
     const sr_varying_layout l = *layout;
+    const sr_clip_depth d = depth ? *depth : (sr_clip_depth){ .on = false };
     CGLM_ALIGN_MAT mat4 clip_from_object;
     mat3 normal_matrix;
     glm_mat4_copy((vec4 *)xf->clip_from_object, clip_from_object);
@@ -112,9 +146,16 @@ void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_
         if (m.clip_positions) {
             glm_vec4_copy(m.clip_positions[i], v);
         } else {
+            if (codes && k + POSITIONS_AHEAD < count)
+                __builtin_prefetch(m.positions[i + POSITIONS_AHEAD]);
             CGLM_ALIGN(16) vec4 p;
             position_w1(m.positions[i], p);
             glm_mat4_mulv(clip_from_object, p, v);
+        }
+        if (codes) {
+            codes[k] = (unsigned char)sr_clip_outcode_with(v, &d);
+            if (codes[k])
+                continue;
         }
         if (l.normal >= 0) {
             vec3 n;
@@ -127,4 +168,68 @@ void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_
         if (l.color >= 0)
             copy_varying(v, l.color, m.colors[i], 3);
     }
+}
+
+void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
+                   uint32_t first, uint32_t count, sr_vertex_out *out)
+{
+    run(mesh, xf, layout, NULL, first, count, out, NULL);
+}
+
+void sr_vertex_run_inside(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
+                          const sr_clip_depth *depth, uint32_t first, uint32_t count, sr_vertex_out *out,
+                          unsigned char *codes)
+{
+    run(mesh, xf, layout, depth, first, count, out, codes);
+}
+
+/* Whether |v[k]| <= bound for k < n (never for a NaN; with FLT_MAX, whether
+ * all are finite), four at a time where the compiler has vector types. */
+static bool all_within(const float *v, size_t n, float bound)
+{
+    size_t k = 0;
+    bool within = true;
+#if defined(__GNUC__)
+    typedef float four_floats __attribute__((vector_size(16)));
+    typedef int32_t four_ints __attribute__((vector_size(16)));
+    const four_floats limit = { bound, bound, bound, bound };
+    const four_ints magnitude = { INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX };
+    four_ints all = ~(four_ints){ 0 };
+    for (; n - k >= 4; k += 4) {
+        four_floats x;
+        memcpy(&x, v + k, sizeof x);
+        x = (four_floats)((four_ints)x & magnitude);
+        all &= (four_ints)(x <= limit);
+    }
+    within = (all[0] & all[1] & all[2] & all[3]) != 0;
+#endif
+    for (; k < n; k++)
+        within = within && fabsf(v[k]) <= bound;
+    return within;
+}
+
+/* A normal whose components lie within xf->normal_bound stays finite
+ * through the normal matrix, and so through the normalisation (which keeps
+ * a finite vector finite: a zero length gives zeros, an overflowed one
+ * scales by 0). Others are transformed to see. */
+bool sr_vertex_varyings_finite(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *l,
+                               uint32_t i)
+{
+    if ((l->uv >= 0 && !all_within(mesh->uvs[i], 2, FLT_MAX)) ||
+        (l->color >= 0 && !all_within(mesh->colors[i], 3, FLT_MAX)))
+        return false;
+    if (l->normal >= 0 && !all_within(mesh->normals[i], 3, xf->normal_bound)) {
+        _Alignas(16) sr_vertex_out v;
+        sr_vertex_run(mesh, xf, l, i, 1, &v);
+        return all_within(v.v + SR_VARYINGS_AT + l->normal, 3, FLT_MAX);
+    }
+    return true;
+}
+
+bool sr_vertex_block_finite(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *l,
+                            uint32_t first, uint32_t count)
+{
+    return (l->normal < 0 || all_within(mesh->normals[first], 3 * (size_t)count, xf->normal_bound)) &&
+           (l->uv < 0 || all_within(mesh->uvs[first], 2 * (size_t)count, FLT_MAX)) &&
+           (l->color < 0 || all_within(mesh->colors[first], 3 * (size_t)count, FLT_MAX));
 }

@@ -21,6 +21,7 @@ typedef struct sr_vertex_transform {
     mat4 clip_from_object; /* P · V · W · T(origin), rounded from double once */
     sr_dmat4 clip_from_object_d; /* the same before the rounding */
     mat3 normal_matrix;    /* cofactors of W's upper 3x3: a positive multiple of the inverse transpose */
+    float normal_bound;    /* normals within it in every component stay finite through normal_matrix */
 } sr_vertex_transform;
 
 /* The varyings `shade` reads, given what the mesh and texture provide:
@@ -68,5 +69,26 @@ static inline void sr_vertex_mesh_clip_d(const sr_mesh *mesh, uint32_t i, const 
  * is 16-byte aligned (cglm's vector stores; an sr_vertex_out is 48 bytes). */
 void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
                    uint32_t first, uint32_t count, sr_vertex_out *out);
+
+/* The same, with each vertex's outcode under depth (sr_clip_outcode_with)
+ * into codes[0 .. count), and the varyings only of the vertices inside
+ * every plane (code 0): no other's screen vertex is ever drawn from, and
+ * a clipped triangle transforms its corners again. */
+void sr_vertex_run_inside(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
+                          const sr_clip_depth *depth, uint32_t first, uint32_t count, sr_vertex_out *out,
+                          unsigned char *codes);
+
+/* Whether every varying sr_vertex_run would write for vertex i is finite,
+ * told from the mesh's values, without transforming a normal whose size
+ * the normal matrix cannot take past float range: the rule of a vertex
+ * sr_vertex_run_inside gave no varyings. */
+bool sr_vertex_varyings_finite(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
+                               uint32_t i);
+
+/* True when sr_vertex_varyings_finite holds for every vertex of [first,
+ * first + count), decided from bounds on the mesh's values in one pass;
+ * false when some vertex may fail it. */
+bool sr_vertex_block_finite(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
+                            uint32_t first, uint32_t count);
 
 #endif
