@@ -91,16 +91,59 @@ static void emit_kept(sr_fan_sink *sink, const uint32_t idx[3], unsigned planes,
         emit_clipped(sink, idx, planes, k);
 }
 
-/* Stages 2 to 4 for triangle slot k. */
-static void emit_slot(sr_fan_sink *sink, uint32_t k)
+/* The slots whose verdicts are taken before any of them is drawn. */
+#define VERDICT_BATCH 64
+
+typedef struct kept_slot {
+    uint32_t k, idx[3];
+    unsigned planes;
+} kept_slot;
+
+/* Stages 2 and 3 for the slots of [first, end): those the verdict keeps
+ * into kept[], the screen vertices of those inside every plane
+ * prefetched; returns how many it kept. */
+static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, sr_stats *stats, kept_slot *kept)
 {
-    uint32_t idx[3];
-    unsigned planes = sr_slot_verdict(sink->st->desc->mesh, sink->st->ws->outcodes.data, &sink->work->stats, k, idx);
-    if (planes != SR_SLOT_GONE)
-        emit_kept(sink, idx, planes, k);
+    const char *screen = st->ws->screen.data;
+    size_t stride = st->screen_stride;
+    const sr_mesh *mesh = st->desc->mesh;
+    const unsigned char *outcodes = st->ws->outcodes.data;
+    int count = 0;
+    for (uint32_t k = first; k < end; k++) {
+        kept_slot *s = &kept[count];
+        s->planes = sr_slot_verdict(mesh, outcodes, stats, k, s->idx);
+        if (s->planes == SR_SLOT_GONE)
+            continue;
+        if (!s->planes) {
+            __builtin_prefetch(screen + s->idx[0] * stride);
+            __builtin_prefetch(screen + s->idx[1] * stride);
+            __builtin_prefetch(screen + s->idx[2] * stride);
+        }
+        s->k = k;
+        count++;
+    }
+    return count;
 }
 
-/* The slots ahead whose screen vertices are prefetched. The vertex phase
+/* A batch's verdicts, then its kept slots drawn. The verdicts' counts stay
+ * in a local: a slot drawn between two verdicts made them reload what the
+ * drawing might have written. */
+void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
+{
+    sr_stats verdicts = { 0 };
+    for (uint32_t batch = first; batch < end;) {
+        uint32_t batch_end = end - batch > VERDICT_BATCH ? batch + VERDICT_BATCH : end;
+        kept_slot kept[VERDICT_BATCH];
+        int count = take_verdicts(sink->st, batch, batch_end, &verdicts, kept);
+        for (int j = 0; j < count; j++)
+            emit_kept(sink, kept[j].idx, kept[j].planes, kept[j].k);
+        batch = batch_end;
+    }
+    sr_stats_add(&sink->work->stats, &verdicts);
+}
+
+/* The slots ahead whose screen vertices the row bands prefetch (the
+ * verdicts above prefetch those they keep). The vertex phase
  * wrote them all (32 to 64 bytes each, 16.6 MB for the dense torus in
  * depth shading, 25 MB in lambert) long before,
  * so without it the culling's first read of a vertex waited for memory:
@@ -116,19 +159,6 @@ static void emit_slot(sr_fan_sink *sink, uint32_t k)
         __builtin_prefetch((screen) + ahead[1] * (stride));                                                   \
         __builtin_prefetch((screen) + ahead[2] * (stride));                                                   \
     } while (0)
-
-void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
-{
-    /* Read once: emit_slot's calls could write anything, for all gcc knows. */
-    const char *screen = sink->st->ws->screen.data;
-    size_t stride = sink->st->screen_stride;
-    const sr_mesh *mesh = sink->st->desc->mesh;
-    for (uint32_t k = first; k < end; k++) {
-        if (end - k > PREFETCH_SLOTS)
-            PREFETCH_SLOT(mesh, screen, stride, k + PREFETCH_SLOTS);
-        emit_slot(sink, k);
-    }
-}
 
 static bool span_meets(sr_band_span span, unsigned lo, unsigned hi)
 {
