@@ -249,6 +249,19 @@ typedef struct sr_band_span {
     unsigned char first, last;
 } sr_band_span;
 
+/* The span of a triangle that crosses a plane (its clipped polygon may
+ * reach any row); a triangle inside every plane as tall as the
+ * framebuffer has it too. */
+static inline sr_band_span sr_every_band(void)
+{
+    return (sr_band_span){ 0, SR_ROW_BANDS - 1 };
+}
+
+static inline bool sr_band_span_is_every(sr_band_span s)
+{
+    return s.first == 0 && s.last == SR_ROW_BANDS - 1;
+}
+
 /* Stages 4 to 7 for the slots of [first, end) whose span meets bands
  * [lo, hi] (rows.c): into `own` where the span starts there, the thread
  * that counts the slot, else into `shared`. */

@@ -421,15 +421,15 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     sr_draw_path path = draws ? path_of(st) : SR_PATH_DIRECT;
     if (st->study.times)
         st->study.times->path = path;
-    bool binned = path != SR_PATH_DIRECT;
+    bool direct = path == SR_PATH_DIRECT;
     /* Nothing is written before every check has passed; the tiles and the
      * row bands clear the rows they draw, as they draw them. */
-    if (st->desc->clear && !binned)
+    if (st->desc->clear && direct)
         sr_framebuffer_clear(st->fb, st->desc->clear_color);
     if (box == SR_BOX_OUTSIDE) {
         reject_all(st, outside);
     } else if (draws) {
-        if (!binned) {
+        if (direct) {
             sr_parallel_run(&st->ws->pool, 1, draw_all_direct, st, st->study.times ? &st->study.times->primitives : NULL);
         } else if (path == SR_PATH_ROWS) {
             if (!sr_draw_rows(st))

@@ -61,7 +61,7 @@ static void emit_inside(sr_fan_sink *sink, const uint32_t idx[3], uint32_t id)
 }
 
 /* Stages 4 to 6 for triangle slot k, which crosses the planes in `planes`.
- * Out of emit_slot's line: its polygons (1 KB of stack) made every slot's
+ * Out of emit_kept's line: its polygons (1 KB of stack) made every slot's
  * call save and reserve them, though most slots of a dense mesh are not
  * clipped. */
 static __attribute__((noinline)) void emit_clipped(sr_fan_sink *sink, const uint32_t idx[3], unsigned planes,
@@ -99,6 +99,21 @@ typedef struct kept_slot {
     unsigned planes;
 } kept_slot;
 
+/* Prefetches the screen vertices of the triangle whose indices are idx[]:
+ * the vertex phase wrote them all (32 to 64 bytes each, 16.6 MB for the
+ * dense torus in depth shading, 25 MB in lambert) long before, so without
+ * it the culling's first read of a vertex waited for memory (13 % of the
+ * depth torus's frame in perf at one thread, 2 % with it). A macro, three
+ * prefetches in the caller's loop: gcc 12 dropped a loop of them, and a
+ * call of a function of them, as having no side effects. */
+#define PREFETCH_TRIANGLE(screen, stride, idx)                                                                 \
+    do {                                                                                                       \
+        const uint32_t *tri_ = (idx);                                                                          \
+        __builtin_prefetch((screen) + tri_[0] * (stride));                                                     \
+        __builtin_prefetch((screen) + tri_[1] * (stride));                                                     \
+        __builtin_prefetch((screen) + tri_[2] * (stride));                                                     \
+    } while (0)
+
 /* Stages 2 and 3 for the slots of [first, end): those the verdict keeps
  * into kept[], the screen vertices of those inside every plane
  * prefetched; returns how many it kept. */
@@ -114,11 +129,8 @@ static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, 
         s->planes = sr_slot_verdict(mesh, outcodes, stats, k, s->idx);
         if (s->planes == SR_SLOT_GONE)
             continue;
-        if (!s->planes) {
-            __builtin_prefetch(screen + s->idx[0] * stride);
-            __builtin_prefetch(screen + s->idx[1] * stride);
-            __builtin_prefetch(screen + s->idx[2] * stride);
-        }
+        if (!s->planes)
+            PREFETCH_TRIANGLE(screen, stride, s->idx);
         s->k = k;
         count++;
     }
@@ -142,23 +154,8 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
     sr_stats_add(&sink->work->stats, &verdicts);
 }
 
-/* The slots ahead whose screen vertices the row bands prefetch (the
- * verdicts above prefetch those they keep). The vertex phase
- * wrote them all (32 to 64 bytes each, 16.6 MB for the dense torus in
- * depth shading, 25 MB in lambert) long before,
- * so without it the culling's first read of a vertex waited for memory:
- * 13 % of the depth torus's frame in perf at one thread, 2 % with it. */
+/* The slots ahead whose screen vertices the row bands prefetch. */
 #define PREFETCH_SLOTS 16
-
-/* Three prefetches in the loop's body: gcc 12 dropped a loop of them, and
- * a call of a function of them, as having no side effects. */
-#define PREFETCH_SLOT(mesh, screen, stride, k)                                                                \
-    do {                                                                                                      \
-        const uint32_t *ahead = sr_assemble_slot_indices(mesh, k);                                            \
-        __builtin_prefetch((screen) + ahead[0] * (stride));                                                   \
-        __builtin_prefetch((screen) + ahead[1] * (stride));                                                   \
-        __builtin_prefetch((screen) + ahead[2] * (stride));                                                   \
-    } while (0)
 
 static bool span_meets(sr_band_span span, unsigned lo, unsigned hi)
 {
@@ -175,15 +172,15 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, uint32_t first, u
     const unsigned char *outcodes = st->ws->outcodes.data;
     for (uint32_t k = first; k < end; k++) {
         if (end - k > PREFETCH_SLOTS && span_meets(spans[k + PREFETCH_SLOTS], lo, hi))
-            PREFETCH_SLOT(mesh, screen, stride, k + PREFETCH_SLOTS);
+            PREFETCH_TRIANGLE(screen, stride, sr_assemble_slot_indices(mesh, k + PREFETCH_SLOTS));
         sr_band_span span = spans[k];
         if (!span_meets(span, lo, hi))
             continue;
         uint32_t idx[3];
         sr_assemble_triangle(mesh, k, idx); /* it has a triangle: the verdict kept it */
         /* A span of every band may be of a triangle that crosses a plane. */
-        bool every = span.first == 0 && span.last == SR_ROW_BANDS - 1;
-        unsigned planes = every ? outcodes[idx[0]] | outcodes[idx[1]] | outcodes[idx[2]] : 0;
+        unsigned planes =
+            sr_band_span_is_every(span) ? outcodes[idx[0]] | outcodes[idx[1]] | outcodes[idx[2]] : 0;
         emit_kept(span.first >= lo ? own : shared, idx, planes, k);
     }
 }

@@ -32,7 +32,7 @@ typedef struct rows_phase {
 } rows_phase;
 
 _Static_assert(SR_ROW_BANDS < 255, "band 255 is past every band");
-static const sr_band_span no_triangle = { 255, 0 }, every_band = { 0, SR_ROW_BANDS - 1 };
+static const sr_band_span no_triangle = { 255, 0 };
 
 /* The bands a kept slot's triangle may cover: from its highest vertex's
  * to its lowest one's (its covered pixel centres lie between their rows),
@@ -41,7 +41,7 @@ static const sr_band_span no_triangle = { 255, 0 }, every_band = { 0, SR_ROW_BAN
 static sr_band_span span_of(const unsigned char *bands, const uint32_t idx[3], unsigned planes)
 {
     if (planes)
-        return every_band;
+        return sr_every_band();
     unsigned a = bands[idx[0]], b = bands[idx[1]], c = bands[idx[2]];
     unsigned lo = a < b ? a : b, hi = a < b ? b : a;
     return (sr_band_span){ (unsigned char)(c < lo ? c : lo), (unsigned char)(c > hi ? c : hi) };
