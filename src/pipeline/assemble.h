@@ -38,6 +38,16 @@ static inline const uint32_t *sr_assemble_slot_indices(const sr_mesh *mesh, uint
     return mesh->indices + (mesh->topology == SR_TRIANGLE_STRIP ? (size_t)k : 3 * (size_t)k);
 }
 
+/* A loop over slots [k, end) prefetches the indices of the slot
+ * SR_INDICES_AHEAD on (1.5 KB on in a triangle list), or near the end its
+ * own again: the hardware prefetcher left the loops over slots waiting on
+ * the index stream (docs/performance.md, "Indices prefetched"). A macro
+ * for the reason PREFETCH_TRIANGLE is one (primitives.c). */
+#define SR_INDICES_AHEAD 128
+#define SR_PREFETCH_SLOT_INDICES(mesh, k, end)                                                                \
+    __builtin_prefetch(                                                                                        \
+        sr_assemble_slot_indices((mesh), (end) - (k) > SR_INDICES_AHEAD ? (k) + SR_INDICES_AHEAD : (k)))
+
 /* True if every index is below vertex_count (checked once per draw). */
 bool sr_assemble_indices_valid(const sr_mesh *mesh);
 

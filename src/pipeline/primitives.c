@@ -116,8 +116,10 @@ typedef struct kept_slot {
 
 /* Stages 2 and 3 for the slots of [first, end): those the verdict keeps
  * into kept[], the screen vertices of those inside every plane
- * prefetched; returns how many it kept. */
-static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, sr_stats *stats, kept_slot *kept)
+ * prefetched; returns how many it kept. The indices are prefetched up to
+ * the draw's last slot, before `last_end`. */
+static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end, sr_stats *stats,
+                         kept_slot *kept)
 {
     const char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
@@ -125,6 +127,7 @@ static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, 
     const unsigned char *outcodes = st->ws->outcodes.data;
     int count = 0;
     for (uint32_t k = first; k < end; k++) {
+        SR_PREFETCH_SLOT_INDICES(mesh, k, last_end);
         kept_slot *s = &kept[count];
         s->planes = sr_slot_verdict(mesh, outcodes, stats, k, s->idx);
         if (s->planes == SR_SLOT_GONE)
@@ -146,7 +149,7 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
     for (uint32_t batch = first; batch < end;) {
         uint32_t batch_end = end - batch > VERDICT_BATCH ? batch + VERDICT_BATCH : end;
         kept_slot kept[VERDICT_BATCH];
-        int count = take_verdicts(sink->st, batch, batch_end, &verdicts, kept);
+        int count = take_verdicts(sink->st, batch, batch_end, end, &verdicts, kept);
         for (int j = 0; j < count; j++)
             emit_kept(sink, kept[j].idx, kept[j].planes, kept[j].k);
         batch = batch_end;

@@ -60,6 +60,7 @@ static void verdicts(void *ctx, int t)
     uint32_t first, end, idx[3];
     while (sr_chunks_take(&ph->slots, &first, &end))
         for (uint32_t k = first; k < end; k++) {
+            SR_PREFETCH_SLOT_INDICES(mesh, k, end);
             unsigned planes = sr_slot_verdict(mesh, outcodes, &counted, k, idx);
             spans[k] = planes == SR_SLOT_GONE ? no_triangle : span_of(bands, idx, planes);
             if (planes == 0)
