@@ -24,7 +24,7 @@ static void order_clockwise(const sr_screen_vertex *const in[3], int64_t area2, 
 }
 
 /* Edge k is the one opposite vertex k, so E_k / area2 is barycentric λ_k. */
-static void edges_make(const sr_screen_vertex *const v[3], edge e[3])
+static SR_ALWAYS_INLINE void edges_make(const sr_screen_vertex *const v[3], edge e[3])
 {
     e[0] = edge_make(v[1], v[2]);
     e[1] = edge_make(v[2], v[0]);
@@ -98,7 +98,7 @@ static SR_ALWAYS_INLINE void plane_points(const sr_screen_vertex *const v[3], bo
  * the gradient stays far inside float range (|z| <= 1, positions below 2^35
  * subpixels), so depth stays finite. */
 #define SLIVER_GROWTH 65536.0
-static void depth_plane(const sr_screen_vertex *const v[3], int64_t area2, setup *s)
+static SR_ALWAYS_INLINE void depth_plane(const sr_screen_vertex *const v[3], int64_t area2, setup *s)
 {
     double p[3][2];
     plane_points(v, true, p);
@@ -134,7 +134,8 @@ static SR_ALWAYS_INLINE void setup_make(const sr_screen_vertex *const v[3], sr_r
 }
 
 /* What shading needs, for a box that may draw: depth, 1/w, the varyings. */
-static void interpolants_make(const sr_screen_vertex *const v[3], int64_t area2, int varyings, setup *s)
+static SR_ALWAYS_INLINE void interpolants_make(const sr_screen_vertex *const v[3], int64_t area2, int varyings,
+                                               setup *s)
 {
     depth_plane(v, area2, s);
     s->iw0 = v[0]->inv_w;
@@ -435,7 +436,10 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
  * to a call, gcc spilled it to the stack and read it back 16 bytes at a
  * time from two 8-byte stores, a store-forwarding stall per triangle. The
  * edges and a tiny box's mask are inlined into it too (12M instructions a
- * frame fewer on the depth torus, whole-process CPU 0.987). */
+ * frame fewer on the depth torus, whole-process CPU 0.987), and so are the
+ * depth plane and the interpolants, and the tiny queue's push after it
+ * (setup_draw): 0.97–0.99 of the lambert scenes' frames at one thread
+ * (docs/performance.md, "Indices prefetched, the set-up inlined"). */
 static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
                                       int subpixel_bits, sr_shade mode, const sr_shade_context *shade,
                                       bool mask_known, uint64_t mask, setup *s)
@@ -487,6 +491,49 @@ uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2
     return tiny_coverage(&s);
 }
 
+/* A set-up triangle that the tiny queue did not take: what is queued is
+ * shaded first (what comes later draws over it; a mode without varyings
+ * queues nothing, and the queue is empty between draws), then a kernel or
+ * the scalar loop draws it. */
+static uint64_t draw_unqueued(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,
+                              uint32_t triangle_id, bool *simd)
+{
+    if (mode_reads_varyings(mode))
+        sr_tiny_queue_drain();
+    int width = s->box.x1 - s->box.x0;
+    sr_span_kernel kernel = width >= SIMD_MIN_WIDTH ? sr_span_kernel_for(shade, mode, fb->reversed_z, width) : NULL;
+    *simd = kernel && edges_fit_double(s);
+    if (*simd)
+        return kernel(s, shade, fb, triangle_id);
+    if (mode == SR_RASTER_COUNT_HITS) /* past the enum's cases, so not in the switch */
+        return raster_pixels(s, fb, SR_RASTER_COUNT_HITS, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
+    switch (mode) {
+    case SR_SHADE_ID:      return raster_mode(s, fb, SR_SHADE_ID, shade, triangle_id);
+    case SR_SHADE_COLOR:   return raster_mode(s, fb, SR_SHADE_COLOR, shade, triangle_id);
+    case SR_SHADE_NORMAL:  return raster_mode(s, fb, SR_SHADE_NORMAL, shade, triangle_id);
+    case SR_SHADE_TEXTURE: return raster_mode(s, fb, SR_SHADE_TEXTURE, shade, triangle_id);
+    case SR_SHADE_LAMBERT: return raster_mode(s, fb, SR_SHADE_LAMBERT, shade, triangle_id);
+    default:               return raster_mode(s, fb, SR_SHADE_DEPTH, shade, triangle_id);
+    }
+}
+
+/* sr_raster_setup_draw, inlined into the paths that set a triangle up
+ * and draw it at once: the tiny queue's push, the common case of a dense
+ * mesh, without a call between them. */
+static SR_ALWAYS_INLINE uint64_t setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
+                                            const sr_shade_context *shade, uint32_t triangle_id, bool *simd)
+{
+    if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && mode_reads_varyings(mode)) {
+        bool queued;
+        uint64_t passed = sr_tiny_queue_push(s, fb, mode, shade, &queued);
+        if (queued) {
+            *simd = passed > 0; /* a SIMD shader colors them */
+            return passed;
+        }
+    }
+    return draw_unqueued(fb, s, mode, shade, triangle_id, simd);
+}
+
 static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,
                                                  sr_shade mode, const sr_shade_context *shade,
                                                  const sr_screen_vertex *const tri[3], int64_t area2,
@@ -501,7 +548,7 @@ static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_r
     setup s;
     if (!setup_in(tri, area2, box, subpixel_bits, mode, shade, mask_known, mask, &s))
         return 0;
-    return sr_raster_setup_draw(fb, &s, mode, shade, triangle_id, simd);
+    return setup_draw(fb, &s, mode, shade, triangle_id, simd);
 }
 
 uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
@@ -536,31 +583,5 @@ void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
 uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,
                               uint32_t triangle_id, bool *simd)
 {
-    if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && mode_reads_varyings(mode)) {
-        bool queued;
-        uint64_t passed = sr_tiny_queue_push(s, fb, mode, shade, &queued);
-        if (queued) {
-            *simd = passed > 0; /* a SIMD shader colors them */
-            return passed;
-        }
-    }
-    /* What comes later draws over what is queued. A mode without
-     * varyings queues nothing, and the queue is empty between draws. */
-    if (mode_reads_varyings(mode))
-        sr_tiny_queue_drain();
-    int width = s->box.x1 - s->box.x0;
-    sr_span_kernel kernel = width >= SIMD_MIN_WIDTH ? sr_span_kernel_for(shade, mode, fb->reversed_z, width) : NULL;
-    *simd = kernel && edges_fit_double(s);
-    if (*simd)
-        return kernel(s, shade, fb, triangle_id);
-    if (mode == SR_RASTER_COUNT_HITS) /* past the enum's cases, so not in the switch */
-        return raster_pixels(s, fb, SR_RASTER_COUNT_HITS, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
-    switch (mode) {
-    case SR_SHADE_ID:      return raster_mode(s, fb, SR_SHADE_ID, shade, triangle_id);
-    case SR_SHADE_COLOR:   return raster_mode(s, fb, SR_SHADE_COLOR, shade, triangle_id);
-    case SR_SHADE_NORMAL:  return raster_mode(s, fb, SR_SHADE_NORMAL, shade, triangle_id);
-    case SR_SHADE_TEXTURE: return raster_mode(s, fb, SR_SHADE_TEXTURE, shade, triangle_id);
-    case SR_SHADE_LAMBERT: return raster_mode(s, fb, SR_SHADE_LAMBERT, shade, triangle_id);
-    default:               return raster_mode(s, fb, SR_SHADE_DEPTH, shade, triangle_id);
-    }
+    return setup_draw(fb, s, mode, shade, triangle_id, simd);
 }
