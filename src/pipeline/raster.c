@@ -437,8 +437,9 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
  * time from two 8-byte stores, a store-forwarding stall per triangle. The
  * edges and a tiny box's mask are inlined into it too (12M instructions a
  * frame fewer on the depth torus, whole-process CPU 0.987), and so are the
- * depth plane and the interpolants, and the tiny queue's push after it
- * (setup_draw): 0.97–0.99 of the lambert scenes' frames at one thread
+ * depth plane, the interpolants and, after it, the branch that hands a
+ * tiny triangle to the tiny queue (setup_draw): 0.97–0.99 of the lambert
+ * scenes' frames at one thread
  * (docs/performance.md, "Indices prefetched, the set-up inlined"). */
 static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
                                       int subpixel_bits, sr_shade mode, const sr_shade_context *shade,
@@ -517,9 +518,9 @@ static uint64_t draw_unqueued(sr_framebuffer *fb, const setup *s, sr_shade mode,
     }
 }
 
-/* sr_raster_setup_draw, inlined into the paths that set a triangle up
- * and draw it at once: the tiny queue's push, the common case of a dense
- * mesh, without a call between them. */
+/* sr_raster_setup_draw, inlined where a triangle is set up and drawn at
+ * once: a tiny triangle (the common case of a dense mesh) goes from its
+ * set-up to the tiny queue's push with one call, not two. */
 static SR_ALWAYS_INLINE uint64_t setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
                                             const sr_shade_context *shade, uint32_t triangle_id, bool *simd)
 {
