@@ -116,12 +116,6 @@ static inline void position_w1(const float *xyz, vec4 out)
 #endif
 }
 
-/* The mesh, the layout and the matrices are read into locals
- * first: the loop's float stores to out could alias them as far as the
- * compiler knows, and it would load them again for every vertex. With
- * codes, each position's outcode under *depth goes there, and only a
- * vertex inside every plane gets its varyings. Inlined into both callers,
- * so the one without codes tests none. */
 /* The positions prefetched ahead where the loop also classifies: its
  * longer body let fewer loads of the position stream run ahead, and they
  * waited for memory (the vertex phase of the depth torus 12.75 against
@@ -129,6 +123,12 @@ static inline void position_w1(const float *xyz, vec4 out)
  * gained nothing from it. */
 #define POSITIONS_AHEAD 32
 
+/* The mesh, the layout and the matrices are read into locals
+ * first: the loop's float stores to out could alias them as far as the
+ * compiler knows, and it would load them again for every vertex. With
+ * codes, each position's outcode under *depth goes there, and only a
+ * vertex inside every plane gets its varyings. Inlined into both callers,
+ * so the one without codes tests none. */
 static SR_ALWAYS_INLINE void run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
                                  const sr_clip_depth *depth, uint32_t first, uint32_t count, sr_vertex_out *out,
                                  unsigned char *codes)
