@@ -117,14 +117,26 @@ static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t 
     return sr_viewport_map_d(v, clip_d, st->shade.layout.count, &st->vp, out);
 }
 
-/* The band of rows of a vertex inside, for the row-band path (rows.c):
- * its snapped point's row, clamped to the framebuffer. */
-static unsigned char row_band(const sr_draw_state *st, const sr_screen_vertex *v)
+/* The band of rows of each vertex inside among vertices [first, first + n),
+ * for the row-band path (rows.c): its snapped point's row, clamped to the
+ * framebuffer. A pass of its own after the block is mapped: read in the
+ * mapping loop, right after the mapping stored it, a vertex's row cost the
+ * dense torus's vertex phase 1.3 ms more CPU a frame at two threads than
+ * here, where the bands cost 0.2 ms (docs/performance.md, "The bands of
+ * rows noted after the block"). */
+static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, const unsigned char *outcodes,
+                           unsigned char *bands)
 {
-    int64_t row = v->y < 0 ? 0 : v->y >> st->vp.subpixel_bits;
-    if (row >= st->fb->height)
-        row = st->fb->height - 1;
-    return (unsigned char)(row / st->band_rows);
+    int shift = st->vp.subpixel_bits;
+    int64_t last_row = st->fb->height - 1;
+    unsigned band_rows = (unsigned)st->band_rows;
+    for (uint32_t i = first; i < first + n; i++) {
+        if (outcodes[i])
+            continue;
+        int64_t y = sr_screen_at(st, i)->y;
+        int64_t row = y < 0 ? 0 : y >> shift;
+        bands[i] = (unsigned char)((unsigned)(row < last_row ? row : last_row) / band_rows);
+    }
 }
 
 /* Stages 1 and 3 per unique vertex, and stage 6 for those inside every
@@ -169,10 +181,10 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
             if (code == 0 && !map_inside(ph, &verts[j], i, screen))
                 code = SR_OUT_NONFINITE;
             outcodes[i] = (unsigned char)code;
-            if (code == 0 && st->band_rows)
-                bands[i] = row_band(st, screen);
             *outcodes_and &= code;
         }
+        if (st->band_rows)
+            note_row_bands(st, block, n, outcodes, bands);
     }
 }
 
