@@ -89,6 +89,19 @@ static void look(sr_draw_desc *desc, vec3 eye, vec3 target, float fov, float asp
     look_reversed(desc, eye, target, fov, aspect, false);
 }
 
+/* The tests' dense torus (14 400 triangles), and the camera that looks
+ * down on it from above and in front. */
+static void torus_make(sr_mesh *torus)
+{
+    sr_error err;
+    cr_assert(sr_shape_torus(torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+}
+
+static void look_at_torus(sr_draw_desc *desc, float aspect, bool reversed)
+{
+    look_reversed(desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, aspect, reversed);
+}
+
 Test(threads, room_ids_and_depth_match_one_thread_through_walls)
 {
     sr_mesh room;
@@ -127,10 +140,9 @@ Test(threads, room_through_a_guard_band_matches_one_thread)
 Test(threads, dense_torus_lambert_matches_one_thread)
 {
     sr_mesh torus;
-    sr_error err;
-    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    torus_make(&torus);
     sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT };
-    look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+    look_at_torus(&desc, 301.0f / 173.0f, false);
     assert_same_for_all_thread_counts(&desc, 301, 173, false);
     desc.shade = SR_SHADE_DEPTH;
     assert_same_for_all_thread_counts(&desc, 301, 173, false);
@@ -187,10 +199,9 @@ Test(threads, one_workspace_matches_one_thread_as_the_thread_count_changes)
 {
     static const int counts[] = { 1, 2, 7, 3, 16, 1, 2, 16, 4, 1, 3 };
     sr_mesh torus;
-    sr_error err;
-    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    torus_make(&torus);
     sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT };
-    look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+    look_at_torus(&desc, 301.0f / 173.0f, false);
     drawn one;
     draw_with_threads(&desc, 301, 173, false, 1, SR_PATH_DIRECT, &one);
     cr_assert_gt(one.stats.fragments, 0, "the scene drew nothing: the comparison would prove nothing");
@@ -220,7 +231,7 @@ Test(threads, row_bands_of_one_workspace_match_one_thread_across_scenes_and_heig
                   { true, 173, 7 },  { false, 173, 2 }, { true, 90, 16 }, { false, 90, 1 } };
     sr_mesh torus, room;
     sr_error err;
-    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    torus_make(&torus);
     cr_assert(sr_obj_load(&room, "assets/room.obj", &err), "%s", err.message);
     sr_workspace *ws = sr_workspace_create();
     cr_assert_not_null(ws);
@@ -230,7 +241,7 @@ Test(threads, row_bands_of_one_workspace_match_one_thread_across_scenes_and_heig
         if (draws[i].room)
             look(&desc, (vec3){ -8, 3, -8 }, (vec3){ 4, 1.5f, 6 }, 75.0f, aspect);
         else
-            look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, aspect);
+            look_at_torus(&desc, aspect, false);
         drawn one, many;
         draw_with_threads(&desc, 301, draws[i].height, false, 1, SR_PATH_DIRECT, &one);
         cr_assert_gt(one.stats.fragments, 0, "draw %zu drew nothing: the comparison would prove nothing", i);
@@ -268,10 +279,9 @@ static void assert_costs_measured(const sr_workspace *ws, const sr_mesh *mesh, i
 Test(threads, row_bands_draw_alike_whatever_costs_the_workspace_holds)
 {
     sr_mesh torus;
-    sr_error err;
-    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    torus_make(&torus);
     sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_DEPTH };
-    look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+    look_at_torus(&desc, 301.0f / 173.0f, false);
     drawn one, many;
     draw_with_threads(&desc, 301, 173, false, 1, SR_PATH_DIRECT, &one);
     desc.workspace = sr_workspace_create();
@@ -380,7 +390,7 @@ Test(threads, workspace_destroys_right_after_a_threaded_draw, .timeout = 60)
     cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 40, 20, &err), "%s", err.message);
     sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_ID, .workspace = sr_workspace_create() };
     cr_assert_not_null(desc.workspace);
-    look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 1.0f);
+    look_at_torus(&desc, 1.0f, false);
     drawn many;
     draw_with_threads(&desc, 64, 64, false, 5, SR_PATH_TILES, &many);
     sr_workspace_destroy(desc.workspace);
@@ -438,7 +448,7 @@ Test(threads, observer_sees_every_drawn_triangle_once_in_order)
     observed seen = { .in_order = true };
     sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_ID,
                           .study = &(sr_draw_study){ .observer = observe, .observer_user = &seen } };
-    look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 1.0f);
+    look_at_torus(&desc, 1.0f, false);
     drawn out;
     draw_with_threads(&desc, 64, 64, false, 4, SR_PATH_TILES, &out);
     cr_assert_gt(out.stats.drawn, 0);
@@ -562,11 +572,10 @@ Test(threads, strips_of_every_width_match_one_thread)
 Test(threads, clear_inside_the_draw_matches_clear_before_it)
 {
     sr_mesh torus;
-    sr_error err;
-    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    torus_make(&torus);
     for (int reversed = 0; reversed < 2; reversed++) {
         sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT, .clear_color = 0x123456 };
-        look_reversed(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f, reversed);
+        look_at_torus(&desc, 301.0f / 173.0f, reversed);
         drawn before;
         draw_with_threads(&desc, 301, 173, reversed, 1, SR_PATH_DIRECT, &before);
         assert_cleared_by_the_draw(&desc, &before, 4);
@@ -581,13 +590,12 @@ Test(threads, clear_inside_the_draw_matches_clear_before_it)
 Test(threads, draw_times_add_up_per_phase)
 {
     sr_mesh torus;
-    sr_error err;
-    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    torus_make(&torus);
     for (int threads = 1; threads <= 2; threads++) {
         sr_draw_path path = threads == 1 ? SR_PATH_DIRECT : SR_PATH_TILES;
         sr_draw_times times = { { 0 } };
         sr_draw_desc desc = { .mesh = &torus, .threads = threads, .study = &(sr_draw_study){ .times = &times } };
-        look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, 301.0f / 173.0f);
+        look_at_torus(&desc, 301.0f / 173.0f, false);
         drawn out;
         draw_with_threads(&desc, 301, 173, false, threads, path, &out);
         sr_draw_times once = times;
@@ -618,7 +626,7 @@ Test(threads, one_thread_takes_the_tiles_for_few_triangles_on_many_pixels)
         sr_draw_times times = { { 0 } };
         sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT,
                               .study = &(sr_draw_study){ .times = &times } };
-        look(&desc, (vec3){ 0, 1.1f, -1.9f }, (vec3){ 0, 0, 0 }, 60.0f, (float)w / (float)h);
+        look_at_torus(&desc, (float)w / (float)h, false);
         drawn direct, by_cost = { .fb = { 0 } };
         draw_with_threads(&desc, w, h, false, 1, SR_PATH_DIRECT, &direct);
         cr_assert(sr_framebuffer_create(&by_cost.fb, w, h, &err), "%s", err.message);

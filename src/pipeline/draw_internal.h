@@ -262,11 +262,10 @@ static inline bool sr_band_span_is_every(sr_band_span s)
     return s.first == 0 && s.last == SR_ROW_BANDS - 1;
 }
 
-/* Stages 4 to 7 for the slots of [first, end) whose span meets bands
- * [lo, hi] (rows.c): into `own` where the span starts there, the thread
+/* Stages 4 to 7 for the draw's slots whose span meets bands [lo, hi]
+ * (rows.c), in order: into `own` where the span starts there, the thread
  * that counts the slot, else into `shared`. */
-void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, uint32_t first, uint32_t end,
-                        const sr_band_span *spans, unsigned lo, unsigned hi);
+void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_span *spans, unsigned lo, unsigned hi);
 
 /* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread and
  * the others on the pool's workers (started as needed), and returns when

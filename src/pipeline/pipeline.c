@@ -158,11 +158,13 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
     for (uint32_t block = first; block < end; block += VERTEX_BLOCK) {
         _Alignas(16) sr_vertex_out verts[VERTEX_BLOCK];
         uint32_t n = end - block < VERTEX_BLOCK ? end - block : VERTEX_BLOCK;
-        unsigned char codes[VERTEX_BLOCK] = { 0 };
-        if (ph->inside)
+        unsigned char codes[VERTEX_BLOCK]; /* each vertex's outcode, 0 for all when the mesh is inside */
+        if (ph->inside) {
+            memset(codes, 0, n);
             sr_vertex_run(mesh, &ph->xf, layout, block, n, verts);
-        else
+        } else {
             sr_vertex_run_inside(mesh, &ph->xf, layout, &st->vp.depth, block, n, verts, codes);
+        }
         int block_finite = -1; /* not yet known */
         for (uint32_t j = 0; j < n; j++) {
             uint32_t i = block + j;

@@ -167,15 +167,15 @@ static bool span_meets(sr_band_span span, unsigned lo, unsigned hi)
     return span.first <= hi && span.last >= lo;
 }
 
-void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, uint32_t first, uint32_t end,
-                        const sr_band_span *spans, unsigned lo, unsigned hi)
+void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_span *spans, unsigned lo, unsigned hi)
 {
     const sr_draw_state *st = own->st;
+    uint32_t end = st->slots;
     const char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
     const sr_mesh *mesh = st->desc->mesh;
     const unsigned char *outcodes = st->ws->outcodes.data;
-    for (uint32_t k = first; k < end; k++) {
+    for (uint32_t k = 0; k < end; k++) {
         if (end - k > PREFETCH_SLOTS && span_meets(spans[k + PREFETCH_SLOTS], lo, hi))
             PREFETCH_TRIANGLE(screen, stride, sr_assemble_slot_indices(mesh, k + PREFETCH_SLOTS));
         sr_band_span span = spans[k];
