@@ -306,6 +306,34 @@ Test(simd, narrow_triangles_match_the_scalar_loop)
     sr_mesh_free(&soup);
 }
 
+/* Slivers: the narrow soup squeezed to a fifth of its width and a
+ * twentieth of its depth about each triangle's first vertex, so every box is under the kernels' 8 columns
+ * and many have more rows than a tiny box holds (up to about 24). Such a
+ * box takes a kernel: in depth shading, which queues no tiny triangle,
+ * the vector loops' calls (asserted) are theirs alone. */
+Test(simd, tall_slivers_take_the_kernels_and_match_the_scalar_loop)
+{
+    sr_mesh slivers;
+    soup_make(&slivers, NARROW_SOUP_TRIANGLES, false, 0.15);
+    for (uint32_t i = 0; i < slivers.vertex_count; i++)
+        if (i % 3 > 0) {
+            const float *first = slivers.positions[i - i % 3];
+            slivers.positions[i][0] = first[0] + 0.2f * (slivers.positions[i][0] - first[0]);
+            /* nearly its depth: a farther x would land columns apart */
+            slivers.positions[i][2] = first[2] + 0.05f * (slivers.positions[i][2] - first[2]);
+        }
+    static const sr_shade modes[] = { SR_SHADE_DEPTH, SR_SHADE_LAMBERT };
+    for (size_t m = 0; m < sizeof modes / sizeof *modes; m++)
+        for (int reversed = 0; reversed < 2; reversed++) {
+            sr_draw_desc desc = { .mesh = &slivers, .shade = modes[m], .cull = SR_CULL_NONE };
+            look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);
+            char what[64];
+            snprintf(what, sizeof what, "tall slivers, mode %d%s", modes[m], reversed ? " reversed" : "");
+            assert_vector_loops_match_scalar(&desc, reversed, what);
+        }
+    sr_mesh_free(&slivers);
+}
+
 /* A tilted grid of quads 4 to 7 pixels on a side (depth 1.7 to 3.3), each
  * two triangles of about 12 pixels that all pass the depth test: the tiny
  * queue fills by its pixels (448) long before its triangles (128) and is

@@ -243,9 +243,13 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_
  * the scan box and up to one group of lanes past its right side. An edge
  * function is linear, so its largest magnitude is at a corner. */
 #define SIMD_EDGE_LIMIT ((int64_t)1 << 52)
-/* Narrower triangles stay scalar: a kernel's per-row set-up costs more
- * than it saves on a few pixels (measured at 1 thread, thresholds 4 / 8 /
- * 16: depth 77 / 72 / 72 ms, fly 20.1 / 20.5 / 22 ms, dense 100 ms). */
+/* Narrower boxes of at most SR_TINY_SIDE rows are tiny (box_is_tiny): a
+ * kernel's per-row set-up costs more than it saves on a few pixels
+ * (measured at 1 thread, thresholds 4 / 8 / 16: depth 77 / 72 / 72 ms, fly
+ * 20.1 / 20.5 / 22 ms, dense 100 ms). A narrower box of more rows, a sliver
+ * seen along its length, takes a kernel all the same: on the scalar loop
+ * the inside scene's 4.6k a frame (270k pixels of boxes) cost it 1 %
+ * (docs/performance.md, "Tall slivers to the kernels"). */
 #define SIMD_MIN_WIDTH 8
 
 static bool edges_fit_double(const setup *s)
@@ -533,7 +537,7 @@ static uint64_t draw_unqueued(sr_framebuffer *fb, const setup *s, sr_shade mode,
     if (mode_reads_varyings(mode))
         sr_tiny_queue_drain();
     int width = s->box.x1 - s->box.x0;
-    sr_span_kernel kernel = width >= SIMD_MIN_WIDTH ? sr_span_kernel_for(shade, mode, fb->reversed_z, width) : NULL;
+    sr_span_kernel kernel = box_is_tiny(s->box) ? NULL : sr_span_kernel_for(shade, mode, fb->reversed_z, width);
     *simd = kernel && edges_fit_double(s);
     if (*simd)
         return kernel(s, shade, fb, triangle_id);
