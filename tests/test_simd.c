@@ -307,8 +307,9 @@ Test(simd, narrow_triangles_match_the_scalar_loop)
 }
 
 /* Slivers: the narrow soup squeezed to a fifth of its width and a
- * twentieth of its depth about each triangle's first vertex, so every box is under the kernels' 8 columns
- * and many have more rows than a tiny box holds (up to about 24). Such a
+ * twentieth of its depth about each triangle's first vertex, so every box
+ * is under the kernels' 8 columns and many have more rows than a tiny box
+ * holds (up to about 24). Such a
  * box takes a kernel: in depth shading, which queues no tiny triangle,
  * the vector loops' calls (asserted) are theirs alone. */
 Test(simd, tall_slivers_take_the_kernels_and_match_the_scalar_loop)

@@ -168,7 +168,8 @@ static inline unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth 
     /* The same tests on the position's four lanes at once (the vertex
      * phase's classification was 58 % compares and their bits in perf):
      * an exponent of all ones is a NaN or an inf; below −w and above w
-     * are the float compares below, bit 0 for x, 1 for y, 2 for z. */
+     * are the scalar path's float compares (#else), bit 0 for x, 1 for y,
+     * 2 for z. */
     __m128 v = _mm_loadu_ps(c);
     __m128i exponent = _mm_set1_epi32(0x7F800000);
     if (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(v), exponent), exponent))))

@@ -249,7 +249,8 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_
  * 20.1 / 20.5 / 22 ms, dense 100 ms). A narrower box of more rows, a sliver
  * seen along its length, takes a kernel all the same: on the scalar loop
  * the inside scene's 4.6k a frame (270k pixels of boxes) cost it 1 %
- * (docs/performance.md, "Tall slivers to the kernels"). */
+ * (docs/performance.md, "The outcodes on four lanes, tall slivers to the
+ * kernels"). */
 #define SIMD_MIN_WIDTH 8
 
 static bool edges_fit_double(const setup *s)
