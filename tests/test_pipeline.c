@@ -215,6 +215,30 @@ Test(draw, stats_infinite_vertex_is_rejected_as_nonfinite)
     expect_bad_vertex_rejected(-INFINITY);
 }
 
+/* A triangle inside every plane with a NaN or inf in one vertex's color,
+ * drawn in color shading: its varying divided by w is not finite, so the
+ * triangle is dropped and counted non-finite, whatever the vertex phase's
+ * own checks. */
+Test(draw, stats_nonfinite_varying_inside_is_rejected_as_nonfinite)
+{
+    const float bads[3] = { NAN, INFINITY, -INFINITY };
+    for (int b = 0; b < 3; b++) {
+        sr_mesh mesh;
+        scene_pixel_triangle(&mesh, (const float[3][2]){ { 2, 2 }, { 30, 3 }, { 3, 30 } }, FLAT_Z);
+        mesh.colors[1][1] = bads[b];
+        sr_framebuffer fb;
+        scene_fb_make(&fb, FLAT, FLAT);
+        sr_stats s = scene_draw_pixel_space(&fb, &mesh, SR_SHADE_COLOR, SR_CULL_NONE, SR_FRONT_CW);
+        cr_expect(s.triangles == 1 && s.rejected == 1 && s.nonfinite == 1 && s.fragments == 0,
+                  "color %g: triangles %llu rejected %llu nonfinite %llu fragments %llu", bads[b],
+                  (unsigned long long)s.triangles, (unsigned long long)s.rejected,
+                  (unsigned long long)s.nonfinite, (unsigned long long)s.fragments);
+        cr_expect_eq(scene_count_drawn(&fb), 0, "color %g: pixels drawn", bads[b]);
+        sr_mesh_free(&mesh);
+        sr_framebuffer_destroy(&fb);
+    }
+}
+
 Test(draw, stats_nan_in_the_world_matrix_rejects_every_triangle_as_nonfinite)
 {
     sr_mesh mesh;

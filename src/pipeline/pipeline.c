@@ -145,9 +145,10 @@ static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, 
  * corners again (primitives.c). A NaN or inf varying marks a vertex
  * non-finite, inside or not (it decides how a rejected triangle is
  * counted): outside, it is told from the mesh's values, a block at a time
- * where they are all plainly finite (vertex.h). A vertex inside whose
- * divide fails (w below 2^-128) is marked non-finite too: the triangles
- * that use it are dropped and counted. For the row-band path, each vertex
+ * where they are all plainly finite (vertex.h); inside, by the mapping,
+ * whose varyings divided by w are then not finite, and which fails as well
+ * where the divide does (w below 2^-128): the triangles that use such a
+ * vertex are dropped and counted. For the row-band path, each vertex
  * inside gets its band of rows. */
 static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, unsigned *outcodes_and)
 {
@@ -169,11 +170,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
         for (uint32_t j = 0; j < n; j++) {
             uint32_t i = block + j;
             unsigned code = codes[j];
-            if (code == 0) {
-                for (int k = 0; k < layout->count; k++)
-                    if (!isfinite(verts[j].v[SR_VARYINGS_AT + k]))
-                        code = SR_OUT_NONFINITE;
-            } else if (code != SR_OUT_NONFINITE) {
+            if (code != 0 && code != SR_OUT_NONFINITE) {
                 if (block_finite < 0)
                     block_finite = sr_vertex_block_finite(mesh, &ph->xf, layout, block, n);
                 if (!block_finite && !sr_vertex_varyings_finite(mesh, &ph->xf, layout, i))
