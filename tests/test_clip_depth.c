@@ -167,6 +167,76 @@ Test(clip_depth, outcodes_and_distances_under_the_model_are_exact)
     cr_assert_gt(near_zero, 100, "too few points next to a plane: the test is too tame");
 }
 
+#if defined(__SSE2__)
+/* A coordinate for a point at w: on a plane (±w) or next to it, anywhere
+ * between, well outside, or now and then NaN or an inf. */
+static float random_coordinate(float w)
+{
+    double u = uniform();
+    if (u < 0.02)
+        return u < 0.01 ? NAN : (u < 0.015 ? INFINITY : -INFINITY);
+    float on = uniform() < 0.5 ? w : -w;
+    if (u < 0.4)
+        return on;
+    if (u < 0.6)
+        return nextafterf(on, uniform() < 0.5 ? -INFINITY : INFINITY);
+    return (float)((2.0 * uniform() - 1.0) * 1.5 * (double)fabsf(w));
+}
+
+/* Models from the cameras, two made by hand whose far plane lies at a
+ * float w (2 and 1.5: there the double far distance is 0, too close to
+ * call, and the expansion decides), and none. */
+#define FOUR_LANE_MODELS (MODELS + 3)
+
+static const sr_clip_depth *four_lane_model(int k, sr_clip_depth *m)
+{
+    if (k < MODELS)
+        *m = model(k);
+    else if (k == MODELS)
+        *m = (sr_clip_depth){ .on = true, .a = 0.5f, .b = 1.0f };
+    else if (k == MODELS + 1)
+        *m = (sr_clip_depth){ .on = true, .a = -1.0f, .b = 3.0f };
+    else
+        return NULL;
+    return m;
+}
+
+/* The four-lane outcode against the one-position outcode under every model
+ * and without one, on points near every plane: w within a few ulps of near
+ * or far half the time, x, y and z on or next to ±w, now and then NaN or
+ * an inf in one coordinate. */
+Test(clip_depth, four_lanes_give_each_position_its_one_position_outcode)
+{
+    int on_far = 0, nonfinite = 0;
+    for (int e = 0; e < 10 * EDGES; e++) {
+        sr_clip_depth storage, near_far = model(0);
+        const sr_clip_depth *m = four_lane_model(e % FOUR_LANE_MODELS, &storage);
+        const sr_clip_depth *placed = m ? m : &near_far; /* where w is put near a plane */
+        float lanes[4][4]; /* lanes[coordinate][position] */
+        for (int j = 0; j < 4; j++) {
+            float w = random_w(edge_plane(e / FOUR_LANE_MODELS + j, placed), placed);
+            for (int c = 0; c < 3; c++)
+                lanes[c][j] = random_coordinate(w);
+            lanes[SR_W][j] = uniform() < 0.01 ? NAN : w;
+        }
+        __m128 c[4];
+        for (int r = 0; r < 4; r++)
+            c[r] = _mm_loadu_ps(lanes[r]);
+        uint32_t four = sr_clip_outcodes_four(c, m);
+        for (int j = 0; j < 4; j++) {
+            float position[4] = { lanes[0][j], lanes[1][j], lanes[2][j], lanes[3][j] };
+            unsigned want = sr_clip_outcode_with(position, m);
+            cr_assert_eq(four >> 8 * j & 0xFFu, want, "model %d lane %d (%a, %a, %a, %a)", e % FOUR_LANE_MODELS, j,
+                         position[0], position[1], position[2], position[3]);
+            on_far += m && want != SR_OUT_NONFINITE && sr_clip_distance_with(SR_PLANE_FAR, position, m) == 0.0;
+            nonfinite += want == SR_OUT_NONFINITE;
+        }
+    }
+    cr_assert_gt(on_far, 100, "too few points on the far plane: the test is too tame");
+    cr_assert_gt(nonfinite, 100, "too few non-finite positions: the test is too tame");
+}
+#endif
+
 /* An edge from inside the plane to outside it, the outside end as far as
  * w = 1e30 (or behind the eye for near): the ground's edges. */
 static void random_edge(sr_clip_plane plane, const sr_clip_depth *m, sr_vertex_out *in, sr_vertex_out *out)

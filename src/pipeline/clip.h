@@ -199,6 +199,66 @@ static inline unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth 
     return sides | (unsigned)(near < 0.0) << SR_PLANE_NEAR | (unsigned)(far < 0.0) << SR_PLANE_FAR;
 }
 
+#if defined(__SSE2__)
+/* The bits of a four-lane mask, bit k into the low bit of byte k (the
+ * four terms of the product cannot overlap, so nothing carries). */
+static inline uint32_t sr_clip_lane_bytes(unsigned mask)
+{
+    return (mask * 0x00204081u) & 0x01010101u;
+}
+
+/* sr_clip_outcode_with of four clip positions at once, given by coordinate:
+ * lane k of c[SR_X] .. c[SR_W] is position k. Byte k of the result (little
+ * endian: codes + k once stored) is position k's outcode. The same tests in
+ * the same precision, a coordinate's four lanes at a time; the far planes
+ * too close to call in double are decided as there, one at a time. */
+static inline uint32_t sr_clip_outcodes_four(const __m128 c[4], const sr_clip_depth *depth)
+{
+    __m128i exponent = _mm_set1_epi32(0x7F800000), all_ones = _mm_setzero_si128();
+    for (int k = 0; k < 4; k++)
+        all_ones = _mm_or_si128(all_ones,
+                                _mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(c[k]), exponent), exponent));
+    unsigned nonfinite = (unsigned)_mm_movemask_ps(_mm_castsi128_ps(all_ones));
+    __m128 w = c[SR_W], minus_w = _mm_xor_ps(w, _mm_castsi128_ps(_mm_set1_epi32((int)0x80000000u)));
+    uint32_t codes = sr_clip_lane_bytes((unsigned)_mm_movemask_ps(_mm_cmplt_ps(c[SR_X], minus_w))) << SR_PLANE_LEFT |
+                     sr_clip_lane_bytes((unsigned)_mm_movemask_ps(_mm_cmpgt_ps(c[SR_X], w))) << SR_PLANE_RIGHT |
+                     sr_clip_lane_bytes((unsigned)_mm_movemask_ps(_mm_cmplt_ps(c[SR_Y], minus_w))) << SR_PLANE_BOTTOM |
+                     sr_clip_lane_bytes((unsigned)_mm_movemask_ps(_mm_cmpgt_ps(c[SR_Y], w))) << SR_PLANE_TOP;
+    unsigned near = 0, far = 0;
+    if (!depth || !depth->on) {
+        near = (unsigned)_mm_movemask_ps(_mm_cmplt_ps(c[SR_Z], _mm_setzero_ps()));
+        far = (unsigned)_mm_movemask_ps(_mm_cmpgt_ps(c[SR_Z], w));
+    } else {
+        __m128d a = _mm_set1_pd((double)depth->a), b = _mm_set1_pd((double)depth->b), zero = _mm_setzero_pd();
+        __m128d margin = _mm_set1_pd(4.0 * DBL_EPSILON), magnitude = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX));
+        unsigned doubt = 0;
+        for (int half = 0; half < 2; half++) {
+            __m128d wd = _mm_cvtps_pd(half ? _mm_movehl_ps(w, w) : w);
+            __m128d aw = _mm_mul_pd(a, wd), rest = _mm_sub_pd(wd, aw);
+            __m128d near_d = _mm_add_pd(aw, b), far_d = _mm_sub_pd(rest, b);
+            near |= (unsigned)_mm_movemask_pd(_mm_cmplt_pd(near_d, zero)) << 2 * half;
+            far |= (unsigned)_mm_movemask_pd(_mm_cmplt_pd(far_d, zero)) << 2 * half;
+            doubt |= (unsigned)_mm_movemask_pd(_mm_cmpngt_pd(_mm_and_pd(far_d, magnitude),
+                                                             _mm_mul_pd(margin, _mm_and_pd(rest, magnitude))))
+                     << 2 * half;
+        }
+        for (doubt &= ~nonfinite; doubt; doubt &= doubt - 1) {
+            int lane = __builtin_ctz(doubt);
+            float lanes[4][4], position[4];
+            for (int k = 0; k < 4; k++) {
+                _mm_storeu_ps(lanes[k], c[k]);
+                position[k] = lanes[k][lane];
+            }
+            far = (far & ~(1u << lane)) |
+                  (unsigned)(sr_clip_distance_with(SR_PLANE_FAR, position, depth) < 0.0) << lane;
+        }
+    }
+    codes |= sr_clip_lane_bytes(near) << SR_PLANE_NEAR | sr_clip_lane_bytes(far) << SR_PLANE_FAR;
+    uint32_t nonfinite_bytes = sr_clip_lane_bytes(nonfinite);
+    return (codes & ~(nonfinite_bytes * 0xFFu)) | nonfinite_bytes * SR_OUT_NONFINITE;
+}
+#endif
+
 /* The distance of a point in double (depth as above; a·w rounds too, as
  * does w − a·w), within a few roundings of the exact one. */
 double sr_clip_distance_d(sr_clip_plane plane, const double c[4], const sr_clip_depth *depth);

@@ -123,6 +123,75 @@ static inline void position_w1(const float *xyz, vec4 out)
  * gained nothing from it. */
 #define POSITIONS_AHEAD 32
 
+/* Vertex i's varyings into v, after its position. */
+static SR_ALWAYS_INLINE void write_varyings(const sr_mesh *m, const sr_varying_layout *l, mat3 normal_matrix,
+                                            uint32_t i, float *v)
+{
+    if (l->normal >= 0) {
+        vec3 n;
+        glm_mat3_mulv(normal_matrix, m->normals[i], n);
+        glm_vec3_normalize(n);
+        copy_varying(v, l->normal, n, 3);
+    }
+    if (l->uv >= 0)
+        copy_varying(v, l->uv, m->uvs[i], 2);
+    if (l->color >= 0)
+        copy_varying(v, l->color, m->colors[i], 3);
+}
+
+#if defined(__SSE2__)
+/* The vertices of [first, first + count) four at a time, as many as make
+ * whole fours (returned), one lane each: the positions by coordinate, each
+ * clip coordinate as cglm's product makes it, ((m3 + m2·z) + m1·y) + m0·x
+ * with w = 1 (glm_mat4_mulv_sse2 with glmm_fmadd a multiply and an add), so
+ * every lane is bit for bit the one-vertex loop's; then the four outcodes
+ * at once (sr_clip_outcodes_four), and the varyings of those inside.
+ * Classified one at a time, the loads, compares and bits of each vertex
+ * were most of the phase on the inside scene (docs/performance.md). */
+static uint32_t run_fours_inside(const sr_mesh *m, const sr_varying_layout *l, mat4 clip_from_object,
+                                 mat3 normal_matrix, const sr_clip_depth *d, uint32_t first, uint32_t count,
+                                 sr_vertex_out *out, unsigned char *codes)
+{
+    __m128 column[4][4]; /* column[c][r]: clip_from_object[c][r] in every lane */
+    for (int c = 0; c < 4; c++)
+        for (int r = 0; r < 4; r++)
+            column[c][r] = _mm_set1_ps(clip_from_object[c][r]);
+    uint32_t k = 0;
+    for (; count - k >= 4; k += 4) {
+        uint32_t i = first + k;
+        if (k + POSITIONS_AHEAD < count)
+            __builtin_prefetch(m->positions[i + POSITIONS_AHEAD]);
+        /* x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3 into x, y and z by lane */
+        const float *p = m->positions[i];
+        __m128 a = _mm_loadu_ps(p), b = _mm_loadu_ps(p + 4), c = _mm_loadu_ps(p + 8);
+        __m128 x1_y1 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(0, 0, 3, 3));
+        __m128 xy01 = _mm_shuffle_ps(a, x1_y1, _MM_SHUFFLE(2, 0, 1, 0));
+        __m128 xy23 = _mm_shuffle_ps(b, c, _MM_SHUFFLE(2, 1, 3, 2));
+        __m128 z01 = _mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 1, 2, 2)), z23 = _mm_shuffle_ps(c, c, _MM_SHUFFLE(3, 3, 0, 0));
+        __m128 x = _mm_shuffle_ps(xy01, xy23, _MM_SHUFFLE(2, 0, 2, 0));
+        __m128 y = _mm_shuffle_ps(xy01, xy23, _MM_SHUFFLE(3, 1, 3, 1));
+        __m128 z = _mm_shuffle_ps(z01, z23, _MM_SHUFFLE(2, 0, 2, 0));
+        __m128 clip[4];
+        for (int r = 0; r < 4; r++)
+            clip[r] = _mm_add_ps(_mm_add_ps(_mm_add_ps(column[3][r], _mm_mul_ps(column[2][r], z)),
+                                            _mm_mul_ps(column[1][r], y)),
+                                 _mm_mul_ps(column[0][r], x));
+        uint32_t four = sr_clip_outcodes_four(clip, d);
+        memcpy(codes + k, &four, sizeof four);
+        __m128 v0 = clip[0], v1 = clip[1], v2 = clip[2], v3 = clip[3];
+        _MM_TRANSPOSE4_PS(v0, v1, v2, v3);
+        _mm_store_ps(out[k].v, v0);
+        _mm_store_ps(out[k + 1].v, v1);
+        _mm_store_ps(out[k + 2].v, v2);
+        _mm_store_ps(out[k + 3].v, v3);
+        for (int j = 0; j < 4; j++)
+            if (codes[k + j] == 0)
+                write_varyings(m, l, normal_matrix, i + (uint32_t)j, out[k + j].v);
+    }
+    return k;
+}
+#endif
+
 /* The mesh, the layout and the matrices are read into locals
  * first: the loop's float stores to out could alias them as far as the
  * compiler knows, and it would load them again for every vertex. With
@@ -140,7 +209,12 @@ static SR_ALWAYS_INLINE void run(const sr_mesh *mesh, const sr_vertex_transform 
     mat3 normal_matrix;
     glm_mat4_copy((vec4 *)xf->clip_from_object, clip_from_object);
     glm_mat3_copy((vec3 *)xf->normal_matrix, normal_matrix);
-    for (uint32_t k = 0; k < count; k++) {
+    uint32_t k = 0;
+#if defined(__SSE2__)
+    if (codes && !m.clip_positions)
+        k = run_fours_inside(&m, &l, clip_from_object, normal_matrix, &d, first, count, out, codes);
+#endif
+    for (; k < count; k++) {
         uint32_t i = first + k;
         float *v = out[k].v;
         if (m.clip_positions) {
@@ -157,16 +231,7 @@ static SR_ALWAYS_INLINE void run(const sr_mesh *mesh, const sr_vertex_transform 
             if (codes[k])
                 continue;
         }
-        if (l.normal >= 0) {
-            vec3 n;
-            glm_mat3_mulv(normal_matrix, m.normals[i], n);
-            glm_vec3_normalize(n);
-            copy_varying(v, l.normal, n, 3);
-        }
-        if (l.uv >= 0)
-            copy_varying(v, l.uv, m.uvs[i], 2);
-        if (l.color >= 0)
-            copy_varying(v, l.color, m.colors[i], 3);
+        write_varyings(&m, &l, normal_matrix, i, v);
     }
 }
 
