@@ -256,7 +256,7 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
             }
         }
         if (from < 0) {
-            sr_tiny_queue_flush();
+            sr_tiny_queue_flush(&fragments, simd_draws);
             return fragments;
         }
         const sr_thread_work *w = &st->ws->threads[from];

@@ -378,7 +378,7 @@ static void draw_all_direct(void *ctx, int t)
     sr_thread_work *w = &st->ws->threads[0];
     sr_fan_sink sink = sr_direct_sink(st, w, (sr_raster_rect){ 0, 0, st->fb->width, st->fb->height }, w);
     sr_draw_primitives(&sink, 0, st->slots);
-    sr_tiny_queue_flush();
+    sr_tiny_queue_flush(&w->stats.fragments, &w->simd_draws);
 }
 
 void sr_stats_add(sr_stats *to, const sr_stats *from)

@@ -463,8 +463,9 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
     bool simd;
     uint64_t fragments = sr_raster_triangle_on(fb, rect, subpixel_bits, mode, shade,
                                                (const sr_screen_vertex *const[3]){ &tri[0], &tri[1], &tri[2] },
-                                               area2, triangle_id, &simd);
-    sr_tiny_queue_flush();
+                                               area2, triangle_id, &simd),
+             draws = 0;
+    sr_tiny_queue_flush(&fragments, &draws);
     return fragments;
 }
 
@@ -529,7 +530,8 @@ uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2
 }
 
 /* A set-up triangle that the tiny queue did not take: what is queued is
- * shaded first (what comes later draws over it; a mode without varyings
+ * tested and shaded first (what comes later tests against it and draws
+ * over it; a mode without varyings
  * queues nothing, and the queue is empty between draws), then a kernel or
  * the scalar loop draws it. */
 static uint64_t draw_unqueued(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,
@@ -560,13 +562,10 @@ static uint64_t draw_unqueued(sr_framebuffer *fb, const setup *s, sr_shade mode,
 static SR_ALWAYS_INLINE uint64_t setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
                                             const sr_shade_context *shade, uint32_t triangle_id, bool *simd)
 {
-    if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && mode_reads_varyings(mode)) {
-        bool queued;
-        uint64_t passed = sr_tiny_queue_push(s, fb, mode, shade, &queued);
-        if (queued) {
-            *simd = passed > 0; /* a SIMD shader colors them */
-            return passed;
-        }
+    if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && mode_reads_varyings(mode) &&
+        sr_tiny_queue_push(s, fb, mode, shade)) {
+        *simd = false; /* the queue counts its draws and fragments when it is shaded */
+        return 0;
     }
     return draw_unqueued(fb, s, mode, shade, triangle_id, simd);
 }

@@ -214,7 +214,10 @@ typedef uint64_t (*sr_span_kernel)(const sr_tri_setup *s, const sr_shade_context
                                    uint32_t id);
 
 /* sr_raster_triangle and sr_raster_scan_box on vertices the caller holds
- * elsewhere (no copies); the first also tells whether a SIMD kernel drew. */
+ * elsewhere (no copies); the first also tells whether a SIMD kernel drew.
+ * Neither it nor the calls below count a tiny triangle the tiny queue
+ * takes: its fragments and draw count when the queue is shaded
+ * (sr_tiny_queue_flush). */
 uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
                                const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                                uint32_t triangle_id, bool *simd);

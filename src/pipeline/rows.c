@@ -149,7 +149,7 @@ static void draw_band(void *ctx, int t)
     sr_thread_work uncounted = { .stats = { 0 } };
     sr_fan_sink own = sr_direct_sink(st, w, rows, w), shared = sr_direct_sink(st, &uncounted, rows, w);
     sr_draw_kept_slots(&own, &shared, st->ws->slot_bands.data, (unsigned)lo, (unsigned)hi);
-    sr_tiny_queue_flush();
+    sr_tiny_queue_flush(&w->stats.fragments, &w->simd_draws);
     w->band_cpu_ms = sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) - start;
 }
 

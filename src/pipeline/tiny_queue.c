@@ -11,21 +11,73 @@ typedef struct tiny_queue_state {
     const sr_shade_context *shade;
     sr_shade mode;
     sr_tiny_shader shader; /* for fb, shade and mode; NULL: none, the tiny loop draws */
+    uint64_t fragments, draws; /* passed since the last flush: pixels, triangles with one at least */
 } tiny_queue_state;
 
 static _Thread_local tiny_queue_state tiny_pending;
 
-/* Colors the queued pixels; the context stays. */
+/* Queued triangle `from`'s interpolants as triangle `to`'s (to < from). */
+static void renumber_triangle(sr_tiny_queue *q, int from, int to)
+{
+    for (int r = SR_TINY_IW0; r <= SR_TINY_DIW2; r++)
+        q->param[r][to] = q->param[r][from];
+    for (int k = 0; k < q->varyings; k++) {
+        q->param[SR_TINY_VAR0 + k][to] = q->param[SR_TINY_VAR0 + k][from];
+        q->param[SR_TINY_DVAR1 + k][to] = q->param[SR_TINY_DVAR1 + k][from];
+        q->param[SR_TINY_DVAR2 + k][to] = q->param[SR_TINY_DVAR2 + k][from];
+    }
+}
+
+/* The queued pixels' depth tests and writes, in the queue's order, and the
+ * queue kept to the pixels that passed, their triangles numbered again
+ * without those left with none: the shaders take a group of lanes to span
+ * at most SR_SIMD_MAX_LANES triangles, each with a pixel (tiny_queue.h). Up
+ * to the first pixel that fails, nothing moves. */
+static SR_ALWAYS_INLINE void test_depths(tiny_queue_state *t, bool greater)
+{
+    sr_tiny_queue *q = &t->q;
+    float *depth = t->fb->depth;
+    int p = 0;
+    for (; p < q->pixels && sr_depth_passes(q->z[p], depth[q->at[p]], greater); p++)
+        depth[q->at[p]] = q->z[p];
+    int kept = p, last = p > 0 ? q->triangle[p - 1] : -1, renumbered = last;
+    for (; p < q->pixels; p++) {
+        if (!sr_depth_passes(q->z[p], depth[q->at[p]], greater))
+            continue;
+        depth[q->at[p]] = q->z[p];
+        if (q->triangle[p] != last) {
+            last = q->triangle[p];
+            renumber_triangle(q, last, ++renumbered);
+        }
+        q->l1[kept] = q->l1[p];
+        q->l2[kept] = q->l2[p];
+        q->at[kept] = q->at[p];
+        q->triangle[kept] = renumbered;
+        kept++;
+    }
+    q->pixels = kept;
+    q->triangles = renumbered + 1;
+    t->fragments += (uint64_t)kept;
+    t->draws += (uint64_t)q->triangles;
+}
+
+/* Tests and colors the queued pixels; the context stays. */
 static void tiny_queue_drain(tiny_queue_state *t)
 {
     sr_tiny_queue *q = &t->q;
     if (q->pixels == 0)
         return;
-    for (int l = q->pixels; l < q->pixels + SR_SIMD_MAX_LANES; l++) {
-        q->l1[l] = q->l2[l] = 0.0f;
-        q->triangle[l] = q->triangle[q->pixels - 1];
+    if (t->fb->reversed_z)
+        test_depths(t, true);
+    else
+        test_depths(t, false);
+    if (q->pixels > 0) {
+        for (int l = q->pixels; l < q->pixels + SR_SIMD_MAX_LANES; l++) {
+            q->l1[l] = q->l2[l] = 0.0f;
+            q->triangle[l] = q->triangle[q->pixels - 1];
+        }
+        t->shader(q, t->shade, t->fb);
     }
-    t->shader(q, t->shade, t->fb);
     q->pixels = q->triangles = 0;
 }
 
@@ -34,10 +86,14 @@ void sr_tiny_queue_drain(void)
     tiny_queue_drain(&tiny_pending);
 }
 
-void sr_tiny_queue_flush(void)
+void sr_tiny_queue_flush(uint64_t *fragments, uint64_t *draws)
 {
-    tiny_queue_drain(&tiny_pending);
-    tiny_pending.fb = NULL;
+    tiny_queue_state *t = &tiny_pending;
+    tiny_queue_drain(t);
+    t->fb = NULL;
+    *fragments += t->fragments;
+    *draws += t->draws;
+    t->fragments = t->draws = 0;
 }
 
 /* The queue for a tiny triangle of fb, shade and mode (SR_INTERP_PERSPECTIVE),
@@ -61,26 +117,22 @@ static sr_tiny_queue *tiny_queue_for(sr_framebuffer *fb, const sr_shade_context 
     return &t->q;
 }
 
-/* The tiny loop's depth tests, its passing pixels queued with their λ1
- * and λ2 (the loop's values) and the triangle's interpolants. */
-static SR_ALWAYS_INLINE uint64_t push(const sr_tri_setup *s, sr_framebuffer *fb, bool greater, sr_tiny_queue *q)
+/* The tiny loop's covered pixels queued with their depths, λ1 and λ2 (the
+ * loop's values), and the triangle's interpolants. */
+static void push(const sr_tri_setup *s, const sr_framebuffer *fb, sr_tiny_queue *q)
 {
     int p = q->pixels, t = q->triangles;
     for (uint64_t m = s->tiny; m; m &= m - 1) {
         sr_tiny_pixel px = sr_tiny_pixel_of(s, fb, __builtin_ctzll(m));
-        float z = sr_depth_at(s, px.z_row, px.k);
-        if (!sr_depth_passes(z, fb->depth[px.at], greater))
-            continue;
-        fb->depth[px.at] = z;
+        q->z[p] = sr_depth_at(s, px.z_row, px.k);
         q->l1[p] = (float)sr_edge_at(&s->e[1], px.px, px.py) * s->inv_area2;
         q->l2[p] = (float)sr_edge_at(&s->e[2], px.px, px.py) * s->inv_area2;
         q->at[p] = px.at;
         q->triangle[p] = t;
         p++;
     }
-    uint64_t passed = (uint64_t)(p - q->pixels);
-    if (passed == 0)
-        return 0;
+    if (p == q->pixels)
+        return;
     q->param[SR_TINY_IW0][t] = s->iw0;
     q->param[SR_TINY_DIW1][t] = s->diw1;
     q->param[SR_TINY_DIW2][t] = s->diw2;
@@ -89,17 +141,15 @@ static SR_ALWAYS_INLINE uint64_t push(const sr_tri_setup *s, sr_framebuffer *fb,
         q->param[SR_TINY_DVAR1 + k][t] = s->dvar1[k];
         q->param[SR_TINY_DVAR2 + k][t] = s->dvar2[k];
     }
+    q->varyings = s->varyings;
     q->pixels = p;
     q->triangles = t + 1;
-    return passed;
 }
 
-uint64_t sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
-                            bool *queued)
+bool sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade)
 {
     sr_tiny_queue *q = tiny_queue_for(fb, shade, mode);
-    *queued = q != NULL;
-    if (!q)
-        return 0;
-    return fb->reversed_z ? push(s, fb, true, q) : push(s, fb, false, q);
+    if (q)
+        push(s, fb, q);
+    return q != NULL;
 }

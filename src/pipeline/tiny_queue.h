@@ -1,14 +1,19 @@
-/* tiny_queue.h — the shading of tiny triangles' pixels, deferred. Not
- * public API. A tiny triangle of SR_INTERP_PERSPECTIVE, in a layout the
- * kernels were compiled for, tests and writes its depths at once and
- * queues the pixels that passed, with their λ1 and λ2 (as
- * every loop computes them) and its own interpolants; a SIMD shader then
- * colors the queue SPAN_LANES pixels at a time (4 or 8: the AVX-512 loop
- * takes the AVX2 shader, simd_select.c), each lane with its own
- * triangle's interpolants, and stores the colors in the queue's order,
- * which is submission order. One triangle's few pixels filled few lanes,
- * and a division of 16 lanes costs the divider as much as about six of
- * one (docs/performance.md, "Tiny triangles' shading"). */
+/* tiny_queue.h — the depth tests and shading of tiny triangles' pixels,
+ * deferred. Not public API. A tiny triangle of SR_INTERP_PERSPECTIVE, in a
+ * layout the kernels were compiled for, queues its covered pixels with
+ * their depths, their λ1 and λ2 (as every loop computes them) and its own
+ * interpolants. When the queue is shaded, its pixels are depth-tested and
+ * written in the queue's order, which is submission order, so each tests
+ * against what the pixels before it wrote, as if drawn one triangle at a
+ * time; a SIMD shader then colors those that passed SPAN_LANES pixels at a
+ * time (4 or 8: the AVX-512 loop takes the AVX2 shader, simd_select.c),
+ * each lane with its own triangle's interpolants, and stores the colors in
+ * the queue's order. One triangle's few pixels filled few lanes, and a
+ * division of 16 lanes costs the divider as much as about six of one
+ * (docs/performance.md, "Tiny triangles' shading"). Tested at the push,
+ * each pixel's depth load held up the triangles behind it; tested in the
+ * queue, the loads of hundreds of pixels are in flight at once
+ * (docs/performance.md, "The tiny triangles' depth tests in the queue"). */
 #ifndef SOFTRAST_PIPELINE_TINY_QUEUE_H
 #define SOFTRAST_PIPELINE_TINY_QUEUE_H
 
@@ -28,11 +33,13 @@ enum {
 
 typedef struct sr_tiny_queue {
     int pixels, triangles;
+    int varyings; /* the queued triangles' (their set-ups') */
     /* Per queued pixel, and a group of lanes past the last: the padding
      * repeats the last triangle with λ 0 and is never stored. */
     float l1[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES], l2[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
     int32_t triangle[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
     size_t at[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
+    float z[SR_TINY_QUEUE_PIXELS]; /* the pixel's depth, tested when the queue is shaded */
     /* Per queued triangle, each interpolant a row (param[SR_TINY_VAR0 + k]
      * is var0[k]), a group of lanes long past the last: a group of pixels
      * spans at most SR_SIMD_MAX_LANES triangles, each having one pixel at
@@ -54,27 +61,29 @@ sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_varying_layout *layou
 sr_tiny_shader sr_tiny_shader_for(const sr_shade_context *shade, sr_shade mode);
 
 /* A tiny triangle of SR_INTERP_PERSPECTIVE in a mode with varyings (the
- * rasterizer's call): its depths tested and written, the pixels that
- * passed queued on this thread's queue; returns how many passed.
- * *queued is false, and nothing is done, where no shader takes fb, shade
- * and mode: the tiny loop draws it then. */
-uint64_t sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
-                            bool *queued);
+ * rasterizer's call): its covered pixels queued on this thread's queue,
+ * with their depths, to be tested when it is shaded; true. False, and
+ * nothing done, where no shader takes fb, shade and mode: the tiny loop
+ * draws it then. */
+bool sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade);
 
-/* Shades this thread's queued pixels, if any, and keeps the context their
- * shader was looked up for: the rasterizer calls it before anything else
- * it draws, since that draws over what is queued. */
+/* Tests and shades this thread's queued pixels, if any, and keeps the
+ * context their shader was looked up for: the rasterizer calls it before
+ * anything else it draws, since that tests against and draws over what is
+ * queued. */
 void sr_tiny_queue_drain(void);
 
-/* Shades the queued pixels of this thread's tiny triangles, if any, and
- * forgets the context their shader was looked up for: the direct path and
- * every tile call it when they are done (the rasterizer shades the queue
- * before anything else it draws). sr_raster_triangle_on,
- * sr_raster_triangle_in_box, sr_raster_tiny_triangle and
- * sr_raster_setup_draw may return with colors still queued: until this
- * thread's flush, the caller must neither change the shading context or
- * the framebuffer they were given nor clear or read its colors. */
-void sr_tiny_queue_flush(void);
+/* Tests and shades the queued pixels of this thread's tiny triangles, if
+ * any, forgets the context their shader was looked up for, and adds to
+ * *fragments the pixels that passed their depth tests and to *draws the
+ * triangles with one at least (the draws of a SIMD shader) since this
+ * thread's last flush: the direct path and every tile call it when they
+ * are done. sr_raster_triangle_on, sr_raster_triangle_in_box,
+ * sr_raster_tiny_triangle and sr_raster_setup_draw may return with pixels
+ * still queued, which their counts leave out: until this thread's flush,
+ * the caller must neither change the shading context or the framebuffer
+ * they were given nor clear or read its colors or depths. */
+void sr_tiny_queue_flush(uint64_t *fragments, uint64_t *draws);
 
 
 #endif
