@@ -152,7 +152,9 @@ sr_clip_depth sr_clip_depth_of(const float projection[4][4]);
 double sr_clip_distance_with(sr_clip_plane plane, const float *clip, const sr_clip_depth *depth);
 
 /* sr_clip_outcode under a depth model (NULL or off: sr_clip_outcode's).
- * Inline: the vertex phase takes one per vertex. The planes bounded by w
+ * Inline: the vertex phase takes one per vertex where it does not take
+ * four at a time (below: a block's last few, a mesh given in clip space).
+ * The planes bounded by w
  * are tested in float, s·c < −w: exact, as the sign of w + s·c is (a sum of
  * floats is zero only where they cancel), and so is z < 0 for the near
  * plane without a model. Under it, the near and far bits: a·w + b rounds
@@ -163,27 +165,6 @@ static inline unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth 
 {
     _Static_assert(SR_PLANE_NEAR == 0 && SR_PLANE_FAR == 1 && SR_CLIP_PLANES == 6,
                    "near and far are the planes on z, the depth model's");
-    _Static_assert(SR_X == 0 && SR_Y == 1 && SR_Z == 2 && SR_W == 3, "a clip position's lanes");
-#if defined(__SSE2__)
-    /* The same tests on the position's four lanes at once (the vertex
-     * phase's classification was 58 % compares and their bits in perf):
-     * an exponent of all ones is a NaN or an inf; below −w and above w
-     * are the scalar path's float compares (#else), bit 0 for x, 1 for y,
-     * 2 for z. */
-    __m128 v = _mm_loadu_ps(c);
-    __m128i exponent = _mm_set1_epi32(0x7F800000);
-    if (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(v), exponent), exponent))))
-        return SR_OUT_NONFINITE;
-    __m128 w_lanes = _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 3, 3, 3));
-    __m128 minus_w = _mm_xor_ps(w_lanes, _mm_castsi128_ps(_mm_set1_epi32((int)0x80000000u)));
-    unsigned below = (unsigned)_mm_movemask_ps(_mm_cmplt_ps(v, minus_w)),
-             above = (unsigned)_mm_movemask_ps(_mm_cmpgt_ps(v, w_lanes));
-    float w = _mm_cvtss_f32(w_lanes);
-    unsigned sides = (below & 1u) << SR_PLANE_LEFT | (above & 1u) << SR_PLANE_RIGHT |
-                     (below >> 1 & 1u) << SR_PLANE_BOTTOM | (above >> 1 & 1u) << SR_PLANE_TOP;
-    if (!depth || !depth->on)
-        return sides | (unsigned)(c[SR_Z] < 0.0f) << SR_PLANE_NEAR | (above >> 2 & 1u) << SR_PLANE_FAR;
-#else
     float x = c[SR_X], y = c[SR_Y], z = c[SR_Z], w = c[SR_W];
     if (!isfinite(x) || !isfinite(y) || !isfinite(z) || !isfinite(w))
         return SR_OUT_NONFINITE;
@@ -191,7 +172,6 @@ static inline unsigned sr_clip_outcode_with(const float *c, const sr_clip_depth 
                      (unsigned)(y < -w) << SR_PLANE_BOTTOM | (unsigned)(y > w) << SR_PLANE_TOP;
     if (!depth || !depth->on)
         return sides | (unsigned)(z < 0.0f) << SR_PLANE_NEAR | (unsigned)(z > w) << SR_PLANE_FAR;
-#endif
     double aw = (double)depth->a * w, rest = w - aw;
     double near = aw + depth->b, far = rest - depth->b;
     if (!(fabs(far) > 4.0 * DBL_EPSILON * fabs(rest)))
@@ -210,8 +190,11 @@ static inline uint32_t sr_clip_lane_bytes(unsigned mask)
 /* sr_clip_outcode_with of four clip positions at once, given by coordinate:
  * lane k of c[SR_X] .. c[SR_W] is position k. Byte k of the result (little
  * endian: codes + k once stored) is position k's outcode. The same tests in
- * the same precision, a coordinate's four lanes at a time; the far planes
- * too close to call in double are decided as there, one at a time. */
+ * the same precision, a coordinate's four lanes at a time (an exponent of
+ * all ones is a NaN or an inf); the far planes too close to call in double
+ * are decided as there, one at a time. One vertex at a time, the
+ * outcode's compares and their bits were 58 % of the vertex phase's
+ * classifying loop on the inside scene. */
 static inline uint32_t sr_clip_outcodes_four(const __m128 c[4], const sr_clip_depth *depth)
 {
     __m128i exponent = _mm_set1_epi32(0x7F800000), all_ones = _mm_setzero_si128();

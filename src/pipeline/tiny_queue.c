@@ -16,12 +16,14 @@ typedef struct tiny_queue_state {
 
 static _Thread_local tiny_queue_state tiny_pending;
 
-/* Queued triangle `from`'s interpolants as triangle `to`'s (to < from). */
-static void renumber_triangle(sr_tiny_queue *q, int from, int to)
+/* Queued triangle `from`'s interpolants as triangle `to`'s (to < from),
+ * of a layout of `varyings` (the context's: every queued triangle's
+ * set-up has that many). */
+static void renumber_triangle(sr_tiny_queue *q, int varyings, int from, int to)
 {
     for (int r = SR_TINY_IW0; r <= SR_TINY_DIW2; r++)
         q->param[r][to] = q->param[r][from];
-    for (int k = 0; k < q->varyings; k++) {
+    for (int k = 0; k < varyings; k++) {
         q->param[SR_TINY_VAR0 + k][to] = q->param[SR_TINY_VAR0 + k][from];
         q->param[SR_TINY_DVAR1 + k][to] = q->param[SR_TINY_DVAR1 + k][from];
         q->param[SR_TINY_DVAR2 + k][to] = q->param[SR_TINY_DVAR2 + k][from];
@@ -47,7 +49,7 @@ static SR_ALWAYS_INLINE void test_depths(tiny_queue_state *t, bool greater)
         depth[q->at[p]] = q->z[p];
         if (q->triangle[p] != last) {
             last = q->triangle[p];
-            renumber_triangle(q, last, ++renumbered);
+            renumber_triangle(q, t->shade->layout.count, last, ++renumbered);
         }
         q->l1[kept] = q->l1[p];
         q->l2[kept] = q->l2[p];
@@ -141,7 +143,6 @@ static void push(const sr_tri_setup *s, const sr_framebuffer *fb, sr_tiny_queue 
         q->param[SR_TINY_DVAR1 + k][t] = s->dvar1[k];
         q->param[SR_TINY_DVAR2 + k][t] = s->dvar2[k];
     }
-    q->varyings = s->varyings;
     q->pixels = p;
     q->triangles = t + 1;
 }

@@ -33,7 +33,6 @@ enum {
 
 typedef struct sr_tiny_queue {
     int pixels, triangles;
-    int varyings; /* the queued triangles' (their set-ups') */
     /* Per queued pixel, and a group of lanes past the last: the padding
      * repeats the last triangle with λ 0 and is never stored. */
     float l1[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES], l2[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
