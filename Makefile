@@ -71,9 +71,9 @@ build/san/%.o: %.c | deps
 	@$(CC) $(ALL_CFLAGS) $(SAN) $(STRICT_FP) -c $< -o $@
 
 # Where an installed program's data lives, compiled into the search for it
-# (src/studies/data.h) after the places beside the executable.
+# (src/io/data_find.h) after the places beside the executable.
 DATA_DIR = $(PREFIX)/share/softrast
-$(patsubst %,%/src/studies/data.o,build build/san): ALL_CFLAGS += -DSR_INSTALL_DATA='"$(DATA_DIR)"'
+$(patsubst %,%/src/io/data_find.o,build build/san): ALL_CFLAGS += -DSR_INSTALL_DATA='"$(DATA_DIR)"'
 
 # The library's objects export only what the public headers mark SR_API.
 $(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden

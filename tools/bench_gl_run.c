@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "studies/timing.h"
+#include "core/clock.h"
 #include "bench_gl.h"
 
 #define WARM_UP (-1) /* frame index of the untimed first frame */
@@ -49,7 +49,7 @@ static void clock_record(frame_clock *c, int f, clock_mark start)
 
 static void clock_summary(frame_clock *c, int n, bench_gl_timing *t)
 {
-    sr_study_median_min(c->ms, n, &t->median, &t->min);
+    sr_median_min(c->ms, n, &t->median, &t->min);
     t->cpu_per_wall = c->wall > 0 ? c->cpu / c->wall : 0;
 }
 

@@ -8,7 +8,7 @@
 
 #include "bench_gl.h"
 #include "studies/report.h"
-#include "studies/timing.h"
+#include "core/clock.h"
 
 /* The truth of frame f of n, with the camera llvmpipe draws it from. */
 static bool frame_truth(const sr_bench_scene *s, int f, int n, sr_truth_image *truth, mat4 projection,
@@ -59,7 +59,7 @@ bool bench_gl_truth(sr_bench_scene *s, int lp_threads, int frames, sr_report_pee
     *out = (sr_report_peer_row){ .truth = sr_truth_tally_finish(&tally) };
     snprintf(out->scene, sizeof out->scene, "%s", s->name);
     if (ok)
-        sr_study_median_min(ms, timed, &out->ms, &min);
+        sr_median_min(ms, timed, &out->ms, &min);
     free(ms);
     bench_gl_scene_destroy(g);
     bench_gl_context_destroy(ctx);

@@ -6,7 +6,7 @@
 #include <time.h>
 
 #include "load_progress.h"
-#include "studies/timing.h"
+#include "core/clock.h"
 
 typedef struct mesh_load {
     const char *path;

@@ -5,7 +5,8 @@
 
 #include "app.h"
 #include "scene_setup.h"
-#include "studies/timing.h"
+#include "core/clock.h"
+#include "scene/frame.h"
 
 #define MAX_FRAMES 100000
 
@@ -65,11 +66,11 @@ static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr
     double *ms = malloc((size_t)frames * sizeof *ms), warm;
     if (!ms)
         return sr_error_set(err, "out of memory for %d frame times", frames);
-    bool ok = frames == 1 || sr_study_draw_frame(&scene->fb, desc, stats, &warm, err);
+    bool ok = frames == 1 || sr_frame_draw_timed(&scene->fb, desc, stats, &warm, err);
     for (int f = 0; ok && f < frames; f++)
-        ok = sr_study_draw_frame(&scene->fb, desc, stats, &ms[f], err);
+        ok = sr_frame_draw_timed(&scene->fb, desc, stats, &ms[f], err);
     if (ok)
-        sr_study_median_min(ms, frames, &times->median, &times->min);
+        sr_median_min(ms, frames, &times->median, &times->min);
     free(ms);
     return ok;
 }

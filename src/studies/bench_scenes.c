@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "bench_scenes.h"
-#include "data.h"
+#include "io/data_find.h"
 
 #define FILL_QUADS 64
 #define CHECKER_SIDE 256
@@ -73,7 +73,7 @@ bool sr_bench_dense_default(sr_bench_scene *s, sr_error *err)
     return sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080, SR_SHADE_LAMBERT, err);
 }
 
-/* The room and its texture, wherever the program's data is (data.h). */
+/* The room and its texture, wherever the program's data is (io/data_find.h). */
 static bool load_room(sr_bench_scene *s, sr_error *err)
 {
     char obj[PATH_MAX], png[PATH_MAX];

@@ -1,6 +1,7 @@
 #include <stdlib.h>
 
-#include "timing.h"
+#include "core/clock.h"
+#include "scene/frame.h"
 #include "bench_time.h"
 
 static bool time_frames(const sr_bench_scene *s, const sr_bench_run *run, sr_framebuffer *fb, sr_workspace *ws,
@@ -17,14 +18,14 @@ static bool time_frames(const sr_bench_scene *s, const sr_bench_run *run, sr_fra
         sr_camera_view(&cam, desc.view);
         sr_camera_projection(&cam, (float)s->width / (float)s->height, desc.projection);
         double warm_up;
-        ok = sr_study_draw_frame(fb, &desc, &r->stats, f < 0 ? &warm_up : &ms[f], err);
+        ok = sr_frame_draw_timed(fb, &desc, &r->stats, f < 0 ? &warm_up : &ms[f], err);
     }
     if (!ok)
         return false;
     r->mean = 0.0;
     for (int f = 0; f < run->frames; f++)
         r->mean += ms[f] / run->frames;
-    sr_study_median_min(ms, run->frames, &r->median, &r->min);
+    sr_median_min(ms, run->frames, &r->median, &r->min);
     return true;
 }
 

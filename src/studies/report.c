@@ -3,7 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "timing.h"
+#include "core/clock.h"
+#include "scene/frame.h"
 #include "bench_scenes.h"
 #include "report.h"
 #include "report_peer.h"
@@ -70,7 +71,7 @@ static bool draw_ids(const sr_bench_scene *s, const knob *k, int f, sr_framebuff
 {
     sr_draw_study study;
     sr_draw_desc desc = knob_desc(s, k, f, fb, ws, &study);
-    return sr_study_draw_frame(fb, &desc, NULL, ms, err);
+    return sr_frame_draw_timed(fb, &desc, NULL, ms, err);
 }
 
 /* The truth of frame f for the standard (0) and the reversed (1) projection. */
@@ -136,7 +137,7 @@ static bool measure_knob(const sr_bench_scene *s, const sr_framebuffer *refs, co
     out->truth = sr_truth_tally_finish(&tally);
     if (ok) {
         double min;
-        sr_study_median_min(ms, timed, &out->ms, &min);
+        sr_median_min(ms, timed, &out->ms, &min);
         out->id_error = (double)differ / ((double)scene_n * s->width * s->height);
     }
     if (!ws || !ms)

@@ -2,7 +2,7 @@
 #include <stdlib.h>
 
 #include "report_truth.h"
-#include "timing.h"
+#include "core/clock.h"
 #include "truth_outline.h"
 
 double sr_truth_coverage_tolerance(int subpixel_bits)
@@ -80,7 +80,7 @@ sr_truth_errors sr_truth_tally_finish(sr_truth_tally *tally)
     sr_truth_errors e = tally->counts;
     size_t n = tally->z_count;
     if (n) {
-        sr_study_sort_doubles(tally->z_errors, n);
+        sr_sort_doubles(tally->z_errors, n);
         e.z_max = tally->z_errors[n - 1];
         e.z_p999 = tally->z_errors[(size_t)(0.999 * (double)(n - 1))];
         e.z_median = tally->z_errors[(n - 1) / 2];

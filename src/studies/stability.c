@@ -2,7 +2,7 @@
  * writes the report. Progress goes to stderr, one line per case. */
 #include <stdio.h>
 
-#include "timing.h"
+#include "core/clock.h"
 #include "stability.h"
 
 static void print_case(const sr_stability_case *c, const sr_stability_report *r, int i)

@@ -11,7 +11,7 @@
 
 #include "pipeline/clip_exact.h"
 #include "pipeline/expansion.h"
-#include "timing.h"
+#include "core/clock.h"
 #include "stability.h"
 
 #define CLIPPED_TRIANGLES 100000 /* clipped triangles measured per case */
@@ -173,7 +173,7 @@ bool sr_stability_clip_errors(const sr_stability_case *c, sr_stability_clip_stat
     }
     for (int i = 0; i < SR_STABILITY_CLIPPERS; i++) {
         if (ok && out[i].triangles) {
-            sr_study_sort_doubles(errors[i], (size_t)out[i].triangles);
+            sr_sort_doubles(errors[i], (size_t)out[i].triangles);
             out[i].p99 = errors[i][(size_t)(PERCENTILE * (double)(out[i].triangles - 1))];
         }
         free(errors[i]);

@@ -3,7 +3,7 @@
 #include <stdio.h>
 
 #include "doc_file.h"
-#include "timing.h"
+#include "core/clock.h"
 #include "stability.h"
 
 #define LARGE_CLIP_ERROR 1e-3 /* NDC: half a pixel on a 1000-pixel screen */
@@ -292,7 +292,7 @@ static depth_findings depth_summary(const sr_stability_depth *d)
                 gains[n++] = std / rev;
         }
     }
-    sr_study_sort_doubles(gains, (size_t)n);
+    sr_sort_doubles(gains, (size_t)n);
     out.median_gain = n ? gains[n / 2] : NAN;
     return out;
 }

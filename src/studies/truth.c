@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "pipeline/expansion.h"
-#include "timing.h"
+#include "core/clock.h"
 #include "truth.h"
 #include "truth_exact.h"
 

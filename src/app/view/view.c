@@ -6,7 +6,7 @@
 
 #include "app/app.h"
 #include "scene/flight.h"
-#include "studies/data.h"
+#include "io/data_find.h"
 #include "softrast_private.h"
 #include "viewer.h"
 
@@ -68,7 +68,7 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
     return true;
 }
 
-/* With no MESH, the room from the program's data (studies/data.h), into path. */
+/* With no MESH, the room from the program's data (io/data_find.h), into path. */
 static bool use_default_scene(view_job *job, sr_error *err)
 {
     if (job->scene.mesh_path)

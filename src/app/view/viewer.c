@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "app/app.h"
-#include "studies/timing.h"
+#include "scene/frame.h"
 #include "overlay.h"
 #include "viewer.h"
 
@@ -132,7 +132,7 @@ bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
         study.observer = collect_wire;
         study.observer_user = v;
     }
-    bool ok = sr_study_draw_frame(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
+    bool ok = sr_frame_draw_timed(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
     show_image(v);
     if (ok && overlays)
         draw_overlays(v);

@@ -1,13 +1,13 @@
-/* data.h — where the program's data (the default scene, assets/room.*) is
+/* data_find.h — where the program's data (the default scene, assets/room.*) is
  * found, so that view and bench run from any directory and from an
  * installed copy. */
-#ifndef SOFTRAST_STUDIES_DATA_H
-#define SOFTRAST_STUDIES_DATA_H
+#ifndef SOFTRAST_IO_DATA_FIND_H
+#define SOFTRAST_IO_DATA_FIND_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "softrast_private.h"
+#include "softrast/softrast.h"
 
 /* Finds NAME (a path relative to a data directory, e.g. "assets/room.obj")
  * and writes its full path into out. The data directories, in this order:

@@ -1,11 +1,13 @@
-/* data.c — finding the program's data (data.h). */
-#include "data.h"
+/* data_find.c — finding the program's data (data_find.h). */
+#include "data_find.h"
 
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#include "core/error.h"
 
 #ifndef SR_INSTALL_DATA
 #define SR_INSTALL_DATA "/usr/local/share/softrast"
