@@ -51,7 +51,7 @@ $(AVX512_OBJ): ALL_CFLAGS += $(AVX512_FLAGS)
 $(AVX512_OBJ): FUZZ_CFLAGS += $(AVX512_FLAGS)
 endif
 
-.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-assets test-install install assets docs-images bench report scans stability cost-model clean
+.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-house test-assets test-install install assets docs-images bench report scans stability cost-model clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast $(PUBLIC_LIBS)
@@ -131,7 +131,7 @@ run: all
 
 # The fuzzers' regression inputs, then a short bounded round of each target
 # (tolerating the open clip_precision finding of fuzz/known/, see fuzz/README.md).
-test: deps test-fast test-san test-assets test-install fuzz-regressions fuzz-smoke-ci
+test: deps test-fast test-san test-house test-assets test-install fuzz-regressions fuzz-smoke-ci
 
 # After the regressions: both build the fuzzers, and two makes linking one
 # binary at once under -j leave it half-written.
@@ -153,6 +153,11 @@ test-san: build/san/softrast build/san/softrast-tests
 		./build/san/softrast-tests --jobs 2 2> build/san/test.log; status=$$?; cat build/san/test.log; \
 	 if grep -q "ERROR: LeakSanitizer\|runtime error:\|ERROR: AddressSanitizer" build/san/test.log; then \
 	   echo "sanitiser errors above"; exit 1; fi; exit $$status
+
+# The house's arrows run one way: no loop of files or rooms (#include lines
+# and nm of every object), and render and view use nothing of the studies.
+test-house: build/softrast
+	python3 tools/check-house.py build
 
 assets: build/gen-assets
 	./build/gen-assets assets

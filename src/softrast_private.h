@@ -15,6 +15,7 @@
 #include "pipeline/cull.h"
 #include "pipeline/raster.h"
 #include "pipeline/shade.h"
+#include "pipeline/simd_select.h"
 #include "pipeline/stages.h"
 #include "pipeline/vertex.h"
 #include "pipeline/viewport.h"

@@ -12,6 +12,7 @@
 
 #include "pipeline/cull.h"
 #include "pipeline/draw_internal.h"
+#include "pipeline/kernels.h"
 #include "pipeline/raster_setup.h"
 #include "softrast_private.h"
 #include "scene_helpers.h"

@@ -15,8 +15,17 @@
 
 #include "softrast/softrast.h"
 
+/* How many triangle slots the mesh's indices make: a list's triples, a
+ * strip's windows of three. */
+static inline uint32_t sr_assemble_slots(const sr_mesh *mesh)
+{
+    if (mesh->topology == SR_TRIANGLE_STRIP)
+        return mesh->index_count >= 3 ? mesh->index_count - 2 : 0;
+    return mesh->index_count / 3;
+}
+
 /* Writes triangle k's three vertex indices; false if it is degenerate.
- * k must be below sr_mesh_triangle_slots(mesh). Inline: called once per
+ * k must be below sr_assemble_slots(mesh). Inline: called once per
  * triangle slot. */
 static inline bool sr_assemble_triangle(const sr_mesh *mesh, uint32_t k, uint32_t out[3])
 {

@@ -3,36 +3,7 @@
 
 #include "clip_exact.h"
 #include "expansion.h"
-#include "clip.h"
-
-/* Near a·w + b and far w − a·w − b: a·w of two floats is exact in double,
- * so one two-sum or two make them exact. */
-static int depth_distance(sr_clip_plane plane, double w, const sr_clip_depth *depth, double d[])
-{
-    double aw = (double)depth->a * w;
-    if (!sr_clip_plane_table[plane].bounded_by_w) {
-        two_sum(aw, depth->b, &d[1], &d[0]);
-        return 2;
-    }
-    two_sum(w, -aw, &d[1], &d[0]);
-    return grow(d, 2, -(double)depth->b);
-}
-
-int sr_clip_distance_exact(sr_clip_plane plane, const float *c, const sr_clip_depth *depth,
-                           double d[SR_CLIP_DISTANCE_TERMS])
-{
-    double w = c[SR_W];
-    if (depth && depth->on && sr_clip_plane_in_depth_model(plane))
-        return depth_distance(plane, w, depth, d);
-    const sr_clip_plane_row *row = &sr_clip_plane_table[plane];
-    double along = row->sign * (double)c[row->axis];
-    if (!row->bounded_by_w) {
-        d[0] = along;
-        return 1;
-    }
-    two_sum(w, along, &d[1], &d[0]);
-    return 2;
-}
+#include "classify.h"
 
 /* Adds d · x to the expansion, exactly. */
 static int add_product(double *e, int n, const double *d, int dn, double x)

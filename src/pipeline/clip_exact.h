@@ -7,16 +7,7 @@
 #ifndef SOFTRAST_CLIP_EXACT_H
 #define SOFTRAST_CLIP_EXACT_H
 
-#include "clip.h"
-
-/* The longest distance expansion: far under the depth model, w − a·w − b. */
-#define SR_CLIP_DISTANCE_TERMS 3
-
-/* The plane distance of a clip-space point, exactly, as an expansion d[0..n)
- * (smallest first); under the depth model (depth on, NULL: off) near and far
- * come from w. Returns n. */
-int sr_clip_distance_exact(sr_clip_plane plane, const float *c, const sr_clip_depth *depth,
-                           double d[SR_CLIP_DISTANCE_TERMS]);
+#include "classify.h"
 
 /* The longest numerator expansion: two distances, each part times a float
  * coordinate as an exact product pair. */

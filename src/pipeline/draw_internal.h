@@ -240,7 +240,21 @@ static inline unsigned sr_slot_verdict(const sr_mesh *mesh, const unsigned char 
 }
 
 /* Adds every count of `from` to `to`. */
-void sr_stats_add(sr_stats *to, const sr_stats *from);
+static inline void sr_stats_add(sr_stats *to, const sr_stats *from)
+{
+    to->triangles += from->triangles;
+    to->rejected += from->rejected;
+    to->nonfinite += from->nonfinite;
+    to->clipped += from->clipped;
+    to->culled += from->culled;
+    to->drawn += from->drawn;
+    to->fragments += from->fragments;
+    to->cuts_float += from->cuts_float;
+    to->cuts_double += from->cuts_double;
+    to->cuts_exact += from->cuts_exact;
+    for (int p = 0; p < SR_CLIP_PLANES; p++)
+        to->rejected_by_plane[p] += from->rejected_by_plane[p];
+}
 
 /* The bands of rows a slot's triangle may cover: from 255, past every
  * band, when the verdict left no triangle; every band when a vertex lies
@@ -297,6 +311,11 @@ bool sr_draw_binned(sr_draw_state *st);
  * fragments counted in `pixels` and its triangles in `work`. */
 sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_raster_rect rect,
                            sr_thread_work *pixels);
+
+/* The direct path (direct.c): every slot through sr_direct_sink over the
+ * whole framebuffer, on one thread, counted in thread 0's work; a
+ * sr_parallel_run job of one thread. */
+void sr_draw_direct(void *ctx, int t);
 
 /* The row-band path (rows.c): every thread draws the triangles of its own
  * band of rows as they come, in submission order. */

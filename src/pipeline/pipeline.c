@@ -11,6 +11,7 @@
 #include "core/clock.h"
 #include "core/dmat4.h"
 #include "raster.h"
+#include "simd_select.h"
 #include "tiny_queue.h"
 
 static int subpixel_bits(const sr_draw_study *d)
@@ -330,73 +331,6 @@ static void reject_all(const sr_draw_state *st, unsigned outside)
     sr_clip_count_rejected(stats, outside, stats->triangles);
 }
 
-/* The direct path, on one thread: every fan triangle goes straight to the
- * rasterizer, over the whole framebuffer, in submission order. */
-static uint32_t store_in_place(sr_fan_sink *sink, const sr_screen_vertex *v, int n)
-{
-    (void)sink, (void)v, (void)n;
-    return 0; /* the rasterizer gets the vertices themselves, no references */
-}
-
-/* The observer's copy of a fan triangle: its vertices whole, with 0 in the
- * varyings past the layout's (a shared vertex is only
- * sr_draw_state.screen_stride bytes long, a clipped one whole). */
-static void observe(const sr_draw_state *st, const sr_screen_vertex *const tri[3], bool clipped, uint32_t id)
-{
-    sr_screen_vertex copy[3] = { { 0 } };
-    for (int k = 0; k < 3; k++)
-        memcpy(&copy[k], tri[k], sr_screen_used(st->shade.layout.count));
-    st->study.observer(st->study.observer_user, copy, clipped, id);
-}
-
-static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
-                       int64_t area2, uint32_t id, bool clipped)
-{
-    (void)ref;
-    const sr_draw_state *st = sink->st;
-    const sr_draw_study *s = &st->study;
-    if (s->observer)
-        observe(st, tri, clipped, id);
-    bool simd = false;
-    sink->pixels->stats.fragments +=
-        sr_raster_triangle_on(st->fb, sink->rect, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2, id, &simd);
-    sink->pixels->simd_draws += simd;
-}
-
-sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_raster_rect rect,
-                           sr_thread_work *pixels)
-{
-    return (sr_fan_sink){ .store = store_in_place, .triangle = raster_now, .st = st, .work = work, .rect = rect,
-                          .pixels = pixels };
-}
-
-/* Every slot on the direct path, counted in thread 0's work. */
-static void draw_all_direct(void *ctx, int t)
-{
-    (void)t;
-    sr_draw_state *st = ctx;
-    sr_thread_work *w = &st->ws->threads[0];
-    sr_fan_sink sink = sr_direct_sink(st, w, (sr_raster_rect){ 0, 0, st->fb->width, st->fb->height }, w);
-    sr_draw_primitives(&sink, 0, st->slots);
-    sr_tiny_queue_flush(&w->stats.fragments, &w->simd_draws);
-}
-
-void sr_stats_add(sr_stats *to, const sr_stats *from)
-{
-    to->triangles += from->triangles;
-    to->rejected += from->rejected;
-    to->nonfinite += from->nonfinite;
-    to->clipped += from->clipped;
-    to->culled += from->culled;
-    to->drawn += from->drawn;
-    to->fragments += from->fragments;
-    to->cuts_float += from->cuts_float;
-    to->cuts_double += from->cuts_double;
-    to->cuts_exact += from->cuts_exact;
-    for (int p = 0; p < SR_CLIP_PLANES; p++)
-        to->rejected_by_plane[p] += from->rejected_by_plane[p];
-}
-
 static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
 {
     for (int t = 0; t < st->threads; t++) {
@@ -441,7 +375,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         reject_all(st, outside);
     } else if (draws) {
         if (direct) {
-            sr_parallel_run(&st->ws->pool, 1, draw_all_direct, st, st->study.times ? &st->study.times->primitives : NULL);
+            sr_parallel_run(&st->ws->pool, 1, sr_draw_direct, st, st->study.times ? &st->study.times->primitives : NULL);
         } else if (path == SR_PATH_ROWS) {
             if (!sr_draw_rows(st))
                 return sr_error_set(err, "out of memory for the row bands of %u triangles", st->slots);
@@ -494,7 +428,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
         return sr_error_set(err, "out of memory for a workspace");
     sr_draw_state st = { .fb = fb, .desc = desc, .study = study, .mode = mode, .ws = ws,
                          .threads = thread_count(desc, &study),
-                         .vertex_count = desc->mesh->vertex_count, .slots = sr_mesh_triangle_slots(desc->mesh),
+                         .vertex_count = desc->mesh->vertex_count, .slots = sr_assemble_slots(desc->mesh),
                          .tile_rows = SR_TILE_ROWS(fb->width),
                          .vp = { fb->width, fb->height, subpixel_bits(&study), guard_band(&study),
                                  clip_depth(desc) },

@@ -4,8 +4,8 @@
 #include <emmintrin.h>
 #endif
 
-#include "raster_setup.h"
 #include "raster.h"
+#include "simd_select.h"
 #include "tiny_queue.h"
 
 typedef sr_edge edge;

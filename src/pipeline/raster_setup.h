@@ -12,7 +12,23 @@
 #ifndef SOFTRAST_RASTER_SETUP_H
 #define SOFTRAST_RASTER_SETUP_H
 
-#include "raster.h"
+#include "shade.h"
+#include "stages.h"
+
+/* The tiled path draws in tiles that are strips of whole rows,
+ * SR_TILE_ROWS(width) each: SR_TILE_ROWS_MAX, or fewer on a framebuffer
+ * wider than SR_TILE_PIXELS / SR_TILE_ROWS_MAX so that a strip's color and
+ * depth stay within SR_TILE_PIXELS pixels (docs/performance.md). Tests
+ * and the fuzzer size their framebuffers by it. */
+#define SR_TILE_ROWS_MAX 32
+#define SR_TILE_PIXELS 65536
+#define SR_TILE_ROWS(width) \
+    ((width) <= SR_TILE_PIXELS / SR_TILE_ROWS_MAX ? SR_TILE_ROWS_MAX : SR_TILE_PIXELS / (width))
+
+/* The pixels [x0, x1) × [y0, y1) a call may touch (the framebuffer, or a tile). */
+typedef struct sr_raster_rect {
+    int x0, y0, x1, y1;
+} sr_raster_rect;
 
 /* E(P) = a·Px + b·Py + c, the edge function of a → b in subpixel units: >= 0
  * on the inside of a clockwise (area2 > 0) triangle. `bias` is 0 on a top or
@@ -212,87 +228,5 @@ static SR_ALWAYS_INLINE void sr_row_make(const sr_tri_setup *s, const sr_framebu
  * in magnitude, so doubles hold them exactly. */
 typedef uint64_t (*sr_span_kernel)(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb,
                                    uint32_t id);
-
-/* sr_raster_triangle and sr_raster_scan_box on vertices the caller holds
- * elsewhere (no copies); the first also tells whether a SIMD kernel drew.
- * Neither it nor the calls below count a tiny triangle the tiny queue
- * takes: its fragments and draw count when the queue is shaded
- * (sr_tiny_queue_flush). */
-uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
-                               const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
-                               uint32_t triangle_id, bool *simd);
-sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const tri[3], sr_raster_rect rect, int subpixel_bits);
-
-/* A box of pixels against the triangle's edges, from its four corner
- * pixels: all four outside one edge, the box holds no pixel of the triangle
- * (an edge function is linear, so no pixel between the corners is inside
- * either); all four inside every edge, every pixel is (its rows need no
- * solving). A tile of a large triangle is usually one or the other. Small
- * boxes are not classified: partial. */
-typedef enum sr_box_cover { SR_COVER_PARTIAL, SR_COVER_NONE, SR_COVER_ALL } sr_box_cover;
-sr_box_cover sr_raster_classify(const sr_tri_setup *s, sr_raster_rect box);
-
-/* Sets the triangle up over its scan box (non-empty; sr_raster_scan_box_of
- * clamped to the rectangle drawn): the edges, and unless the box holds none
- * of its pixels (then false) the depth plane, 1/w and the varyings the mode
- * reads. The binned path sets a triangle that spans tiles up once and
- * draws it per tile with the box and `covered` of the tile's share. */
-bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box, int subpixel_bits,
-                     sr_shade mode, const sr_shade_context *shade, sr_tri_setup *s);
-
-/* Makes a triangle set up over a larger box draw only its share of it (a
- * tile's), covered whole or not, by rows. */
-void sr_raster_setup_share(sr_tri_setup *s, sr_raster_rect share, bool covered);
-
-/* Draws a set-up triangle's pixels in s->box (a SIMD kernel where the box
- * is wide enough and its edge values fit doubles: *simd) and returns the
- * fragments that passed the depth test. */
-uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const sr_tri_setup *s, sr_shade mode,
-                              const sr_shade_context *shade, uint32_t triangle_id, bool *simd);
-
-/* sr_raster_triangle_on with the scan box already found (sr_raster_scan_box_of
- * clamped to the rectangle drawn): the tile of a one-tile triangle finds it
- * from the vertices it reads anyway. */
-uint64_t sr_raster_triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
-                                   const sr_shade_context *shade, const sr_screen_vertex *const tri[3],
-                                   int64_t area2, uint32_t triangle_id, bool *simd);
-
-/* Whether a scan box is tiny (sr_tri_setup.tiny), and such a box's covered
- * pixel centres: the mask the set-up makes. The binned path tests a tiny
- * triangle within one tile while binning, drops it when the mask is empty
- * and draws it with sr_raster_tiny_triangle, which takes the mask (non-zero,
- * of a box that sr_raster_box_is_tiny) instead of testing again; in a mode
- * that reads no varyings it then makes no edges (e, step_x are left unset:
- * the tiny loop reads them only for varyings). */
-bool sr_raster_box_is_tiny(sr_raster_rect box);
-uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
-                             int subpixel_bits);
-uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode,
-                                 const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
-                                 uint64_t mask, uint32_t triangle_id, bool *simd);
-
-/* The kernel for a shading mode, depth test and varying layout (each kernel
- * is compiled for one layout, so its varyings stay in registers), or NULL
- * where the instruction set is not built in (AVX2 and AVX-512 off x86-64)
- * or the layout is not one sr_vertex_layout makes (the scalar loop draws
- * those). */
-sr_span_kernel sr_span_kernel_sse2(sr_shade mode, bool greater, const sr_varying_layout *layout);
-
-/* The getter of a kernel file built without its instruction set. */
-#define SR_SPAN_KERNEL_ABSENT(getter)                                                                         \
-    sr_span_kernel getter(sr_shade mode, bool greater, const sr_varying_layout *layout)                       \
-    {                                                                                                         \
-        (void)mode, (void)greater, (void)layout;                                                              \
-        return NULL;                                                                                          \
-    }
-
-sr_span_kernel sr_span_kernel_avx2(sr_shade mode, bool greater, const sr_varying_layout *layout);
-sr_span_kernel sr_span_kernel_avx512(sr_shade mode, bool greater, const sr_varying_layout *layout);
-
-/* The kernel for the loop shade->simd resolves to on this CPU and a box
- * `width` pixels wide, or NULL (the scalar loop; or a layout no kernel was
- * compiled for): the AVX-512 loop draws boxes under SR_AVX512_MIN_WIDTH
- * with the AVX2 kernels (simd_select.c). */
-sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater, int width);
 
 #endif

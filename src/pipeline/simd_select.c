@@ -3,8 +3,8 @@
  * and layout in that loop. */
 #include <stdatomic.h>
 
-#include "raster.h"
-#include "tiny_queue.h"
+#include "kernels.h"
+#include "simd_select.h"
 
 /* The best loop this build and this CPU have. */
 static sr_simd simd_probe(void)

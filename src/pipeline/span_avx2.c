@@ -1,7 +1,7 @@
 /* The 8-lane span kernels, built with -mavx2 (the Makefile adds it for this
  * file on x86-64) and chosen at run time only on a CPU that has AVX2. No
  * -mfma: a fused multiply-add would round differently from the scalar path. */
-#include "tiny_queue.h"
+#include "kernels.h"
 
 #if defined(__AVX2__)
 #include <immintrin.h>

@@ -3,7 +3,7 @@
  * CPU that has them, for boxes at least SR_AVX512_MIN_WIDTH wide
  * (simd_select.c). No FMA, as in span_avx2.c. No tiny queue shader: the
  * queue takes the AVX2 one. */
-#include "raster_setup.h"
+#include "kernels.h"
 
 #if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512BW__) && defined(__AVX512VL__)
 #include <immintrin.h>

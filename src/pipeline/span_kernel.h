@@ -21,7 +21,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "tiny_queue.h"
+#include "kernels.h"
 
 _Static_assert(SPAN_LANES <= SR_SIMD_MAX_LANES, "raster.c checks edge values exact only SR_SIMD_MAX_LANES past a box");
 

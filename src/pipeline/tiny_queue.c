@@ -1,3 +1,4 @@
+#include "simd_select.h"
 #include "tiny_queue.h"
 
 /* The tiny queue (tiny_queue.h): one per thread, since

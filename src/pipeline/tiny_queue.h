@@ -17,47 +17,7 @@
 #ifndef SOFTRAST_PIPELINE_TINY_QUEUE_H
 #define SOFTRAST_PIPELINE_TINY_QUEUE_H
 
-#include "raster_setup.h"
-
-#define SR_TINY_QUEUE_PIXELS 512
-#define SR_TINY_QUEUE_TRIANGLES 128
-enum {
-    SR_TINY_IW0,
-    SR_TINY_DIW1,
-    SR_TINY_DIW2,
-    SR_TINY_VAR0,
-    SR_TINY_DVAR1 = SR_TINY_VAR0 + SR_MAX_VARYINGS,
-    SR_TINY_DVAR2 = SR_TINY_DVAR1 + SR_MAX_VARYINGS,
-    SR_TINY_PARAMS = SR_TINY_DVAR2 + SR_MAX_VARYINGS,
-};
-
-typedef struct sr_tiny_queue {
-    int pixels, triangles;
-    /* Per queued pixel, and a group of lanes past the last: the padding
-     * repeats the last triangle with λ 0 and is never stored. */
-    float l1[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES], l2[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
-    int32_t triangle[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
-    size_t at[SR_TINY_QUEUE_PIXELS + SR_SIMD_MAX_LANES];
-    float z[SR_TINY_QUEUE_PIXELS]; /* the pixel's depth, tested when the queue is shaded */
-    /* Per queued triangle, each interpolant a row (param[SR_TINY_VAR0 + k]
-     * is var0[k]), a group of lanes long past the last: a group of pixels
-     * spans at most SR_SIMD_MAX_LANES triangles, each having one pixel at
-     * least, so a shader loads the group's first triangle's row on and
-     * picks each lane's by its offset. */
-    float param[SR_TINY_PARAMS][SR_TINY_QUEUE_TRIANGLES + SR_SIMD_MAX_LANES];
-} sr_tiny_queue;
-
-/* Colors the queue's pixels in fb (a shading mode with varyings, the
- * queued triangles' 1/w varying). */
-typedef void (*sr_tiny_shader)(const sr_tiny_queue *q, const sr_shade_context *c, sr_framebuffer *fb);
-
-/* The tiny queue's shader for a mode and layout, as the span kernels'
- * getters (raster_setup.h) give theirs; and the one for the loop
- * shade->simd resolves to on this CPU, or NULL (the scalar loop; a mode
- * without varyings; a layout no shader was compiled for). */
-sr_tiny_shader sr_tiny_shader_sse2(sr_shade mode, const sr_varying_layout *layout);
-sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_varying_layout *layout);
-sr_tiny_shader sr_tiny_shader_for(const sr_shade_context *shade, sr_shade mode);
+#include "tiny_batch.h"
 
 /* A tiny triangle of SR_INTERP_PERSPECTIVE in a mode with varyings (the
  * rasterizer's call): its covered pixels queued on this thread's queue,
@@ -83,6 +43,5 @@ void sr_tiny_queue_drain(void);
  * the caller must neither change the shading context or the framebuffer
  * they were given nor clear or read its colors or depths. */
 void sr_tiny_queue_flush(uint64_t *fragments, uint64_t *draws);
-
 
 #endif

@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "vertex.h"
-#include "clip.h"
+#include "classify.h"
 #include "core/dmat4.h"
 
 static void add_varying(sr_varying_layout *l, int *slot, int size)

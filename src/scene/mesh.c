@@ -64,9 +64,7 @@ bool sr_mesh_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi)
 
 uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh)
 {
-    if (mesh->topology == SR_TRIANGLE_STRIP)
-        return mesh->index_count >= 3 ? mesh->index_count - 2 : 0;
-    return mesh->index_count / 3;
+    return sr_assemble_slots(mesh);
 }
 
 /* A power of two that brings the mesh's largest coordinate near 1: edges

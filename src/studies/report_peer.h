@@ -12,9 +12,11 @@
 
 #include <stdbool.h>
 
-#include "report_svg.h"
 #include "report_truth.h"
 #include "softrast_private.h"
+
+/* The report's scenes (report.c), each a row of the peer's too. */
+#define SR_REPORT_SCENES 6
 
 #define SR_REPORT_PEER_FILE "llvmpipe-truth.tsv"
 #define SR_REPORT_PEER_RENDERER_CHARS 160

@@ -5,12 +5,12 @@
 
 #include <stdbool.h>
 
+#include "report_peer.h"
 #include "report_simd.h"
 #include "report_truth.h"
 #include "softrast_private.h"
 
 #define SR_REPORT_KNOBS 9
-#define SR_REPORT_SCENES 6
 
 typedef struct sr_report_point {
     const char *knob;
@@ -26,7 +26,6 @@ typedef struct sr_report_scene {
     sr_report_point points[SR_REPORT_KNOBS];
 } sr_report_scene;
 
-struct sr_report_peer; /* report_peer.h */
 
 /* Writes report.md and the plots into dir; peer: llvmpipe's figures, read
  * before measuring (count 0 when its file is missing). */

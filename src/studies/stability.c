@@ -4,6 +4,7 @@
 
 #include "core/clock.h"
 #include "stability.h"
+#include "stability_doc.h"
 
 static void print_case(const sr_stability_case *c, const sr_stability_report *r, int i)
 {

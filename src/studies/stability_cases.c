@@ -2,7 +2,7 @@
  * grid section 2 draws under it, and the random triangles section 1 clips. */
 #include <math.h>
 
-#include "stability.h"
+#include "stability_cases.h"
 
 #define LATERAL_SPREAD 2.0   /* random points reach twice the frustum's half-width, so side planes cut */
 #define BEHIND_CHANCE 0.15   /* share of random points behind the eye */

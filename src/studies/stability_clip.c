@@ -12,7 +12,7 @@
 #include "pipeline/clip_exact.h"
 #include "pipeline/expansion.h"
 #include "core/clock.h"
-#include "stability.h"
+#include "stability_clip.h"
 
 #define CLIPPED_TRIANGLES 100000 /* clipped triangles measured per case */
 #define MAX_ATTEMPTS (50 * CLIPPED_TRIANGLES)

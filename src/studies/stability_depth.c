@@ -15,7 +15,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "stability.h"
+#include "stability_depth.h"
 
 #define DEPTH_SIDE 16             /* framebuffer side: every pixel must agree */
 #define FIRST_RATIO_EXPONENT 2    /* far/near = 10^2 … */

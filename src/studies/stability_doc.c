@@ -4,7 +4,8 @@
 
 #include "doc_file.h"
 #include "core/clock.h"
-#include "stability.h"
+#include "stability_doc.h"
+#include "stability_svg.h"
 
 #define LARGE_CLIP_ERROR 1e-3 /* NDC: half a pixel on a 1000-pixel screen */
 

@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "stability.h"
+#include "stability_grid.h"
 
 #define GRID_CELLS 64
 #define GRID_SIDE (GRID_CELLS + 1) /* vertices per side */

@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "stability.h"
+#include "stability_svg.h"
 #include "svg_plot.h"
 
 #define PLOT_W 820

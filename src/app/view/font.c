@@ -5,7 +5,7 @@
  * HD44780-style layout, so lowercase descenders (g j p q y) sit raised on the
  * baseline rather than below it: the line height leaves no room under it.
  */
-#include "overlay.h"
+#include "font.h"
 
 #define GLYPH_COUNT (SR_FONT_LAST - SR_FONT_FIRST + 1)
 

@@ -20,18 +20,13 @@
 
 #include <stdint.h>
 
+#include "font.h"
+
 typedef struct sr_canvas {
     uint32_t *pixels; /* 0x00RRGGBB, row 0 at the top */
     int width, height;
     int stride; /* pixels from one row to the next; 0 means width */
 } sr_canvas;
-
-#define SR_GLYPH_W 5 /* glyph bitmap size, px */
-#define SR_GLYPH_H 7
-#define SR_FONT_W 6 /* advance per character, px (5 px glyph + 1 px gap) */
-#define SR_FONT_H 9 /* line height, px (7 px glyph + 2 px gap) */
-#define SR_FONT_FIRST 32 /* ' ', the first printable ASCII character */
-#define SR_FONT_LAST 126 /* '~', the last */
 
 /* Draws text with its top-left corner at (x, y). '\n' starts a new line at x;
  * bytes outside 32..126 draw as '?'. Only glyph pixels are written. */
@@ -49,9 +44,5 @@ void sr_overlay_panel(sr_canvas *c, int x, int y, int w, int h);
  * endpoint works: the line is clipped to the canvas before it is walked, and
  * the pixels drawn are exactly the on-canvas pixels of the unclipped line. */
 void sr_overlay_line(sr_canvas *c, int64_t x0, int64_t y0, int64_t x1, int64_t y1, uint32_t color);
-
-/* The 5 column bitmaps of a character's glyph (bit 0 = top row); '?' for
- * anything outside 32..126. */
-const uint8_t *sr_font_glyph(int ch);
 
 #endif
