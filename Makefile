@@ -24,7 +24,7 @@ PREFIX  ?= /usr/local
 # stability) as a library of their own, the program (src/app, the viewer in
 # src/app/view) and the tests. Each room is an archive; binaries link rooms,
 # never objects picked by hand.
-CORE_SRC    := $(wildcard src/core/*.c src/pipeline/*.c src/target/*.c src/scene/*.c)
+CORE_SRC    := $(wildcard src/core/*.c src/pipeline/*.c src/pipeline/*/*.c src/draw/*.c src/target/*.c src/scene/*.c)
 FILES_SRC   := $(wildcard src/io/*.c)
 LIB_SRC     := $(CORE_SRC) $(FILES_SRC)
 STUDIES_SRC := $(wildcard src/studies/*.c)
@@ -42,10 +42,10 @@ PUBLIC_LIBS := build/libsoftrast.a build/libsoftrast-files.a
 # The 8-lane span kernels are built for AVX2 (chosen at run time when the
 # CPU has it); never -mfma, which would round differently from the scalar path.
 ifeq ($(shell uname -m),x86_64)
-AVX2_OBJ := $(patsubst %,%/src/pipeline/span_avx2.o,build build/san build/fuzz)
+AVX2_OBJ := $(patsubst %,%/src/pipeline/08_raster/span_avx2.o,build build/san build/fuzz)
 $(AVX2_OBJ): ALL_CFLAGS += -mavx2
 $(AVX2_OBJ): FUZZ_CFLAGS += -mavx2
-AVX512_OBJ := $(patsubst %,%/src/pipeline/span_avx512.o,build build/san build/fuzz)
+AVX512_OBJ := $(patsubst %,%/src/pipeline/08_raster/span_avx512.o,build build/san build/fuzz)
 AVX512_FLAGS := -mavx512f -mavx512dq -mavx512bw -mavx512vl
 $(AVX512_OBJ): ALL_CFLAGS += $(AVX512_FLAGS)
 $(AVX512_OBJ): FUZZ_CFLAGS += $(AVX512_FLAGS)

@@ -6,7 +6,7 @@
 
 
 /* Every fan triangle that reaches the rasterizer: on screen (within the
- * slack viewport.h allows for rounding), 1/w finite and positive (DESIGN.md:
+ * slack 06_viewport.h allows for rounding), 1/w finite and positive (DESIGN.md:
  * no division may produce inf or NaN), facing as the cull mode asks, and
  * never from non-finite input. */
 static void observe(void *user, const sr_screen_vertex tri[3], bool clipped, uint32_t id)
@@ -244,7 +244,7 @@ static void check_cull_partition(const draw_run run[CULL_MODES])
 /* Coverage and depth come from positions alone (DESIGN.md stages 3–9), so
  * the shading mode changes colors only, except that a triangle with a
  * non-finite varying the mode reads is dropped and counted non-finite
- * (shade.h). Where any vertex was non-finite the runs are not compared: a
+ * (10_shade.h). Where any vertex was non-finite the runs are not compared: a
  * triangle dropped before clipping in one mode (its varying/w overflowed) may
  * be clipped in the other and dropped only at a cut vertex, so even equal
  * nonfinite counts can come with different clipped counts

@@ -158,7 +158,7 @@ void fuzz_clip(reader *r)
                         "vertex %d is %a outside plane %d (magnitude %a, planes %#x)", i, -d, p, mag, planes);
         }
         /* What the pipeline clips, the viewport stage must accept
-         * (viewport.h: all but w < 2^-128) and map without an inf or NaN
+         * (06_viewport.h: all but w < 2^-128) and map without an inf or NaN
          * (DESIGN.md). */
         if (as_pipeline && exact && !viewport_may_refuse(v, varyings)) {
             sr_screen_vertex sv;

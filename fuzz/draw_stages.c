@@ -3,10 +3,10 @@
  * against the counts sr_draw reported. */
 #include "fuzz_draw.h"
 
-/* viewport.h: a vertex with w below 2^-128 is refused (1/w overflows). */
+/* 06_viewport.h: a vertex with w below 2^-128 is refused (1/w overflows). */
 #define VIEWPORT_MIN_W 0x1p-128
 /* It also refuses one whose varying/w overflows float, which a finite
- * varying does for w up to |varying|·2^-128 (viewport.h only names the
+ * varying does for w up to |varying|·2^-128 (06_viewport.h only names the
  * w < 2^-128 case). */
 bool viewport_may_refuse(const float *v, int varyings)
 {
@@ -132,7 +132,7 @@ static void matrix_or_identity(const mat4 m, mat4 out)
 
 /* Stages 1 to 6 again through their public headers, triangle by triangle:
  * what the clipper leaves of a triangle the pipeline clips, the viewport
- * stage must accept (viewport.h: all but w < 2^-128), and it must cover
+ * stage must accept (06_viewport.h: all but w < 2^-128), and it must cover
  * what an exact clip covers (check_clip_area). Also ties sr_stats.rejected
  * to the stages: outcode and non-finite rejections plus refused polygons. */
 void check_stages(const scene *sc, const sr_stats *stats)
@@ -150,7 +150,7 @@ void check_stages(const scene *sc, const sr_stats *stats)
     sr_vertex_out verts[MAX_VERTS];
     sr_vertex_run(m, &xf, &layout, 0, m->vertex_count, verts);
     /* A vertex inside every plane is mapped once, up front; one the viewport
-     * refuses drops every triangle that uses it (pipeline.c counts those as
+     * refuses drops every triangle that uses it (draw.c counts those as
      * non-finite). */
     unsigned codes[MAX_VERTS];
     sr_clip_depth depth = sr_clip_depth_of((const float(*)[4])projection);
@@ -161,7 +161,7 @@ void check_stages(const scene *sc, const sr_stats *stats)
             codes[i] = SR_OUT_NONFINITE;
     }
     /* The draw's default clip: adaptive, within half a subpixel step in NDC
-     * of the framebuffer's longer side (pipeline.c). */
+     * of the framebuffer's longer side (draw.c). */
     int side = sc->width > sc->height ? sc->width : sc->height;
     sr_clip_config cfg = { .precision = SR_CLIP_ADAPTIVE, .ndc_tolerance = 1.0 / ((double)SR_SUBPIXEL_ONE * side),
                            .depth = depth };

@@ -184,7 +184,7 @@ static void check_drawable(const sr_mesh *m)
     if (m->vertex_count > DRAW_MAX_VERTICES)
         return;
     /* Known: drawing a mesh without vertices does arithmetic on a NULL
-     * array (UBSan: src/pipeline/pipeline.c, vertex_range); see README. */
+     * array (UBSan: src/draw/draw.c, vertex_range); see README. */
     if (m->vertex_count == 0 && getenv("FUZZ_TOLERATE") && strstr(getenv("FUZZ_TOLERATE"), "empty_draw"))
         return;
     sr_framebuffer fb;

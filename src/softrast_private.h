@@ -10,15 +10,15 @@
 
 #include "core/dmat4.h"
 #include "core/error.h"
-#include "pipeline/assemble.h"
-#include "pipeline/clip.h"
-#include "pipeline/cull.h"
-#include "pipeline/raster.h"
-#include "pipeline/shade.h"
-#include "pipeline/simd_select.h"
+#include "pipeline/02_assemble.h"
+#include "pipeline/04_clip/clip.h"
+#include "pipeline/07_cull.h"
+#include "pipeline/08_raster/raster.h"
+#include "pipeline/10_shade.h"
+#include "pipeline/08_raster/simd_select.h"
 #include "pipeline/stages.h"
-#include "pipeline/vertex.h"
-#include "pipeline/viewport.h"
+#include "pipeline/01_vertex.h"
+#include "pipeline/06_viewport.h"
 #include "scene/shapes.h"
 
 #endif

@@ -10,7 +10,7 @@
 #include "scene_helpers.h"
 #include "softrast_private.h"
 
-/* ---- stages 1 to 4, as pipeline.c runs them ---- */
+/* ---- stages 1 to 4, as draw.c runs them ---- */
 
 static bool position_finite(const sr_vertex_out *v)
 {

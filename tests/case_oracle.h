@@ -1,8 +1,8 @@
 /* tests/case_oracle.h — what test_cases.c compares a case's draw against.
  *
- * case_clip_run runs stages 1 to 4 itself, mirroring src/pipeline/pipeline.c
+ * case_clip_run runs stages 1 to 4 itself, mirroring src/draw/draw.c
  * and primitives.c (one thread, default accuracy knobs) through the public
- * stage headers (vertex.h, assemble.h, clip.h, viewport.h), and
+ * stage headers (01_vertex.h, 02_assemble.h, clip.h, 06_viewport.h), and
  * measures the clipper's output: its vertex count against the bound
  * SR_MAX_CLIP_VERTS, and every output vertex against the six planes, using
  * plane distances written from the convention table (clip_helpers.h), not

@@ -31,7 +31,7 @@ static inline double rng_log_signed(test_rng *r, double lo_exp, double hi_exp)
 
 /* The error a draw lets a cut vertex carry (sr_clip_config.ndc_tolerance):
  * half a subpixel step in NDC over the framebuffer's longer side, no guard
- * band (pipeline.c, sr_draw). */
+ * band (draw.c, sr_draw). */
 static inline double draw_clip_tolerance(int width, int height)
 {
     return 1.0 / ((double)SR_SUBPIXEL_ONE * (width > height ? width : height));

@@ -7,7 +7,7 @@
 
 #include <gmp.h>
 
-#include "pipeline/clip.h"
+#include "pipeline/04_clip/clip.h"
 
 /* The plane distance of an exact point; under the depth model near and far
  * come from w (a·w + b, w − a·w − b), as the clipper takes them. */

@@ -18,8 +18,8 @@
 
 #include "clip_helpers.h"
 #include "exact_cut.h"
-#include "pipeline/clip_corner.h"
-#include "pipeline/viewport.h"
+#include "pipeline/04_clip/clip_corner.h"
+#include "pipeline/06_viewport.h"
 
 #define TRIANGLES 3000
 #define VIEW_W 1920

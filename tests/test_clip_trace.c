@@ -10,7 +10,7 @@
  * used to check this at run time; it now measures through the hook.) */
 #include <criterion/criterion.h>
 
-#include "pipeline/clip_corner.h"
+#include "pipeline/04_clip/clip_corner.h"
 #include "clip_helpers.h"
 
 #define TRIANGLES 20000

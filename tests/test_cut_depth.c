@@ -26,7 +26,7 @@
 
 #include "clip_helpers.h"
 #include "exact_cut.h"
-#include "pipeline/viewport.h"
+#include "pipeline/06_viewport.h"
 
 #define TRIANGLES 3000
 #define VIEW_W 1920

@@ -28,7 +28,7 @@
 /* uv read back from a texel is its centre; the exact uv may lie anywhere in
  * the texel, plus rounding: 1.5 texels. */
 #define UV_TOLERANCE (1.5 / CODE_SIZE)
-/* The bilinear filter's 8-bit weights and rounded lerps (shade.h). */
+/* The bilinear filter's 8-bit weights and rounded lerps (10_shade.h). */
 #define BILINEAR_TOLERANCE (2.0 / 255)
 #define UV_MARGIN 0.01 /* skip pixels this close to the quad's border (wrap) */
 #define CHANNEL_TOLERANCE 1 /* 8-bit color channels: one step */
@@ -393,7 +393,7 @@ Test(shading, bilinear_sample_at_a_texel_centre_is_that_texel_and_halfway_is_the
 }
 
 /* The exact bilinear filter in double, channel `shift` of the texels: the
- * reference the 8-bit fixed-point filter of shade.h must stay within
+ * reference the 8-bit fixed-point filter of 10_shade.h must stay within
  * BILINEAR_TOLERANCE of. */
 static double exact_bilinear(const sr_texture *tex, double fu, double fv, int shift)
 {

@@ -10,10 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pipeline/cull.h"
-#include "pipeline/draw_internal.h"
-#include "pipeline/kernels.h"
-#include "pipeline/raster_setup.h"
+#include "pipeline/07_cull.h"
+#include "draw/draw_state.h"
+#include "pipeline/08_raster/kernels.h"
+#include "pipeline/08_raster/raster_setup.h"
 #include "softrast_private.h"
 #include "scene_helpers.h"
 

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pipeline/draw_internal.h"
+#include "draw/draw_state.h"
 #include "softrast_private.h"
 #include "test_rng.h"
 
@@ -192,7 +192,7 @@ Test(threads, cost_estimate_on_a_dense_mesh_matches_one_thread)
     sr_mesh_free(&torus);
 }
 
-/* A workspace keeps its worker threads from draw to draw (parallel.c):
+/* A workspace keeps its worker threads from draw to draw (threads.c):
  * draws with one workspace whose thread count goes up and down draw what
  * the one-thread direct path draws. */
 Test(threads, one_workspace_matches_one_thread_as_the_thread_count_changes)

@@ -40,7 +40,7 @@ static const char VERTEX_BODY[] =
     "#ifdef USE_COLOR\n    v_color = color;\n#endif\n"
     "}\n";
 
-/* softrast's shade.h in GLSL: sr_shade_lambert_intensity and sr_shade_albedo.
+/* softrast's 10_shade.h in GLSL: sr_shade_lambert_intensity and sr_shade_albedo.
  * softrast's v = 0 is the image's bottom row and its texels are stored top
  * row first, as uploaded here (GL's t = 0 row): so t = 1 - v. */
 static const char FRAGMENT_BODY[] =

@@ -1,7 +1,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "core/array.h"
+#include "array.h"
 
 bool sr_array_reserve(sr_array *a, size_t count, size_t elem)
 {

@@ -1,7 +1,7 @@
 #include <float.h>
 #include <math.h>
 
-#include "core/dmat4.h"
+#include "dmat4.h"
 
 sr_dmat4 sr_dmat4_identity(void)
 {

@@ -1,7 +1,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "pipeline/assemble.h"
+#include "pipeline/02_assemble.h"
 #include "softrast/softrast.h"
 #include "core/error.h"
 

@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pipeline/clip_exact.h"
-#include "pipeline/expansion.h"
+#include "pipeline/04_clip/clip_exact.h"
+#include "pipeline/04_clip/expansion.h"
 #include "core/clock.h"
 #include "stability_clip.h"
 

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pipeline/expansion.h"
+#include "pipeline/04_clip/expansion.h"
 #include "core/clock.h"
 #include "truth.h"
 #include "truth_exact.h"

@@ -1,4 +1,4 @@
-#include "pipeline/expansion.h"
+#include "pipeline/04_clip/expansion.h"
 #include "truth_exact.h"
 
 /* A triple product of doubles has 6 terms of 3 factors, 4 parts each exact;

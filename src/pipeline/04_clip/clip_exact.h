@@ -7,7 +7,7 @@
 #ifndef SOFTRAST_CLIP_EXACT_H
 #define SOFTRAST_CLIP_EXACT_H
 
-#include "classify.h"
+#include "pipeline/03_classify.h"
 
 /* The longest numerator expansion: two distances, each part times a float
  * coordinate as an exact product pair. */

@@ -3,7 +3,7 @@
 
 #include "clip_exact.h"
 #include "expansion.h"
-#include "classify.h"
+#include "pipeline/03_classify.h"
 
 /* Adds d · x to the expansion, exactly. */
 static int add_product(double *e, int n, const double *d, int dn, double x)

@@ -1,7 +1,7 @@
 #include <pthread.h>
 
 #include "core/clock.h"
-#include "draw_internal.h"
+#include "draw_state.h"
 
 void sr_chunks_init(sr_chunks *c, uint32_t count, uint32_t size)
 {

@@ -1,8 +1,8 @@
 /* classify.c — the planes, distances and outcodes (classify.h). */
 #include <math.h>
 
-#include "classify.h"
-#include "expansion.h"
+#include "03_classify.h"
+#include "pipeline/04_clip/expansion.h"
 
 /* Near a·w + b and far w − a·w − b: a·w of two floats is exact in double,
  * so one two-sum or two make them exact. */

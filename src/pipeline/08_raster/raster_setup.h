@@ -12,8 +12,8 @@
 #ifndef SOFTRAST_RASTER_SETUP_H
 #define SOFTRAST_RASTER_SETUP_H
 
-#include "shade.h"
-#include "stages.h"
+#include "pipeline/10_shade.h"
+#include "pipeline/stages.h"
 
 /* The tiled path draws in tiles that are strips of whole rows,
  * SR_TILE_ROWS(width) each: SR_TILE_ROWS_MAX, or fewer on a framebuffer

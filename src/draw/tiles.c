@@ -6,10 +6,10 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 
-#include "draw_internal.h"
-#include "cull.h"
-#include "raster.h"
-#include "tiny_queue.h"
+#include "draw_state.h"
+#include "pipeline/07_cull.h"
+#include "pipeline/08_raster/raster.h"
+#include "pipeline/08_raster/tiny_queue.h"
 #include "target/framebuffer.h"
 
 /* Slots go to the threads in chunks, about 8 a thread, so one that waits

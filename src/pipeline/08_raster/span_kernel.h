@@ -10,7 +10,7 @@
  * generic lane loops stand in).
  *
  * Every lane does exactly the float operations of the scalar loop and of
- * shade.h, in the same order and without fused multiply-adds (the Makefile
+ * 10_shade.h, in the same order and without fused multiply-adds (the Makefile
  * passes -ffp-contract=off: clang would fuse where AVX-512 offers FMA), so the colors
  * and depths are bit-identical to the scalar path (tests/test_simd.c):
  * depth from the row's z and the per-pixel step (the pixel's column as an
@@ -145,7 +145,7 @@ static inline __attribute__((always_inline)) vf depth_lanes(const sr_tri_setup *
 
 /* The kernels know their varyings' layout at compile time, so the varyings
  * stay in registers: the vertex stage puts the normal first, then the
- * albedo's uv or color (vertex.c); a mode with one input has it at 0. */
+ * albedo's uv or color (01_vertex.c); a mode with one input has it at 0. */
 typedef enum albedo { ALBEDO_NONE, ALBEDO_GRAY, ALBEDO_COLOR, ALBEDO_TEXTURE } albedo;
 #define SECOND_VARYING 3 /* after the normal */
 

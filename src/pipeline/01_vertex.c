@@ -2,8 +2,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "vertex.h"
-#include "classify.h"
+#include "01_vertex.h"
+#include "03_classify.h"
 #include "core/dmat4.h"
 
 static void add_varying(sr_varying_layout *l, int *slot, int size)

@@ -1,6 +1,6 @@
 #include <string.h>
 
-#include "assemble.h"
+#include "02_assemble.h"
 
 /* Indices checked at once: 4-lane compares ORed, one branch per block
  * instead of one per index, where the compiler has vector types

@@ -29,7 +29,7 @@
 
 #include <stdint.h>
 
-#include "classify.h"
+#include "pipeline/03_classify.h"
 
 /* How many cut vertices each precision made (index: sr_clip_precision). */
 typedef struct sr_clip_counts {

@@ -17,9 +17,9 @@
 #include <math.h>
 #include <string.h>
 
-#include "draw_internal.h"
+#include "draw_state.h"
 #include "core/clock.h"
-#include "tiny_queue.h"
+#include "pipeline/08_raster/tiny_queue.h"
 #include "target/framebuffer.h"
 
 /* Slots per chunk of the verdicts. */

@@ -1,7 +1,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "draw_internal.h"
+#include "draw_state.h"
 
 /* aligned_alloc keeps the per-thread parts on their own cache lines. */
 sr_workspace *sr_workspace_create(void)

@@ -1,4 +1,4 @@
-/* vertex.h — stage 1: the vertex stage.
+/* 01_vertex.h — stage 1: the vertex stage.
  *
  * Transforms each unique vertex of a mesh once: clip = P·V·W·T(origin)·position
  * (column vectors; origin is the mesh's, docs/precision.md), the product

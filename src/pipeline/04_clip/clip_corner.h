@@ -17,7 +17,7 @@
 #ifndef SOFTRAST_PIPELINE_CLIP_CORNER_H
 #define SOFTRAST_PIPELINE_CLIP_CORNER_H
 
-#include "classify.h"
+#include "pipeline/03_classify.h"
 
 /* The corner of tri on `first` and `plane`, its position in double where
  * an error bound allows `tolerance` (NDC) and precision is adaptive, else

@@ -1,4 +1,4 @@
-/* cull.h — stage 7: back-face culling on the snapped triangle.
+/* 07_cull.h — stage 7: back-face culling on the snapped triangle.
  *
  * The signed area is computed exactly in 64-bit integers from the snapped
  * fixed-point vertices, after clipping, so facing is never decided from a

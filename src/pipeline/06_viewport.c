@@ -1,7 +1,7 @@
 #include <math.h>
 
-#include "clip_corner.h"
-#include "viewport.h"
+#include "pipeline/04_clip/clip_corner.h"
+#include "06_viewport.h"
 
 static bool within_slack(double ndc, double lo)
 {

@@ -1,4 +1,4 @@
-/* draw_internal.h — what the draw call's own files share: the per-draw
+/* draw_state.h — what the draw call's own files share: the per-draw
  * state, the workspace's layout, and the fan-triangle sink that lets one
  * primitive stage (assembly to culling) feed either the rasterizer directly
  * (the direct path, one thread) or the tile bins (the tiled path, one
@@ -10,18 +10,18 @@
 #include <stdatomic.h>
 #include <stddef.h>
 
-#include "assemble.h"
-#include "clip.h"
+#include "pipeline/02_assemble.h"
+#include "pipeline/04_clip/clip.h"
 #include "core/array.h"
-#include "raster.h"
-#include "raster_setup.h"
+#include "pipeline/08_raster/raster.h"
+#include "pipeline/08_raster/raster_setup.h"
 #include "softrast/softrast.h"
 #include "softrast/study.h"
-#include "vertex.h"
-#include "viewport.h"
+#include "pipeline/01_vertex.h"
+#include "pipeline/06_viewport.h"
 
 #define SR_MAX_THREADS 64
-/* The row-band path (rows.c) splits the rows between its threads in bands
+/* The row-band path (row_bands.c) splits the rows between its threads in bands
  * of ⌈height / SR_ROW_BANDS⌉ rows, at most this many (below 255, the band
  * of none). */
 #define SR_ROW_BANDS 254
@@ -69,7 +69,7 @@ typedef struct sr_bin_entry {
 #define SR_BIN_STORED 0x80000000u
 
 /* One thread's list of a tile: bin entries, and the estimated cost of
- * drawing them (bin.c, tile_cost), which orders the tiles. */
+ * drawing them (tiles.c, tile_cost), which orders the tiles. */
 typedef struct sr_bin {
     sr_array entries; /* sr_bin_entry */
     uint64_t cost;
@@ -90,8 +90,8 @@ typedef struct sr_thread_work {
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
-    uint32_t band_triangles[SR_ROW_BANDS]; /* of the slots it gave a verdict, kept ones inside every plane per first band (rows.c) */
-    double band_cpu_ms; /* the CPU time it drew its band of rows in (rows.c) */
+    uint32_t band_triangles[SR_ROW_BANDS]; /* of the slots it gave a verdict, kept ones inside every plane per first band (row_bands.c) */
+    double band_cpu_ms; /* the CPU time it drew its band of rows in (row_bands.c) */
 } sr_thread_work;
 
 /* A worker thread of the pool: its index t, and the phases it is handed.
@@ -107,7 +107,7 @@ typedef struct sr_worker {
     double cpu_ms; /* its CPU time in the phase's fn, when timed */
 } sr_worker;
 
-/* The workspace's threads 1 .. started-1 (parallel.c): started the first
+/* The workspace's threads 1 .. started-1 (threads.c): started the first
  * time a draw asks for more threads than there are, asleep between draws,
  * joined when the workspace is destroyed. */
 typedef struct sr_pool {
@@ -125,7 +125,7 @@ typedef struct sr_pool {
 } sr_pool;
 
 /* What the row-band path's last draw with the workspace measured
- * (rows.c): each band's CPU time per kept triangle inside, that of the
+ * (row_bands.c): each band's CPU time per kept triangle inside, that of the
  * thread that drew it. The next draw of the same mesh into as many rows
  * splits them by it (a frame of several meshes splits each by counts). */
 typedef struct sr_band_costs {
@@ -205,7 +205,7 @@ struct sr_fan_sink {
                      uint32_t id, bool clipped);
     const sr_draw_state *st;
     sr_thread_work *work; /* counts the triangles */
-    /* Drawing as they come (pipeline.c's direct path, rows.c): the rows
+    /* Drawing as they come (draw.c's direct path, row_bands.c): the rows
      * drawn, and the work that counts their fragments. */
     sr_raster_rect rect;
     sr_thread_work *pixels;
@@ -277,7 +277,7 @@ static inline bool sr_band_span_is_every(sr_band_span s)
 }
 
 /* Stages 4 to 7 for the draw's slots whose span meets bands [lo, hi]
- * (rows.c), in order: into `own` where the span starts there, the thread
+ * (row_bands.c), in order: into `own` where the span starts there, the thread
  * that counts the slot, else into `shared`. */
 void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_span *spans, unsigned lo, unsigned hi);
 
@@ -317,7 +317,7 @@ sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_ras
  * sr_parallel_run job of one thread. */
 void sr_draw_direct(void *ctx, int t);
 
-/* The row-band path (rows.c): every thread draws the triangles of its own
+/* The row-band path (row_bands.c): every thread draws the triangles of its own
  * band of rows as they come, in submission order. */
 bool sr_draw_rows(sr_draw_state *st);
 

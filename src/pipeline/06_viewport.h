@@ -1,4 +1,4 @@
-/* viewport.h — stage 6: perspective divide and viewport mapping.
+/* 06_viewport.h — stage 6: perspective divide and viewport mapping.
  *
  * NDC (x, y in [-1, 1], z in [0, 1]) to pixels: px = (x + 1)·W/2,
  * py = (1 - y)·H/2 (top-left origin, y down), snapped to 1/256 pixel (or

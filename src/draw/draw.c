@@ -2,17 +2,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "draw_internal.h"
-#include "assemble.h"
-#include "clip.h"
-#include "vertex.h"
-#include "viewport.h"
+#include "draw_state.h"
+#include "pipeline/02_assemble.h"
+#include "pipeline/04_clip/clip.h"
+#include "pipeline/01_vertex.h"
+#include "pipeline/06_viewport.h"
 #include "core/error.h"
 #include "core/clock.h"
 #include "core/dmat4.h"
-#include "raster.h"
-#include "simd_select.h"
-#include "tiny_queue.h"
+#include "pipeline/08_raster/raster.h"
+#include "pipeline/08_raster/simd_select.h"
+#include "pipeline/08_raster/tiny_queue.h"
 
 static int subpixel_bits(const sr_draw_study *d)
 {
@@ -119,7 +119,7 @@ static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t 
 }
 
 /* The band of rows of each vertex inside among vertices [first, first + n),
- * for the row-band path (rows.c): its snapped point's row, clamped to the
+ * for the row-band path (row_bands.c): its snapped point's row, clamped to the
  * framebuffer. A pass of its own after the block is mapped: read in the
  * mapping loop, right after the mapping stored it, a vertex's row cost the
  * dense torus's vertex phase 1.3 ms more CPU a frame at two threads than
@@ -146,7 +146,7 @@ static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, 
  * corners again (primitives.c). A NaN or inf varying marks a vertex
  * non-finite, inside or not (it decides how a rejected triangle is
  * counted): outside, it is told from the mesh's values, a block at a time
- * where they are all plainly finite (vertex.h); inside, by the mapping,
+ * where they are all plainly finite (01_vertex.h); inside, by the mapping,
  * whose varyings divided by w are then not finite, and which fails as well
  * where the divide does (w below 2^-128): the triangles that use such a
  * vertex are dropped and counted. For the row-band path, each vertex
@@ -295,7 +295,7 @@ static bool direct_only(const sr_draw_state *st)
 }
 
 /* Before the vertex phase: whether it notes the bands of rows of the
- * row-band path (rows.c), the estimate's choice for pixel-sized triangle
+ * row-band path (row_bands.c), the estimate's choice for pixel-sized triangle
  * slots on several threads. */
 static bool rows_wanted(const sr_draw_state *st)
 {

@@ -2,9 +2,9 @@
  * in submission order, as it leaves the primitive stages. */
 #include <string.h>
 
-#include "draw_internal.h"
-#include "raster.h"
-#include "tiny_queue.h"
+#include "draw_state.h"
+#include "pipeline/08_raster/raster.h"
+#include "pipeline/08_raster/tiny_queue.h"
 
 /* The direct path, on one thread: every fan triangle goes straight to the
  * rasterizer, over the whole framebuffer, in submission order. */

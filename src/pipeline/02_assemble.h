@@ -1,4 +1,4 @@
-/* assemble.h — stage 2: primitive assembly.
+/* 02_assemble.h — stage 2: primitive assembly.
  *
  * Turns a mesh's index array into triangles. TriangleList: triangle k is
  * (i[3k], i[3k+1], i[3k+2]). TriangleStrip: triangle k is (i[k], i[k+1],

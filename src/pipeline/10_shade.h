@@ -1,4 +1,4 @@
-/* shade.h — stage 10: shading a fragment from its varyings.
+/* 10_shade.h — stage 10: shading a fragment from its varyings.
  *
  * sr_shade_fragment is inline so the rasterizer's per-pixel loop, specialised
  * per mode with a constant `mode`, compiles to straight-line code with no

@@ -1,11 +1,11 @@
 /* Stages 2 to 7 for a range of triangle slots, shared by the one-thread and
  * the binned paths so both see exactly the same fan triangles. */
-#include "draw_internal.h"
-#include "assemble.h"
-#include "clip.h"
-#include "cull.h"
-#include "vertex.h"
-#include "viewport.h"
+#include "draw_state.h"
+#include "pipeline/02_assemble.h"
+#include "pipeline/04_clip/clip.h"
+#include "pipeline/07_cull.h"
+#include "pipeline/01_vertex.h"
+#include "pipeline/06_viewport.h"
 
 /* Stage 7 for one fan triangle whose vertices are *tri[] (refs name them
  * for the sink). */
