@@ -475,7 +475,7 @@ static void observe_varyings(void *user, const sr_screen_vertex tri[3], bool cli
 }
 
 /* The vertex phase keeps only the layout's varyings (docs/performance.md,
- * "Screen vertices sized by the layout"); the observer still gets whole
+ * "The vertex phase"); the observer still gets whole
  * vertices: each of the layout's varyings set somewhere (a normal's three
  * components), those past it 0 everywhere, also where the workspace's last
  * draw wrote a lambert normal there, and on clipped triangles. */

@@ -10,9 +10,11 @@
  *     sr_image_write_png("out.png", fb.color, fb.width, fb.height, &err);
  *     sr_mesh_free(&mesh);
  *
- * The library softrast-files, on the core, SDL2_image (PNG read and write)
- * and Assimp (mesh formats other than OBJ). Every function returns false with one line in err ("FILE: what",
- * or "FILE:LINE: what" for a parse error) and never crashes on bad input.
+ * The library softrast-files, on the core, libpng (PNG read and write),
+ * SDL2_image (the other texture formats: JPEG, TGA, BMP, …) and Assimp
+ * (mesh formats other than OBJ). Every function returns false with one
+ * line in err ("FILE: what", or "FILE:LINE: what" for a parse error) and
+ * never crashes on bad input.
  */
 #ifndef SOFTRAST_FILES_H
 #define SOFTRAST_FILES_H
@@ -90,9 +92,10 @@ SR_API bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err);
  * image costs nothing. */
 #define SR_MAX_TEXTURE_TEXELS (1ul << 26)
 
-/* Any image SDL2_image reads (PNG through libpng directly), as 0x00RRGGBB
- * texels, row 0 at the top; false for a missing file or one that is not a
- * regular file, anything that is not a readable image, a side over
+/* A PNG (read by libpng) or any other image SDL2_image reads (JPEG, TGA,
+ * BMP, …), as 0x00RRGGBB texels, row 0 at the top; false for a missing
+ * file or one that is not a regular file, anything that is not a readable
+ * image, a side over
  * SR_MAX_TEXTURE_SIDE or more than SR_MAX_TEXTURE_TEXELS texels. Free with
  * sr_texture_free. */
 SR_API bool sr_texture_load(sr_texture *tex, const char *path, sr_error *err);

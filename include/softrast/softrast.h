@@ -280,10 +280,11 @@ typedef struct sr_stats {
  * asleep between draws and ended by sr_workspace_destroy; the time each
  * thread's rows took, by which the next draw of the mesh splits them:
  * never a pixel changes with it). Optional: a draw without one makes and
- * frees its own, so its memory is fresh pages and its threads start anew
- * every time: keep one for a loop of draws (a 1M-triangle
- * torus at 1920x1080 took 50 ms a draw without one against 41 with one on
- * one thread, 30 against 22 on two). One workspace serves one draw at a
+ * frees its own, so its memory is fresh pages, faulted in again at their
+ * first touch, its threads start anew and its row split has no measured
+ * costs to follow, every time: keep one for a loop of draws (the viewer
+ * and the benchmarks do; docs/performance.md, "Threads and the
+ * workspace"). One workspace serves one draw at a
  * time: never use it from two threads at once, nor in a child of fork()
  * (the child has none of its threads). */
 typedef struct sr_workspace sr_workspace;

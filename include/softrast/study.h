@@ -8,7 +8,8 @@
  * field is the default that the conventions pin, so a zeroed study draws
  * exactly what no study draws. The trace sees the fan triangles the
  * rasterizer gets; count_hits counts how many cover each pixel; times
- * says where the draw's time went, phase by phase (docs/performance.md).
+ * says where the draw's time went, phase by phase (docs/performance.md,
+ * "Where the time goes today").
  */
 #ifndef SOFTRAST_STUDY_H
 #define SOFTRAST_STUDY_H
@@ -86,7 +87,8 @@ typedef void (*sr_triangle_observer)(void *user, const sr_screen_vertex tri[3], 
  * phase got, cpu against the one-thread draw's is the threads' overhead).
  * Two clock reads per phase and thread, never per triangle: on the direct
  * path, where set-up and rasterization interleave per triangle, both count
- * under `primitives` (perf splits them: docs/performance.md). */
+ * under `primitives` (perf splits them: docs/performance.md, "How to
+ * measure a change"). */
 typedef struct sr_phase_time {
     double wall, cpu;
 } sr_phase_time;
@@ -125,7 +127,7 @@ typedef struct sr_draw_study {
  * tiles on one, only when its cost estimate says they pay (many triangle
  * slots or a large framebuffer, and not every vertex outside one plane),
  * and takes the tiles on one thread when its triangles are few for its
- * pixels (docs/performance.md, "One thread or tiles"). SR_PATH_DIRECT
+ * pixels (docs/performance.md, "Which path a draw takes"). SR_PATH_DIRECT
  * draws on one thread without tiles, SR_PATH_TILES on the tiles at the
  * draw's thread count, one included, and SR_PATH_ROWS with each thread
  * drawing its band of rows (the estimate's choice for triangle slots many

@@ -123,8 +123,8 @@ static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t 
  * framebuffer. A pass of its own after the block is mapped: read in the
  * mapping loop, right after the mapping stored it, a vertex's row cost the
  * dense torus's vertex phase 1.3 ms more CPU a frame at two threads than
- * here, where the bands cost 0.2 ms (docs/performance.md, "The bands of
- * rows noted after the block"). */
+ * here, where the bands cost 0.2 ms (docs/performance.md, "Row
+ * bands"). */
 static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, const unsigned char *outcodes,
                            unsigned char *bands)
 {
@@ -245,7 +245,7 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
 }
 
 /* The cost estimate that picks one thread or the tiles (docs/performance.md,
- * "One thread or tiles"). Before the vertex phase: a draw of fewer slots
+ * "Which path a draw takes"). Before the vertex phase: a draw of fewer slots
  * into fewer pixels than these ran faster on one thread at every size
  * measured (thread start-up and per-tile costs outweigh the split). */
 #define TILES_MIN_SLOTS 32768u

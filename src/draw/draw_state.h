@@ -181,8 +181,8 @@ static inline size_t sr_screen_used(int varyings)
  * and gray lambert; 64 in lambert with a uv or colors). The vertex phase
  * writes them and the rasterizer reads them only up to
  * var_w[varyings − 1], so a smaller array carries the same vertices: less
- * memory to write and read back (docs/performance.md, "Screen vertices
- * sized by the layout"). A pointer to one (sr_screen_at) points at fewer
+ * memory to write and read back (docs/performance.md, "The vertex
+ * phase"). A pointer to one (sr_screen_at) points at fewer
  * bytes than an sr_screen_vertex: read its members, never copy it whole. */
 static inline size_t sr_screen_stride(int varyings)
 {

@@ -13,7 +13,7 @@
  * A pixel sees the same triangles in the same order with the same edge
  * values as on the one-thread path, so the image is bit-identical; a
  * triangle over several bands is set up by each of their threads, and
- * counted by the first (docs/performance.md, "Rows by band"). */
+ * counted by the first (docs/performance.md, "Row bands"). */
 #include <math.h>
 #include <string.h>
 

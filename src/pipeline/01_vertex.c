@@ -148,8 +148,8 @@ static SR_ALWAYS_INLINE void write_varyings(const sr_mesh *m, const sr_varying_l
  * at once (sr_clip_outcodes_four), and the varyings of those inside. One
  * at a time, the outcode's compares and bits were 58 % of this loop's
  * samples on the inside scene; four at a time, its vertex phase takes
- * 0.3 ms less (docs/performance.md, "The tiny triangles' depth tests in
- * the queue"). */
+ * 0.3 ms less (docs/performance.md, "The vertex
+ * phase"). */
 static uint32_t run_fours_inside(const sr_mesh *m, const sr_varying_layout *l, mat4 clip_from_object,
                                  mat3 normal_matrix, const sr_clip_depth *d, uint32_t first, uint32_t count,
                                  sr_vertex_out *out, unsigned char *codes)

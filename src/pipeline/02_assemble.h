@@ -50,8 +50,8 @@ static inline const uint32_t *sr_assemble_slot_indices(const sr_mesh *mesh, uint
 /* A loop over slots [k, end) prefetches the indices of the slot
  * SR_INDICES_AHEAD on (1.5 KB on in a triangle list), or near the end its
  * own again: the hardware prefetcher left the loops over slots waiting on
- * the index stream (docs/performance.md, "Indices prefetched, the set-up
- * inlined"). A macro for the reason PREFETCH_TRIANGLE is one
+ * the index stream (docs/performance.md, "From slot to
+ * set-up"). A macro for the reason PREFETCH_TRIANGLE is one
  * (primitives.c). */
 #define SR_INDICES_AHEAD 128
 #define SR_PREFETCH_SLOT_INDICES(mesh, k, end)                                                                \

@@ -176,7 +176,7 @@ static inline void sr_shade_albedo(const sr_shade_context *c, const float *var, 
  * 1 + 2^-9 (a normal too short to square in float) from carrying a channel
  * into the next. The SIMD kernels do the same operations on 16-bit halves
  * of the texel (span_kernel.h, lit_texel_lanes), where each channel went
- * to float and back (docs/performance.md, "Fly's per-pixel work"). */
+ * to float and back (docs/performance.md, "The per-pixel loops"). */
 #define SR_SHADE_LIT_BITS 8
 #define SR_SHADE_LIT_ONE (1u << SR_SHADE_LIT_BITS)
 

@@ -249,8 +249,8 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_
  * 20.1 / 20.5 / 22 ms, dense 100 ms). A narrower box of more rows, a sliver
  * seen along its length, takes a kernel all the same: on the scalar loop
  * the inside scene's 4.6k a frame (270k pixels of boxes) cost it 1 %
- * (docs/performance.md, "The outcodes on four lanes, tall slivers to the
- * kernels"). */
+ * (docs/performance.md, "The per-pixel
+ * loops"). */
 #define SIMD_MIN_WIDTH 8
 
 static bool edges_fit_double(const setup *s)
@@ -292,7 +292,7 @@ static SR_ALWAYS_INLINE uint64_t tiny_coverage(const setup *s)
     /* Two pixels of a row at a time, each lane the sum the loop below
      * makes; in a box of odd width, the lane past its last column is cut
      * off (its sum, a vector add, may wrap but is never undefined).
-     * docs/performance.md, "The tiny mask two pixels at a time". */
+     * docs/performance.md, "From slot to set-up". */
     int width = s->box.x1 - s->box.x0;
     uint64_t row_cut = ((uint64_t)1 << width) - 1;
     __m128i pair0 = _mm_set1_epi64x(s->step_x[0]), pair1 = _mm_set1_epi64x(s->step_x[1]),
@@ -477,7 +477,7 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
  * depth plane, the interpolants and, after it, the branch that hands a
  * tiny triangle to the tiny queue (setup_draw): 0.97–0.99 of the lambert
  * scenes' frames at one thread
- * (docs/performance.md, "Indices prefetched, the set-up inlined"). */
+ * (docs/performance.md, "From slot to set-up"). */
 static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
                                       int subpixel_bits, sr_shade mode, const sr_shade_context *shade,
                                       bool mask_known, uint64_t mask, setup *s)
@@ -577,8 +577,8 @@ static SR_ALWAYS_INLINE uint64_t setup_draw(sr_framebuffer *fb, const setup *s, 
  * AVX2 kernels' samples on the compare after them, inside at one thread):
  * fetched here, they arrive during the set-up and the tiny queue's
  * shading. Inside at one thread 0.958 of its frame; a tile's rows are in
- * the cache already (docs/performance.md, "The tiny triangles' depth tests
- * in the queue"). */
+ * the cache already (docs/performance.md, "The direct
+ * path"). */
 #define FETCHED_ROWS 32
 
 static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,

@@ -51,7 +51,7 @@ const char *sr_simd_name(sr_simd simd)
 /* The AVX-512 loop's narrow work goes to the AVX2 kernels: boxes under
  * this many pixels wide, and the tiny queue. Measured on this machine's
  * CPU, 1 thread, 5 alternating runs, the AVX-512 loop before and after
- * (docs/performance.md, "Narrow work at 8 lanes"): dense 46.8 -> 44.0 ms,
+ * (docs/performance.md, "The per-pixel loops"): dense 46.8 -> 44.0 ms,
  * inside 41.6 -> 39.9; fly, depth and id shading level. A 16-lane group
  * is more than such a row or queue fills, and the AVX2 loop alone was
  * faster than the AVX-512 one on both scenes. */

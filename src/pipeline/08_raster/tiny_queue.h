@@ -10,10 +10,10 @@
  * each lane with its own triangle's interpolants, and stores the colors in
  * the queue's order. One triangle's few pixels filled few lanes, and a
  * division of 16 lanes costs the divider as much as about six of one
- * (docs/performance.md, "Tiny triangles' shading"). Tested at the push,
+ * (docs/performance.md, "Tiny triangles and their queue"). Tested at the push,
  * each pixel's depth load held up the triangles behind it; tested in the
  * queue, the loads of hundreds of pixels are in flight at once
- * (docs/performance.md, "The tiny triangles' depth tests in the queue"). */
+ * (docs/performance.md, "Tiny triangles and their queue"). */
 #ifndef SOFTRAST_PIPELINE_TINY_QUEUE_H
 #define SOFTRAST_PIPELINE_TINY_QUEUE_H
 
