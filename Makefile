@@ -51,7 +51,7 @@ $(AVX512_OBJ): ALL_CFLAGS += $(AVX512_FLAGS)
 $(AVX512_OBJ): FUZZ_CFLAGS += $(AVX512_FLAGS)
 endif
 
-.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-house test-assets test-install install assets docs-images bench report scans stability cost-model clean
+.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-house mutate test-assets test-install install assets docs-images bench report scans stability cost-model clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast $(PUBLIC_LIBS)
@@ -158,6 +158,12 @@ test-san: build/san/softrast build/san/softrast-tests
 # and nm of every object), and render and view use nothing of the studies.
 test-house: build/softrast
 	python3 tools/check-house.py build
+
+# The mutation check, outside `make test`: each bug of tools/mutants.txt
+# planted in a copy of the tree (build/mutate/), one at a time, must make
+# the suite fail (docs/testing.md). MUTANTS="name ..." runs only those.
+mutate: deps
+	@python3 tools/mutate.py $(MUTANTS)
 
 assets: build/gen-assets
 	./build/gen-assets assets

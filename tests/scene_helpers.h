@@ -184,6 +184,85 @@ static inline double scene_depth_ndc(double near, double far, double d)
     return far / (far - near) * (1.0 - near / d);
 }
 
+/* The per-pixel loops a draw may ask for (sr_draw_study.simd), scalar first. */
+static const sr_simd scene_loops[] = { SR_SIMD_SCALAR, SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX512 };
+#define SCENE_LOOPS (sizeof scene_loops / sizeof *scene_loops)
+
+/* The loops this CPU (and build) has, into out; returns how many. */
+static inline size_t scene_available_loops(sr_simd out[SCENE_LOOPS])
+{
+    size_t n = 0;
+    for (size_t l = 0; l < SCENE_LOOPS; l++)
+        if (sr_raster_simd_resolve(scene_loops[l]) == scene_loops[l])
+            out[n++] = scene_loops[l];
+    return n;
+}
+
+/* One draw of *base on a per-pixel loop and path (SR_PATH_DIRECT on one
+ * thread; SR_PATH_TILES or SR_PATH_ROWS on more), with a workspace of its
+ * own; *stats gets this draw's counts. Returns the calls the draw made to a
+ * SIMD kernel or tiny queue shader (sr_workspace_simd_draws): 0 on the
+ * scalar loop, and what tells that a vector loop really ran. */
+static inline uint64_t scene_draw_on_loop(sr_framebuffer *fb, const sr_draw_desc *base, sr_simd simd, int threads,
+                                          sr_draw_path path, sr_stats *stats)
+{
+    sr_error err = { "" };
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    sr_draw_desc desc = *base;
+    desc.study = &(sr_draw_study){ .simd = simd, .path = path };
+    desc.threads = threads;
+    desc.workspace = ws;
+    *stats = (sr_stats){ 0 };
+    cr_assert(sr_draw(fb, &desc, stats, &err), "sr_draw: %s", err.message);
+    uint64_t draws = sr_workspace_simd_draws(ws);
+    sr_workspace_destroy(ws);
+    return draws;
+}
+
+/* A fresh width x height framebuffer with *desc drawn on loop `simd` on
+ * one thread, asserting that the loop ran: a vector loop called its
+ * kernels, the scalar loop none (a scene that is drawn and not tiny). */
+static inline void scene_draw_fresh_on_loop(sr_framebuffer *fb, int width, int height, const sr_draw_desc *desc,
+                                            sr_simd simd, sr_stats *stats)
+{
+    sr_error err = { "" };
+    cr_assert(sr_framebuffer_create(fb, width, height, &err), "sr_framebuffer_create: %s", err.message);
+    sr_framebuffer_clear(fb, SCENE_BACKGROUND);
+    uint64_t calls = scene_draw_on_loop(fb, desc, simd, 1, SR_PATH_DIRECT, stats);
+    cr_assert_eq(calls > 0, simd != SR_SIMD_SCALAR, "%s loop: %llu kernel calls", sr_simd_name(simd),
+                 (unsigned long long)calls);
+}
+
+/* ---- shading by its formulas ---- */
+
+/* Lambert's constants as documented (docs/bench-compare.md: ambient 0.2,
+ * albedo gray 0.8), written here, not taken from shade.h. */
+#define SCENE_LAMBERT_AMBIENT 0.2
+#define SCENE_LAMBERT_GRAY 0.8
+
+/* The lambert intensity of normal n (any length) under the unit light
+ * direction l, in double: ambient + (1 − ambient)·max(0, n·l / |n|). */
+static inline double scene_lambert(const double n[3], const double l[3])
+{
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double d = (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) / len;
+    return SCENE_LAMBERT_AMBIENT + (1.0 - SCENE_LAMBERT_AMBIENT) * (d > 0.0 ? d : 0.0);
+}
+
+/* A channel in 0..1 as 8 bits, as the shader's contract says: clamped,
+ * times 255, rounded to nearest. */
+static inline uint32_t scene_channel(double c)
+{
+    c = c < 0 ? 0 : c > 1 ? 1 : c;
+    return (uint32_t)lround(c * 255);
+}
+
+static inline uint32_t scene_rgb(double r, double g, double b)
+{
+    return scene_channel(r) << 16 | scene_channel(g) << 8 | scene_channel(b);
+}
+
 /* ---- framebuffers ---- */
 
 static inline void scene_fb_make(sr_framebuffer *fb, int width, int height)

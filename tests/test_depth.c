@@ -287,7 +287,10 @@ Test(depth, less_resolves_intersecting_triangles_per_pixel)
     }
 }
 
-/* LESS, not LEQUAL: a second triangle at exactly the same depth loses. */
+/* LESS, not LEQUAL: a second triangle at exactly the same depth loses, on
+ * every per-pixel loop this CPU has (the triangle is wide: the vector
+ * loops draw it with their span kernels; test_depth_loops.c adds the tiny
+ * queue, threads and reversed z). */
 Test(depth, less_keeps_the_first_of_equal_depths)
 {
     const float z[3] = { 0.25f, 0.5f, 0.75f };
@@ -295,13 +298,22 @@ Test(depth, less_keeps_the_first_of_equal_depths)
     scene_mesh_alloc(&mesh, 6, 2, true);
     flat_triangle(&mesh, 0, big, z, red);
     flat_triangle(&mesh, 3, big, z, green);
-    sr_framebuffer fb;
-    sr_stats stats = flat_render(&fb, &mesh, SR_SHADE_COLOR);
-    size_t reds = scene_count_color(&fb, 0xFF0000u);
-    cr_expect_eq(scene_count_drawn(&fb), reds, "the second, equal-depth triangle drew over the first");
-    cr_expect_eq(stats.fragments, reds, "fragments %llu, pixels %zu", (unsigned long long)stats.fragments, reds);
+    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_COLOR, .cull = SR_CULL_NONE };
+    scene_pixel_ortho(&desc, FLAT, FLAT);
+    sr_simd loops[SCENE_LOOPS];
+    for (size_t l = 0, n = scene_available_loops(loops); l < n; l++) {
+        sr_stats stats;
+        sr_framebuffer fb;
+        scene_draw_fresh_on_loop(&fb, FLAT, FLAT, &desc, loops[l], &stats);
+        const char *name = sr_simd_name(loops[l]);
+        size_t reds = scene_count_color(&fb, 0xFF0000u);
+        cr_expect_gt(reds, 0u, "%s: nothing drawn", name);
+        cr_expect_eq(scene_count_drawn(&fb), reds, "%s: the second, equal-depth triangle drew over the first", name);
+        cr_expect_eq(stats.fragments, reds, "%s: fragments %llu, pixels %zu", name,
+                     (unsigned long long)stats.fragments, reds);
+        sr_framebuffer_destroy(&fb);
+    }
     sr_mesh_free(&mesh);
-    sr_framebuffer_destroy(&fb);
 }
 
 Test(depth, depth_shading_writes_the_same_depth_as_id_shading_and_no_color)

@@ -257,22 +257,30 @@ Test(draw, stats_nan_in_the_world_matrix_rejects_every_triangle_as_nonfinite)
 }
 
 /* Fragments are pixels that passed the depth test: drawing the same mesh
- * again at the same depth passes none. */
+ * again at the same depth passes none, on every per-pixel loop this CPU
+ * has (the triangle is wide enough for the span kernels). */
 Test(draw, stats_fragments_count_only_pixels_that_pass_the_depth_test)
 {
     sr_mesh mesh;
     pixel_triangle(&mesh, cw);
-    sr_framebuffer fb;
-    scene_fb_make(&fb, FLAT, FLAT);
-    sr_stats first = draw_pixel_space(&fb, &mesh, SR_CULL_BACK, SR_FRONT_CW);
-    sr_stats again = draw_pixel_space(&fb, &mesh, SR_CULL_BACK, SR_FRONT_CW);
-    cr_expect_gt(first.fragments, 0, "the first draw drew nothing, so the second proves nothing");
-    cr_expect_eq(first.fragments, scene_count_drawn(&fb));
-    cr_expect_eq(again.fragments, 0, "%llu fragments passed LESS at equal depth",
-                 (unsigned long long)again.fragments);
-    cr_expect_eq(again.triangles, 1);
+    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_BACK, .front = SR_FRONT_CW };
+    scene_pixel_ortho(&desc, FLAT, FLAT);
+    sr_simd loops[SCENE_LOOPS];
+    size_t available = scene_available_loops(loops);
+    for (size_t l = 0; l < available; l++) {
+        const char *name = sr_simd_name(loops[l]);
+        sr_framebuffer fb;
+        sr_stats first, again;
+        scene_draw_fresh_on_loop(&fb, FLAT, FLAT, &desc, loops[l], &first);
+        scene_draw_on_loop(&fb, &desc, loops[l], 1, SR_PATH_DIRECT, &again);
+        cr_expect_gt(first.fragments, 0, "%s: the first draw drew nothing, so the second proves nothing", name);
+        cr_expect_eq(first.fragments, scene_count_drawn(&fb), "%s", name);
+        cr_expect_eq(again.fragments, 0, "%s: %llu fragments passed LESS at equal depth", name,
+                     (unsigned long long)again.fragments);
+        cr_expect_eq(again.triangles, 1, "%s", name);
+        sr_framebuffer_destroy(&fb);
+    }
     sr_mesh_free(&mesh);
-    sr_framebuffer_destroy(&fb);
 }
 
 Test(draw, stats_add_up_across_draws)

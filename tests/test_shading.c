@@ -226,16 +226,6 @@ static sr_framebuffer facing_quad(sr_shade shade, const float normal[3], const f
     return fb;
 }
 
-static uint32_t channel(double c)
-{
-    c = c < 0 ? 0 : c > 1 ? 1 : c;
-    return (uint32_t)lround(c * 255);
-}
-
-static uint32_t rgb(double r, double g, double b)
-{
-    return channel(r) << 16 | channel(g) << 8 | channel(b);
-}
 
 /* Every drawn pixel within one step per channel of want. */
 static void expect_all_drawn(const sr_framebuffer *fb, uint32_t want, const char *what)
@@ -271,21 +261,21 @@ Test(shading, normal_shows_the_world_space_normal)
     glm_rotate_make(world, glm_rad(30.0f), (vec3){ 0, 1, 0 });
     sr_framebuffer fb = facing_quad(SR_SHADE_NORMAL, toward_eye, white, NULL, NULL, world);
     double n[3] = { -sin(GLM_PI / 6), 0, -cos(GLM_PI / 6) };
-    expect_all_drawn(&fb, rgb(0.5 + 0.5 * n[0], 0.5 + 0.5 * n[1], 0.5 + 0.5 * n[2]), "normal");
+    expect_all_drawn(&fb, scene_rgb(0.5 + 0.5 * n[0], 0.5 + 0.5 * n[1], 0.5 + 0.5 * n[2]), "normal");
     sr_framebuffer_destroy(&fb);
 }
 
 Test(shading, color_shows_the_vertex_color)
 {
     sr_framebuffer fb = facing_quad(SR_SHADE_COLOR, toward_eye, tint, NULL, NULL, NULL);
-    expect_all_drawn(&fb, rgb(0.9, 0.5, 0.25), "color");
+    expect_all_drawn(&fb, scene_rgb(0.9, 0.5, 0.25), "color");
     sr_framebuffer_destroy(&fb);
 }
 
 Test(shading, lambert_with_the_light_along_the_normal_is_the_full_albedo)
 {
     sr_framebuffer fb = facing_quad(SR_SHADE_LAMBERT, toward_eye, tint, NULL, toward_eye, NULL);
-    expect_all_drawn(&fb, rgb(0.9, 0.5, 0.25), "lambert, light along the normal");
+    expect_all_drawn(&fb, scene_rgb(0.9, 0.5, 0.25), "lambert, light along the normal");
     sr_framebuffer_destroy(&fb);
 }
 
@@ -293,8 +283,8 @@ Test(shading, lambert_with_the_light_at_60_degrees_is_ambient_plus_half)
 {
     const float light[3] = { (float)sin(GLM_PI / 3), 0, (float)-cos(GLM_PI / 3) };
     sr_framebuffer fb = facing_quad(SR_SHADE_LAMBERT, toward_eye, white, NULL, light, NULL);
-    double k = SR_LAMBERT_AMBIENT + (1 - SR_LAMBERT_AMBIENT) * 0.5;
-    expect_all_drawn(&fb, rgb(k, k, k), "lambert at 60 degrees");
+    double k = SCENE_LAMBERT_AMBIENT + (1 - SCENE_LAMBERT_AMBIENT) * 0.5;
+    expect_all_drawn(&fb, scene_rgb(k, k, k), "lambert at 60 degrees");
     sr_framebuffer_destroy(&fb);
 }
 
@@ -302,7 +292,7 @@ Test(shading, lambert_with_the_light_behind_is_ambient)
 {
     const float behind[3] = { 0.3f, 0.2f, 1.0f };
     sr_framebuffer fb = facing_quad(SR_SHADE_LAMBERT, toward_eye, white, NULL, behind, NULL);
-    expect_all_drawn(&fb, rgb(SR_LAMBERT_AMBIENT, SR_LAMBERT_AMBIENT, SR_LAMBERT_AMBIENT), "lambert, light behind");
+    expect_all_drawn(&fb, scene_rgb(SCENE_LAMBERT_AMBIENT, SCENE_LAMBERT_AMBIENT, SCENE_LAMBERT_AMBIENT), "lambert, light behind");
     sr_framebuffer_destroy(&fb);
 }
 
@@ -312,8 +302,8 @@ Test(shading, lambert_zero_light_dir_is_the_default_light)
     sr_framebuffer with_zero = facing_quad(SR_SHADE_LAMBERT, toward_eye, white, NULL, NULL, NULL);
     sr_framebuffer with_default = facing_quad(SR_SHADE_LAMBERT, toward_eye, white, NULL, light, NULL);
     double len = sqrt(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
-    double k = SR_LAMBERT_AMBIENT + (1 - SR_LAMBERT_AMBIENT) * fmax(0.0, -light[2] / len);
-    expect_all_drawn(&with_zero, rgb(k, k, k), "lambert, default light");
+    double k = SCENE_LAMBERT_AMBIENT + (1 - SCENE_LAMBERT_AMBIENT) * fmax(0.0, -light[2] / len);
+    expect_all_drawn(&with_zero, scene_rgb(k, k, k), "lambert, default light");
     scene_expect_images_equal("shading_lambert_zero_light_dir_is_the_default_light", with_zero.color,
                               with_default.color, FLAT, FLAT);
     sr_framebuffer_destroy(&with_zero);
@@ -336,7 +326,7 @@ Test(shading, lambert_without_texture_or_colors_is_gray)
     scene_camera_desc(&desc, &cam, FLAT, FLAT);
     cr_assert(sr_draw(&fb, &desc, NULL, NULL));
     cr_assert_gt(scene_pixel_count(&fb) - scene_count_color(&fb, UNDRAWN), 0);
-    expect_all_drawn(&fb, rgb(SR_LAMBERT_GRAY, SR_LAMBERT_GRAY, SR_LAMBERT_GRAY), "lambert gray");
+    expect_all_drawn(&fb, scene_rgb(SCENE_LAMBERT_GRAY, SCENE_LAMBERT_GRAY, SCENE_LAMBERT_GRAY), "lambert gray");
     sr_mesh_free(&mesh);
     sr_framebuffer_destroy(&fb);
 }
@@ -462,7 +452,7 @@ Test(shading, a_lit_texel_is_each_channel_times_the_intensity_rounded)
     test_rng rng = { 0x117E };
     for (int n = 0; n < 20000; n++) {
         uint32_t t = (uint32_t)rng_next(&rng) & 0xFFFFFFu;
-        float k = n == 0 ? 1.0f : (float)rng_uniform(&rng, SR_LAMBERT_AMBIENT, 1.0);
+        float k = n == 0 ? 1.0f : (float)rng_uniform(&rng, SCENE_LAMBERT_AMBIENT, 1.0);
         uint32_t lit = sr_shade_lit_texel(t, k);
         if (n == 0)
             cr_assert_eq(lit, t, "k = 1 changed 0x%06x to 0x%06x", t, lit);

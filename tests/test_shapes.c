@@ -3,17 +3,39 @@
 
 #include "softrast_private.h"
 
-/* (b − a) × (c − a) must point along the outward normal at a: clockwise
- * seen from outside, left-handed. */
-static void assert_outward(const sr_mesh *m)
+/* The outward direction of a torus around +y of major radius `major`, at
+ * point p: away from the nearest point of its core circle. */
+static void torus_outward(const float p[3], float major, vec3 out)
+{
+    float ring = sqrtf(p[0] * p[0] + p[2] * p[2]);
+    glm_vec3_copy((vec3){ p[0] - major * p[0] / ring, p[1], p[2] - major * p[2] / ring }, out);
+}
+
+/* (b − a) × (c − a) must point along the outward direction at the
+ * triangle's centroid, which comes from the shape's geometry (the torus's
+ * core circle of radius `major`, or the fixed `facing`), not from the
+ * generator's normals: clockwise seen from outside, left-handed. */
+static void assert_outward(const sr_mesh *m, float major, const float *facing)
 {
     for (uint32_t t = 0; t < m->index_count; t += 3) {
         const uint32_t *i = &m->indices[t];
-        vec3 e1, e2, n;
+        vec3 e1, e2, n, centroid = { 0 }, out;
         glm_vec3_sub(m->positions[i[1]], m->positions[i[0]], e1);
         glm_vec3_sub(m->positions[i[2]], m->positions[i[0]], e2);
         glm_vec3_cross(e1, e2, n);
-        cr_assert_gt(glm_vec3_dot(n, m->normals[i[0]]), 0.0f, "triangle %u faces inward", t / 3);
+        for (int k = 0; k < 3; k++)
+            glm_vec3_muladds(m->positions[i[k]], 1.0f / 3.0f, centroid);
+        if (facing)
+            glm_vec3_copy((float *)facing, out);
+        else
+            torus_outward(centroid, major, out);
+        cr_assert_gt(glm_vec3_dot(n, out), 0.0f, "triangle %u faces inward", t / 3);
+        for (int k = 0; k < 3; k++) { /* and the generator's normals agree */
+            if (!facing)
+                torus_outward(m->positions[i[k]], major, out);
+            cr_assert_gt(glm_vec3_dot(m->normals[i[k]], out), 0.0f, "triangle %u: vertex %u's normal points inward",
+                         t / 3, i[k]);
+        }
     }
 }
 
@@ -46,7 +68,7 @@ Test(shapes, torus_is_closed_and_faces_outward)
     sr_error err;
     cr_assert(sr_shape_torus(&m, 1.0f, 0.35f, 12, 6, &err), "%s", err.message);
     cr_assert_eq(m.index_count, 3u * 2 * 12 * 6);
-    assert_outward(&m);
+    assert_outward(&m, 1.0f, NULL);
     assert_closed(&m);
     sr_mesh_free(&m);
 }
@@ -64,7 +86,7 @@ Test(shapes, quads_face_a_camera_at_minus_z)
     sr_mesh m;
     sr_error err;
     cr_assert(sr_shape_quads(&m, 3, 2.0f, 1.0f, 0.5f, &err), "%s", err.message);
-    assert_outward(&m);
+    assert_outward(&m, 0.0f, (const float[3]){ 0.0f, 0.0f, -1.0f });
     cr_assert_float_eq(m.positions[8][2], 2.0f, 1e-6f);
     sr_mesh_free(&m);
 }

@@ -71,21 +71,10 @@ static void soup_make(sr_mesh *mesh, int triangles, bool flat, double reach)
 static uint64_t draw_with(const sr_draw_desc *base, sr_simd simd, int threads, bool reversed, sr_framebuffer *fb,
                           sr_stats *stats)
 {
-    sr_error err;
     scene_fb_make(fb, FB_SIDE, FB_SIDE);
     fb->reversed_z = reversed;
     sr_framebuffer_clear(fb, 0x123456);
-    sr_workspace *ws = sr_workspace_create();
-    cr_assert_not_null(ws);
-    sr_draw_desc desc = *base;
-    desc.study = &(sr_draw_study){ .simd = simd, .path = threads == 1 ? SR_PATH_DIRECT : SR_PATH_TILES };
-    desc.threads = threads;
-    desc.workspace = ws;
-    *stats = (sr_stats){ 0 };
-    cr_assert(sr_draw(fb, &desc, stats, &err), "%s", err.message);
-    uint64_t draws = sr_workspace_simd_draws(ws);
-    sr_workspace_destroy(ws);
-    return draws;
+    return scene_draw_on_loop(fb, base, simd, threads, threads == 1 ? SR_PATH_DIRECT : SR_PATH_TILES, stats);
 }
 
 static void assert_same_as(const sr_framebuffer *want, const sr_stats *want_stats, const sr_framebuffer *fb,
@@ -662,9 +651,9 @@ static const float INV_W[3] = { 0.5f, 0.25f, 3.0f };
  * so is a triangle of 31 pixels. */
 Test(simd, perspective_flat_normals_are_lit_once)
 {
-    sr_shade_context c = { .light_dir = { 0.0f, 0.0f, -1.0f } };
-    float want = sr_shade_lambert_intensity(&c, N0);
-    cr_assert_gt(want, SR_LAMBERT_AMBIENT + 0.5f, "the light must reach the normal for the test to tell");
+    /* From the formula in double, lit from straight ahead (the set-up's light). */
+    float want = (float)scene_lambert((const double[3]){ N0[0], N0[1], N0[2] }, (const double[3]){ 0.0, 0.0, -1.0 });
+    cr_assert_gt(want, SCENE_LAMBERT_AMBIENT + 0.5, "the light must reach the normal for the test to tell");
     float near[3], apart[3];
     turned_normal(0x1p-22, near);
     turned_normal(0x1p-18, apart);
@@ -718,9 +707,9 @@ Test(simd, orthographic_flat_lambert_is_the_intensity_of_the_normal)
     sr_mesh quads;
     sr_error err;
     cr_assert(sr_shape_quads(&quads, 3, 4.0f, 3.0f, -0.5f, &err), "%s", err.message);
-    sr_shade_context c = { .light_dir = { 0.6f, 0.0f, -0.8f } };
-    float k = sr_shade_lambert_intensity(&c, (const float[3]){ 0.0f, 0.0f, -1.0f });
-    uint32_t want = sr_shade_pack(k * SR_LAMBERT_GRAY, k * SR_LAMBERT_GRAY, k * SR_LAMBERT_GRAY);
+    /* From the formula in double, rounded to 8 bits as the shader's contract says. */
+    double k = scene_lambert((const double[3]){ 0.0, 0.0, -1.0 }, (const double[3]){ 0.6, 0.0, -0.8 });
+    uint32_t want = scene_rgb(k * SCENE_LAMBERT_GRAY, k * SCENE_LAMBERT_GRAY, k * SCENE_LAMBERT_GRAY);
     sr_draw_desc desc = { .mesh = &quads, .shade = SR_SHADE_LAMBERT, .light_dir = { 0.6f, 0.0f, -0.8f } };
     look_ortho(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, 2.0f, false);
     const sr_simd loops[] = { SR_SIMD_SCALAR, SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX512 };

@@ -6,6 +6,14 @@
 
 #include "app/view/viewer.h"
 
+/* The controls' numbers as README's key table documents them, not the
+ * viewer's own constants: a constant changed by mistake must fail here. */
+#define SHIFT_FACTOR 4.0f   /* "4× faster while held" */
+#define WHEEL_FACTOR 1.25f  /* "the speed ×1.25 or ÷1.25 a notch" */
+#define LOOK_DEG 0.15f      /* "look (0.15° a pixel)" */
+#define NEAREST_NEAR 1e-6f  /* "near plane ÷2 ×2 (down to 1e−6)" */
+#define FARTHEST_FAR 1e30f  /* "far plane ÷2 ×2 (up to 1e30)" */
+
 static sr_viewer viewer;
 
 static void open_room(void)
@@ -78,7 +86,7 @@ Test(viewer, shift_moves_four_times_faster)
     key(SDLK_LSHIFT, 0, true);
     key(SDLK_s, 0, true);
     sr_viewer_advance(&viewer, 0.25);
-    assert_eye(-8.0f, 3.0f, -8.0f - SR_VIEWER_FAST * 0.5f);
+    assert_eye(-8.0f, 3.0f, -8.0f - SHIFT_FACTOR * 0.5f);
 }
 
 Test(viewer, wheel_scales_the_speed)
@@ -86,10 +94,10 @@ Test(viewer, wheel_scales_the_speed)
     SDL_Event up = { .wheel = { .type = SDL_MOUSEWHEEL, .y = 1 } };
     SDL_Event down = { .wheel = { .type = SDL_MOUSEWHEEL, .y = -1 } };
     sr_viewer_handle_event(&viewer, &up);
-    cr_assert_float_eq(viewer.speed, 2.0f * SR_VIEWER_WHEEL_STEP, 1e-6f);
+    cr_assert_float_eq(viewer.speed, 2.0f * WHEEL_FACTOR, 1e-6f);
     sr_viewer_handle_event(&viewer, &down);
     sr_viewer_handle_event(&viewer, &down);
-    cr_assert_float_eq(viewer.speed, 2.0f / SR_VIEWER_WHEEL_STEP, 1e-6f);
+    cr_assert_float_eq(viewer.speed, 2.0f / WHEEL_FACTOR, 1e-6f);
 }
 
 static void move_mouse(int dx, int dy)
@@ -104,11 +112,11 @@ Test(viewer, mouse_turns_only_in_look_mode)
     cr_assert_float_eq(viewer.fly.yaw, 0.0f, 1e-6f);
     press(SDLK_TAB, 0);
     move_mouse(100, -50);
-    cr_assert_float_eq(viewer.fly.yaw, 100 * SR_VIEWER_LOOK_DEG_PER_PIXEL, 1e-4f);
-    cr_assert_float_eq(viewer.fly.pitch, 50 * SR_VIEWER_LOOK_DEG_PER_PIXEL, 1e-4f);
+    cr_assert_float_eq(viewer.fly.yaw, 100 * LOOK_DEG, 1e-4f);
+    cr_assert_float_eq(viewer.fly.pitch, 50 * LOOK_DEG, 1e-4f);
     press(SDLK_TAB, 0);
     move_mouse(100, 0);
-    cr_assert_float_eq(viewer.fly.yaw, 100 * SR_VIEWER_LOOK_DEG_PER_PIXEL, 1e-4f);
+    cr_assert_float_eq(viewer.fly.yaw, 100 * LOOK_DEG, 1e-4f);
 }
 
 Test(viewer, right_button_holds_look_mode)
@@ -181,7 +189,7 @@ Test(viewer, brackets_move_near_and_far_within_bounds)
     cr_assert_float_eq(viewer.setup.camera.near, 0.05f, 1e-7f);
     for (int i = 0; i < 100; i++)
         press(SDLK_LEFTBRACKET, 0);
-    cr_assert_float_eq(viewer.setup.camera.near, SR_VIEWER_MIN_NEAR, 1e-12f);
+    cr_assert_float_eq(viewer.setup.camera.near, NEAREST_NEAR, 1e-12f);
     press(SDLK_RIGHTBRACKET, KMOD_LSHIFT);
     cr_assert_float_eq(viewer.setup.camera.far, 200.0f, 1e-3f);
     for (int i = 0; i < 200; i++)
@@ -189,7 +197,7 @@ Test(viewer, brackets_move_near_and_far_within_bounds)
     cr_assert_gt(viewer.setup.camera.far, viewer.setup.camera.near);
     for (int i = 0; i < 200; i++)
         press(SDLK_RIGHTBRACKET, KMOD_RSHIFT);
-    cr_assert_float_eq(viewer.setup.camera.far, SR_VIEWER_MAX_FAR, 1e24f);
+    cr_assert_float_eq(viewer.setup.camera.far, FARTHEST_FAR, 1e24f);
 }
 
 Test(viewer, escape_and_window_close_quit)

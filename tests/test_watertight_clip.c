@@ -142,10 +142,13 @@ Test(watertight, ground_grid_at_grazing_angle_with_wide_fov_covers_each_pixel_on
 
 /* A strip of long, thin ground triangles from z = -3000 (behind the eye) to
  * z = +3000, its edges passing a few centimetres beside the eye: each cut
- * vertex on the near plane is a small difference of huge end points, so a
- * clipper that interpolates from the outside end for one triangle and from
- * the inside end for its neighbour puts the shared cut vertex tens of
- * subpixels apart in the two, and the seam cracks or overlaps. */
+ * vertex on the near plane is a small difference of huge end points, so
+ * its rounding is large, and the two triangles of a seam must still make
+ * their shared cut vertex alike or the seam cracks or overlaps. Which end
+ * a cut is interpolated from is pinned by the clipper's unit tests
+ * (test_clip.c, test_clip_corners.c: cuts bit-identical both ways and to
+ * the formula), not here: a clipper that cut every edge from its outside
+ * end would still be watertight. */
 #define LONG_REACH 3000.0f
 #define LONG_COLUMNS 24
 #define LONG_SPACING 0.02f
