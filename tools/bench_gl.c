@@ -10,7 +10,7 @@
 #include "studies/report.h"
 
 #define DEFAULT_FRAMES 10
-#define DEFAULT_FILL_FRAMES 3 /* fill takes llvmpipe 0.7 s a frame, fill-flat 0.4 */
+#define DEFAULT_FILL_FRAMES 3 /* llvmpipe is slow on fill (docs/bench-compare.md) */
 #define DEFAULT_THREADS 2
 #define MAX_FRAMES 10000
 #define MAX_THREADS 64

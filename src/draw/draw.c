@@ -122,9 +122,8 @@ static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t 
  * for the row-band path (row_bands.c): its snapped point's row, clamped to the
  * framebuffer. A pass of its own after the block is mapped: read in the
  * mapping loop, right after the mapping stored it, a vertex's row cost the
- * dense torus's vertex phase 1.3 ms more CPU a frame at two threads than
- * here, where the bands cost 0.2 ms (docs/performance.md, "Row
- * bands"). */
+ * vertex phase more CPU than this pass does (docs/performance.md, "Row
+ * bands" and "Tried and not kept"). */
 static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, const unsigned char *outcodes,
                            unsigned char *bands)
 {

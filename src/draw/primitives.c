@@ -100,12 +100,11 @@ typedef struct kept_slot {
 } kept_slot;
 
 /* Prefetches the screen vertices of the triangle whose indices are idx[]:
- * the vertex phase wrote them all (32 to 64 bytes each, 16.6 MB for the
- * dense torus in depth shading, 25 MB in lambert) long before, so without
- * it the culling's first read of a vertex waited for memory (13 % of the
- * depth torus's frame in perf at one thread, 2 % with it). A macro, three
- * prefetches in the caller's loop: gcc 12 dropped a loop of them, and a
- * call of a function of them, as having no side effects. */
+ * the vertex phase wrote them all (32 to 64 bytes each, megabytes for a
+ * dense mesh) long before, so without it the culling's first read of a
+ * vertex waited for memory (docs/performance.md, "From slot to set-up").
+ * A macro, three prefetches in the caller's loop: gcc 12 dropped a loop of
+ * them, and a call of a function of them, as having no side effects. */
 #define PREFETCH_TRIANGLE(screen, stride, idx)                                                                 \
     do {                                                                                                       \
         const uint32_t *tri_ = (idx);                                                                          \
@@ -157,9 +156,10 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
     sr_stats_add(&sink->work->stats, &verdicts);
 }
 
-/* The slots ahead whose screen vertices the row bands prefetch: 16 left
- * the culling waiting on them at two threads (48 took 0.2-0.4 ms less CPU a
- * frame on the torus and inside; 96 no less than 48). */
+/* The slots ahead whose screen vertices the row bands prefetch, counted
+ * over every slot though a thread draws only those that meet its rows: a
+ * shorter distance left the culling waiting on them, a longer one gained
+ * nothing. */
 #define PREFETCH_SLOTS 48
 
 static bool span_meets(sr_band_span span, unsigned lo, unsigned hi)

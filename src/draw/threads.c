@@ -30,8 +30,9 @@ static double timed_call(void (*fn)(void *ctx, int t), void *ctx, int t, bool ti
     return timed ? sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) - start : 0.0;
 }
 
-/* How long a waiting thread polls before it sleeps: phases of a frame
- * follow each other within microseconds, and waking a sleeper costs tens. */
+/* How long a waiting thread polls before it sleeps: the phases of a frame
+ * follow each other sooner than a sleeper wakes, and an idle viewer's
+ * threads should not spin. */
 #define SPIN_MS 0.05
 
 /* Polls f(arg) for up to SPIN_MS: true once it holds, false when time ran out. */

@@ -15,8 +15,8 @@
 /* Slots go to the threads in chunks, about 8 a thread, so one that waits
  * for a core leaves its share to the others, but no smaller than the first
  * bound nor larger than the second: a thread walks the vertices of its
- * chunk in order, and measured on the dense torus at 2 threads, chunks of
- * 16384 slots cost 13.7 ms of set-up CPU a frame and of 1024 slots 15.2. */
+ * chunk in order, and a short chunk breaks that walk off sooner, so small
+ * chunks cost the set-up more CPU. */
 #define SETUP_CHUNKS_PER_THREAD 8
 #define SETUP_CHUNK_MIN 256
 #define SETUP_CHUNK_MAX 16384
@@ -101,8 +101,8 @@ static sr_bin_entry *bin_push(sr_thread_work *w, sr_bin *bin, uint64_t cost)
  * share of the box its edges reach, each entry saying whether the share is
  * covered whole. One within a tile is set up by the tile, from its entry;
  * if its box is tiny, its pixel centres are tested here, while its vertices
- * are in L1: one that covers none gets no entry (a fifth of the dense
- * torus's), and the others' entries carry the mask, so the tile does not
+ * are in L1: one that covers none gets no entry (many do, in a dense
+ * mesh), and the others' entries carry the mask, so the tile does not
  * test them again. */
 static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
                          int64_t area2, uint32_t id, bool clipped)
@@ -221,10 +221,9 @@ static uint64_t raster_entry(const sr_draw_state *st, const sr_thread_work *w, c
 
 /* A tile prefetches the screen vertices (or the stored set-up) of the
  * entry this many entries ahead: its triangles are set up from vertices
- * and set-ups the binning wrote and read long before (whole-process CPU
- * at 2 threads, the vertices: depth 0.976, dense 0.986, 8 pairs; the
- * set-ups too, whose copy had 40 % of the tile loop's samples: median
- * frame depth 26.4 -> 25.5 ms, dense 33.6 -> 32.9, 3 alternating runs). */
+ * and set-ups the binning wrote and read long before, which have left the
+ * cache since; without the prefetch the tile waits for each of them, the
+ * copy of a stored set-up most of all. */
 #define PREFETCH_ENTRIES 8
 
 /* The binning threads' lists for the tile merged by slot: a slot's fan
@@ -293,10 +292,9 @@ static uint64_t raster_tile(const sr_draw_state *st, int tile, uint64_t *simd_dr
  * two) go in turns over one band of tiles per thread, not screen order:
  * turn k is tile k / T of band k % T. Handed out in screen order, the tile
  * one thread draws borders another's, and the hardware prefetcher of one
- * core keeps reading the rows the other core is writing (measured with
- * 128-pixel square tiles, which had that border on every row: fill at 2
- * threads, 496 ms of CPU a frame in screen order, 454 in bands). Strips of
- * whole rows border each other once per strip, not once per row. */
+ * core keeps reading the rows the other core is writing (square tiles had
+ * that border on every row: docs/performance.md, "Tried and not kept").
+ * Strips of whole rows border each other once per strip, not once per row. */
 static int tile_of_turn(const sr_draw_state *st, int turn, int band_tiles)
 {
     return turn % st->threads * band_tiles + turn / st->threads;

@@ -33,9 +33,8 @@ static void pack_rgb24(uint8_t *out, const uint32_t *pixels, size_t count)
 }
 
 /* libpng's simplified writer with PNG_IMAGE_FLAG_FAST: zlib's fastest level
- * and cheap row filters. A flight's --shots spent 94% of its time in the
- * default compression; a 200-frame flight now takes 3.4 times less CPU, its
- * files within ±15% of the size (docs/batch.md). */
+ * and cheap row filters. A flight's --shots spent most of its time in the
+ * default compression, for files not much smaller (docs/batch.md). */
 bool sr_image_write_png(const char *path, const uint32_t *pixels, int width, int height, sr_error *err)
 {
     if (!size_ok(path, width, height, err))

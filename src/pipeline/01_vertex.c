@@ -103,8 +103,8 @@ static void copy_varying(float *dst, int slot, const float *src, int size)
 
 /* The position with w = 1, written as one 16-byte store where the compiler
  * has vector types: built by scalar stores, it reached the matrix product's
- * 16-byte load through a failed store forwarding, half the time of this loop
- * in perf (docs/performance.md). */
+ * 16-byte load through a failed store forwarding, a stall on every
+ * vertex. */
 static inline void position_w1(const float *xyz, vec4 out)
 {
 #if defined(__GNUC__)
@@ -118,9 +118,7 @@ static inline void position_w1(const float *xyz, vec4 out)
 
 /* The positions prefetched ahead where the loop also classifies: its
  * longer body let fewer loads of the position stream run ahead, and they
- * waited for memory (the vertex phase of the depth torus 12.75 against
- * 11.61 ms with it, inside 9.55 against 8.39, at one thread). The normals
- * gained nothing from it. */
+ * waited for memory. The normals gained nothing from it. */
 #define POSITIONS_AHEAD 32
 
 /* Vertex i's varyings into v, after its position. */
@@ -146,10 +144,9 @@ static SR_ALWAYS_INLINE void write_varyings(const sr_mesh *m, const sr_varying_l
  * with w = 1 (glm_mat4_mulv_sse2 with glmm_fmadd a multiply and an add), so
  * every lane is bit for bit the one-vertex loop's; then the four outcodes
  * at once (sr_clip_outcodes_four), and the varyings of those inside. One
- * at a time, the outcode's compares and bits were 58 % of this loop's
- * samples on the inside scene; four at a time, its vertex phase takes
- * 0.3 ms less (docs/performance.md, "The vertex
- * phase"). */
+ * at a time, the outcode's compares and bits were most of this loop's time
+ * where most vertices carry no varyings (the inside scene): four lanes
+ * share them (docs/performance.md, "The vertex phase"). */
 static uint32_t run_fours_inside(const sr_mesh *m, const sr_varying_layout *l, mat4 clip_from_object,
                                  mat3 normal_matrix, const sr_clip_depth *d, uint32_t first, uint32_t count,
                                  sr_vertex_out *out, unsigned char *codes)

@@ -138,8 +138,8 @@ static inline uint32_t sr_clip_lane_bytes(unsigned mask)
  * the same precision, a coordinate's four lanes at a time (an exponent of
  * all ones is a NaN or an inf); the far planes too close to call in double
  * are decided as there, one at a time. One vertex at a time, the
- * outcode's compares and their bits were 58 % of the vertex phase's
- * classifying loop on the inside scene. */
+ * outcode's compares and their bits were most of the vertex phase's
+ * classifying loop where most vertices carry no varyings. */
 static inline uint32_t sr_clip_outcodes_four(const __m128 c[4], const sr_clip_depth *depth)
 {
     __m128i exponent = _mm_set1_epi32(0x7F800000), all_ones = _mm_setzero_si128();

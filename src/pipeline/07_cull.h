@@ -3,8 +3,8 @@
  * The signed area is computed exactly in 64-bit integers from the snapped
  * fixed-point vertices, after clipping, so facing is never decided from a
  * vertex with w <= 0. With y down, area2 > 0 means clockwise on screen, the
- * front face by default (Direct3D). Inline: called once per fan triangle,
- * the calls cost 3 % of the dense torus's instructions.
+ * front face by default (Direct3D). Inline: it runs once per fan triangle,
+ * and its few multiplications cost less than a call.
  */
 #ifndef SOFTRAST_PIPELINE_CULL_H
 #define SOFTRAST_PIPELINE_CULL_H

@@ -18,8 +18,8 @@
 
 /* What a renderer's vertex may be off by, in pixels, before it is snapped:
  * the float vertex transform and the clipper. An allowance measured on the
- * report's scenes (at most 3.7e-4 px, tests/test_truth_judge.c), not a
- * worst-case bound: docs/precision.md, "Vertex error before snapping". */
+ * report's scenes (tests/test_truth_judge.c), not a worst-case bound:
+ * docs/precision.md, "Vertex error before snapping". */
 #define SR_REPORT_VERTEX_ERROR_PX (1.0 / 1024.0)
 
 /* How far from a triangle's exact outline a pixel centre may lie and still

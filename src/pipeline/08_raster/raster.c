@@ -82,8 +82,8 @@ sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_rast
 /* The vertices relative to vertex 0's snapped point, in subpixel units,
  * before snapping (unsnapped) or after: the integer differences are exact in
  * double, the offsets add their 24 bits. Inlined, so each call is
- * specialised on `unsnapped` (74 instructions a call before, 2 % of the
- * depth torus's). */
+ * specialised on `unsnapped` and pays neither a call nor a branch on it:
+ * it runs for every triangle. */
 static SR_ALWAYS_INLINE void plane_points(const sr_screen_vertex *const v[3], bool unsnapped, double p[3][2])
 {
     for (int k = 0; k < 3; k++) {
@@ -244,13 +244,10 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_
  * function is linear, so its largest magnitude is at a corner. */
 #define SIMD_EDGE_LIMIT ((int64_t)1 << 52)
 /* Narrower boxes of at most SR_TINY_SIDE rows are tiny (box_is_tiny): a
- * kernel's per-row set-up costs more than it saves on a few pixels
- * (measured at 1 thread, thresholds 4 / 8 / 16: depth 77 / 72 / 72 ms, fly
- * 20.1 / 20.5 / 22 ms, dense 100 ms). A narrower box of more rows, a sliver
- * seen along its length, takes a kernel all the same: on the scalar loop
- * the inside scene's 4.6k a frame (270k pixels of boxes) cost it 1 %
- * (docs/performance.md, "The per-pixel
- * loops"). */
+ * kernel's per-row set-up costs more than it saves on a few pixels. A
+ * narrower box of more rows, a sliver seen along its length, takes a
+ * kernel all the same, which draws such boxes for less than the scalar
+ * loop did (docs/performance.md, "The per-pixel loops"). */
 #define SIMD_MIN_WIDTH 8
 
 static bool edges_fit_double(const setup *s)
@@ -264,9 +261,10 @@ static bool edges_fit_double(const setup *s)
     return true;
 }
 
-/* Narrower than the SIMD kernels take, and at most SR_TINY_SIDE rows
- * (measured in instructions on the dense and depth tori against boxes of
- * at most 3 × 3, 4 × 4 and 7 × 4: this tests the fewest). */
+/* Narrower than the SIMD kernels take, and at most SR_TINY_SIDE rows: of
+ * the limits tried on dense meshes (boxes of at most 3 × 3, 4 × 4 and
+ * 7 × 4), this one makes the tiny test and the loops run the fewest
+ * instructions. */
 static bool box_is_tiny(sr_raster_rect b)
 {
     return b.x1 - b.x0 < SIMD_MIN_WIDTH && b.y1 - b.y0 <= SR_TINY_SIDE;
@@ -404,14 +402,14 @@ static bool normals_parallel(const float a[3], const float b[3])
 /* Under a perspective camera, only triangles of at least this many pixels
  * are tested for a flat normal. The test is two cross products and six
  * dot products in double, of the order of lighting one pixel (a dot
- * product, a square root, a division); on the dense torus, whose smooth
- * triangles are a pixel or two and never pass, testing every triangle cost
- * 1.9 %, and with this floor it is level (56.0 / 56.1 ms, 5 alternating
- * runs), while fly's walls still pass. The triangle's area decides, not
- * its box (which a tile clips), so every path and thread count decides
- * alike; a face's
- * triangles under the limit are lit per pixel, which may differ from the
- * once-per-triangle value by one step of a channel (sr_interp). */
+ * product, a square root, a division); on a dense mesh, whose smooth
+ * triangles are a pixel or two and never pass, testing every triangle
+ * cost a share of the frame and saved nothing; with this floor it costs
+ * nothing visible, while fly's walls still pass. The triangle's area
+ * decides, not its box (which a tile clips), so every path and thread
+ * count decides alike; a face's triangles under the limit are lit per
+ * pixel, which may differ from the once-per-triangle value by one step of
+ * a channel (sr_interp). */
 #define FLAT_TEST_MIN_PIXELS 32
 
 /* What the triangle lets the loops leave out per pixel (sr_interp), from
@@ -472,11 +470,10 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
 /* sr_raster_setup, inlined where the box was just found: passed by value
  * to a call, gcc spilled it to the stack and read it back 16 bytes at a
  * time from two 8-byte stores, a store-forwarding stall per triangle. The
- * edges and a tiny box's mask are inlined into it too (12M instructions a
- * frame fewer on the depth torus, whole-process CPU 0.987), and so are the
+ * edges and a tiny box's mask are inlined into it too, and so are the
  * depth plane, the interpolants and, after it, the branch that hands a
- * tiny triangle to the tiny queue (setup_draw): 0.97–0.99 of the lambert
- * scenes' frames at one thread
+ * tiny triangle to the tiny queue (setup_draw): a dense mesh sets up a
+ * triangle for every pixel or two, so each call there is paid per pixel
  * (docs/performance.md, "From slot to set-up"). */
 static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
                                       int subpixel_bits, sr_shade mode, const sr_shade_context *shade,
@@ -494,7 +491,7 @@ static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int6
         setup_make(v, box, subpixel_bits, s);
     }
     /* A tiny box's pixels are tested first, so a triangle that covers none
-     * of them (a fifth of the dense torus's) skips the depth plane; the
+     * of them (many of a dense mesh's) skips the depth plane; the
      * binned path tests them while binning and passes the mask on. */
     bool tiny = box_is_tiny(box);
     s->tiny = !tiny ? 0 : mask_known ? mask : tiny_coverage(s);
@@ -573,12 +570,10 @@ static SR_ALWAYS_INLINE uint64_t setup_draw(sr_framebuffer *fb, const setup *s, 
 /* The rows a box that is not tiny prefetches (FETCHED_ROWS) before its
  * set-up, from the framebuffer drawn into directly, not a tile's: its
  * first depth and color line of each row, the color for writing. The
- * kernels' depth loads waited on memory (31 % and 20 % of the AVX-512 and
- * AVX2 kernels' samples on the compare after them, inside at one thread):
- * fetched here, they arrive during the set-up and the tiny queue's
- * shading. Inside at one thread 0.958 of its frame; a tile's rows are in
- * the cache already (docs/performance.md, "The direct
- * path"). */
+ * kernels' depth loads waited on memory, and the compare after them was
+ * where the kernels' time went: fetched here, they arrive during the
+ * set-up and the tiny queue's shading. A tile's rows are in the cache
+ * already (docs/performance.md, "The direct path" and "The limits"). */
 #define FETCHED_ROWS 32
 
 static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,

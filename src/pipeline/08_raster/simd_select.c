@@ -49,12 +49,10 @@ const char *sr_simd_name(sr_simd simd)
 }
 
 /* The AVX-512 loop's narrow work goes to the AVX2 kernels: boxes under
- * this many pixels wide, and the tiny queue. Measured on this machine's
- * CPU, 1 thread, 5 alternating runs, the AVX-512 loop before and after
- * (docs/performance.md, "The per-pixel loops"): dense 46.8 -> 44.0 ms,
- * inside 41.6 -> 39.9; fly, depth and id shading level. A 16-lane group
- * is more than such a row or queue fills, and the AVX2 loop alone was
- * faster than the AVX-512 one on both scenes. */
+ * this many pixels wide, and the tiny queue. A 16-lane group is more than
+ * such a row or queue fills, and on pixel-sized triangles the AVX2 loop
+ * drew faster than the AVX-512 one (docs/performance.md, "The per-pixel
+ * loops"). */
 #define SR_AVX512_MIN_WIDTH 16
 
 sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater, int width)

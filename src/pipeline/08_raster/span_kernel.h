@@ -195,8 +195,7 @@ static inline __attribute__((always_inline)) void varyings_lanes(const sr_tri_se
     vf w = sr_interp_divides(interp) ? 1.0f / PLANE_LANES(s->iw0, s->diw1, s->diw2, *p) : t->w;
     /* Unrolled, so the varyings stay in registers: as a loop (GCC 12 does
      * not unroll it at -O2) each went through the stack on its way to the
-     * shading (fly 1-2 % slower). 8 is SR_MAX_VARYINGS: the pragma takes
-     * no macro. */
+     * shading. 8 is SR_MAX_VARYINGS: the pragma takes no macro. */
     _Static_assert(SR_MAX_VARYINGS == 8, "the unroll count below");
 #pragma GCC unroll 8
     for (int k = first_varying(interp); k < count; k++)
@@ -274,9 +273,8 @@ typedef struct rgb_lanes {
 
 /* The index of row y's first texel, y · width: a shift where the width is
  * a power of two (the same for every group, so the branch is always
- * predicted), which took fly 3 % and fill 2 % faster than the 32-bit
- * multiply (two operations and ten cycles of latency on the way to the
- * gathers). */
+ * predicted): the 32-bit multiply is two operations and ten cycles of
+ * latency on the way to the gathers. */
 static inline __attribute__((always_inline)) vi texel_row_lanes(vi y, int width)
 {
     if ((width & (width - 1)) == 0)
@@ -292,9 +290,9 @@ static inline __attribute__((always_inline)) vi sample_nearest_lanes(const sr_te
 }
 
 /* sr_shade_bilinear_pair per lane. A side of a power of two wraps by a
- * mask (the same texels: lo lies in [−1, n − 1]), which took fly 5 %
- * faster than the selects; n is the same for every group, so the branch
- * is always predicted. */
+ * mask (the same texels: lo lies in [−1, n − 1]), one operation per
+ * index where the selects take a compare and a select; n is the same for
+ * every group, so the branch is always predicted. */
 static inline __attribute__((always_inline)) vi bilinear_pair_lanes(vf f, int n, vi *i0, vi *i1)
 {
     vi q = __builtin_convertvector(f * (float)(n * (int)SR_SHADE_WEIGHT_ONE) + 0.5f, vi) +
@@ -332,9 +330,9 @@ static inline __attribute__((always_inline)) split_texels split_lanes(vi t)
  * w · 2^(15 − bits) (below 2^15), that floor is one instruction on the
  * signed difference, and a plus it lies in 0..255 as the scalar result
  * does: three operations per half, where the fallback's arithmetic modulo
- * 2^16 (right in the low byte, masked) takes six: fill 14 % and fly 8 %
- * faster at one thread. w2 holds the weight in both halves of each lane
- * (lerp_weight_halves). */
+ * 2^16 (right in the low byte, masked) takes six, and the lerps are much
+ * of the bilinear filter's arithmetic. w2 holds the weight in both halves
+ * of each lane (lerp_weight_halves). */
 static inline __attribute__((always_inline)) vu16 lerp_halves(vu16 a, vu16 b, vu16 w2)
 {
 #ifdef SPAN_MULHRS
@@ -488,9 +486,9 @@ fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_contex
 
 /* Asks for the depth and color PREFETCH_BYTES ahead on the row: each span
  * starts a new stream that the hardware prefetcher picks up only after a
- * few misses (measured: the fly scene 11% faster; fill unchanged). Integer
- * arithmetic, since the address may lie past the framebuffer, where a
- * prefetch is harmless but a pointer would be undefined. */
+ * few misses. Integer arithmetic, since the address may lie past the
+ * framebuffer, where a prefetch is harmless but a pointer would be
+ * undefined. */
 #define PREFETCH_BYTES 512
 
 static inline __attribute__((always_inline)) void prefetch_ahead(const float *depth, const uint32_t *color)

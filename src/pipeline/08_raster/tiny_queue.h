@@ -8,12 +8,12 @@
  * time; a SIMD shader then colors those that passed SPAN_LANES pixels at a
  * time (4 or 8: the AVX-512 loop takes the AVX2 shader, simd_select.c),
  * each lane with its own triangle's interpolants, and stores the colors in
- * the queue's order. One triangle's few pixels filled few lanes, and a
- * division of 16 lanes costs the divider as much as about six of one
- * (docs/performance.md, "Tiny triangles and their queue"). Tested at the push,
- * each pixel's depth load held up the triangles behind it; tested in the
- * queue, the loads of hundreds of pixels are in flight at once
- * (docs/performance.md, "Tiny triangles and their queue"). */
+ * the queue's order. One triangle's few pixels filled few lanes of a
+ * vector division, which costs the divider as much as several scalar
+ * ones. Tested at the push, each pixel's depth load held up the
+ * triangles behind it; tested in the queue, the loads of hundreds of
+ * pixels are in flight at once (docs/performance.md, "Tiny triangles and
+ * their queue"). */
 #ifndef SOFTRAST_PIPELINE_TINY_QUEUE_H
 #define SOFTRAST_PIPELINE_TINY_QUEUE_H
 
