@@ -7,8 +7,7 @@
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 
-#include "run_helpers.h"
-#include "temp_dir.h"
+#include "cli_error.h"
 
 /* A fresh directory holding the one-triangle mesh every test draws. */
 static void make_dir_with_triangle(void)
@@ -18,19 +17,6 @@ static void make_dir_with_triangle(void)
 }
 
 TestSuite(cli, .init = make_dir_with_triangle, .fini = temp_dir_remove);
-
-/* One error line that starts with the prefix and mentions `needle`, at
- * once: a run that hangs is killed (exit 128 + 9) and fails the test. */
-static void assert_one_error(const char *args, const char *needle)
-{
-    char full[1024];
-    snprintf(full, sizeof full, args, temp_dir, temp_dir);
-    run_result r = run_softrast_env(temp_dir, "timeout -s KILL 20", full);
-    cr_assert(r.status != 0 && r.status < 128, "`softrast %s` exited %d", full, r.status);
-    cr_assert_eq(strncmp(r.err, "softrast: error: ", 17), 0, "stderr was: %s", r.err);
-    cr_assert_eq(count_lines(r.err), 1, "want one line, stderr was: %s", r.err);
-    cr_assert_not_null(strstr(r.err, needle), "'%s' not in: %s", needle, r.err);
-}
 
 Test(cli, missing_mesh_file_names_the_path)
 {
@@ -393,7 +379,7 @@ Test(cli, render_says_what_it_wrote_in_one_line)
     snprintf(args, sizeof args, "render %s/tri.obj --size 32x16", temp_dir);
     r = run_softrast(temp_dir, args);
     cr_expect_str_eq(r.err, "softrast: drew 32x16 (1 triangles drawn); nothing written: name a file with --out, "
-                            "--depth or --depth-png\n");
+                            "--depth, --depth-png, --view-depth or --range\n");
     snprintf(args, sizeof args, "render %s/tri.obj --size 32x16 --out -", temp_dir);
     r = run_softrast(temp_dir, args);
     cr_expect_eq(memcmp(r.out, "\x89PNG\r\n", 6), 0, "stdout is not the PNG");

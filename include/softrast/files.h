@@ -115,6 +115,9 @@ SR_API bool sr_image_write_png(const char *path, const uint32_t *pixels, int wid
 /* The raw depth buffer as PFM: header "Pf\n<W> <H>\n-1\n", then float32
  * little-endian rows from the bottom row up, as the PFM format says. */
 SR_API bool sr_image_write_pfm(const char *path, const float *depth, int width, int height, sr_error *err);
+/* width x height float32 values (row 0 first) as a NumPy .npy file of shape
+ * (height, width), dtype '<f4': numpy.load reads it as it is. */
+SR_API bool sr_image_write_npy(const char *path, const float *values, int width, int height, sr_error *err);
 /* The depth buffer visualised as by sr_framebuffer_depth_to_gray. */
 SR_API bool sr_image_write_depth_png(const char *path, const sr_framebuffer *fb, sr_error *err);
 

@@ -99,6 +99,8 @@ typedef struct sr_mesh {
     bool bounded;       /* bounds_lo/hi hold the positions' bounds (sr_mesh_update_bounds) */
     vec3 bounds_lo, bounds_hi;
     char *texture_path; /* a loader's: the used material's map_Kd, or NULL */
+    bool z_negated;     /* a loader's: positions are the file's with z negated (right-handed files
+                           in softrast's left-handed world); sr_pinhole poses undo it */
     uint32_t part_count; /* a loader's: the file's meshes as runs of triangle ids; 0 for one */
     sr_mesh_part *parts;
 } sr_mesh;
@@ -333,5 +335,57 @@ typedef struct sr_draw_desc {
  * the image, depth and counts are bit-identical for every thread count
  * and every path. */
 SR_API bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
+
+/* ---- pinhole cameras ---------------------------------------------------- */
+
+/* A camera as vision pipelines give it, in OpenCV's convention: a point
+ * (X, Y, Z) of the camera frame (x right, y down, z forward) lands at
+ * u = fx·X/Z + cx, v = fy·Y/Z + cy in pixels, the centre of the top-left
+ * pixel being (0, 0) (a centred camera of width W has cx = (W − 1)/2). No
+ * skew, no lens distortion. w2c takes a world point to the camera frame;
+ * the world is the mesh file's own frame: for a mesh with z_negated (every
+ * loader's) the loader's z negation is undone first, so a dataset's poses
+ * apply as they are. near and far only clip: 0 fits them to the mesh's
+ * bounds (sr_pinhole_fit_clip), so nothing in front of the camera is cut. */
+typedef struct sr_pinhole {
+    double fx, fy, cx, cy;
+    double w2c[4][4]; /* row-major, w2c[row][column]: rigid, last row 0 0 0 1 */
+    double near, far;
+} sr_pinhole;
+
+/* The largest |RᵀR − I| entry a pose's rotation may have, and of its last
+ * row's difference from 0 0 0 1. */
+#define SR_POSE_TOLERANCE 1e-5
+
+/* False, with one line in err, for fx or fy not above 0, anything not
+ * finite, a pose that is not rigid (within SR_POSE_TOLERANCE; a reflection
+ * neither), or clip planes other than 0 < near < far. */
+SR_API bool sr_pinhole_check(const sr_pinhole *cam, sr_error *err);
+
+/* The world-to-camera pose of a camera-to-world one (a rigid inverse);
+ * false, with one line in err, when c2w is not rigid. */
+SR_API bool sr_pinhole_pose_from_c2w(const double c2w[4][4], double w2c[4][4], sr_error *err);
+
+/* Sets near and far where they are 0: the mesh's bounds seen from the
+ * camera, with room on both sides; near stays above 1e-6 of far. */
+SR_API void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh);
+
+/* The draw's view_d and projection for cam at width x height (near and far
+ * set); world is left as the identity. Culling then keeps the file's front
+ * faces, as for the look-at camera. */
+SR_API void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, int width, int height,
+                                sr_draw_desc *desc);
+
+/* View depth (z along the optical axis, in mesh units) and range (distance
+ * from the camera centre) per pixel, from ids: the framebuffer of an
+ * SR_SHADE_ID draw of mesh with cam's matrices. Each is the ray through the
+ * pixel centre met with the plane of the triangle the pixel shows, in
+ * double, rounded to float once (where the ray runs in that plane, the
+ * depth buffer's value); `invalid` where no triangle is drawn. depth and
+ * range are width x height floats, row 0 at the top; either may be NULL.
+ * False, with one line in err, for a mesh of more triangles than the id
+ * colors tell apart (2^24 − 1). */
+SR_API bool sr_pinhole_depth(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids, float invalid,
+                             float *depth, float *range, sr_error *err);
 
 #endif

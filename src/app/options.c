@@ -48,15 +48,21 @@ static int split(const char *text, char sep, char *buf, size_t cap, char **field
     return n + 1; /* too many fields */
 }
 
-static bool parse_dvec3(const char *text, double *out)
+/* n numbers "a,b,...", each finite within ±VEC3_LIMIT. */
+static bool parse_doubles(const char *text, int n, double *out)
 {
-    char buf[256], *f[3];
-    if (split(text, ',', buf, sizeof buf, f, 3) != 3)
+    char buf[1024], *f[SR_OPT_MAX_NUMBERS];
+    if (n > SR_OPT_MAX_NUMBERS || split(text, ',', buf, sizeof buf, f, n) != n)
         return false;
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < n; i++)
         if (!parse_double(f[i], -VEC3_LIMIT, VEC3_LIMIT, &out[i]))
             return false;
     return true;
+}
+
+static bool parse_dvec3(const char *text, double *out)
+{
+    return parse_doubles(text, 3, out);
 }
 
 static bool parse_vec3(const char *text, float *out)
@@ -109,6 +115,9 @@ static void describe_expected(const sr_option *o, char *buf, size_t cap)
     case SR_OPT_DVEC3:
         snprintf(buf, cap, "three numbers X,Y,Z, each in [%g, %g]", -VEC3_LIMIT, VEC3_LIMIT);
         break;
+    case SR_OPT_NUMBERS:
+        snprintf(buf, cap, "%d comma-separated numbers, each in [%g, %g]", o->count, -VEC3_LIMIT, VEC3_LIMIT);
+        break;
     case SR_OPT_SIZE:  snprintf(buf, cap, "WxH with each side in [%g, %g]", o->lo, o->hi); break;
     case SR_OPT_RANGE:
         snprintf(buf, cap, "A:B, whole numbers with %g <= A < B <= %g (A up to, not including, B)", o->lo, o->hi);
@@ -139,6 +148,7 @@ static bool apply_value(const sr_option *o, const char *text)
     case SR_OPT_INT:    return parse_long(text, o->lo, o->hi, o->target);
     case SR_OPT_VEC3:   return parse_vec3(text, o->target);
     case SR_OPT_DVEC3:  return parse_dvec3(text, o->target);
+    case SR_OPT_NUMBERS: return parse_doubles(text, o->count, o->target);
     case SR_OPT_SIZE:   return parse_pair(text, 'x', o->lo, o->hi, o->target);
     case SR_OPT_RANGE:  return parse_range(text, o->lo, o->hi, o->target);
     case SR_OPT_CHOICE: return parse_choice(text, o->choices, o->target);

@@ -19,12 +19,15 @@ typedef enum sr_option_kind {
     SR_OPT_INT,    /* int *, within [lo, hi] */
     SR_OPT_VEC3,   /* float[3], "X,Y,Z" */
     SR_OPT_DVEC3,  /* double[3], "X,Y,Z": a point kept to double precision */
+    SR_OPT_NUMBERS, /* double[count], "a,b,...": exactly count numbers (at most SR_OPT_MAX_NUMBERS) */
     SR_OPT_SIZE,   /* int[2], "WxH", each within [lo, hi] */
     SR_OPT_RANGE,  /* int[2], "A:B", lo <= A < B <= hi: the half-open range [A, B) */
     SR_OPT_STRING, /* const char ** */
     SR_OPT_FLAG,   /* bool *, takes no value */
     SR_OPT_CHOICE  /* int *, index into choices */
 } sr_option_kind;
+
+#define SR_OPT_MAX_NUMBERS 16
 
 typedef struct sr_option {
     const char *name; /* "--size" */
@@ -36,6 +39,7 @@ typedef struct sr_option {
     const char *const *choices; /* NULL-terminated, for SR_OPT_CHOICE */
     bool *seen;                 /* optional: set when the option is given */
     bool allow_infinity;        /* SR_OPT_FLOAT: "inf" is accepted (as +inf) */
+    int count;                  /* SR_OPT_NUMBERS: how many */
 } sr_option;
 
 /* Parses argv[first..argc). Non-option words go to positional (at most

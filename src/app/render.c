@@ -4,14 +4,17 @@
 #include <string.h>
 
 #include "app.h"
+#include "pinhole_setup.h"
 #include "scene_setup.h"
 #include "core/clock.h"
 #include "scene/frame.h"
 
 #define MAX_FRAMES 100000
+#define RENDER_OPTION_COUNT 6 /* render's own, before the pinhole camera's */
 
 typedef struct render_job {
     sr_scene_setup scene;
+    sr_pinhole_setup pinhole;
     const char *out_path, *depth_path, *depth_png_path;
     int frames;
     bool stats, quiet;
@@ -24,7 +27,9 @@ typedef struct frame_times {
 static const char USAGE[] =
     "usage: softrast render MESH.obj [options]\n"
     "Draws MESH.obj into an image without a window. Without --eye/--target the camera\n"
-    "looks from -z at the centre of the mesh's bounds, far enough back to see all of it.";
+    "looks from -z at the centre of the mesh's bounds, far enough back to see all of it.\n"
+    "With --pose-w2c or --pose-c2w it is a pinhole camera in OpenCV's convention, in the\n"
+    "file's own frame, and --view-depth and --range write metric depth (docs/cli.md).";
 
 static void job_defaults(render_job *job)
 {
@@ -40,15 +45,15 @@ static int is_stdout(const char *path)
 static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
 {
     render_job *job = j;
-    const sr_option own[] = {
+    sr_option own[RENDER_OPTION_COUNT + SR_PINHOLE_OPTION_COUNT + 1] = {
         { "--out", SR_OPT_STRING, &job->out_path, "FILE.png", "write the color image (8-bit RGB)" },
         { "--depth", SR_OPT_STRING, &job->depth_path, "FILE.pfm", "write the raw float32 depth buffer (PFM)" },
         { "--depth-png", SR_OPT_STRING, &job->depth_png_path, "FILE.png", "write the depth buffer, remapped to the visible range" },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames, after one untimed warm-up when N > 1 (default 1)", 1, MAX_FRAMES },
         { "--stats", SR_OPT_FLAG, &job->stats, NULL, "print one JSON line of per-frame statistics" },
         { "--quiet", SR_OPT_FLAG, &job->quiet, NULL, "no summary line on stderr on success (warnings still print)" },
-        { 0 },
     };
+    sr_pinhole_setup_options(&job->pinhole, own + RENDER_OPTION_COUNT);
     if (!sr_scene_setup_parse(&job->scene, own, NULL, USAGE, argc, argv, help, err))
         return false;
     if (!*help && !job->scene.mesh_path)
@@ -57,7 +62,7 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
                     is_stdout(job->depth_png_path);
     if (to_stdout > 1)
         return sr_error_set(err, "only one of --out -, --depth -, --depth-png - and --stats can write to stdout");
-    return true;
+    return *help || sr_pinhole_setup_check(&job->pinhole, &job->scene, err);
 }
 
 static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr_stats *stats,
@@ -174,7 +179,8 @@ static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_
  * the triangles drawn. */
 static void report_done(const render_job *job, const sr_framebuffer *fb, const sr_stats *s)
 {
-    const char *paths[] = { job->out_path, job->depth_path, job->depth_png_path };
+    const char *paths[] = { job->out_path, job->depth_path, job->depth_png_path, job->pinhole.view_depth_path,
+                            job->pinhole.range_path };
     char line[3 * SR_ERROR_MAX];
     int n = snprintf(line, sizeof line, "softrast: "), written = 0;
     for (size_t i = 0; i < sizeof paths / sizeof *paths; i++)
@@ -183,10 +189,41 @@ static void report_done(const render_job *job, const sr_framebuffer *fb, const s
                           is_stdout(paths[i]) ? "stdout" : paths[i]);
     const char *format = written ? " (%dx%d, %llu triangles drawn)\n"
                                  : "drew %dx%d (%llu triangles drawn); nothing written: name a file with --out, "
-                                   "--depth or --depth-png\n";
+                                   "--depth, --depth-png, --view-depth or --range\n";
     if (n < (int)sizeof line)
         snprintf(line + n, sizeof line - (size_t)n, format, fb->width, fb->height, (unsigned long long)s->drawn);
     fputs(line, stderr);
+}
+
+/* The pinhole camera's matrices in desc, and culling off unless --cull
+ * asked for it: a ray caster sees both faces, and scans are not always
+ * wound one way. */
+static bool use_pinhole(render_job *job, const sr_scene *scene, sr_pinhole *cam, sr_draw_desc *desc, sr_error *err)
+{
+    if (!sr_pinhole_setup_camera(&job->pinhole, &job->scene, &scene->mesh, cam, err))
+        return false;
+    sr_pinhole_matrices(cam, &scene->mesh, scene->fb.width, scene->fb.height, desc);
+    if (!job->scene.cull_set)
+        desc->cull = SR_CULL_NONE;
+    return true;
+}
+
+/* View depth and range need each pixel's triangle: the frame's own ids in
+ * id shading, else one more draw of them. */
+static bool write_metric(const render_job *job, const sr_scene *scene, const sr_pinhole *cam,
+                         const sr_draw_desc *desc, sr_error *err)
+{
+    if (desc->shade == SR_SHADE_ID)
+        return sr_pinhole_setup_write(&job->pinhole, cam, &scene->mesh, &scene->fb, err);
+    sr_framebuffer ids;
+    if (!sr_framebuffer_create(&ids, scene->fb.width, scene->fb.height, err))
+        return false;
+    sr_draw_desc id_desc = *desc;
+    id_desc.shade = SR_SHADE_ID;
+    id_desc.clear = true;
+    bool ok = sr_draw(&ids, &id_desc, NULL, err) && sr_pinhole_setup_write(&job->pinhole, cam, &scene->mesh, &ids, err);
+    sr_framebuffer_destroy(&ids);
+    return ok;
 }
 
 static bool render(void *j, sr_scene *scene, sr_error *err)
@@ -194,15 +231,20 @@ static bool render(void *j, sr_scene *scene, sr_error *err)
     render_job *job = j;
     sr_draw_desc desc;
     sr_draw_study study;
+    sr_pinhole cam;
     sr_stats stats = { 0 };
     frame_times times = { 0 };
+    bool pinhole = sr_pinhole_setup_on(&job->pinhole);
     if (!sr_scene_load(&job->scene, false, scene, err))
         return false;
-    sr_scene_frame_camera(&job->scene, scene);
-    if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) ||
-        !run_frames(job->frames, scene, &desc, &stats, &times, err) || !write_outputs(job, scene, err))
+    if (!pinhole)
+        sr_scene_frame_camera(&job->scene, scene);
+    if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) || (pinhole && !use_pinhole(job, scene, &cam, &desc, err)) ||
+        !run_frames(job->frames, scene, &desc, &stats, &times, err) || !write_outputs(job, scene, err) ||
+        (sr_pinhole_setup_wants_depth(&job->pinhole) && !write_metric(job, scene, &cam, &desc, err)))
         return false;
-    explain_nothing_drawn(&job->scene, scene, &stats);
+    if (!pinhole)
+        explain_nothing_drawn(&job->scene, scene, &stats);
     if (job->stats)
         print_stats(job->frames, &times, &stats, study.simd, &scene->mesh);
     if (!job->quiet)

@@ -103,6 +103,45 @@ bool sr_image_write_pfm(const char *path, const float *depth, int width, int hei
     return sr_output_close(&o, path, written, err);
 }
 
+/* NumPy's format, version 1.0: magic, version, a little-endian header
+ * length, then a Python dict literal padded with spaces to a multiple of 64
+ * bytes and ended by a newline; the values follow in C order. */
+static bool write_npy_rows(FILE *f, const float *values, int width, int height)
+{
+    char dict[128];
+    int n = snprintf(dict, sizeof dict, "{'descr': '<f4', 'fortran_order': False, 'shape': (%d, %d), }", height,
+                     width);
+    int header = 10 + n + 1, padded = (header + 63) / 64 * 64;
+    uint16_t dict_len = (uint16_t)(padded - 10);
+    uint8_t lead[10] = { 0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0, (uint8_t)dict_len, (uint8_t)(dict_len >> 8) };
+    bool ok = fwrite(lead, 1, sizeof lead, f) == sizeof lead && fputs(dict, f) >= 0 &&
+              fprintf(f, "%*s\n", padded - header, "") > 0;
+    size_t row_bytes = (size_t)width * FLOAT32_BYTES;
+    uint8_t *row = ok ? malloc(row_bytes) : NULL;
+    if (ok && !row) {
+        errno = ENOMEM;
+        return false;
+    }
+    for (int y = 0; ok && y < height; y++) {
+        pack_le_floats(row, values + (size_t)y * (size_t)width, width);
+        ok = fwrite(row, 1, row_bytes, f) == row_bytes;
+    }
+    free(row);
+    return ok;
+}
+
+bool sr_image_write_npy(const char *path, const float *values, int width, int height, sr_error *err)
+{
+    if (!size_ok(path, width, height, err))
+        return false;
+    sr_output o;
+    if (!sr_output_open(&o, path, err))
+        return false;
+    errno = 0;
+    bool written = write_npy_rows(o.f, values, width, height);
+    return sr_output_close(&o, path, written, err);
+}
+
 bool sr_image_write_depth_png(const char *path, const sr_framebuffer *fb, sr_error *err)
 {
     if (!size_ok(path, fb->width, fb->height, err))

@@ -34,6 +34,7 @@ bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error
         return sr_obj_load(mesh, path, err);
     *mesh = (sr_mesh){ 0 };
     bool ok = regular_file(path, err) && sr_assimp_load(mesh, embedded, path, SR_IMPORT_SECONDS, err);
+    mesh->z_negated = ok; /* as OBJ's: Assimp's formats are right-handed too */
     if (!texture)
         sr_texture_free(&unwanted);
     return ok;

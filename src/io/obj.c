@@ -453,7 +453,9 @@ bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err)
         return sr_error_set(err, "%s: cannot open: %s", path, o.in.why);
     bool ok = read_statements(&o) && build_mesh(&o, mesh);
     obj_reader_free(&o);
-    if (ok)
+    if (ok) {
         sr_mesh_update_bounds(mesh);
+        mesh->z_negated = true;
+    }
     return ok;
 }

@@ -1,0 +1,126 @@
+/* `render` with a pinhole camera: its bad inputs, and the view depth and
+ * range files read back as NumPy and PFM readers read them. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdint.h>
+
+#include "cli_error.h"
+
+/* The CLI suite's triangle in the plane z = 0 of the file, and a camera 4
+ * in front of it (at file z = −4, looking along +z, image y down): every
+ * pixel it shows is at view depth 4 exactly. */
+#define POSE "--pose-w2c 1,0,0,0,0,1,0,-0.5,0,0,1,4,0,0,0,1"
+#define IDENTITY "1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1"
+#define W 40
+#define H 30
+
+static void make_dir_with_triangle(void)
+{
+    temp_dir_make();
+    write_text(temp_dir, "tri.obj", "v -1 0.2 0\nv 1 0.2 0\nv 0 1 0\nf 1 2 3\n");
+}
+
+TestSuite(cli_pinhole, .init = make_dir_with_triangle, .fini = temp_dir_remove);
+
+Test(cli_pinhole, bad_poses_intrinsics_and_outputs_get_one_line)
+{
+    assert_one_error("render %s/tri.obj --pose-w2c 1,0,0", "16 comma-separated numbers");
+    assert_one_error("render %s/tri.obj --pose-w2c 2,0,0,0,0,2,0,0,0,0,2,0,0,0,0,1", "not a rigid pose");
+    assert_one_error("render %s/tri.obj --pose-c2w 1,0,0,0,0,1,0,0,0,0,-1,0,0,0,0,1", "not a rigid pose");
+    assert_one_error("render %s/tri.obj --intrinsics 0,100,20,15 " POSE, "fx and fy");
+    assert_one_error("render %s/tri.obj --intrinsics 100,100,20,nan " POSE, "--intrinsics");
+    assert_one_error("render %s/tri.obj --eye 0,0,-3 " POSE, "look-at camera");
+    assert_one_error("render %s/tri.obj --pose-w2c " IDENTITY " --pose-c2w " IDENTITY, "one pose");
+    assert_one_error("render %s/tri.obj --view-depth %s/d.npy", "needs a camera pose");
+    assert_one_error("render %s/tri.obj --intrinsics 100,100,20,15", "needs a camera pose");
+    assert_one_error("render %s/tri.obj " POSE " --view-depth %s/d.exr", "no writer");
+    assert_one_error("render %s/tri.obj --fov 50 --intrinsics 100,100,20,15 " POSE, "give one");
+}
+
+/* The float32 values of a .npy file of shape (H, W), checked header and all. */
+static void read_npy(const char *path, float *out)
+{
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "%s missing", path);
+    unsigned char lead[10];
+    cr_assert_eq(fread(lead, 1, 10, f), 10u);
+    cr_assert_eq(memcmp(lead, "\x93NUMPY\x01\x00", 8), 0, "not a .npy 1.0 file");
+    size_t dict_len = (size_t)lead[8] | (size_t)lead[9] << 8;
+    cr_assert_eq((10 + dict_len) % 64, 0u, "the header is not padded to 64 bytes");
+    char dict[256] = { 0 };
+    cr_assert(dict_len < sizeof dict && fread(dict, 1, dict_len, f) == dict_len);
+    char want[96];
+    snprintf(want, sizeof want, "'shape': (%d, %d)", H, W);
+    cr_assert_not_null(strstr(dict, "'descr': '<f4'"), "%s", dict);
+    cr_assert_not_null(strstr(dict, "'fortran_order': False"), "%s", dict);
+    cr_assert_not_null(strstr(dict, want), "%s", dict);
+    cr_assert_eq(dict[dict_len - 1], '\n');
+    cr_assert_eq(fread(out, sizeof *out, W * H, f), (size_t)(W * H), "short data");
+    cr_assert_eq(fgetc(f), EOF, "data past W x H values");
+    fclose(f);
+}
+
+/* A PFM's values, its rows (stored bottom up) put top down. */
+static void read_pfm(const char *path, float *out)
+{
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "%s missing", path);
+    int w = 0, h = 0;
+    double scale = 0;
+    cr_assert_eq(fscanf(f, "Pf\n%d %d\n%lf", &w, &h, &scale), 3);
+    cr_assert(w == W && h == H && scale < 0, "header %d %d %g", w, h, scale);
+    fgetc(f);
+    for (int y = H - 1; y >= 0; y--)
+        cr_assert_eq(fread(out + (size_t)y * W, sizeof *out, W, f), (size_t)W);
+    fclose(f);
+}
+
+Test(cli_pinhole, view_depth_and_range_read_back_with_the_exact_values)
+{
+    char args[512];
+    snprintf(args, sizeof args,
+             "render %s/tri.obj --size %dx%d --intrinsics 30,25,19.5,14.5 " POSE
+             " --view-depth %s/d.npy --range %s/r.pfm --shade lambert --out %s/c.png",
+             temp_dir, W, H, temp_dir, temp_dir, temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    char path[512];
+    static float depth[W * H], range[W * H];
+    read_npy(temp_path(path, sizeof path, "d.npy"), depth);
+    read_pfm(temp_path(path, sizeof path, "r.pfm"), range);
+    int drawn = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float d = depth[y * W + x];
+            cr_assert(d == 0.0f || d == 4.0f, "(%d, %d): depth %.9g, not 4 or 0", x, y, d);
+            if (d == 0.0f) {
+                cr_assert_eq(range[y * W + x], 0.0f);
+                continue;
+            }
+            drawn++;
+            double u = (x - 19.5) / 30.0, v = (y - 14.5) / 25.0;
+            float want = (float)(4.0 * sqrt(u * u + v * v + 1.0));
+            cr_assert_eq(range[y * W + x], want, "(%d, %d): range %.9g, want %.9g", x, y, range[y * W + x], want);
+        }
+    /* 0.8 square units at z = 4, 7.5 by 6.25 px a unit: about 37.5 px */
+    cr_assert(drawn > 30 && drawn < 45, "%d pixels drawn", drawn);
+}
+
+Test(cli_pinhole, invalid_nan_marks_the_pixels_where_nothing_is_drawn)
+{
+    char args[512];
+    snprintf(args, sizeof args, "render %s/tri.obj --size %dx%d " POSE " --view-depth %s/d.npy --invalid nan",
+             temp_dir, W, H, temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    char path[512];
+    static float depth[W * H];
+    read_npy(temp_path(path, sizeof path, "d.npy"), depth);
+    int nan = 0, four = 0;
+    for (int i = 0; i < W * H; i++) {
+        nan += isnan(depth[i]);
+        four += depth[i] == 4.0f;
+    }
+    cr_assert_eq(nan + four, W * H, "a value neither NaN nor 4");
+    cr_assert(nan > 0 && four > 0, "%d NaN, %d at 4", nan, four);
+}

@@ -1,0 +1,315 @@
+/* Pinhole cameras in OpenCV's convention: a point the pinhole formula puts
+ * at a pixel centre is drawn at that pixel, and view depth agrees with a ray
+ * cast in long double, written independently of src/scene/pinhole.c (in the
+ * world frame, Möller–Trumbore, from the camera-to-world pose). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "softrast_private.h"
+#include "test_rng.h"
+
+#define MAX_SIDE 64
+
+typedef long double real;
+
+/* A random rigid camera-to-world pose: a rotation from a random unit
+ * quaternion, a translation within `spread`. */
+static void random_c2w(test_rng *rng, double spread, double c2w[4][4])
+{
+    double q[4], n = 0.0;
+    for (int k = 0; k < 4; k++) {
+        q[k] = rng_uniform(rng, -1.0, 1.0);
+        n += q[k] * q[k];
+    }
+    n = sqrt(n);
+    double w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+    const double r[3][3] = {
+        { 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y) },
+        { 2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x) },
+        { 2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y) },
+    };
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++)
+            c2w[i][j] = r[i][j];
+        c2w[i][3] = rng_uniform(rng, -spread, spread);
+        c2w[3][i] = 0.0;
+    }
+    c2w[3][3] = 1.0;
+}
+
+/* A camera-frame point in the world (the file's frame), by c2w. */
+static void camera_to_world(const double c2w[4][4], const double p[3], double out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = c2w[i][0] * p[0] + c2w[i][1] * p[1] + c2w[i][2] * p[2] + c2w[i][3];
+}
+
+/* The mesh's vertex k in the file's frame. */
+static void file_point(const sr_mesh *mesh, uint32_t k, real out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = (real)mesh->positions[k][i];
+    if (mesh->z_negated)
+        out[2] = -out[2];
+}
+
+/* The ray through pixel (x, y)'s centre, u = x and v = y, in the world:
+ * from the camera centre along c2w's rotation of ((u − cx)/fx, (v − cy)/fy, 1). */
+static void pixel_ray(const sr_pinhole *cam, const double c2w[4][4], int x, int y, real origin[3], real dir[3])
+{
+    real d[3] = { ((real)x - cam->cx) / cam->fx, ((real)y - cam->cy) / cam->fy, 1.0L };
+    for (int i = 0; i < 3; i++) {
+        origin[i] = c2w[i][3];
+        dir[i] = c2w[i][0] * d[0] + c2w[i][1] * d[1] + c2w[i][2] * d[2];
+    }
+}
+
+static void sub(const real a[3], const real b[3], real out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = a[i] - b[i];
+}
+
+static void cross(const real a[3], const real b[3], real out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static real dot(const real a[3], const real b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Möller–Trumbore: the ray parameter t of the hit of origin + t·dir with
+ * triangle slot k, or NAN when the ray misses it (with a margin of `slack`
+ * in barycentric terms for rays through its edges). With dir's camera z
+ * equal to 1, t is the view depth. */
+static real ray_hit(const sr_mesh *mesh, uint32_t k, const real origin[3], const real dir[3], real slack)
+{
+    real a[3], b[3], c[3], e1[3], e2[3], p[3], s[3], q[3];
+    file_point(mesh, mesh->indices[3 * k], a);
+    file_point(mesh, mesh->indices[3 * k + 1], b);
+    file_point(mesh, mesh->indices[3 * k + 2], c);
+    sub(b, a, e1);
+    sub(c, a, e2);
+    cross(dir, e2, p);
+    real det = dot(e1, p);
+    if (det == 0.0L)
+        return NAN;
+    sub(origin, a, s);
+    real u = dot(s, p) / det;
+    cross(s, e1, q);
+    real v = dot(dir, q) / det;
+    if (u < -slack || v < -slack || u + v > 1.0L + slack)
+        return NAN;
+    return dot(e2, q) / det;
+}
+
+/* Draws mesh in id shading through cam at width x height into fb. */
+static void draw_ids(sr_framebuffer *fb, const sr_pinhole *cam, const sr_mesh *mesh, int width, int height)
+{
+    sr_error err = { "" };
+    cr_assert(sr_framebuffer_create(fb, width, height, &err), "%s", err.message);
+    sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .clear = true };
+    sr_pinhole_matrices(cam, mesh, width, height, &desc);
+    cr_assert(sr_draw(fb, &desc, NULL, &err), "%s", err.message);
+}
+
+static sr_pinhole camera_of(double fx, double fy, double cx, double cy, const double c2w[4][4])
+{
+    sr_pinhole cam = { .fx = fx, .fy = fy, .cx = cx, .cy = cy };
+    sr_error err = { "" };
+    cr_assert(sr_pinhole_pose_from_c2w(c2w, cam.w2c, &err), "%s", err.message);
+    return cam;
+}
+
+TestSuite(pinhole);
+
+/* A point X that the pinhole formula puts exactly at pixel centre (u, v)
+ * lies inside a small triangle whose corners project 1/64 to 0.6 px around
+ * it (so at least 1/128 px inside every edge, and a camera off by half a
+ * pixel misses it): pixel (u, v) shows that triangle,
+ * and its view depth is the ray cast's within one float ulp. Off-centre
+ * principal points, fx ≠ fy, random poses, meshes read from files (z
+ * negated) and made in code. */
+Test(pinhole, a_point_projected_to_a_pixel_centre_is_drawn_there_at_its_depth)
+{
+    test_rng rng = { 20261129 };
+    for (int trial = 0; trial < 400; trial++) {
+        int width = 8 + rng_below(&rng, MAX_SIDE - 8), height = 8 + rng_below(&rng, MAX_SIDE - 8);
+        double fx = rng_uniform(&rng, 5.0, 400.0), fy = fx * rng_uniform(&rng, 0.5, 2.0);
+        double cx = rng_uniform(&rng, -0.5, 1.5) * width, cy = rng_uniform(&rng, -0.5, 1.5) * height;
+        double c2w[4][4];
+        random_c2w(&rng, 100.0, c2w);
+        sr_pinhole cam = camera_of(fx, fy, cx, cy, c2w);
+        int u = rng_below(&rng, width), v = rng_below(&rng, height);
+        double z = exp(rng_uniform(&rng, log(0.5), log(500.0)));
+        double turn = rng_uniform(&rng, 0.0, 2.0 * GLM_PI), r = rng_uniform(&rng, 1.0 / 64.0, 0.6);
+        sr_mesh mesh = { 0 };
+        sr_error err = { "" };
+        cr_assert(sr_mesh_alloc(&mesh, 3, 3, false, false, false, &err), "%s", err.message);
+        mesh.z_negated = trial % 2;
+        for (int k = 0; k < 3; k++) {
+            double du = r * cos(turn + 2.0 * GLM_PI * k / 3.0), dv = r * sin(turn + 2.0 * GLM_PI * k / 3.0);
+            double zk = z * rng_uniform(&rng, 0.8, 1.25);
+            double p[3] = { (u + du - cx) * zk / fx, (v + dv - cy) * zk / fy, zk }, world[3];
+            camera_to_world(c2w, p, world);
+            for (int i = 0; i < 3; i++)
+                mesh.positions[k][i] = (float)(i == 2 && mesh.z_negated ? -world[i] : world[i]);
+            mesh.indices[k] = (uint32_t)k;
+        }
+        sr_pinhole_fit_clip(&cam, &mesh);
+        sr_framebuffer fb;
+        draw_ids(&fb, &cam, &mesh, width, height);
+        size_t at = (size_t)v * (size_t)width + (size_t)u;
+        cr_assert_eq(fb.color[at], 1u, "trial %d: pixel (%d, %d) of %dx%d shows %#x, not the triangle", trial, u, v,
+                     width, height, fb.color[at]);
+        float depth[MAX_SIDE * MAX_SIDE];
+        cr_assert(sr_pinhole_depth(&cam, &mesh, &fb, 0.0f, depth, NULL, &err), "%s", err.message);
+        real origin[3], dir[3];
+        pixel_ray(&cam, c2w, u, v, origin, dir);
+        real want = ray_hit(&mesh, 0, origin, dir, 1e-6L);
+        cr_assert(isfinite((double)want), "trial %d: the reference ray misses its own triangle", trial);
+        cr_assert_leq(fabsl(depth[at] - want) / want, 0x1p-23L, "trial %d: depth %.9g, ray cast %.12Lg", trial,
+                      depth[at], want);
+        sr_framebuffer_destroy(&fb);
+        sr_mesh_free(&mesh);
+    }
+}
+
+static int compare_reals(const void *a, const void *b)
+{
+    real x = *(const real *)a, y = *(const real *)b;
+    return (x > y) - (x < y);
+}
+
+/* Random triangles at distances from 0.02 to 5000 (near 0.01, far 1e4),
+ * every fifth at a grazing angle to the rays that meet it (its corners'
+ * depths 0.2, 1 and 5 times apart): wherever the pixel shows
+ * the triangle a long-double ray cast finds nearest, view depth is within
+ * 1.2e-7 of it (relative) at p99.9 and 1e-6 at most; range is view depth
+ * times the ray's length. */
+Test(pinhole, view_depth_agrees_with_a_ray_cast_near_and_far)
+{
+    enum { W = 64, H = 48, TRIANGLES = 120 };
+    test_rng rng = { 7 };
+    double c2w[4][4];
+    random_c2w(&rng, 10.0, c2w);
+    sr_pinhole cam = camera_of(52.0, 47.0, 30.2, 25.7, c2w);
+    cam.near = 0.01;
+    cam.far = 1e4;
+    sr_mesh mesh = { 0 };
+    sr_error err = { "" };
+    cr_assert(sr_mesh_alloc(&mesh, 3 * TRIANGLES, 3 * TRIANGLES, false, false, false, &err), "%s", err.message);
+    for (uint32_t t = 0; t < TRIANGLES; t++) {
+        double z = exp(rng_uniform(&rng, log(0.02), log(5000.0)));
+        double cu = rng_uniform(&rng, 0, W), cv = rng_uniform(&rng, 0, H), size = rng_uniform(&rng, 3.0, 30.0);
+        bool edge_on = t % 5 == 0;
+        for (int k = 0; k < 3; k++) {
+            double du = rng_uniform(&rng, -size, size), dv = rng_uniform(&rng, -size, size);
+            static const double steep[3] = { 0.2, 1.0, 5.0 }; /* a plane at a grazing angle to the rays */
+            double zk = z * (edge_on ? steep[k] : rng_uniform(&rng, 0.7, 1.4));
+            double p[3] = { (cu + du - cam.cx) * zk / cam.fx, (cv + dv - cam.cy) * zk / cam.fy, zk }, world[3];
+            camera_to_world(c2w, p, world);
+            for (int i = 0; i < 3; i++)
+                mesh.positions[3 * t + k][i] = (float)world[i];
+            mesh.indices[3 * t + k] = 3 * t + (uint32_t)k;
+        }
+    }
+    sr_framebuffer fb;
+    draw_ids(&fb, &cam, &mesh, W, H);
+    float depth[W * H], range[W * H];
+    cr_assert(sr_pinhole_depth(&cam, &mesh, &fb, -1.0f, depth, range, &err), "%s", err.message);
+    real errors[W * H];
+    int compared = 0, edge_on_compared = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            real origin[3], dir[3], best = INFINITY;
+            uint32_t nearest = 0;
+            pixel_ray(&cam, c2w, x, y, origin, dir);
+            for (uint32_t t = 0; t < TRIANGLES; t++) {
+                real hit = ray_hit(&mesh, t, origin, dir, 0.0L);
+                if (hit > cam.near && hit < cam.far && hit < best) {
+                    best = hit;
+                    nearest = t + 1;
+                }
+            }
+            size_t at = (size_t)y * W + (size_t)x;
+            if (fb.color[at] == 0) {
+                cr_assert_eq(depth[at], -1.0f, "(%d, %d): nothing drawn, depth %g", x, y, depth[at]);
+                continue;
+            }
+            if (fb.color[at] != nearest) /* visibility: another slice's bound */
+                continue;
+            errors[compared++] = fabsl(depth[at] - best) / best;
+            edge_on_compared += (nearest - 1) % 5 == 0;
+            real length = sqrtl(dot(dir, dir));
+            cr_assert_leq(fabsl(range[at] - best * length) / (best * length), 1e-6L, "(%d, %d): range %.9g", x, y,
+                          range[at]);
+        }
+    cr_assert_gt(compared, W * H / 4, "only %d pixels compared", compared);
+    cr_assert_gt(edge_on_compared, 0, "no edge-on triangle compared");
+    qsort(errors, (size_t)compared, sizeof *errors, compare_reals);
+    real p999 = errors[(int)(0.999 * (compared - 1))], worst = errors[compared - 1];
+    cr_assert_leq(p999, 1.2e-7L, "p99.9 relative error %.3Lg", p999);
+    cr_assert_leq(worst, 1e-6L, "max relative error %.3Lg", worst);
+    sr_framebuffer_destroy(&fb);
+    sr_mesh_free(&mesh);
+}
+
+/* The checks a caller's camera gets, one line each. */
+Test(pinhole, bad_cameras_are_refused_with_one_line)
+{
+    double c2w[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } };
+    sr_pinhole good = camera_of(100, 100, 31.5, 23.5, c2w);
+    sr_error err = { "" };
+    cr_assert(sr_pinhole_check(&good, &err), "%s", err.message);
+    struct {
+        const char *why, *needle;
+        sr_pinhole cam;
+    } bad[] = {
+        { "fx 0", "fx and fy", good },          { "fy negative", "fx and fy", good },
+        { "cx NaN", "finite", good },           { "scaled pose", "rigid", good },
+        { "mirrored pose", "rigid", good },     { "last row", "rigid", good },
+        { "inf in the pose", "finite", good },  { "near above far", "near < far", good },
+    };
+    bad[0].cam.fx = 0;
+    bad[1].cam.fy = -1;
+    bad[2].cam.cx = NAN;
+    bad[3].cam.w2c[0][0] = 2;
+    bad[4].cam.w2c[2][2] = -1;
+    bad[5].cam.w2c[3][0] = 0.5;
+    bad[6].cam.w2c[1][3] = INFINITY;
+    bad[7].cam.near = 10;
+    bad[7].cam.far = 1;
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        err.message[0] = '\0';
+        cr_assert_not(sr_pinhole_check(&bad[i].cam, &err), "%s accepted", bad[i].why);
+        cr_assert_not_null(strstr(err.message, bad[i].needle), "%s: '%s'", bad[i].why, err.message);
+        cr_assert_null(strchr(err.message, '\n'), "%s: more than a line", bad[i].why);
+    }
+    double sheared[4][4] = { { 1, 0.1, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } }, w2c[4][4];
+    cr_assert_not(sr_pinhole_pose_from_c2w(sheared, w2c, &err), "a sheared camera-to-world pose accepted");
+}
+
+/* The rigid inverse: w2c · c2w is the identity. */
+Test(pinhole, the_pose_from_c2w_inverts_it)
+{
+    test_rng rng = { 99 };
+    for (int trial = 0; trial < 100; trial++) {
+        double c2w[4][4], w2c[4][4];
+        random_c2w(&rng, 1000.0, c2w);
+        sr_error err = { "" };
+        cr_assert(sr_pinhole_pose_from_c2w(c2w, w2c, &err), "%s", err.message);
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) {
+                double sum = 0;
+                for (int k = 0; k < 4; k++)
+                    sum += w2c[i][k] * c2w[k][j];
+                cr_assert(fabs(sum - (i == j)) < 1e-9 * (1 + fabs(c2w[i][3])), "(%d, %d): %g", i, j, sum);
+            }
+    }
+}
