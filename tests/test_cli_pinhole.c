@@ -2,6 +2,7 @@
  * range files read back as NumPy and PFM readers read them. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <png.h>
 #include <stdint.h>
 
 #include "cli_error.h"
@@ -37,8 +38,9 @@ Test(cli_pinhole, bad_poses_intrinsics_and_outputs_get_one_line)
     assert_one_error("render %s/tri.obj --fov 50 --intrinsics 100,100,20,15 " POSE, "give one");
 }
 
-/* The float32 values of a .npy file of shape (H, W), checked header and all. */
-static void read_npy(const char *path, float *out)
+/* The 4-byte values of a .npy file of dtype descr and shape (H, W) or, with
+ * channels > 1, (H, W, channels), checked header and all. */
+static void read_npy_of(const char *path, const char *descr, int channels, void *out)
 {
     FILE *f = fopen(path, "rb");
     cr_assert_not_null(f, "%s missing", path);
@@ -49,15 +51,22 @@ static void read_npy(const char *path, float *out)
     cr_assert_eq((10 + dict_len) % 64, 0u, "the header is not padded to 64 bytes");
     char dict[256] = { 0 };
     cr_assert(dict_len < sizeof dict && fread(dict, 1, dict_len, f) == dict_len);
-    char want[96];
-    snprintf(want, sizeof want, "'shape': (%d, %d)", H, W);
-    cr_assert_not_null(strstr(dict, "'descr': '<f4'"), "%s", dict);
+    char want[96], want_descr[32];
+    snprintf(want, sizeof want, channels > 1 ? "'shape': (%d, %d, %d)" : "'shape': (%d, %d)", H, W, channels);
+    snprintf(want_descr, sizeof want_descr, "'descr': '%s'", descr);
+    cr_assert_not_null(strstr(dict, want_descr), "%s", dict);
     cr_assert_not_null(strstr(dict, "'fortran_order': False"), "%s", dict);
     cr_assert_not_null(strstr(dict, want), "%s", dict);
     cr_assert_eq(dict[dict_len - 1], '\n');
-    cr_assert_eq(fread(out, sizeof *out, W * H, f), (size_t)(W * H), "short data");
+    size_t count = (size_t)(W * H * channels);
+    cr_assert_eq(fread(out, 4, count, f), count, "short data");
     cr_assert_eq(fgetc(f), EOF, "data past W x H values");
     fclose(f);
+}
+
+static void read_npy(const char *path, float *out)
+{
+    read_npy_of(path, "<f4", 1, out);
 }
 
 /* A PFM's values, its rows (stored bottom up) put top down. */
@@ -123,4 +132,48 @@ Test(cli_pinhole, invalid_nan_marks_the_pixels_where_nothing_is_drawn)
     }
     cr_assert_eq(nan + four, W * H, "a value neither NaN nor 4");
     cr_assert(nan > 0 && four > 0, "%d NaN, %d at 4", nan, four);
+}
+
+/* A 16-bit gray PNG's values, through libpng's simplified reader. */
+static void read_png16(const char *path, uint16_t *out)
+{
+    png_image png = { .version = PNG_IMAGE_VERSION };
+    cr_assert(png_image_begin_read_from_file(&png, path), "%s: %s", path, png.message);
+    cr_assert(png.width == W && png.height == H, "%ux%u", png.width, png.height);
+    png.format = PNG_FORMAT_LINEAR_Y;
+    cr_assert(png_image_finish_read(&png, NULL, out, 0, NULL), "%s: %s", path, png.message);
+}
+
+/* Face ids as uint32 .npy and part ids as a 16-bit PNG mark the pixels view
+ * depth marks, and the normals are the triangle's (its file winding faces
+ * +z, as does the camera: 0, 0, 1). */
+Test(cli_pinhole, ids_and_normals_read_back_beside_view_depth)
+{
+    char args[768];
+    snprintf(args, sizeof args,
+             "render %s/tri.obj --size %dx%d " POSE " --view-depth %s/d.npy --face-ids %s/f.npy --part-ids %s/p.png "
+             "--normals %s/n.npy",
+             temp_dir, W, H, temp_dir, temp_dir, temp_dir, temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    char path[512];
+    static float depth[W * H], normals[3 * W * H];
+    static uint32_t faces[W * H];
+    static uint16_t parts[W * H];
+    read_npy(temp_path(path, sizeof path, "d.npy"), depth);
+    read_npy_of(temp_path(path, sizeof path, "f.npy"), "<u4", 1, faces);
+    read_npy_of(temp_path(path, sizeof path, "n.npy"), "<f4", 3, normals);
+    read_png16(temp_path(path, sizeof path, "p.png"), parts);
+    int drawn = 0;
+    for (int i = 0; i < W * H; i++) {
+        bool on = depth[i] > 0.0f;
+        drawn += on;
+        cr_assert_eq(faces[i], (uint32_t)on, "pixel %d: face id %u, depth %g", i, faces[i], depth[i]);
+        cr_assert_eq(parts[i], (uint16_t)on, "pixel %d: part id %u", i, parts[i]);
+        cr_assert(normals[3 * i] == 0.0f && normals[3 * i + 1] == 0.0f && normals[3 * i + 2] == (on ? 1.0f : 0.0f),
+                  "pixel %d: normal %g %g %g", i, normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+    }
+    cr_assert_gt(drawn, 0);
+    assert_one_error("render %s/tri.obj " POSE " --normals %s/n.pfm", "no writer");
+    assert_one_error("render %s/tri.obj --face-ids %s/f.npy", "needs a camera pose");
 }

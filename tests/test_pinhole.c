@@ -87,7 +87,8 @@ static real dot(const real a[3], const real b[3])
  * triangle slot k, or NAN when the ray misses it (with a margin of `slack`
  * in barycentric terms for rays through its edges). With dir's camera z
  * equal to 1, t is the view depth. */
-static real ray_hit(const sr_mesh *mesh, uint32_t k, const real origin[3], const real dir[3], real slack)
+static real ray_hit_at(const sr_mesh *mesh, uint32_t k, const real origin[3], const real dir[3], real slack,
+                       real weights[3])
 {
     real a[3], b[3], c[3], e1[3], e2[3], p[3], s[3], q[3];
     file_point(mesh, mesh->indices[3 * k], a);
@@ -105,7 +106,31 @@ static real ray_hit(const sr_mesh *mesh, uint32_t k, const real origin[3], const
     real v = dot(dir, q) / det;
     if (u < -slack || v < -slack || u + v > 1.0L + slack)
         return NAN;
+    if (weights) {
+        weights[0] = 1.0L - u - v;
+        weights[1] = u;
+        weights[2] = v;
+    }
     return dot(e2, q) / det;
+}
+
+static real ray_hit(const sr_mesh *mesh, uint32_t k, const real origin[3], const real dir[3], real slack)
+{
+    return ray_hit_at(mesh, k, origin, dir, slack, NULL);
+}
+
+/* A file-frame direction in the camera frame: the transpose of c2w's rotation. */
+static void world_to_camera_dir(const double c2w[4][4], const real d[3], real out[3])
+{
+    for (int i = 0; i < 3; i++)
+        out[i] = c2w[0][i] * d[0] + c2w[1][i] * d[1] + c2w[2][i] * d[2];
+}
+
+static void normalize(real v[3])
+{
+    real length = sqrtl(dot(v, v));
+    for (int i = 0; i < 3; i++)
+        v[i] /= length;
 }
 
 /* Draws mesh in id shading through cam at width x height into fb. */
@@ -168,7 +193,8 @@ Test(pinhole, a_point_projected_to_a_pixel_centre_is_drawn_there_at_its_depth)
         cr_assert_eq(fb.color[at], 1u, "trial %d: pixel (%d, %d) of %dx%d shows %#x, not the triangle", trial, u, v,
                      width, height, fb.color[at]);
         float depth[MAX_SIDE * MAX_SIDE];
-        cr_assert(sr_pinhole_depth(&cam, &mesh, &fb, 0.0f, depth, NULL, &err), "%s", err.message);
+        cr_assert(sr_pinhole_resolve(&cam, &mesh, &fb, &(sr_pinhole_outputs){ .depth = depth }, &err), "%s",
+                  err.message);
         real origin[3], dir[3];
         pixel_ray(&cam, c2w, u, v, origin, dir);
         real want = ray_hit(&mesh, 0, origin, dir, 1e-6L);
@@ -222,7 +248,9 @@ Test(pinhole, view_depth_agrees_with_a_ray_cast_near_and_far)
     sr_framebuffer fb;
     draw_ids(&fb, &cam, &mesh, W, H);
     float depth[W * H], range[W * H];
-    cr_assert(sr_pinhole_depth(&cam, &mesh, &fb, -1.0f, depth, range, &err), "%s", err.message);
+    cr_assert(sr_pinhole_resolve(&cam, &mesh, &fb, &(sr_pinhole_outputs){ .depth = depth, .range = range, .invalid = -1.0f },
+                                  &err),
+              "%s", err.message);
     real errors[W * H];
     int compared = 0, edge_on_compared = 0;
     for (int y = 0; y < H; y++)
@@ -311,5 +339,108 @@ Test(pinhole, the_pose_from_c2w_inverts_it)
                     sum += w2c[i][k] * c2w[k][j];
                 cr_assert(fabs(sum - (i == j)) < 1e-9 * (1 + fabs(c2w[i][3])), "(%d, %d): %g", i, j, sum);
             }
+    }
+}
+
+/* Two parts of random triangles, made in code and as if read from a file
+ * (z negated, winding reversed as the loaders do): face ids are the id
+ * view's, part ids the part + 1, and the geometric normal is the unit
+ * e1 × e2 of the file's winding in the camera frame; the interpolated
+ * normal is the vertex normals weighted by the ray cast's barycentrics. */
+Test(pinhole, ids_parts_and_normals_follow_the_file)
+{
+    enum { W = 48, H = 40, TRIANGLES = 40 };
+    for (int from_file = 0; from_file < 2; from_file++) {
+        test_rng rng = { 31 + (uint64_t)from_file };
+        double c2w[4][4];
+        random_c2w(&rng, 5.0, c2w);
+        sr_pinhole cam = camera_of(40.0, 44.0, 23.3, 19.9, c2w);
+        sr_mesh mesh = { 0 };
+        sr_error err = { "" };
+        cr_assert(sr_mesh_alloc(&mesh, 3 * TRIANGLES, 3 * TRIANGLES, true, false, false, &err), "%s", err.message);
+        sr_mesh_part parts[2] = { { 0, 15 }, { 15, TRIANGLES - 15 } };
+        mesh.parts = parts;
+        mesh.part_count = 2;
+        mesh.z_negated = from_file;
+        for (uint32_t v = 0; v < 3 * TRIANGLES; v++) {
+            double z = rng_uniform(&rng, 2.0, 9.0);
+            double p[3] = { (rng_uniform(&rng, -5, W + 5) - cam.cx) * z / cam.fx,
+                            (rng_uniform(&rng, -5, H + 5) - cam.cy) * z / cam.fy, z }, world[3];
+            camera_to_world(c2w, p, world);
+            real n[3] = { rng_uniform(&rng, -1, 1), rng_uniform(&rng, -1, 1), rng_uniform(&rng, -1, 1) };
+            normalize(n);
+            for (int i = 0; i < 3; i++) {
+                bool flip = i == 2 && from_file;
+                mesh.positions[v][i] = (float)(flip ? -world[i] : world[i]);
+                mesh.normals[v][i] = (float)(flip ? -n[i] : n[i]);
+            }
+            /* a file's winding is reversed by its loader */
+            mesh.indices[v] = from_file ? 3 * (v / 3) + 2 - v % 3 : v;
+        }
+        sr_pinhole_fit_clip(&cam, &mesh);
+        sr_framebuffer fb;
+        draw_ids(&fb, &cam, &mesh, W, H);
+        static uint32_t faces[W * H], part_ids[W * H];
+        static float geometric[3 * W * H], smooth[3 * W * H];
+        cr_assert(sr_pinhole_resolve(&cam, &mesh, &fb,
+                                      &(sr_pinhole_outputs){ .face_ids = faces, .part_ids = part_ids,
+                                                             .normals = geometric },
+                                      &err),
+                  "%s", err.message);
+        cr_assert(sr_pinhole_resolve(&cam, &mesh, &fb,
+                                      &(sr_pinhole_outputs){ .normals = smooth, .interpolated_normals = true }, &err),
+                  "%s", err.message);
+        int drawn = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                size_t at = (size_t)y * W + (size_t)x;
+                cr_assert_eq(faces[at], fb.color[at]);
+                if (!faces[at]) {
+                    cr_assert_eq(part_ids[at], 0u);
+                    continue;
+                }
+                drawn++;
+                uint32_t t = faces[at] - 1;
+                cr_assert_eq(part_ids[at], t < 15 ? 1u : 2u, "(%d, %d): triangle %u in part %u", x, y, t,
+                             part_ids[at]);
+                /* the file's own corners, in its order */
+                uint32_t corner[3];
+                for (int k = 0; k < 3; k++)
+                    corner[k] = from_file ? mesh.indices[3 * t + 2 - k] : mesh.indices[3 * t + k];
+                real a[3], b[3], c[3], e1[3], e2[3], n[3], want[3];
+                file_point(&mesh, corner[0], a);
+                file_point(&mesh, corner[1], b);
+                file_point(&mesh, corner[2], c);
+                sub(b, a, e1);
+                sub(c, a, e2);
+                cross(e1, e2, n);
+                world_to_camera_dir(c2w, n, want);
+                normalize(want);
+                for (int i = 0; i < 3; i++)
+                    cr_assert_leq(fabsl(geometric[3 * at + i] - want[i]), 1e-6L, "(%d, %d): geometric normal", x,
+                                  y);
+                real origin[3], dir[3], weights[3], sum[3] = { 0 };
+                pixel_ray(&cam, c2w, x, y, origin, dir);
+                real hit = ray_hit_at(&mesh, t, origin, dir, 1e-3L, weights);
+                if (!isfinite((double)hit)) /* a centre on the snapped edge, off the exact triangle */
+                    continue;
+                for (int k = 0; k < 3; k++) {
+                    uint32_t v = mesh.indices[3 * t + k];
+                    real nv[3] = { mesh.normals[v][0], mesh.normals[v][1], mesh.normals[v][2] }, nc[3];
+                    if (from_file)
+                        nv[2] = -nv[2];
+                    world_to_camera_dir(c2w, nv, nc);
+                    for (int i = 0; i < 3; i++)
+                        sum[i] += weights[k] * nc[i];
+                }
+                normalize(sum);
+                for (int i = 0; i < 3; i++)
+                    cr_assert_leq(fabsl(smooth[3 * at + i] - sum[i]), 1e-5L, "(%d, %d): interpolated normal %d", x,
+                                  y, i);
+            }
+        cr_assert_gt(drawn, W * H / 3, "%d pixels drawn", drawn);
+        mesh.parts = NULL;
+        sr_framebuffer_destroy(&fb);
+        sr_mesh_free(&mesh);
     }
 }

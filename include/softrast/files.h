@@ -115,9 +115,16 @@ SR_API bool sr_image_write_png(const char *path, const uint32_t *pixels, int wid
 /* The raw depth buffer as PFM: header "Pf\n<W> <H>\n-1\n", then float32
  * little-endian rows from the bottom row up, as the PFM format says. */
 SR_API bool sr_image_write_pfm(const char *path, const float *depth, int width, int height, sr_error *err);
-/* width x height float32 values (row 0 first) as a NumPy .npy file of shape
- * (height, width), dtype '<f4': numpy.load reads it as it is. */
-SR_API bool sr_image_write_npy(const char *path, const float *values, int width, int height, sr_error *err);
+/* width x height x channels values (row 0 first, a pixel's channels
+ * together) as a NumPy .npy file of shape (height, width), or (height,
+ * width, channels) for more than one, dtype '<f4' or '<u4': numpy.load
+ * reads it as it is. */
+typedef enum sr_npy_type { SR_NPY_FLOAT32 = 0, SR_NPY_UINT32 } sr_npy_type;
+SR_API bool sr_image_write_npy(const char *path, const void *values, sr_npy_type type, int width, int height,
+                               int channels, sr_error *err);
+/* A 16-bit gray PNG of width x height values, row 0 at the top: ids, or
+ * depth in millimetres. */
+SR_API bool sr_image_write_png16(const char *path, const uint16_t *values, int width, int height, sr_error *err);
 /* The depth buffer visualised as by sr_framebuffer_depth_to_gray. */
 SR_API bool sr_image_write_depth_png(const char *path, const sr_framebuffer *fb, sr_error *err);
 

@@ -244,7 +244,7 @@ SR_API double sr_camera_view_distance(float z_ndc, const void *camera);
 
 typedef enum sr_shade {
     SR_SHADE_LAMBERT = 0, /* one directional light on the albedo (texture, vertex color or gray) */
-    SR_SHADE_ID,          /* triangle id + 1 as 0xRRGGBB */
+    SR_SHADE_ID,          /* triangle id + 1, all 32 bits (a PNG shows its low 24 as 0xRRGGBB) */
     SR_SHADE_COLOR,       /* vertex colors */
     SR_SHADE_NORMAL,      /* world normal mapped to 0.5 + 0.5 n */
     SR_SHADE_TEXTURE,     /* texture at the interpolated uv */
@@ -376,16 +376,27 @@ SR_API void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh);
 SR_API void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, int width, int height,
                                 sr_draw_desc *desc);
 
-/* View depth (z along the optical axis, in mesh units) and range (distance
- * from the camera centre) per pixel, from ids: the framebuffer of an
- * SR_SHADE_ID draw of mesh with cam's matrices. Each is the ray through the
- * pixel centre met with the plane of the triangle the pixel shows, in
- * double, rounded to float once (where the ray runs in that plane, the
- * depth buffer's value); `invalid` where no triangle is drawn. depth and
- * range are width x height floats, row 0 at the top; either may be NULL.
- * False, with one line in err, for a mesh of more triangles than the id
- * colors tell apart (2^24 − 1). */
-SR_API bool sr_pinhole_depth(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids, float invalid,
-                             float *depth, float *range, sr_error *err);
+/* What sr_pinhole_resolve writes per pixel, each width x height values
+ * (normals: x 3), row 0 at the top; a NULL array is not wanted. */
+typedef struct sr_pinhole_outputs {
+    float *depth;     /* z along the optical axis, in mesh units */
+    float *range;     /* distance from the camera centre to the surface point */
+    uint32_t *face_ids; /* triangle id + 1 (0: nothing drawn) */
+    uint32_t *part_ids; /* sr_mesh.parts index + 1, 1 for a mesh of one part (0: nothing drawn) */
+    float *normals;   /* unit normal in the camera frame (x right, y down, z forward); 0 where nothing */
+    bool interpolated_normals; /* the vertex normals interpolated at the surface point; false: the
+                                  triangle's own, by its winding (the file's front side) */
+    float invalid;    /* depth and range where nothing is drawn: 0, or NAN */
+} sr_pinhole_outputs;
+
+/* The outputs asked for, from ids: the framebuffer of an SR_SHADE_ID draw
+ * of mesh with cam's matrices (its color the triangle id + 1 per pixel).
+ * Each pixel's surface point is the ray through its centre met with the
+ * plane of the triangle it shows, in double, each value rounded to float
+ * once (where the ray runs in that plane, the depth buffer's value gives
+ * the point). False, with one line in err, for a mesh without positions,
+ * or interpolated normals of a mesh without normals. */
+SR_API bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
+                               const sr_pinhole_outputs *out, sr_error *err);
 
 #endif

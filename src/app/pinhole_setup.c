@@ -7,6 +7,30 @@
 #include "pinhole_setup.h"
 
 static const char *const INVALID_NAMES[] = { "zero", "nan", NULL };
+static const char *const NORMAL_KIND_NAMES[] = { "geometric", "interpolated", NULL };
+
+/* The outputs measured from the camera: what each holds, the extensions
+ * a writer has for it. */
+typedef enum output_kind { OUT_DEPTH, OUT_RANGE, OUT_FACE_IDS, OUT_PART_IDS, OUT_NORMALS, OUTPUTS } output_kind;
+
+static const struct {
+    const char *option, *extensions[3];
+} OUTPUT_FORMATS[OUTPUTS] = {
+    [OUT_DEPTH] = { "--view-depth", { ".npy", ".pfm" } },
+    [OUT_RANGE] = { "--range", { ".npy", ".pfm" } },
+    [OUT_FACE_IDS] = { "--face-ids", { ".npy", ".png" } },
+    [OUT_PART_IDS] = { "--part-ids", { ".npy", ".png" } },
+    [OUT_NORMALS] = { "--normals", { ".npy" } },
+};
+
+static void output_paths(const sr_pinhole_setup *p, const char *paths[OUTPUTS])
+{
+    paths[OUT_DEPTH] = p->view_depth_path;
+    paths[OUT_RANGE] = p->range_path;
+    paths[OUT_FACE_IDS] = p->face_ids_path;
+    paths[OUT_PART_IDS] = p->part_ids_path;
+    paths[OUT_NORMALS] = p->normals_path;
+}
 
 void sr_pinhole_setup_options(sr_pinhole_setup *p, sr_option *table)
 {
@@ -16,6 +40,10 @@ void sr_pinhole_setup_options(sr_pinhole_setup *p, sr_option *table)
         { "--pose-c2w", SR_OPT_NUMBERS, p->pose_c2w, "16 NUMBERS", "camera-to-world pose, the inverse of --pose-w2c", .count = 16, .seen = &p->c2w_set },
         { "--view-depth", SR_OPT_STRING, &p->view_depth_path, "FILE.npy|.pfm", "z along the optical axis in mesh units, float32 (needs a pose)" },
         { "--range", SR_OPT_STRING, &p->range_path, "FILE.npy|.pfm", "distance from the camera centre, float32 (needs a pose)" },
+        { "--face-ids", SR_OPT_STRING, &p->face_ids_path, "FILE.npy|.png", "triangle id + 1 per pixel, 0 where nothing: uint32 .npy or 16-bit PNG (needs a pose)" },
+        { "--part-ids", SR_OPT_STRING, &p->part_ids_path, "FILE.npy|.png", "the file's mesh + 1 per pixel, 0 where nothing (needs a pose)" },
+        { "--normals", SR_OPT_STRING, &p->normals_path, "FILE.npy", "unit normals in the camera frame, float32 HxWx3 (needs a pose)" },
+        { "--normal-kind", SR_OPT_CHOICE, &p->normal_kind, "geometric|interpolated", "the triangle's normal, or the vertex normals interpolated (default geometric)", .choices = NORMAL_KIND_NAMES },
         { "--invalid", SR_OPT_CHOICE, &p->invalid, "zero|nan", "view depth and range where nothing is drawn (default zero)", .choices = INVALID_NAMES },
     };
     _Static_assert(sizeof entries / sizeof *entries == SR_PINHOLE_OPTION_COUNT, "the entries' count");
@@ -29,15 +57,27 @@ bool sr_pinhole_setup_on(const sr_pinhole_setup *p)
 
 bool sr_pinhole_setup_wants_depth(const sr_pinhole_setup *p)
 {
-    return p->view_depth_path || p->range_path;
+    const char *paths[OUTPUTS];
+    output_paths(p, paths);
+    for (int i = 0; i < OUTPUTS; i++)
+        if (paths[i])
+            return true;
+    return false;
 }
 
-/* The writer a metric output's name asks for: ".npy" or ".pfm", or NULL. */
-static const char *extension(const char *path)
+/* Whether path ends in ext, in any case. */
+static bool ends_with(const char *path, const char *ext)
 {
     const char *dot = strrchr(path, '.');
-    if (dot && (strcasecmp(dot, ".npy") == 0 || strcasecmp(dot, ".pfm") == 0))
-        return dot;
+    return dot && strcasecmp(dot, ext) == 0;
+}
+
+/* The extension of output i's path that a writer has, or NULL. */
+static const char *writer_extension(output_kind i, const char *path)
+{
+    for (int k = 0; k < 3 && OUTPUT_FORMATS[i].extensions[k]; k++)
+        if (ends_with(path, OUTPUT_FORMATS[i].extensions[k]))
+            return OUTPUT_FORMATS[i].extensions[k];
     return NULL;
 }
 
@@ -45,10 +85,15 @@ bool sr_pinhole_setup_check(const sr_pinhole_setup *p, const sr_scene_setup *s, 
 {
     if (p->w2c_set && p->c2w_set)
         return sr_error_set(err, "give one pose: --pose-w2c or --pose-c2w, not both");
+    const char *paths[OUTPUTS];
+    output_paths(p, paths);
     if (!sr_pinhole_setup_on(p)) {
-        if (p->intrinsics_set || sr_pinhole_setup_wants_depth(p))
-            return sr_error_set(err, "%s needs a camera pose: --pose-w2c or --pose-c2w (16 numbers)",
-                                p->intrinsics_set ? "--intrinsics" : p->view_depth_path ? "--view-depth" : "--range");
+        for (int i = 0; i < OUTPUTS; i++)
+            if (paths[i])
+                return sr_error_set(err, "%s needs a camera pose: --pose-w2c or --pose-c2w (16 numbers)",
+                                    OUTPUT_FORMATS[i].option);
+        if (p->intrinsics_set)
+            return sr_error_set(err, "--intrinsics needs a camera pose: --pose-w2c or --pose-c2w (16 numbers)");
         return true;
     }
     if (s->eye_set || s->target_set || s->look_at_set)
@@ -56,11 +101,11 @@ bool sr_pinhole_setup_check(const sr_pinhole_setup *p, const sr_scene_setup *s, 
                                  "--reversed-z are the look-at camera's");
     if (p->intrinsics_set && s->fov_set)
         return sr_error_set(err, "--intrinsics and --fov both give the field of view: give one");
-    const char *outputs[] = { p->view_depth_path, p->range_path };
-    for (int i = 0; i < 2; i++)
-        if (outputs[i] && !extension(outputs[i]))
-            return sr_error_set(err, "%s: no writer for this extension (view depth and range: .npy or .pfm)",
-                                outputs[i]);
+    for (int i = 0; i < OUTPUTS; i++)
+        if (paths[i] && !writer_extension((output_kind)i, paths[i]))
+            return sr_error_set(err, "%s %s: no writer for this extension (%s%s%s)", OUTPUT_FORMATS[i].option,
+                                paths[i], OUTPUT_FORMATS[i].extensions[0], OUTPUT_FORMATS[i].extensions[1] ? " or " : "",
+                                OUTPUT_FORMATS[i].extensions[1] ? OUTPUT_FORMATS[i].extensions[1] : "");
     return true;
 }
 
@@ -93,27 +138,57 @@ bool sr_pinhole_setup_camera(const sr_pinhole_setup *p, const sr_scene_setup *s,
     return true;
 }
 
-static bool write_floats(const char *path, const float *v, int width, int height, sr_error *err)
+/* Ids as a 16-bit PNG, refused with one line past 65535. */
+static bool write_ids_png(const char *path, const uint32_t *ids, int width, int height, sr_error *err)
 {
-    if (strcasecmp(extension(path), ".npy") == 0)
-        return sr_image_write_npy(path, v, width, height, err);
-    /* PFM's rows run bottom to top: the writer takes them top down. */
-    return sr_image_write_pfm(path, v, width, height, err);
+    size_t n = (size_t)width * (size_t)height;
+    uint16_t *gray = malloc(n * sizeof *gray);
+    if (!gray)
+        return sr_error_set(err, "%s: out of memory for a %dx%d image", path, width, height);
+    bool fits = true;
+    for (size_t i = 0; i < n && fits; i++) {
+        fits = ids[i] <= UINT16_MAX;
+        gray[i] = (uint16_t)ids[i];
+    }
+    bool ok = fits ? sr_image_write_png16(path, gray, width, height, err)
+                   : sr_error_set(err, "%s: an id passes 65535, past a 16-bit PNG: write .npy (uint32)", path);
+    free(gray);
+    return ok;
+}
+
+static bool write_output(output_kind i, const char *path, const void *values, int width, int height, sr_error *err)
+{
+    const char *ext = writer_extension(i, path);
+    bool ids = i == OUT_FACE_IDS || i == OUT_PART_IDS;
+    if (strcmp(ext, ".pfm") == 0) /* PFM's rows run bottom to top: the writer turns them */
+        return sr_image_write_pfm(path, values, width, height, err);
+    if (strcmp(ext, ".png") == 0)
+        return write_ids_png(path, values, width, height, err);
+    return sr_image_write_npy(path, values, ids ? SR_NPY_UINT32 : SR_NPY_FLOAT32, width, height,
+                              i == OUT_NORMALS ? 3 : 1, err);
 }
 
 bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, const sr_mesh *mesh,
                             const sr_framebuffer *ids, sr_error *err)
 {
+    const char *paths[OUTPUTS];
+    output_paths(p, paths);
     size_t n = (size_t)ids->width * (size_t)ids->height;
-    float *depth = p->view_depth_path ? malloc(n * sizeof *depth) : NULL;
-    float *range = p->range_path ? malloc(n * sizeof *range) : NULL;
-    bool ok = (!p->view_depth_path || depth) && (!p->range_path || range);
+    void *values[OUTPUTS] = { 0 };
+    bool ok = true;
+    for (int i = 0; i < OUTPUTS; i++)
+        if (paths[i] && !(values[i] = malloc(n * (i == OUT_NORMALS ? 3 : 1) * sizeof(float))))
+            ok = false;
     if (!ok)
-        sr_error_set(err, "out of memory for %dx%d view depth", ids->width, ids->height);
-    ok = ok && sr_pinhole_depth(cam, mesh, ids, p->invalid ? NAN : 0.0f, depth, range, err) &&
-         (!depth || write_floats(p->view_depth_path, depth, ids->width, ids->height, err)) &&
-         (!range || write_floats(p->range_path, range, ids->width, ids->height, err));
-    free(depth);
-    free(range);
+        sr_error_set(err, "out of memory for %dx%d outputs", ids->width, ids->height);
+    sr_pinhole_outputs out = { .depth = values[OUT_DEPTH], .range = values[OUT_RANGE],
+                               .face_ids = values[OUT_FACE_IDS], .part_ids = values[OUT_PART_IDS],
+                               .normals = values[OUT_NORMALS], .interpolated_normals = p->normal_kind == 1,
+                               .invalid = p->invalid ? NAN : 0.0f };
+    ok = ok && sr_pinhole_resolve(cam, mesh, ids, &out, err);
+    for (int i = 0; ok && i < OUTPUTS; i++)
+        ok = !paths[i] || write_output((output_kind)i, paths[i], values[i], ids->width, ids->height, err);
+    for (int i = 0; i < OUTPUTS; i++)
+        free(values[i]);
     return ok;
 }

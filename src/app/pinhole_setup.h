@@ -1,5 +1,6 @@
 /* pinhole_setup.h — `render`'s pinhole camera (--intrinsics, --pose-w2c,
- * --pose-c2w) and the metric outputs it gives (--view-depth, --range):
+ * --pose-c2w) and the outputs measured from it (--view-depth, --range,
+ * --face-ids, --part-ids, --normals):
  * the options, their checks against the look-at camera's, the camera, and
  * the files. */
 #ifndef SOFTRAST_APP_PINHOLE_SETUP_H
@@ -7,14 +8,15 @@
 
 #include "scene_setup.h"
 
-#define SR_PINHOLE_OPTION_COUNT 6
+#define SR_PINHOLE_OPTION_COUNT 10
 
 typedef struct sr_pinhole_setup {
     double intrinsics[4];               /* fx, fy, cx, cy */
     double pose_w2c[16], pose_c2w[16];  /* row-major */
     bool intrinsics_set, w2c_set, c2w_set;
-    const char *view_depth_path, *range_path;
-    int invalid; /* 0: 0 where nothing is drawn, 1: NaN */
+    const char *view_depth_path, *range_path, *face_ids_path, *part_ids_path, *normals_path;
+    int invalid;     /* 0: 0 where nothing is drawn, 1: NaN */
+    int normal_kind; /* 0: the triangle's, 1: the vertex normals interpolated */
 } sr_pinhole_setup;
 
 /* The options' table entries, SR_PINHOLE_OPTION_COUNT of them, into table. */
@@ -32,11 +34,11 @@ bool sr_pinhole_setup_check(const sr_pinhole_setup *p, const sr_scene_setup *s, 
 bool sr_pinhole_setup_camera(const sr_pinhole_setup *p, const sr_scene_setup *s, const sr_mesh *mesh,
                              sr_pinhole *cam, sr_error *err);
 
-/* Whether any metric output was asked for. */
+/* Whether any of the outputs measured from the pinhole camera was asked for. */
 bool sr_pinhole_setup_wants_depth(const sr_pinhole_setup *p);
 
-/* View depth and range from ids (an SR_SHADE_ID draw with cam), written to
- * the files asked for. */
+/* View depth, range, ids and normals from ids (an SR_SHADE_ID draw with
+ * cam), written to the files asked for. */
 bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, const sr_mesh *mesh,
                             const sr_framebuffer *ids, sr_error *err);
 

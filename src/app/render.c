@@ -179,9 +179,10 @@ static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_
  * the triangles drawn. */
 static void report_done(const render_job *job, const sr_framebuffer *fb, const sr_stats *s)
 {
-    const char *paths[] = { job->out_path, job->depth_path, job->depth_png_path, job->pinhole.view_depth_path,
-                            job->pinhole.range_path };
-    char line[3 * SR_ERROR_MAX];
+    const sr_pinhole_setup *p = &job->pinhole;
+    const char *paths[] = { job->out_path,     job->depth_path,     job->depth_png_path, p->view_depth_path,
+                            p->range_path,     p->face_ids_path,    p->part_ids_path,    p->normals_path };
+    char line[8 * SR_ERROR_MAX];
     int n = snprintf(line, sizeof line, "softrast: "), written = 0;
     for (size_t i = 0; i < sizeof paths / sizeof *paths; i++)
         if (paths[i] && n < (int)sizeof line)
@@ -208,11 +209,13 @@ static bool use_pinhole(render_job *job, const sr_scene *scene, sr_pinhole *cam,
     return true;
 }
 
-/* View depth and range need each pixel's triangle: the frame's own ids in
- * id shading, else one more draw of them. */
-static bool write_metric(const render_job *job, const sr_scene *scene, const sr_pinhole *cam,
-                         const sr_draw_desc *desc, sr_error *err)
+/* The outputs measured from the camera need each pixel's triangle: the
+ * frame's own ids in id shading, else one more draw of them. */
+static bool write_metric(const render_job *job, sr_scene *scene, const sr_pinhole *cam, const sr_draw_desc *desc,
+                         sr_error *err)
 {
+    if (job->pinhole.normals_path && job->pinhole.normal_kind && !sr_mesh_compute_normals(&scene->mesh, err))
+        return false;
     if (desc->shade == SR_SHADE_ID)
         return sr_pinhole_setup_write(&job->pinhole, cam, &scene->mesh, &scene->fb, err);
     sr_framebuffer ids;

@@ -35,4 +35,17 @@ float sr_vec3_distance_d(const vec3 a, const vec3 b);
 /* Each entry rounded to float once, by sr_double_to_float. */
 void sr_dmat4_to_mat4(const sr_dmat4 *a, mat4 out);
 
+/* Double 3-vectors, for what must not round to float on the way. */
+static inline double sr_dvec3_dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline void sr_dvec3_cross(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
 #endif

@@ -207,7 +207,7 @@ static SR_ALWAYS_INLINE uint32_t sr_shade_fragment(sr_shade mode, const sr_shade
 {
     switch (mode) {
     case SR_SHADE_ID:
-        return (triangle_id + 1u) & 0xFFFFFFu;
+        return triangle_id + 1u;
     case SR_SHADE_COLOR:
         return sr_shade_pack(var[c->layout.color], var[c->layout.color + 1], var[c->layout.color + 2]);
     case SR_SHADE_NORMAL: {

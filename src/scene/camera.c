@@ -70,21 +70,9 @@ static void dvec3_from(const float *v, double out[3])
         out[k] = v[k];
 }
 
-static double dvec3_dot(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void dvec3_cross(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 static void dvec3_normalize(double v[3])
 {
-    double len = sqrt(dvec3_dot(v, v));
+    double len = sqrt(sr_dvec3_dot(v, v));
     for (int k = 0; k < 3; k++)
         v[k] /= len;
 }
@@ -94,18 +82,18 @@ static sr_dmat4 lookat_lh_d(const double eye[3], const double target[3], const d
 {
     double f[3] = { target[0] - eye[0], target[1] - eye[1], target[2] - eye[2] }, s[3], u[3];
     dvec3_normalize(f);
-    dvec3_cross(up, f, s);
+    sr_dvec3_cross(up, f, s);
     dvec3_normalize(s);
-    dvec3_cross(f, s, u);
+    sr_dvec3_cross(f, s, u);
     sr_dmat4 v = sr_dmat4_identity();
     for (int k = 0; k < 3; k++) {
         v.m[k][0] = s[k];
         v.m[k][1] = u[k];
         v.m[k][2] = f[k];
     }
-    v.m[3][0] = -dvec3_dot(s, eye);
-    v.m[3][1] = -dvec3_dot(u, eye);
-    v.m[3][2] = -dvec3_dot(f, eye);
+    v.m[3][0] = -sr_dvec3_dot(s, eye);
+    v.m[3][1] = -sr_dvec3_dot(u, eye);
+    v.m[3][2] = -sr_dvec3_dot(f, eye);
     return v;
 }
 

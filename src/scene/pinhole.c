@@ -6,6 +6,7 @@
 
 #include "pipeline/02_assemble.h"
 #include "softrast/softrast.h"
+#include "core/dmat4.h"
 #include "core/error.h"
 
 /* Room around the mesh's nearest and farthest corners when the clip planes
@@ -15,9 +16,6 @@
 #define FIT_NEAR_SLACK 0.999
 #define FIT_FAR_SLACK 1.001
 #define FIT_NEAR_MIN 1e-6
-
-/* The ids an SR_SHADE_ID color tells apart: id + 1 in 24 bits. */
-#define ID_COLOR_MASK 0xFFFFFFu
 
 static bool all_finite(const double *v, int n)
 {
@@ -155,59 +153,139 @@ static double z_of_depth(const sr_pinhole *cam, float z_ndc)
     return f * n / (f - (double)z_ndc * (f - n));
 }
 
-/* Triangle `slot`'s plane in the camera frame: a point on it and its normal. */
-typedef struct plane {
-    uint32_t slot;
-    double point[3], normal[3];
-} plane;
+/* A file-frame direction (a normal) in the camera frame: the pose's rotation. */
+static void rotate(const sr_pinhole *cam, const double d[3], double out[3])
+{
+    for (int r = 0; r < 3; r++)
+        out[r] = cam->w2c[r][0] * d[0] + cam->w2c[r][1] * d[1] + cam->w2c[r][2] * d[2];
+}
 
-static void plane_of(const sr_pinhole *cam, const sr_mesh *mesh, uint32_t slot, plane *p)
+static void normalize_into(const double v[3], float out[3])
+{
+    double length = sqrt(sr_dvec3_dot(v, v));
+    for (int k = 0; k < 3; k++)
+        out[k] = length > 0.0 ? (float)(v[k] / length) : 0.0f;
+}
+
+/* Triangle `slot` in the camera frame: its corner v0, edges e1 = v1 − v0
+ * and e2 = v2 − v0, their cross product e1 × e2, its normal on the file's
+ * front side, its part and its vertex normals. */
+typedef struct resolved_triangle {
+    uint32_t slot, part;
+    double v0[3], e1[3], e2[3], cross[3], cross_squared, front[3];
+    double vertex_normals[3][3];
+} resolved_triangle;
+
+static uint32_t part_of(const sr_mesh *mesh, uint32_t slot)
+{
+    uint32_t lo = 0, hi = mesh->part_count;
+    while (hi - lo > 1) { /* the last part whose first triangle is at or before slot */
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (mesh->parts[mid].first_triangle <= slot)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return mesh->part_count ? lo + 1 : 1;
+}
+
+static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, uint32_t slot, resolved_triangle *t)
 {
     uint32_t idx[3];
     double v[3][3];
     sr_assemble_triangle(mesh, slot, idx); /* drawn, so not degenerate */
     for (int k = 0; k < 3; k++)
         to_camera(cam, mesh, mesh->positions[idx[k]], v[k]);
-    double a[3], b[3];
     for (int k = 0; k < 3; k++) {
-        a[k] = v[1][k] - v[0][k];
-        b[k] = v[2][k] - v[0][k];
-        p->point[k] = v[0][k];
+        t->v0[k] = v[0][k];
+        t->e1[k] = v[1][k] - v[0][k];
+        t->e2[k] = v[2][k] - v[0][k];
     }
-    p->normal[0] = a[1] * b[2] - a[2] * b[1];
-    p->normal[1] = a[2] * b[0] - a[0] * b[2];
-    p->normal[2] = a[0] * b[1] - a[1] * b[0];
-    p->slot = slot;
+    sr_dvec3_cross(t->e1, t->e2, t->cross);
+    t->cross_squared = sr_dvec3_dot(t->cross, t->cross);
+    /* The loader reversed a z-negated file's winding: its front side is the other one. */
+    for (int k = 0; k < 3; k++)
+        t->front[k] = mesh->z_negated ? -t->cross[k] : t->cross[k];
+    for (int c = 0; mesh->normals && c < 3; c++) {
+        const float *n = mesh->normals[idx[c]];
+        double file[3] = { n[0], n[1], mesh->z_negated ? -(double)n[2] : n[2] };
+        rotate(cam, file, t->vertex_normals[c]);
+    }
+    t->part = mesh->parts ? part_of(mesh, slot) : 1;
+    t->slot = slot;
 }
 
-bool sr_pinhole_depth(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids, float invalid,
-                      float *depth, float *range, sr_error *err)
+/* The surface point of pixel (x, y) on triangle t: its view z, and the
+ * point itself. */
+static double surface_point(const sr_pinhole *cam, const resolved_triangle *t, int x, int y, float stored_depth,
+                            double point[3])
+{
+    const double ray[3] = { (x - cam->cx) / cam->fx, (y - cam->cy) / cam->fy, 1.0 };
+    double z = sr_dvec3_dot(t->cross, t->v0) / sr_dvec3_dot(t->cross, ray);
+    if (!(z > 0.0) || !isfinite(z)) /* the ray runs in the plane: an edge-on triangle */
+        z = z_of_depth(cam, stored_depth);
+    for (int k = 0; k < 3; k++)
+        point[k] = z * ray[k];
+    return z;
+}
+
+/* The vertex normals at point p of t, weighted by its barycentrics:
+ * λ1 = c·((p − v0) × e2) / c·c and λ2 = c·(e1 × (p − v0)) / c·c, c = e1 × e2. */
+static void interpolated_normal(const resolved_triangle *t, const double p[3], double out[3])
+{
+    double w[3], a[3], b[3];
+    for (int k = 0; k < 3; k++)
+        w[k] = p[k] - t->v0[k];
+    sr_dvec3_cross(w, t->e2, a);
+    sr_dvec3_cross(t->e1, w, b);
+    double l1 = sr_dvec3_dot(t->cross, a) / t->cross_squared, l2 = sr_dvec3_dot(t->cross, b) / t->cross_squared;
+    for (int k = 0; k < 3; k++)
+        out[k] = (1.0 - l1 - l2) * t->vertex_normals[0][k] + l1 * t->vertex_normals[1][k] +
+                 l2 * t->vertex_normals[2][k];
+}
+
+bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
+                        const sr_pinhole_outputs *out, sr_error *err)
 {
     if (!mesh->positions)
         return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
-    if (sr_mesh_triangle_slots(mesh) >= ID_COLOR_MASK)
-        return sr_error_set(err, "%u triangles: view depth tells apart at most %u", sr_mesh_triangle_slots(mesh),
-                            ID_COLOR_MASK - 1);
-    plane p = { .slot = UINT32_MAX };
+    if (out->normals && out->interpolated_normals && !mesh->normals)
+        return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
+    resolved_triangle t = { .slot = UINT32_MAX };
     for (int y = 0; y < ids->height; y++)
         for (int x = 0; x < ids->width; x++) {
             size_t at = (size_t)y * (size_t)ids->width + (size_t)x;
-            uint32_t id = ids->color[at] & ID_COLOR_MASK;
-            double z = NAN, length = NAN;
-            if (id != 0) {
-                if (p.slot != id - 1)
-                    plane_of(cam, mesh, id - 1, &p);
-                const double ray[3] = { (x - cam->cx) / cam->fx, (y - cam->cy) / cam->fy, 1.0 };
-                double along = p.normal[0] * ray[0] + p.normal[1] * ray[1] + p.normal[2] * ray[2];
-                z = (p.normal[0] * p.point[0] + p.normal[1] * p.point[1] + p.normal[2] * p.point[2]) / along;
-                if (!(z > 0.0) || !isfinite(z)) /* the ray runs in the plane: an edge-on triangle */
-                    z = z_of_depth(cam, ids->depth[at]);
-                length = z * sqrt(ray[0] * ray[0] + ray[1] * ray[1] + 1.0);
+            uint32_t id = ids->color[at];
+            if (id == 0) {
+                if (out->depth)
+                    out->depth[at] = out->invalid;
+                if (out->range)
+                    out->range[at] = out->invalid;
+                if (out->face_ids)
+                    out->face_ids[at] = 0;
+                if (out->part_ids)
+                    out->part_ids[at] = 0;
+                if (out->normals)
+                    memset(&out->normals[3 * at], 0, 3 * sizeof *out->normals);
+                continue;
             }
-            if (depth)
-                depth[at] = id ? (float)z : invalid;
-            if (range)
-                range[at] = id ? (float)length : invalid;
+            if (t.slot != id - 1)
+                resolve_triangle(cam, mesh, id - 1, &t);
+            double p[3], z = surface_point(cam, &t, x, y, ids->depth[at], p);
+            if (out->depth)
+                out->depth[at] = (float)z;
+            if (out->range)
+                out->range[at] = (float)sqrt(sr_dvec3_dot(p, p));
+            if (out->face_ids)
+                out->face_ids[at] = id;
+            if (out->part_ids)
+                out->part_ids[at] = t.part;
+            if (out->normals) {
+                double n[3];
+                if (out->interpolated_normals)
+                    interpolated_normal(&t, p, n);
+                normalize_into(out->interpolated_normals ? n : t.front, &out->normals[3 * at]);
+            }
         }
     return true;
 }

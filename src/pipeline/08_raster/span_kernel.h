@@ -439,7 +439,7 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     vi zero = { 0 };
     switch (mode) {
     case SR_SHADE_ID:
-        return zero + (int32_t)((id + 1u) & 0xFFFFFFu);
+        return zero + (int32_t)(id + 1u);
     case SR_SHADE_COLOR:
         return pack_lanes(var[0], var[1], var[2]);
     case SR_SHADE_NORMAL:
