@@ -9,27 +9,24 @@
 static const char *const INVALID_NAMES[] = { "zero", "nan", NULL };
 static const char *const NORMAL_KIND_NAMES[] = { "geometric", "interpolated", NULL };
 
-/* The outputs measured from the camera: what each holds, the extensions
- * a writer has for it. */
-typedef enum output_kind { OUT_DEPTH, OUT_RANGE, OUT_FACE_IDS, OUT_PART_IDS, OUT_NORMALS, OUTPUTS } output_kind;
-
 static const struct {
-    const char *option, *extensions[3];
-} OUTPUT_FORMATS[OUTPUTS] = {
-    [OUT_DEPTH] = { "--view-depth", { ".npy", ".pfm" } },
-    [OUT_RANGE] = { "--range", { ".npy", ".pfm" } },
-    [OUT_FACE_IDS] = { "--face-ids", { ".npy", ".png" } },
-    [OUT_PART_IDS] = { "--part-ids", { ".npy", ".png" } },
-    [OUT_NORMALS] = { "--normals", { ".npy" } },
+    const char *option, *key, *extensions[3];
+} MEASURED[SR_MEASURED_COUNT] = {
+    [SR_MEASURED_DEPTH] = { "--view-depth", "depth_file_path", { ".npy", ".pfm" } },
+    [SR_MEASURED_RANGE] = { "--range", "range_file_path", { ".npy", ".pfm" } },
+    [SR_MEASURED_FACE_IDS] = { "--face-ids", "face_ids_file_path", { ".npy", ".png" } },
+    [SR_MEASURED_PART_IDS] = { "--part-ids", "part_ids_file_path", { ".npy", ".png" } },
+    [SR_MEASURED_NORMALS] = { "--normals", "normals_file_path", { ".npy" } },
 };
 
-static void output_paths(const sr_pinhole_setup *p, const char *paths[OUTPUTS])
+const char *sr_measured_option(sr_measured k)
 {
-    paths[OUT_DEPTH] = p->view_depth_path;
-    paths[OUT_RANGE] = p->range_path;
-    paths[OUT_FACE_IDS] = p->face_ids_path;
-    paths[OUT_PART_IDS] = p->part_ids_path;
-    paths[OUT_NORMALS] = p->normals_path;
+    return MEASURED[k].option;
+}
+
+const char *sr_measured_key(sr_measured k)
+{
+    return MEASURED[k].key;
 }
 
 void sr_pinhole_setup_options(sr_pinhole_setup *p, sr_option *table)
@@ -38,11 +35,11 @@ void sr_pinhole_setup_options(sr_pinhole_setup *p, sr_option *table)
         { "--intrinsics", SR_OPT_NUMBERS, p->intrinsics, "FX,FY,CX,CY", "pinhole intrinsics in pixels, OpenCV's (the top-left pixel's centre is 0,0; default: --fov, centred)", .count = 4, .seen = &p->intrinsics_set },
         { "--pose-w2c", SR_OPT_NUMBERS, p->pose_w2c, "16 NUMBERS", "world-to-camera pose, a row-major 4x4 in the file's frame; camera x right, y down, z forward", .count = 16, .seen = &p->w2c_set },
         { "--pose-c2w", SR_OPT_NUMBERS, p->pose_c2w, "16 NUMBERS", "camera-to-world pose, the inverse of --pose-w2c", .count = 16, .seen = &p->c2w_set },
-        { "--view-depth", SR_OPT_STRING, &p->view_depth_path, "FILE.npy|.pfm", "z along the optical axis in mesh units, float32 (needs a pose)" },
-        { "--range", SR_OPT_STRING, &p->range_path, "FILE.npy|.pfm", "distance from the camera centre, float32 (needs a pose)" },
-        { "--face-ids", SR_OPT_STRING, &p->face_ids_path, "FILE.npy|.png", "triangle id + 1 per pixel, 0 where nothing: uint32 .npy or 16-bit PNG (needs a pose)" },
-        { "--part-ids", SR_OPT_STRING, &p->part_ids_path, "FILE.npy|.png", "the file's mesh + 1 per pixel, 0 where nothing (needs a pose)" },
-        { "--normals", SR_OPT_STRING, &p->normals_path, "FILE.npy", "unit normals in the camera frame, float32 HxWx3 (needs a pose)" },
+        { "--view-depth", SR_OPT_STRING, &p->paths[SR_MEASURED_DEPTH], "FILE.npy|.pfm", "z along the optical axis in mesh units, float32 (needs a pose)" },
+        { "--range", SR_OPT_STRING, &p->paths[SR_MEASURED_RANGE], "FILE.npy|.pfm", "distance from the camera centre, float32 (needs a pose)" },
+        { "--face-ids", SR_OPT_STRING, &p->paths[SR_MEASURED_FACE_IDS], "FILE.npy|.png", "triangle id + 1 per pixel, 0 where nothing: uint32 .npy or 16-bit PNG (needs a pose)" },
+        { "--part-ids", SR_OPT_STRING, &p->paths[SR_MEASURED_PART_IDS], "FILE.npy|.png", "the file's mesh + 1 per pixel, 0 where nothing (needs a pose)" },
+        { "--normals", SR_OPT_STRING, &p->paths[SR_MEASURED_NORMALS], "FILE.npy", "unit normals in the camera frame, float32 HxWx3 (needs a pose)" },
         { "--normal-kind", SR_OPT_CHOICE, &p->normal_kind, "geometric|interpolated", "the triangle's normal, or the vertex normals interpolated (default geometric)", .choices = NORMAL_KIND_NAMES },
         { "--invalid", SR_OPT_CHOICE, &p->invalid, "zero|nan", "view depth and range where nothing is drawn (default zero)", .choices = INVALID_NAMES },
     };
@@ -57,10 +54,8 @@ bool sr_pinhole_setup_on(const sr_pinhole_setup *p)
 
 bool sr_pinhole_setup_wants_depth(const sr_pinhole_setup *p)
 {
-    const char *paths[OUTPUTS];
-    output_paths(p, paths);
-    for (int i = 0; i < OUTPUTS; i++)
-        if (paths[i])
+    for (int i = 0; i < SR_MEASURED_COUNT; i++)
+        if (p->paths[i])
             return true;
     return false;
 }
@@ -73,25 +68,34 @@ static bool ends_with(const char *path, const char *ext)
 }
 
 /* The extension of output i's path that a writer has, or NULL. */
-static const char *writer_extension(output_kind i, const char *path)
+static const char *writer_extension(sr_measured i, const char *path)
 {
-    for (int k = 0; k < 3 && OUTPUT_FORMATS[i].extensions[k]; k++)
-        if (ends_with(path, OUTPUT_FORMATS[i].extensions[k]))
-            return OUTPUT_FORMATS[i].extensions[k];
+    for (int k = 0; k < 3 && MEASURED[i].extensions[k]; k++)
+        if (ends_with(path, MEASURED[i].extensions[k]))
+            return MEASURED[i].extensions[k];
     return NULL;
+}
+
+bool sr_pinhole_setup_check_outputs(const sr_pinhole_setup *p, sr_error *err)
+{
+    for (int i = 0; i < SR_MEASURED_COUNT; i++)
+        if (p->paths[i] && !writer_extension((sr_measured)i, p->paths[i]))
+            return sr_error_set(err, "%s %s: no writer for this extension (%s%s%s)", MEASURED[i].option, p->paths[i],
+                                MEASURED[i].extensions[0], MEASURED[i].extensions[1] ? " or " : "",
+                                MEASURED[i].extensions[1] ? MEASURED[i].extensions[1] : "");
+    return true;
 }
 
 bool sr_pinhole_setup_check(const sr_pinhole_setup *p, const sr_scene_setup *s, sr_error *err)
 {
     if (p->w2c_set && p->c2w_set)
         return sr_error_set(err, "give one pose: --pose-w2c or --pose-c2w, not both");
-    const char *paths[OUTPUTS];
-    output_paths(p, paths);
+    const char *const *paths = p->paths;
     if (!sr_pinhole_setup_on(p)) {
-        for (int i = 0; i < OUTPUTS; i++)
+        for (int i = 0; i < SR_MEASURED_COUNT; i++)
             if (paths[i])
                 return sr_error_set(err, "%s needs a camera pose: --pose-w2c or --pose-c2w (16 numbers)",
-                                    OUTPUT_FORMATS[i].option);
+                                    MEASURED[i].option);
         if (p->intrinsics_set)
             return sr_error_set(err, "--intrinsics needs a camera pose: --pose-w2c or --pose-c2w (16 numbers)");
         return true;
@@ -101,12 +105,7 @@ bool sr_pinhole_setup_check(const sr_pinhole_setup *p, const sr_scene_setup *s, 
                                  "--reversed-z are the look-at camera's");
     if (p->intrinsics_set && s->fov_set)
         return sr_error_set(err, "--intrinsics and --fov both give the field of view: give one");
-    for (int i = 0; i < OUTPUTS; i++)
-        if (paths[i] && !writer_extension((output_kind)i, paths[i]))
-            return sr_error_set(err, "%s %s: no writer for this extension (%s%s%s)", OUTPUT_FORMATS[i].option,
-                                paths[i], OUTPUT_FORMATS[i].extensions[0], OUTPUT_FORMATS[i].extensions[1] ? " or " : "",
-                                OUTPUT_FORMATS[i].extensions[1] ? OUTPUT_FORMATS[i].extensions[1] : "");
-    return true;
+    return sr_pinhole_setup_check_outputs(p, err);
 }
 
 bool sr_pinhole_setup_camera(const sr_pinhole_setup *p, const sr_scene_setup *s, const sr_mesh *mesh,
@@ -156,39 +155,66 @@ static bool write_ids_png(const char *path, const uint32_t *ids, int width, int 
     return ok;
 }
 
-static bool write_output(output_kind i, const char *path, const void *values, int width, int height, sr_error *err)
+static bool write_output(sr_measured i, const char *path, const void *values, int width, int height, sr_error *err)
 {
     const char *ext = writer_extension(i, path);
-    bool ids = i == OUT_FACE_IDS || i == OUT_PART_IDS;
+    bool ids = i == SR_MEASURED_FACE_IDS || i == SR_MEASURED_PART_IDS;
     if (strcmp(ext, ".pfm") == 0) /* PFM's rows run bottom to top: the writer turns them */
         return sr_image_write_pfm(path, values, width, height, err);
     if (strcmp(ext, ".png") == 0)
         return write_ids_png(path, values, width, height, err);
     return sr_image_write_npy(path, values, ids ? SR_NPY_UINT32 : SR_NPY_FLOAT32, width, height,
-                              i == OUT_NORMALS ? 3 : 1, err);
+                              i == SR_MEASURED_NORMALS ? 3 : 1, err);
 }
 
-bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, const sr_mesh *mesh,
-                            const sr_framebuffer *ids, sr_error *err)
+/* The outputs asked for, resolved from ids (an SR_SHADE_ID draw with cam). */
+static bool write_resolved(const sr_pinhole_setup *p, const sr_pinhole *cam, const sr_mesh *mesh,
+                           const sr_framebuffer *ids, sr_error *err)
 {
-    const char *paths[OUTPUTS];
-    output_paths(p, paths);
     size_t n = (size_t)ids->width * (size_t)ids->height;
-    void *values[OUTPUTS] = { 0 };
+    void *values[SR_MEASURED_COUNT] = { 0 };
     bool ok = true;
-    for (int i = 0; i < OUTPUTS; i++)
-        if (paths[i] && !(values[i] = malloc(n * (i == OUT_NORMALS ? 3 : 1) * sizeof(float))))
+    for (int i = 0; i < SR_MEASURED_COUNT; i++)
+        if (p->paths[i] && !(values[i] = malloc(n * (i == SR_MEASURED_NORMALS ? 3 : 1) * sizeof(float))))
             ok = false;
     if (!ok)
         sr_error_set(err, "out of memory for %dx%d outputs", ids->width, ids->height);
-    sr_pinhole_outputs out = { .depth = values[OUT_DEPTH], .range = values[OUT_RANGE],
-                               .face_ids = values[OUT_FACE_IDS], .part_ids = values[OUT_PART_IDS],
-                               .normals = values[OUT_NORMALS], .interpolated_normals = p->normal_kind == 1,
+    sr_pinhole_outputs out = { .depth = values[SR_MEASURED_DEPTH], .range = values[SR_MEASURED_RANGE],
+                               .face_ids = values[SR_MEASURED_FACE_IDS], .part_ids = values[SR_MEASURED_PART_IDS],
+                               .normals = values[SR_MEASURED_NORMALS], .interpolated_normals = p->normal_kind == 1,
                                .invalid = p->invalid ? NAN : 0.0f };
     ok = ok && sr_pinhole_resolve(cam, mesh, ids, &out, err);
-    for (int i = 0; ok && i < OUTPUTS; i++)
-        ok = !paths[i] || write_output((output_kind)i, paths[i], values[i], ids->width, ids->height, err);
-    for (int i = 0; i < OUTPUTS; i++)
+    for (int i = 0; ok && i < SR_MEASURED_COUNT; i++)
+        ok = !p->paths[i] || write_output((sr_measured)i, p->paths[i], values[i], ids->width, ids->height, err);
+    for (int i = 0; i < SR_MEASURED_COUNT; i++)
         free(values[i]);
+    return ok;
+}
+
+void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, const sr_scene *scene,
+                           sr_draw_desc *desc)
+{
+    sr_pinhole_matrices(cam, &scene->mesh, scene->fb.width, scene->fb.height, desc);
+    if (!s->cull_set)
+        desc->cull = SR_CULL_NONE;
+}
+
+bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, sr_scene *scene,
+                            const sr_draw_desc *desc, sr_error *err)
+{
+    if (!sr_pinhole_setup_wants_depth(p))
+        return true;
+    if (p->paths[SR_MEASURED_NORMALS] && p->normal_kind && !sr_mesh_compute_normals(&scene->mesh, err))
+        return false;
+    if (desc->shade == SR_SHADE_ID)
+        return write_resolved(p, cam, &scene->mesh, &scene->fb, err);
+    sr_framebuffer ids;
+    if (!sr_framebuffer_create(&ids, scene->fb.width, scene->fb.height, err))
+        return false;
+    sr_draw_desc id_desc = *desc;
+    id_desc.shade = SR_SHADE_ID;
+    id_desc.clear = true;
+    bool ok = sr_draw(&ids, &id_desc, NULL, err) && write_resolved(p, cam, &scene->mesh, &ids, err);
+    sr_framebuffer_destroy(&ids);
     return ok;
 }

@@ -10,11 +10,26 @@
 
 #define SR_PINHOLE_OPTION_COUNT 10
 
+/* The outputs measured from the camera. */
+typedef enum sr_measured {
+    SR_MEASURED_DEPTH,
+    SR_MEASURED_RANGE,
+    SR_MEASURED_FACE_IDS,
+    SR_MEASURED_PART_IDS,
+    SR_MEASURED_NORMALS,
+    SR_MEASURED_COUNT
+} sr_measured;
+
+/* An output's option ("--view-depth") and its key in a transforms.json
+ * frame ("depth_file_path"). */
+const char *sr_measured_option(sr_measured k);
+const char *sr_measured_key(sr_measured k);
+
 typedef struct sr_pinhole_setup {
     double intrinsics[4];               /* fx, fy, cx, cy */
     double pose_w2c[16], pose_c2w[16];  /* row-major */
     bool intrinsics_set, w2c_set, c2w_set;
-    const char *view_depth_path, *range_path, *face_ids_path, *part_ids_path, *normals_path;
+    const char *paths[SR_MEASURED_COUNT]; /* NULL: not asked for */
     int invalid;     /* 0: 0 where nothing is drawn, 1: NaN */
     int normal_kind; /* 0: the triangle's, 1: the vertex normals interpolated */
 } sr_pinhole_setup;
@@ -29,6 +44,9 @@ bool sr_pinhole_setup_on(const sr_pinhole_setup *p);
  * outputs with a writer's extension and a pose to measure from. */
 bool sr_pinhole_setup_check(const sr_pinhole_setup *p, const sr_scene_setup *s, sr_error *err);
 
+/* The outputs' extensions against the writers'. */
+bool sr_pinhole_setup_check_outputs(const sr_pinhole_setup *p, sr_error *err);
+
 /* The camera of the options at s's size for the mesh: intrinsics as given
  * or from --fov, centred; near and far as given or fitted. */
 bool sr_pinhole_setup_camera(const sr_pinhole_setup *p, const sr_scene_setup *s, const sr_mesh *mesh,
@@ -37,9 +55,15 @@ bool sr_pinhole_setup_camera(const sr_pinhole_setup *p, const sr_scene_setup *s,
 /* Whether any of the outputs measured from the pinhole camera was asked for. */
 bool sr_pinhole_setup_wants_depth(const sr_pinhole_setup *p);
 
-/* View depth, range, ids and normals from ids (an SR_SHADE_ID draw with
- * cam), written to the files asked for. */
-bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, const sr_mesh *mesh,
-                            const sr_framebuffer *ids, sr_error *err);
+/* desc (sr_scene_desc's) for cam at the framebuffer's size: its matrices,
+ * and culling off unless --cull asked for it (a ray caster sees both
+ * faces, and scans are not always wound one way). */
+void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, const sr_scene *scene,
+                           sr_draw_desc *desc);
+
+/* The outputs asked for, from the frame just drawn with desc: its own ids
+ * in id shading, else one more draw of them. */
+bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, sr_scene *scene,
+                            const sr_draw_desc *desc, sr_error *err);
 
 #endif

@@ -4,17 +4,20 @@
 #include <string.h>
 
 #include "app.h"
+#include "dataset.h"
+#include "transforms.h"
 #include "pinhole_setup.h"
 #include "scene_setup.h"
 #include "core/clock.h"
 #include "scene/frame.h"
 
 #define MAX_FRAMES 100000
-#define RENDER_OPTION_COUNT 6 /* render's own, before the pinhole camera's */
+#define RENDER_OPTION_COUNT 9 /* render's own, before the pinhole camera's */
 
 typedef struct render_job {
     sr_scene_setup scene;
     sr_pinhole_setup pinhole;
+    sr_dataset_job dataset;
     const char *out_path, *depth_path, *depth_png_path;
     int frames;
     bool stats, quiet;
@@ -52,6 +55,9 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames, after one untimed warm-up when N > 1 (default 1)", 1, MAX_FRAMES },
         { "--stats", SR_OPT_FLAG, &job->stats, NULL, "print one JSON line of per-frame statistics" },
         { "--quiet", SR_OPT_FLAG, &job->quiet, NULL, "no summary line on stderr on success (warnings still print)" },
+        { "--poses", SR_OPT_STRING, &job->dataset.poses_path, "transforms.json", "render every frame of a NeRF / instant-ngp / nerfstudio camera dataset (with --out-dir)" },
+        { "--out-dir", SR_OPT_STRING, &job->dataset.out_dir, "DIR", "with --poses: each output NAME.EXT to DIR/NAME/frame_IIIII.EXT, and DIR/transforms.json" },
+        { "--frame-range", SR_OPT_RANGE, job->dataset.range, "A:B", "with --poses: frames A up to, not including, B (a shard)", 0, SR_TRANSFORMS_MAX_FRAMES, .seen = &job->dataset.range_set },
     };
     sr_pinhole_setup_options(&job->pinhole, own + RENDER_OPTION_COUNT);
     if (!sr_scene_setup_parse(&job->scene, own, NULL, USAGE, argc, argv, help, err))
@@ -62,7 +68,14 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
                     is_stdout(job->depth_png_path);
     if (to_stdout > 1)
         return sr_error_set(err, "only one of --out -, --depth -, --depth-png - and --stats can write to stdout");
-    return *help || sr_pinhole_setup_check(&job->pinhole, &job->scene, err);
+    job->dataset.color_name = job->out_path;
+    const char *single[] = { job->depth_path ? "--depth" : job->depth_png_path ? "--depth-png" : NULL, NULL };
+    if (*help)
+        return true;
+    if (job->dataset.poses_path || job->dataset.out_dir)
+        return sr_dataset_check(&job->dataset, &job->pinhole, &job->scene, single[0] ? single : NULL, err);
+    return !job->dataset.range_set ? sr_pinhole_setup_check(&job->pinhole, &job->scene, err)
+                                    : sr_error_set(err, "--frame-range goes with --poses");
 }
 
 static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr_stats *stats,
@@ -180,8 +193,8 @@ static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_
 static void report_done(const render_job *job, const sr_framebuffer *fb, const sr_stats *s)
 {
     const sr_pinhole_setup *p = &job->pinhole;
-    const char *paths[] = { job->out_path,     job->depth_path,     job->depth_png_path, p->view_depth_path,
-                            p->range_path,     p->face_ids_path,    p->part_ids_path,    p->normals_path };
+    const char *paths[3 + SR_MEASURED_COUNT] = { job->out_path, job->depth_path, job->depth_png_path };
+    memcpy(paths + 3, p->paths, sizeof p->paths);
     char line[8 * SR_ERROR_MAX];
     int n = snprintf(line, sizeof line, "softrast: "), written = 0;
     for (size_t i = 0; i < sizeof paths / sizeof *paths; i++)
@@ -196,37 +209,13 @@ static void report_done(const render_job *job, const sr_framebuffer *fb, const s
     fputs(line, stderr);
 }
 
-/* The pinhole camera's matrices in desc, and culling off unless --cull
- * asked for it: a ray caster sees both faces, and scans are not always
- * wound one way. */
+/* The pinhole camera of the options, into desc. */
 static bool use_pinhole(render_job *job, const sr_scene *scene, sr_pinhole *cam, sr_draw_desc *desc, sr_error *err)
 {
     if (!sr_pinhole_setup_camera(&job->pinhole, &job->scene, &scene->mesh, cam, err))
         return false;
-    sr_pinhole_matrices(cam, &scene->mesh, scene->fb.width, scene->fb.height, desc);
-    if (!job->scene.cull_set)
-        desc->cull = SR_CULL_NONE;
+    sr_pinhole_setup_desc(&job->scene, cam, scene, desc);
     return true;
-}
-
-/* The outputs measured from the camera need each pixel's triangle: the
- * frame's own ids in id shading, else one more draw of them. */
-static bool write_metric(const render_job *job, sr_scene *scene, const sr_pinhole *cam, const sr_draw_desc *desc,
-                         sr_error *err)
-{
-    if (job->pinhole.normals_path && job->pinhole.normal_kind && !sr_mesh_compute_normals(&scene->mesh, err))
-        return false;
-    if (desc->shade == SR_SHADE_ID)
-        return sr_pinhole_setup_write(&job->pinhole, cam, &scene->mesh, &scene->fb, err);
-    sr_framebuffer ids;
-    if (!sr_framebuffer_create(&ids, scene->fb.width, scene->fb.height, err))
-        return false;
-    sr_draw_desc id_desc = *desc;
-    id_desc.shade = SR_SHADE_ID;
-    id_desc.clear = true;
-    bool ok = sr_draw(&ids, &id_desc, NULL, err) && sr_pinhole_setup_write(&job->pinhole, cam, &scene->mesh, &ids, err);
-    sr_framebuffer_destroy(&ids);
-    return ok;
 }
 
 static bool render(void *j, sr_scene *scene, sr_error *err)
@@ -238,13 +227,20 @@ static bool render(void *j, sr_scene *scene, sr_error *err)
     sr_stats stats = { 0 };
     frame_times times = { 0 };
     bool pinhole = sr_pinhole_setup_on(&job->pinhole);
+    if (job->dataset.poses_path) {
+        if (!sr_dataset_render(&job->dataset, &job->pinhole, &job->scene, scene, err))
+            return false;
+        if (!job->quiet)
+            fprintf(stderr, "softrast: wrote %s/transforms.json and its frames' files\n", job->dataset.out_dir);
+        return true;
+    }
     if (!sr_scene_load(&job->scene, false, scene, err))
         return false;
     if (!pinhole)
         sr_scene_frame_camera(&job->scene, scene);
     if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) || (pinhole && !use_pinhole(job, scene, &cam, &desc, err)) ||
         !run_frames(job->frames, scene, &desc, &stats, &times, err) || !write_outputs(job, scene, err) ||
-        (sr_pinhole_setup_wants_depth(&job->pinhole) && !write_metric(job, scene, &cam, &desc, err)))
+        (pinhole && !sr_pinhole_setup_write(&job->pinhole, &cam, scene, &desc, err)))
         return false;
     if (!pinhole)
         explain_nothing_drawn(&job->scene, scene, &stats);

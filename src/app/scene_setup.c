@@ -31,7 +31,7 @@ void sr_scene_setup_defaults(sr_scene_setup *s)
 static void scene_options(sr_scene_setup *s, sr_option *table)
 {
     const sr_option entries[] = {
-        { "--size", SR_OPT_SIZE, s->size, "WxH", "framebuffer size (default 1280x720)", 1, SR_MAX_FRAMEBUFFER_SIDE },
+        { "--size", SR_OPT_SIZE, s->size, "WxH", "framebuffer size (default 1280x720)", 1, SR_MAX_FRAMEBUFFER_SIDE, .seen = &s->size_set },
         { "--eye", SR_OPT_DVEC3, s->eye, "X,Y,Z", "camera position (default: framed on the mesh from -z)", .seen = &s->eye_set },
         { "--target", SR_OPT_DVEC3, s->target, "X,Y,Z", "point looked at (default: the mesh's centre)", .seen = &s->target_set },
         { "--up", SR_OPT_VEC3, s->camera.up, "X,Y,Z", "up direction (default 0,1,0)", .seen = &s->look_at_set },

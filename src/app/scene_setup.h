@@ -13,7 +13,7 @@ typedef struct sr_scene_setup {
     int size[2];
     sr_camera camera;
     double eye[3], target[3]; /* world points of --eye and --target, kept in double */
-    bool eye_set, target_set, near_set, far_set, fov_set, cull_set;
+    bool size_set, eye_set, target_set, near_set, far_set, fov_set, cull_set;
     bool look_at_set; /* an option of the look-at camera alone: --up, --ortho, --rotate-y, --reversed-z */
     float rotate_y;
     int shade, cull, front, filter, simd; /* sr_shade, sr_cull, sr_front, sr_filter, sr_simd */
