@@ -444,3 +444,55 @@ Test(pinhole, ids_parts_and_normals_follow_the_file)
         sr_mesh_free(&mesh);
     }
 }
+
+/* The room read from its OBJ file (z negated) through a pinhole camera
+ * posed in the file's frame where the look-at camera of the README stands
+ * (eye −8,3,−8, target 4,1.5,6 in softrast's world: z negated in the
+ * file's), with the look-at camera's vertical fov and a centred principal
+ * point: both show the same triangle at all but a few pixels on edges (the
+ * two projections round differently). */
+Test(pinhole, a_pose_in_the_files_frame_sees_what_the_look_at_camera_sees)
+{
+    enum { W = 160, H = 120 };
+    sr_mesh mesh;
+    sr_error err = { "" };
+    cr_assert(sr_obj_load(&mesh, "assets/room.obj", &err), "%s", err.message);
+    cr_assert(mesh.z_negated, "a loaded mesh is z-negated");
+    sr_camera look = sr_camera_default();
+    glm_vec3_copy((vec3){ -8, 3, -8 }, look.eye);
+    glm_vec3_copy((vec3){ 4, 1.5f, 6 }, look.target);
+    look.fov_deg = 75;
+    sr_framebuffer a, b;
+    cr_assert(sr_framebuffer_create(&a, W, H, &err), "%s", err.message);
+    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_ID, .clear = true };
+    sr_camera_view(&look, desc.view);
+    sr_camera_projection(&look, (float)W / H, desc.projection);
+    cr_assert(sr_draw(&a, &desc, NULL, &err), "%s", err.message);
+    /* OpenCV's axes in the file's frame: forward, right = forward x up, down */
+    double eye[3] = { -8, 3, 8 }, f[3] = { 12, -1.5, -14 }, len = sqrt(12 * 12 + 1.5 * 1.5 + 14 * 14);
+    for (int k = 0; k < 3; k++)
+        f[k] /= len;
+    double r[3] = { -f[2], 0, f[0] }, rl = sqrt(f[0] * f[0] + f[2] * f[2]);
+    for (int k = 0; k < 3; k++)
+        r[k] /= rl;
+    double up[3] = { r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0] };
+    double c2w[4][4] = { { r[0], -up[0], f[0], eye[0] }, { r[1], -up[1], f[1], eye[1] },
+                         { r[2], -up[2], f[2], eye[2] }, { 0, 0, 0, 1 } };
+    double fy = 0.5 * H / tan(0.5 * 75 * GLM_PI / 180);
+    sr_pinhole cam = camera_of(fy, fy, 0.5 * (W - 1), 0.5 * (H - 1), c2w);
+    sr_pinhole_fit_clip(&cam, &mesh);
+    cr_assert(sr_framebuffer_create(&b, W, H, &err), "%s", err.message);
+    sr_draw_desc pin = { .mesh = &mesh, .shade = SR_SHADE_ID, .clear = true };
+    sr_pinhole_matrices(&cam, &mesh, W, H, &pin);
+    cr_assert(sr_draw(&b, &pin, NULL, &err), "%s", err.message);
+    int differ = 0, drawn = 0;
+    for (int i = 0; i < W * H; i++) {
+        differ += a.color[i] != b.color[i];
+        drawn += a.color[i] != 0;
+    }
+    cr_assert_gt(drawn, W * H / 2, "the look-at camera drew %d pixels", drawn);
+    cr_assert_lt(differ, W * H / 100, "%d of %d pixels show another triangle", differ, W * H);
+    sr_framebuffer_destroy(&a);
+    sr_framebuffer_destroy(&b);
+    sr_mesh_free(&mesh);
+}
