@@ -2,6 +2,7 @@
  * range files read back as NumPy and PFM readers read them. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <openexr.h>
 #include <png.h>
 #include <stdint.h>
 
@@ -34,7 +35,7 @@ Test(cli_pinhole, bad_poses_intrinsics_and_outputs_get_one_line)
     assert_one_error("render %s/tri.obj --pose-w2c " IDENTITY " --pose-c2w " IDENTITY, "one pose");
     assert_one_error("render %s/tri.obj --view-depth %s/d.npy", "needs a camera pose");
     assert_one_error("render %s/tri.obj --intrinsics 100,100,20,15", "needs a camera pose");
-    assert_one_error("render %s/tri.obj " POSE " --view-depth %s/d.exr", "no writer");
+    assert_one_error("render %s/tri.obj " POSE " --view-depth %s/d.tif", "no writer");
     assert_one_error("render %s/tri.obj --fov 50 --intrinsics 100,100,20,15 " POSE, "give one");
 }
 
@@ -176,4 +177,72 @@ Test(cli_pinhole, ids_and_normals_read_back_beside_view_depth)
     cr_assert_gt(drawn, 0);
     assert_one_error("render %s/tri.obj " POSE " --normals %s/n.pfm", "no writer");
     assert_one_error("render %s/tri.obj --face-ids %s/f.npy", "needs a camera pose");
+}
+
+/* An EXR's float channels, interleaved (one: "Y"; three: "R", "G", "B"),
+ * through OpenEXRCore's reader. */
+static void read_exr(const char *path, int channels, float *out)
+{
+    static const char *const names[2][3] = { { "Y" }, { "R", "G", "B" } };
+    exr_context_t ctxt;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    cr_assert_eq(exr_start_read(&ctxt, path, &init), EXR_ERR_SUCCESS, "%s: not an EXR", path);
+    int32_t lines;
+    cr_assert_eq(exr_get_scanlines_per_chunk(ctxt, 0, &lines), EXR_ERR_SUCCESS);
+    exr_decode_pipeline_t decode = { 0 };
+    for (int y = 0; y < H; y += lines) {
+        exr_chunk_info_t chunk;
+        cr_assert_eq(exr_read_scanline_chunk_info(ctxt, 0, y, &chunk), EXR_ERR_SUCCESS);
+        cr_assert_eq(y ? exr_decoding_update(ctxt, 0, &chunk, &decode) : exr_decoding_initialize(ctxt, 0, &chunk, &decode),
+                     EXR_ERR_SUCCESS);
+        cr_assert_eq(decode.channel_count, channels, "%s: %d channels", path, decode.channel_count);
+        for (int c = 0; c < decode.channel_count; c++) {
+            exr_coding_channel_info_t *ch = &decode.channels[c];
+            int k = 0;
+            while (k < channels && strcmp(ch->channel_name, names[channels == 3][k]) != 0)
+                k++;
+            cr_assert_lt(k, channels, "%s: channel %s", path, ch->channel_name);
+            ch->user_pixel_stride = channels * (int32_t)sizeof(float);
+            ch->user_line_stride = W * channels * (int32_t)sizeof(float);
+            ch->user_bytes_per_element = sizeof(float);
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+            ch->decode_to_ptr = (uint8_t *)(out + (size_t)chunk.start_y * W * channels + k);
+        }
+        if (!y)
+            cr_assert_eq(exr_decoding_choose_default_routines(ctxt, 0, &decode), EXR_ERR_SUCCESS);
+        cr_assert_eq(exr_decoding_run(ctxt, 0, &decode), EXR_ERR_SUCCESS);
+    }
+    exr_decoding_destroy(ctxt, &decode);
+    exr_finish(&ctxt);
+}
+
+/* View depth and normals as EXR and depth in millimetres as a 16-bit PNG
+ * hold the .npy's values: the floats bit for bit, the PNG rounded. */
+Test(cli_pinhole, exr_and_millimetre_png_hold_the_npy_values)
+{
+    char args[768];
+    snprintf(args, sizeof args,
+             "render %s/tri.obj --size %dx%d " POSE " --view-depth %s/d.npy --range %s/r.exr --normals %s/n.exr "
+             "--normal-kind interpolated --quiet && %s render %s/tri.obj --size %dx%d " POSE
+             " --view-depth %s/d.exr --range %s/r.npy --normals %s/n.npy --normal-kind interpolated --quiet && "
+             "%s render %s/tri.obj --size %dx%d " POSE " --range %s/r.png --quiet",
+             temp_dir, W, H, temp_dir, temp_dir, temp_dir, softrast_bin(), temp_dir, W, H, temp_dir, temp_dir, temp_dir,
+             softrast_bin(), temp_dir, W, H, temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    char path[512];
+    static float npy[3 * W * H], exr[3 * W * H], range[W * H];
+    static uint16_t mm[W * H];
+    read_npy(temp_path(path, sizeof path, "d.npy"), npy);
+    read_exr(temp_path(path, sizeof path, "d.exr"), 1, exr);
+    cr_assert_eq(memcmp(npy, exr, W * H * sizeof *npy), 0, "EXR depth differs from .npy");
+    read_npy(temp_path(path, sizeof path, "r.npy"), range);
+    read_exr(temp_path(path, sizeof path, "r.exr"), 1, exr);
+    cr_assert_eq(memcmp(range, exr, W * H * sizeof *range), 0, "EXR range differs from .npy");
+    read_png16(temp_path(path, sizeof path, "r.png"), mm);
+    for (int i = 0; i < W * H; i++)
+        cr_assert_eq(mm[i], (uint16_t)(range[i] * 1000.0 + 0.5), "pixel %d: %u mm for %.9g", i, mm[i], range[i]);
+    read_npy_of(temp_path(path, sizeof path, "n.npy"), "<f4", 3, npy);
+    read_exr(temp_path(path, sizeof path, "n.exr"), 3, exr);
+    cr_assert_eq(memcmp(npy, exr, 3 * W * H * sizeof *npy), 0, "EXR normals differ from .npy");
 }

@@ -122,6 +122,11 @@ SR_API bool sr_image_write_pfm(const char *path, const float *depth, int width, 
 typedef enum sr_npy_type { SR_NPY_FLOAT32 = 0, SR_NPY_UINT32 } sr_npy_type;
 SR_API bool sr_image_write_npy(const char *path, const void *values, sr_npy_type type, int width, int height,
                                int channels, sr_error *err);
+/* width x height x channels float32 values (row 0 first) as an OpenEXR
+ * file, ZIP-compressed scanlines: one channel is "Y" (gray), three are "R",
+ * "G", "B". */
+SR_API bool sr_image_write_exr(const char *path, const float *values, int width, int height, int channels,
+                               sr_error *err);
 /* A 16-bit gray PNG of width x height values, row 0 at the top: ids, or
  * depth in millimetres. */
 SR_API bool sr_image_write_png16(const char *path, const uint16_t *values, int width, int height, sr_error *err);

@@ -10,13 +10,13 @@ static const char *const INVALID_NAMES[] = { "zero", "nan", NULL };
 static const char *const NORMAL_KIND_NAMES[] = { "geometric", "interpolated", NULL };
 
 static const struct {
-    const char *option, *key, *extensions[3];
+    const char *option, *key, *extensions[5];
 } MEASURED[SR_MEASURED_COUNT] = {
-    [SR_MEASURED_DEPTH] = { "--view-depth", "depth_file_path", { ".npy", ".pfm" } },
-    [SR_MEASURED_RANGE] = { "--range", "range_file_path", { ".npy", ".pfm" } },
+    [SR_MEASURED_DEPTH] = { "--view-depth", "depth_file_path", { ".npy", ".pfm", ".png", ".exr" } },
+    [SR_MEASURED_RANGE] = { "--range", "range_file_path", { ".npy", ".pfm", ".png", ".exr" } },
     [SR_MEASURED_FACE_IDS] = { "--face-ids", "face_ids_file_path", { ".npy", ".png" } },
     [SR_MEASURED_PART_IDS] = { "--part-ids", "part_ids_file_path", { ".npy", ".png" } },
-    [SR_MEASURED_NORMALS] = { "--normals", "normals_file_path", { ".npy" } },
+    [SR_MEASURED_NORMALS] = { "--normals", "normals_file_path", { ".npy", ".exr" } },
 };
 
 const char *sr_measured_option(sr_measured k)
@@ -41,6 +41,7 @@ void sr_pinhole_setup_options(sr_pinhole_setup *p, sr_option *table)
         { "--part-ids", SR_OPT_STRING, &p->paths[SR_MEASURED_PART_IDS], "FILE.npy|.png", "the file's mesh + 1 per pixel, 0 where nothing (needs a pose)" },
         { "--normals", SR_OPT_STRING, &p->paths[SR_MEASURED_NORMALS], "FILE.npy", "unit normals in the camera frame, float32 HxWx3 (needs a pose)" },
         { "--normal-kind", SR_OPT_CHOICE, &p->normal_kind, "geometric|interpolated", "the triangle's normal, or the vertex normals interpolated (default geometric)", .choices = NORMAL_KIND_NAMES },
+        { "--depth-scale", SR_OPT_FLOAT, &p->depth_scale, "S", "view depth and range in .png: uint16 of the value times S (default 1000: millimetres of metres)", 1e-30, 3e38 },
         { "--invalid", SR_OPT_CHOICE, &p->invalid, "zero|nan", "view depth and range where nothing is drawn (default zero)", .choices = INVALID_NAMES },
     };
     _Static_assert(sizeof entries / sizeof *entries == SR_PINHOLE_OPTION_COUNT, "the entries' count");
@@ -70,19 +71,28 @@ static bool ends_with(const char *path, const char *ext)
 /* The extension of output i's path that a writer has, or NULL. */
 static const char *writer_extension(sr_measured i, const char *path)
 {
-    for (int k = 0; k < 3 && MEASURED[i].extensions[k]; k++)
+    for (int k = 0; k < 5 && MEASURED[i].extensions[k]; k++)
         if (ends_with(path, MEASURED[i].extensions[k]))
             return MEASURED[i].extensions[k];
     return NULL;
+}
+
+/* An output's extensions in words: ".npy, .pfm, .png". */
+static const char *extension_list(sr_measured i)
+{
+    static char list[64];
+    list[0] = '\0';
+    for (int k = 0; k < 5 && MEASURED[i].extensions[k]; k++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? ", " : "", MEASURED[i].extensions[k]);
+    return list;
 }
 
 bool sr_pinhole_setup_check_outputs(const sr_pinhole_setup *p, sr_error *err)
 {
     for (int i = 0; i < SR_MEASURED_COUNT; i++)
         if (p->paths[i] && !writer_extension((sr_measured)i, p->paths[i]))
-            return sr_error_set(err, "%s %s: no writer for this extension (%s%s%s)", MEASURED[i].option, p->paths[i],
-                                MEASURED[i].extensions[0], MEASURED[i].extensions[1] ? " or " : "",
-                                MEASURED[i].extensions[1] ? MEASURED[i].extensions[1] : "");
+            return sr_error_set(err, "%s %s: no writer for this extension (%s)", MEASURED[i].option, p->paths[i],
+                                extension_list((sr_measured)i));
     return true;
 }
 
@@ -155,14 +165,41 @@ static bool write_ids_png(const char *path, const uint32_t *ids, int width, int 
     return ok;
 }
 
-static bool write_output(sr_measured i, const char *path, const void *values, int width, int height, sr_error *err)
+/* Depth or range as a 16-bit PNG of the value times scale, rounded: 0
+ * where nothing is drawn, values past 65535 saturated with one warning
+ * that counts them. */
+static bool write_depth_png(const char *path, const float *values, int width, int height, float scale,
+                            sr_error *err)
+{
+    size_t n = (size_t)width * (size_t)height, saturated = 0;
+    uint16_t *gray = malloc(n * sizeof *gray);
+    if (!gray)
+        return sr_error_set(err, "%s: out of memory for a %dx%d image", path, width, height);
+    for (size_t i = 0; i < n; i++) {
+        double v = (double)values[i] * scale;
+        saturated += v >= UINT16_MAX + 0.5;
+        gray[i] = !(v > 0.0) ? 0 : v >= UINT16_MAX + 0.5 ? UINT16_MAX : (uint16_t)(v + 0.5);
+    }
+    if (saturated)
+        fprintf(stderr, "softrast: warning: %s: %zu pixels past %g units (65535 at --depth-scale %g) saturated\n",
+                path, saturated, UINT16_MAX / (double)scale, (double)scale);
+    bool ok = sr_image_write_png16(path, gray, width, height, err);
+    free(gray);
+    return ok;
+}
+
+static bool write_output(const sr_pinhole_setup *p, sr_measured i, const char *path, const void *values, int width,
+                         int height, sr_error *err)
 {
     const char *ext = writer_extension(i, path);
     bool ids = i == SR_MEASURED_FACE_IDS || i == SR_MEASURED_PART_IDS;
+    if (strcmp(ext, ".exr") == 0)
+        return sr_image_write_exr(path, values, width, height, i == SR_MEASURED_NORMALS ? 3 : 1, err);
     if (strcmp(ext, ".pfm") == 0) /* PFM's rows run bottom to top: the writer turns them */
         return sr_image_write_pfm(path, values, width, height, err);
     if (strcmp(ext, ".png") == 0)
-        return write_ids_png(path, values, width, height, err);
+        return ids ? write_ids_png(path, values, width, height, err)
+                   : write_depth_png(path, values, width, height, p->depth_scale, err);
     return sr_image_write_npy(path, values, ids ? SR_NPY_UINT32 : SR_NPY_FLOAT32, width, height,
                               i == SR_MEASURED_NORMALS ? 3 : 1, err);
 }
@@ -185,7 +222,7 @@ static bool write_resolved(const sr_pinhole_setup *p, const sr_pinhole *cam, con
                                .invalid = p->invalid ? NAN : 0.0f };
     ok = ok && sr_pinhole_resolve(cam, mesh, ids, &out, err);
     for (int i = 0; ok && i < SR_MEASURED_COUNT; i++)
-        ok = !p->paths[i] || write_output((sr_measured)i, p->paths[i], values[i], ids->width, ids->height, err);
+        ok = !p->paths[i] || write_output(p, (sr_measured)i, p->paths[i], values[i], ids->width, ids->height, err);
     for (int i = 0; i < SR_MEASURED_COUNT; i++)
         free(values[i]);
     return ok;

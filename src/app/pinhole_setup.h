@@ -8,7 +8,10 @@
 
 #include "scene_setup.h"
 
-#define SR_PINHOLE_OPTION_COUNT 10
+#define SR_PINHOLE_OPTION_COUNT 11
+
+/* --depth-scale's default: millimetres of metres. */
+#define SR_DEPTH_PNG_SCALE 1000.0f
 
 /* The outputs measured from the camera. */
 typedef enum sr_measured {
@@ -31,6 +34,7 @@ typedef struct sr_pinhole_setup {
     bool intrinsics_set, w2c_set, c2w_set;
     const char *paths[SR_MEASURED_COUNT]; /* NULL: not asked for */
     int invalid;     /* 0: 0 where nothing is drawn, 1: NaN */
+    float depth_scale; /* .png depth and range: uint16 of the value times this */
     int normal_kind; /* 0: the triangle's, 1: the vertex normals interpolated */
 } sr_pinhole_setup;
 

@@ -36,7 +36,7 @@ static const char USAGE[] =
 
 static void job_defaults(render_job *job)
 {
-    *job = (render_job){ .frames = 1 };
+    *job = (render_job){ .frames = 1, .pinhole = { .depth_scale = SR_DEPTH_PNG_SCALE } };
     sr_scene_setup_defaults(&job->scene);
 }
 
