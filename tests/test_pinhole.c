@@ -138,6 +138,7 @@ static void draw_ids(sr_framebuffer *fb, const sr_pinhole *cam, const sr_mesh *m
 {
     sr_error err = { "" };
     cr_assert(sr_framebuffer_create(fb, width, height, &err), "%s", err.message);
+    fb->reversed_z = true;
     sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .clear = true };
     sr_pinhole_matrices(cam, mesh, width, height, &desc);
     cr_assert(sr_draw(fb, &desc, NULL, &err), "%s", err.message);
@@ -482,6 +483,7 @@ Test(pinhole, a_pose_in_the_files_frame_sees_what_the_look_at_camera_sees)
     sr_pinhole cam = camera_of(fy, fy, 0.5 * (W - 1), 0.5 * (H - 1), c2w);
     sr_pinhole_fit_clip(&cam, &mesh);
     cr_assert(sr_framebuffer_create(&b, W, H, &err), "%s", err.message);
+    b.reversed_z = true;
     sr_draw_desc pin = { .mesh = &mesh, .shade = SR_SHADE_ID, .clear = true };
     sr_pinhole_matrices(&cam, &mesh, W, H, &pin);
     cr_assert(sr_draw(&b, &pin, NULL, &err), "%s", err.message);
@@ -494,5 +496,54 @@ Test(pinhole, a_pose_in_the_files_frame_sees_what_the_look_at_camera_sees)
     cr_assert_lt(differ, W * H / 100, "%d of %d pixels show another triangle", differ, W * H);
     sr_framebuffer_destroy(&a);
     sr_framebuffer_destroy(&b);
+    sr_mesh_free(&mesh);
+}
+
+/* A closed torus 1000 units away (near 1, far 2000, culling off), seen
+ * with a long lens: at its silhouettes the back of the tube comes within
+ * float depth steps of the front. No pixel may show a triangle whose
+ * exact depth at the pixel centre lies more than 1e-6 (relative) behind
+ * the nearest triangle's there (a long-double ray cast over all of them). */
+Test(pinhole, far_away_no_back_face_wins_over_the_front)
+{
+    enum { W = 40, H = 40 };
+    sr_mesh mesh;
+    sr_error err = { "" };
+    cr_assert(sr_shape_torus(&mesh, 1.0f, 0.4f, 48, 24, &err), "%s", err.message);
+    /* 1000 away at -z, 30 degrees up, looking at the centre: x right (-x of the
+     * world, seen from -z), y down, z forward */
+    double c = cos(30 * GLM_PI / 180), s = sin(30 * GLM_PI / 180);
+    double c2w[4][4] = { { -1, 0, 0, 0 }, { 0, -c, -s, 1000 * s }, { 0, -s, c, -1000 * c }, { 0, 0, 0, 1 } };
+    sr_pinhole cam = camera_of(14000, 14000, 19.5, 19.5, c2w);
+    cam.near = 1;
+    cam.far = 2000;
+    sr_framebuffer fb;
+    draw_ids(&fb, &cam, &mesh, W, H);
+    int drawn = 0, behind = 0;
+    real worst = 0;
+    uint32_t slots = sr_mesh_triangle_slots(&mesh);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            uint32_t id = fb.color[(size_t)y * W + (size_t)x];
+            if (!id)
+                continue;
+            drawn++;
+            real origin[3], dir[3], best = INFINITY;
+            pixel_ray(&cam, c2w, x, y, origin, dir);
+            for (uint32_t k = 0; k < slots; k++) {
+                real hit = ray_hit(&mesh, k, origin, dir, 0.0L);
+                if (hit > 0 && hit < best)
+                    best = hit;
+            }
+            real shown = ray_hit(&mesh, id - 1, origin, dir, 1e-3L); /* its plane, near its edges too */
+            if (!isfinite((double)best) || !isfinite((double)shown))
+                continue;
+            real gap = (shown - best) / best;
+            worst = gap > worst ? gap : worst;
+            behind += gap > 1e-6L;
+        }
+    cr_assert_gt(drawn, W * H / 8, "%d pixels drawn", drawn);
+    cr_assert_eq(behind, 0, "%d pixels show a triangle behind the nearest (worst %.3Lg relative)", behind, worst);
+    sr_framebuffer_destroy(&fb);
     sr_mesh_free(&mesh);
 }

@@ -371,8 +371,9 @@ SR_API bool sr_pinhole_pose_from_c2w(const double c2w[4][4], double w2c[4][4], s
 SR_API void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh);
 
 /* The draw's view_d and projection for cam at width x height (near and far
- * set); world is left as the identity. Culling then keeps the file's front
- * faces, as for the look-at camera. */
+ * set); world is left as the identity. The projection is reversed z (near
+ * → 1, far → 0): draw into a framebuffer with reversed_z. Culling keeps
+ * the file's front faces, as for the look-at camera. */
 SR_API void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, int width, int height,
                                 sr_draw_desc *desc);
 

@@ -228,9 +228,9 @@ static bool write_resolved(const sr_pinhole_setup *p, const sr_pinhole *cam, con
     return ok;
 }
 
-void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, const sr_scene *scene,
-                           sr_draw_desc *desc)
+void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, sr_draw_desc *desc)
 {
+    scene->fb.reversed_z = true;
     sr_pinhole_matrices(cam, &scene->mesh, scene->fb.width, scene->fb.height, desc);
     if (!s->cull_set)
         desc->cull = SR_CULL_NONE;
@@ -248,6 +248,7 @@ bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, sr
     sr_framebuffer ids;
     if (!sr_framebuffer_create(&ids, scene->fb.width, scene->fb.height, err))
         return false;
+    ids.reversed_z = true;
     sr_draw_desc id_desc = *desc;
     id_desc.shade = SR_SHADE_ID;
     id_desc.clear = true;

@@ -60,10 +60,10 @@ bool sr_pinhole_setup_camera(const sr_pinhole_setup *p, const sr_scene_setup *s,
 bool sr_pinhole_setup_wants_depth(const sr_pinhole_setup *p);
 
 /* desc (sr_scene_desc's) for cam at the framebuffer's size: its matrices,
- * and culling off unless --cull asked for it (a ray caster sees both
- * faces, and scans are not always wound one way). */
-void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, const sr_scene *scene,
-                           sr_draw_desc *desc);
+ * the framebuffer reversed z as they are, and culling off unless --cull
+ * asked for it (a ray caster sees both faces, and scans are not always
+ * wound one way). */
+void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, sr_draw_desc *desc);
 
 /* The outputs asked for, from the frame just drawn with desc: its own ids
  * in id shading, else one more draw of them. */

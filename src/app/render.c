@@ -210,7 +210,7 @@ static void report_done(const render_job *job, const sr_framebuffer *fb, const s
 }
 
 /* The pinhole camera of the options, into desc. */
-static bool use_pinhole(render_job *job, const sr_scene *scene, sr_pinhole *cam, sr_draw_desc *desc, sr_error *err)
+static bool use_pinhole(render_job *job, sr_scene *scene, sr_pinhole *cam, sr_draw_desc *desc, sr_error *err)
 {
     if (!sr_pinhole_setup_camera(&job->pinhole, &job->scene, &scene->mesh, cam, err))
         return false;

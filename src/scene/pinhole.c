@@ -139,18 +139,22 @@ void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, int width, 
     desc->projection[2][0] = (float)((2.0 * cam->cx + 1.0) / w - 1.0);
     desc->projection[1][1] = (float)(2.0 * cam->fy / h);
     desc->projection[2][1] = (float)(1.0 - (2.0 * cam->cy + 1.0) / h);
-    desc->projection[2][2] = (float)(f / (f - n));
-    desc->projection[3][2] = (float)(-f * n / (f - n));
+    /* Reversed z (near → 1, far → 0): float z_ndc then keeps about the same
+     * relative precision at every distance, so a surface far away is not
+     * hidden by one a float step behind it. */
+    desc->projection[2][2] = (float)(-n / (f - n));
+    desc->projection[3][2] = (float)(f * n / (f - n));
     desc->projection[2][3] = 1.0f;
     glm_mat4_identity(desc->world);
     memset(&desc->world_d, 0, sizeof desc->world_d);
 }
 
-/* The view z a depth-buffer value stands for, under cam's projection. */
+/* The view z a depth-buffer value stands for, under cam's reversed
+ * projection: z_ndc = (fn/Z − n)/(f − n). */
 static double z_of_depth(const sr_pinhole *cam, float z_ndc)
 {
     double n = cam->near, f = cam->far;
-    return f * n / (f - (double)z_ndc * (f - n));
+    return f * n / ((double)z_ndc * (f - n) + n);
 }
 
 /* A file-frame direction (a normal) in the camera frame: the pose's rotation. */
