@@ -200,3 +200,17 @@ Test(flights, frame_numbers_widen_to_the_last_frame)
              temp_dir, softrast_bin(), fly, softrast_bin(), fly);
     cr_assert_eq(system(cmd), 0, "%s", cmd);
 }
+
+/* --shots into a folder that does not exist yet makes it and writes every
+ * frame there; a path that is a file is one error line. */
+Test(flights, shots_into_a_missing_folder_make_it)
+{
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd,
+             "D=%s && %s view assets/room.obj --size " SIZE " --script tests/flights/room_walls.txt --frames 3 "
+             "--no-window --shots $D/new >/dev/null 2>$D/err.txt && test $(ls $D/new | wc -l) -eq 6 && "
+             "touch $D/file && ! %s view assets/room.obj --size " SIZE " --script tests/flights/room_walls.txt "
+             "--frames 1 --no-window --shots $D/file >/dev/null 2>$D/err2.txt && grep -q 'is not a folder' $D/err2.txt",
+             temp_dir, softrast_bin(), softrast_bin());
+    cr_assert_eq(system(cmd), 0, "the flight into a missing folder failed");
+}

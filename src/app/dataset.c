@@ -4,10 +4,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "dataset.h"
+#include "io/output_file.h"
 #include "transforms.h"
 
 /* The frame numbers' digits in file names, at least; more for a dataset
@@ -49,19 +49,6 @@ bool sr_dataset_check(const sr_dataset_job *d, const sr_pinhole_setup *p, const 
     return sr_pinhole_setup_check_outputs(p, err);
 }
 
-/* DIR and DIR/name made where missing; an existing one that is not a
- * folder is an error. */
-static bool make_dir(const char *path, sr_error *err)
-{
-    if (mkdir(path, 0777) == 0 || errno == EEXIST) {
-        struct stat st;
-        if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-            return true;
-        return sr_error_set(err, "%s: exists and is not a folder", path);
-    }
-    return sr_error_set(err, "%s: cannot make the folder: %s", path, strerror(errno));
-}
-
 /* NAME.EXT's folder DIR/NAME, and frame i's file in it, relative to DIR
  * (rel) and whole (path). */
 static bool frame_file(const char *dir, const char *name, int frame, int digits, char rel[PATH_MAX],
@@ -76,7 +63,7 @@ static bool frame_file(const char *dir, const char *name, int frame, int digits,
 /* The folders of the outputs asked for. */
 static bool make_output_dirs(const sr_dataset_job *d, const char *const *names, sr_error *err)
 {
-    if (!make_dir(d->out_dir, err))
+    if (!sr_output_make_dir(d->out_dir, err))
         return false;
     for (int i = 0; i < 1 + SR_MEASURED_COUNT; i++) {
         if (!names[i])
@@ -85,7 +72,7 @@ static bool make_output_dirs(const sr_dataset_job *d, const char *const *names, 
         const char *dot = strrchr(names[i], '.');
         if (snprintf(folder, sizeof folder, "%s/%.*s", d->out_dir, (int)(dot - names[i]), names[i]) >=
                 (int)sizeof folder ||
-            !make_dir(folder, err))
+            !sr_output_make_dir(folder, err))
             return false;
     }
     return true;

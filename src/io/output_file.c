@@ -90,3 +90,14 @@ bool sr_output_close(sr_output *o, const char *path, bool ok, sr_error *err)
     return ok || sr_error_set(err, "%s: cannot write: %s", path, strerror(code ? code : EIO));
 }
 
+
+bool sr_output_make_dir(const char *path, sr_error *err)
+{
+    if (mkdir(path, 0777) == 0 || errno == EEXIST) {
+        struct stat st;
+        if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+            return true;
+        return sr_error_set(err, "%s: exists and is not a folder", path);
+    }
+    return sr_error_set(err, "%s: cannot make the folder: %s", path, strerror(errno));
+}

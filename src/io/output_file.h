@@ -30,4 +30,8 @@ bool sr_output_open(sr_output *o, const char *path, sr_error *err);
  * it. stdout is flushed only. */
 bool sr_output_close(sr_output *o, const char *path, bool ok, sr_error *err);
 
+/* A folder for outputs, made where missing (its parent must exist); an
+ * existing path that is not a folder is an error. */
+bool sr_output_make_dir(const char *path, sr_error *err);
+
 #endif

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "io/output_file.h"
 #include "scene/flight.h"
 #include "io/data_find.h"
 #include "softrast_private.h"
@@ -223,6 +224,8 @@ static bool fly_script(const view_job *job, sr_viewer *v, window *w, sr_error *e
     bool ok = end <= frames ||
               sr_error_set(err, "--frame-range %d:%d ends past the flight's %d frames (B is at most %d)", first, end,
                            frames, frames);
+    ok = ok && (!job->shots_dir || sr_output_make_dir(job->shots_dir, err)) &&
+         (!job->grab_dir || sr_output_make_dir(job->grab_dir, err));
     for (int f = first; ok && f < end && !v->quit; f++) {
         SDL_Event e;
         while (w->window && SDL_PollEvent(&e))
