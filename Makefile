@@ -75,8 +75,12 @@ build/san/%.o: %.c | deps
 DATA_DIR = $(PREFIX)/share/softrast
 $(patsubst %,%/src/io/data_find.o,build build/san): ALL_CFLAGS += -DSR_INSTALL_DATA='"$(DATA_DIR)"'
 
-# The library's objects export only what the public headers mark SR_API.
-$(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden
+# The library's objects export only what the public headers mark SR_API,
+# and are position-independent code, so the installed archives link into a
+# shared object too (the Python extension, python/): PIE's local-exec
+# thread-local storage cannot. Linked into the program, ld relaxes the
+# accesses back to PIE's.
+$(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden -fPIC
 
 # The installed libraries: the room's objects linked into one and every
 # hidden symbol made local, so an embedder sees the public API alone. The
