@@ -51,7 +51,7 @@ $(AVX512_OBJ): ALL_CFLAGS += $(AVX512_FLAGS)
 $(AVX512_OBJ): FUZZ_CFLAGS += $(AVX512_FLAGS)
 endif
 
-.PHONY: all deps run test fuzz-smoke-ci test-fast test-san test-house mutate test-assets test-install install assets docs-images bench report scans stability cost-model clean
+.PHONY: all deps run test fuzz-smoke-ci test-fast test-python test-san test-house mutate test-assets test-install install assets docs-images bench report scans stability cost-model clean
 .DEFAULT_GOAL := all
 
 all: deps build/softrast $(PUBLIC_LIBS)
@@ -75,8 +75,12 @@ build/san/%.o: %.c | deps
 DATA_DIR = $(PREFIX)/share/softrast
 $(patsubst %,%/src/io/data_find.o,build build/san): ALL_CFLAGS += -DSR_INSTALL_DATA='"$(DATA_DIR)"'
 
-# The library's objects export only what the public headers mark SR_API.
-$(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden
+# The library's objects export only what the public headers mark SR_API,
+# and are position-independent code, so the installed archives link into a
+# shared object too (the Python extension, python/): PIE's local-exec
+# thread-local storage cannot. Linked into the program, ld relaxes the
+# accesses back to PIE's.
+$(LIB_SRC:%.c=build/%.o): ALL_CFLAGS += -fvisibility=hidden -fPIC
 
 # The installed libraries: the room's objects linked into one and every
 # hidden symbol made local, so an embedder sees the public API alone. The
@@ -131,7 +135,7 @@ run: all
 
 # The fuzzers' regression inputs, then a short bounded round of each target
 # (tolerating the open clip_precision finding of fuzz/known/, see fuzz/README.md).
-test: deps test-fast test-san test-house test-assets test-install fuzz-regressions fuzz-smoke-ci
+test: deps test-fast test-python test-san test-house test-assets test-install fuzz-regressions fuzz-smoke-ci
 
 # After the regressions: both build the fuzzers, and two makes linking one
 # binary at once under -j leave it half-written.
@@ -145,6 +149,16 @@ test-fast: build/softrast build/softrast-tests
 	SOFTRAST_BIN=build/softrast ./build/softrast-tests --jobs 2
 	@if [ -f $(CONTRACT) ]; then python3 $(CONTRACT) build/softrast; \
 	 else echo "note: $(CONTRACT) not found beside the checkout; CLI contract not checked"; fi
+
+# The Python package (python/): its extension built in place against the
+# installed archives by Debian's interpreter (the first python3 on PATH may
+# be one without Debian's numpy), then its pytest suite, on the optimised
+# library only (the memory test measures that one).
+PYTHON := /usr/bin/python3
+test-python: build/softrast $(PUBLIC_LIBS)
+	@cd python && SOFTRAST_WERROR=1 PYTHONWARNINGS=ignore $(PYTHON) setup.py -q build_ext --inplace \
+		--build-temp ../build/python
+	$(PYTHON) -m pytest -p no:cacheprovider python/tests -q
 
 # Criterion runs each test in a child whose leak report does not fail the
 # test, so the sanitiser log itself is checked too.

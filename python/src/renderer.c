@@ -1,0 +1,455 @@
+/* softrast.Renderer: a framebuffer and a workspace reused from call to
+ * call, and the pinhole renders over them. Each render is the command
+ * line's: an SR_SHADE_ID draw into a reversed-z framebuffer with the
+ * matrices of sr_pinhole_matrices, then sr_pinhole_resolve into new numpy
+ * arrays, with the GIL released around both. */
+#include <string.h>
+#include <unistd.h>
+
+#include "softrast_py.h"
+
+enum { OUT_DEPTH, OUT_RANGE, OUT_FACE_IDS, OUT_PART_IDS, OUT_NORMALS, OUT_COUNT };
+static const char *const OUT_NAMES[OUT_COUNT] = { "depth", "range", "face_ids", "part_ids", "normals" };
+#define OUT_LIST "'depth', 'range', 'face_ids', 'part_ids', 'normals'"
+
+/* The draw's own limit on threads; more are drawn with this many. */
+#define MAX_THREADS 64
+
+typedef struct sr_py_renderer {
+    PyObject_HEAD
+    sr_framebuffer fb; /* the id view: reversed z, triangle id + 1 per pixel */
+    sr_workspace *workspace;
+    int threads;
+    pid_t pid;  /* the process whose threads the workspace holds (a forked child has none of them) */
+    bool busy;  /* a render runs with the GIL released; set and read with the GIL held */
+} sr_py_renderer;
+
+/* What one call renders: the camera but its pose, and the outputs. */
+typedef struct job {
+    sr_pinhole cam;
+    bool wanted[OUT_COUNT];
+    bool interpolated;
+    float invalid;
+} job;
+
+static void renderer_release(sr_py_renderer *self)
+{
+    if (self->workspace && self->pid == getpid())
+        sr_workspace_destroy(self->workspace); /* in a forked child its threads are not there to end */
+    self->workspace = NULL;
+    sr_framebuffer_destroy(&self->fb);
+}
+
+static void renderer_dealloc(sr_py_renderer *self)
+{
+    renderer_release(self);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+static int renderer_init(sr_py_renderer *self, PyObject *args, PyObject *kwargs)
+{
+    static char *names[] = { "width", "height", "threads", NULL };
+    int width, height, threads = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "ii|i:Renderer", names, &width, &height, &threads))
+        return -1;
+    if (self->busy && self->pid == getpid()) {
+        PyErr_SetString(PyExc_RuntimeError, "Renderer.__init__ on a renderer another thread is rendering with");
+        return -1;
+    }
+    if (threads < 0) {
+        PyErr_Format(PyExc_ValueError, "threads: %d; 0 is one a core, else 1 or more", threads);
+        return -1;
+    }
+    sr_framebuffer fb;
+    sr_error err;
+    if (!sr_framebuffer_create(&fb, width, height, &err)) {
+        sr_py_raise(PyExc_ValueError, &err);
+        return -1;
+    }
+    fb.reversed_z = true;
+    sr_workspace *workspace = sr_workspace_create();
+    if (!workspace) {
+        sr_framebuffer_destroy(&fb);
+        PyErr_NoMemory();
+        return -1;
+    }
+    renderer_release(self);
+    self->fb = fb;
+    self->workspace = workspace;
+    self->pid = getpid();
+    self->busy = false;
+    if (threads == 0) {
+        long cores = sysconf(_SC_NPROCESSORS_ONLN);
+        threads = cores < 1 ? 1 : cores > MAX_THREADS ? MAX_THREADS : (int)cores;
+    }
+    self->threads = threads;
+    return 0;
+}
+
+/* A number that may be a Python or numpy scalar. */
+static bool parse_number(PyObject *obj, const char *name, double *out)
+{
+    double v = PyFloat_AsDouble(obj);
+    if (v == -1.0 && PyErr_Occurred()) {
+        PyErr_Clear();
+        PyErr_Format(PyExc_ValueError, "%s: %R is not a number", name, obj);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+/* fx, fy, cx, cy from K or from the numbers (fy defaults to fx, cx and cy
+ * to the centre); sr_pinhole_check judges their values. */
+static bool parse_intrinsics(const sr_py_renderer *self, PyObject *K, PyObject *const numbers[4], sr_pinhole *cam)
+{
+    static const char *const names[4] = { "fx", "fy", "cx", "cy" };
+    bool any = false;
+    for (int k = 0; k < 4; k++)
+        any = any || numbers[k] != Py_None;
+    if (K != Py_None) {
+        if (any) {
+            PyErr_SetString(PyExc_ValueError, "give the intrinsics as K or as fx, fy, cx, cy, not both");
+            return false;
+        }
+        PyArrayObject *a = sr_py_array(K, "K", NPY_FLOAT64, 2, (npy_intp[]){ 3, 3 }, "(3, 3)");
+        if (!a)
+            return false;
+        const double *m = PyArray_DATA(a);
+        bool pinhole = m[1] == 0.0 && m[3] == 0.0 && m[6] == 0.0 && m[7] == 0.0 && m[8] == 1.0;
+        cam->fx = m[0], cam->fy = m[4], cam->cx = m[2], cam->cy = m[5];
+        Py_DECREF(a);
+        if (!pinhole)
+            PyErr_SetString(PyExc_ValueError, "K must be [[fx, 0, cx], [0, fy, cy], [0, 0, 1]] (no skew)");
+        return pinhole;
+    }
+    if (numbers[0] == Py_None) {
+        PyErr_SetString(PyExc_ValueError, any ? "fy, cx and cy need fx"
+                                              : "give the intrinsics: K (3x3) or fx (and fy, cx, cy), in pixels, "
+                                                "OpenCV's convention");
+        return false;
+    }
+    double v[4] = { 0, 0, 0.5 * (self->fb.width - 1), 0.5 * (self->fb.height - 1) };
+    for (int k = 0; k < 4; k++)
+        if (numbers[k] != Py_None && !parse_number(numbers[k], names[k], &v[k]))
+            return false;
+    if (numbers[1] == Py_None)
+        v[1] = v[0];
+    cam->fx = v[0], cam->fy = v[1], cam->cx = v[2], cam->cy = v[3];
+    return true;
+}
+
+static bool parse_outputs(PyObject *outputs, PyObject *normals, job *j)
+{
+    PyObject *seq = PyUnicode_Check(outputs) ? PyTuple_Pack(1, outputs)
+                                             : PySequence_Fast(outputs, "outputs: a sequence of names among " OUT_LIST);
+    if (!seq)
+        return false;
+    bool ok = true;
+    for (Py_ssize_t i = 0; ok && i < PySequence_Fast_GET_SIZE(seq); i++) {
+        PyObject *name = PySequence_Fast_GET_ITEM(seq, i);
+        int k = 0;
+        while (k < OUT_COUNT && !(PyUnicode_Check(name) && PyUnicode_CompareWithASCIIString(name, OUT_NAMES[k]) == 0))
+            k++;
+        if (k == OUT_COUNT) {
+            PyErr_Format(PyExc_ValueError, "outputs: %R is not one of " OUT_LIST, name);
+            ok = false;
+        } else
+            j->wanted[k] = true;
+    }
+    Py_DECREF(seq);
+    if (!ok)
+        return false;
+    bool geometric = PyUnicode_Check(normals) && PyUnicode_CompareWithASCIIString(normals, "geometric") == 0;
+    j->interpolated = PyUnicode_Check(normals) && PyUnicode_CompareWithASCIIString(normals, "interpolated") == 0;
+    if (!geometric && !j->interpolated) {
+        PyErr_Format(PyExc_ValueError, "normals: %R is not 'geometric' or 'interpolated'", normals);
+        return false;
+    }
+    return true;
+}
+
+/* Poses, world-to-camera, from w2c or c2w (one of them, or neither: one
+ * identity pose when !many), checked with the rest of the camera: a new
+ * array of *count poses, or NULL with an exception set. */
+static double (*parse_poses(PyObject *w2c, PyObject *c2w, bool many, const sr_pinhole *cam, npy_intp *count))[4][4]
+{
+    const char *w2c_name = many ? "poses" : "pose", *c2w_name = many ? "poses_c2w" : "pose_c2w";
+    if (w2c != Py_None && c2w != Py_None) {
+        PyErr_Format(PyExc_ValueError, "give one of %s and %s, not both", w2c_name, c2w_name);
+        return NULL;
+    }
+    bool inverse = c2w != Py_None;
+    PyObject *given = inverse ? c2w : w2c;
+    PyArrayObject *a = NULL;
+    if (given == Py_None && many) {
+        PyErr_SetString(PyExc_ValueError, "render_many needs poses (N, 4, 4), world-to-camera, or poses_c2w");
+        return NULL;
+    }
+    if (given != Py_None) {
+        a = many ? sr_py_array(given, inverse ? c2w_name : w2c_name, NPY_FLOAT64, 3, (npy_intp[]){ -1, 4, 4 },
+                               "(N, 4, 4)")
+                 : sr_py_array(given, inverse ? c2w_name : w2c_name, NPY_FLOAT64, 2, (npy_intp[]){ 4, 4 }, "(4, 4)");
+        if (!a)
+            return NULL;
+    }
+    *count = many ? PyArray_DIM(a, 0) : 1;
+    double(*poses)[4][4] = PyMem_Malloc((*count ? (size_t)*count : 1) * sizeof *poses);
+    if (!poses) {
+        Py_XDECREF(a);
+        PyErr_NoMemory();
+        return NULL;
+    }
+    static const double identity[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } };
+    sr_error err = { "" };
+    bool ok = true;
+    for (npy_intp i = 0; ok && i < *count; i++) {
+        const double(*p)[4] = a ? (const double(*)[4])PyArray_DATA(a) + 4 * i : identity;
+        sr_pinhole check = *cam;
+        if (inverse)
+            ok = sr_pinhole_pose_from_c2w(p, check.w2c, &err);
+        else
+            memcpy(check.w2c, p, sizeof check.w2c);
+        ok = ok && sr_pinhole_check(&check, &err);
+        memcpy(poses[i], check.w2c, sizeof poses[i]);
+        if (!ok && many)
+            PyErr_Format(PyExc_ValueError, "%s[%zd]: %s", inverse ? c2w_name : w2c_name, i, err.message);
+        else if (!ok)
+            sr_py_raise(PyExc_ValueError, &err);
+    }
+    Py_XDECREF(a);
+    if (!ok) {
+        PyMem_Free(poses);
+        return NULL;
+    }
+    return poses;
+}
+
+/* One frame: clip planes fitted where 0, the id view drawn, the outputs
+ * resolved from it. Runs without the GIL. */
+static bool render_one(sr_py_renderer *self, const sr_mesh *mesh, sr_pinhole *cam, const sr_pinhole_outputs *out,
+                       sr_stats *stats, sr_error *err)
+{
+    sr_pinhole_fit_clip(cam, mesh);
+    sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .threads = self->threads,
+                          .workspace = self->workspace, .clear = true };
+    sr_pinhole_matrices(cam, mesh, self->fb.width, self->fb.height, &desc);
+    return sr_draw(&self->fb, &desc, stats, err) && sr_pinhole_resolve(cam, mesh, &self->fb, out, err);
+}
+
+static PyObject *stats_dict(const sr_stats *s)
+{
+    return Py_BuildValue("{sKsKsKsKsKsKsK}", "triangles", (unsigned long long)s->triangles, "rejected",
+                         (unsigned long long)s->rejected, "nonfinite", (unsigned long long)s->nonfinite, "clipped",
+                         (unsigned long long)s->clipped, "culled", (unsigned long long)s->culled, "drawn",
+                         (unsigned long long)s->drawn, "fragments", (unsigned long long)s->fragments);
+}
+
+/* Claims the renderer for one call (refusing a second thread's) and makes
+ * the workspace anew in a forked child. */
+static bool claim(sr_py_renderer *self)
+{
+    if (self->pid != getpid()) {
+        sr_workspace *workspace = sr_workspace_create(); /* the parent's is left: its threads are not here */
+        if (!workspace) {
+            PyErr_NoMemory();
+            return false;
+        }
+        self->workspace = workspace;
+        self->pid = getpid();
+        self->busy = false;
+    }
+    if (!self->fb.color) {
+        PyErr_SetString(PyExc_RuntimeError, "Renderer.__init__ was not called");
+        return false;
+    }
+    if (self->busy) {
+        PyErr_SetString(PyExc_RuntimeError, "this Renderer is rendering in another thread: "
+                                            "use one Renderer per thread");
+        return false;
+    }
+    self->busy = true;
+    return true;
+}
+
+/* The outputs of `frames` poses as a dict of new arrays (stacked when many). */
+static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job *j, double (*poses)[4][4],
+                               npy_intp frames, bool many)
+{
+    sr_error err = { "" };
+    if (sr_mesh_triangle_slots(&mesh->mesh) == 0 || !mesh->mesh.positions) {
+        PyErr_SetString(PyExc_ValueError, "the mesh is empty (Mesh.__init__ was not called)");
+        return NULL;
+    }
+    if (j->wanted[OUT_NORMALS] && j->interpolated && !mesh->mesh.normals &&
+        !sr_mesh_compute_normals(&mesh->mesh, &err)) /* with the GIL held: no render reads it now */
+        return sr_py_raise(PyExc_ValueError, &err);
+    npy_intp width = self->fb.width, height = self->fb.height, pixels = width * height;
+    PyArrayObject *arrays[OUT_COUNT] = { 0 };
+    sr_stats *stats = PyMem_Calloc(frames ? (size_t)frames : 1, sizeof *stats);
+    bool ok = stats != NULL;
+    if (!ok)
+        PyErr_NoMemory();
+    for (int k = 0; ok && k < OUT_COUNT; k++) {
+        if (!j->wanted[k])
+            continue;
+        npy_intp dims[4] = { frames, height, width, 3 };
+        int nd = (many ? 3 : 2) + (k == OUT_NORMALS);
+        int type = k == OUT_FACE_IDS || k == OUT_PART_IDS ? NPY_UINT32 : NPY_FLOAT32;
+        ok = (arrays[k] = (PyArrayObject *)PyArray_SimpleNew(nd, many ? dims : dims + 1, type)) != NULL;
+    }
+    ok = ok && claim(self);
+    if (ok) {
+        mesh->renders++;
+        sr_mesh m = mesh->mesh; /* a copy: Mesh's normals may be filled in meanwhile */
+        for (npy_intp i = 0; ok && i < frames; i++) {
+            sr_pinhole cam = j->cam;
+            memcpy(cam.w2c, poses[i], sizeof cam.w2c);
+#define FRAME(k, type, channels) \
+    (arrays[k] ? (type *)PyArray_DATA(arrays[k]) + (size_t)(i * pixels * (channels)) : NULL)
+            sr_pinhole_outputs out = { .depth = FRAME(OUT_DEPTH, float, 1), .range = FRAME(OUT_RANGE, float, 1),
+                                       .face_ids = FRAME(OUT_FACE_IDS, uint32_t, 1),
+                                       .part_ids = FRAME(OUT_PART_IDS, uint32_t, 1),
+                                       .normals = FRAME(OUT_NORMALS, float, 3),
+                                       .interpolated_normals = j->interpolated, .invalid = j->invalid };
+#undef FRAME
+            Py_BEGIN_ALLOW_THREADS
+            ok = render_one(self, &m, &cam, &out, &stats[i], &err);
+            Py_END_ALLOW_THREADS
+            if (!ok)
+                sr_py_raise(PyExc_ValueError, &err);
+            else if (i + 1 < frames && PyErr_CheckSignals() < 0) /* Ctrl-C between frames */
+                ok = false;
+        }
+        mesh->renders--;
+        self->busy = false;
+    }
+    PyObject *result = ok ? PyDict_New() : NULL;
+    for (int k = 0; result && k < OUT_COUNT; k++)
+        if (arrays[k] && PyDict_SetItemString(result, OUT_NAMES[k], (PyObject *)arrays[k]) < 0)
+            Py_CLEAR(result);
+    PyObject *counts = result ? (many ? PyList_New(frames) : stats_dict(&stats[0])) : NULL;
+    for (npy_intp i = 0; many && counts && i < frames; i++) {
+        PyObject *d = stats_dict(&stats[i]);
+        if (!d)
+            Py_CLEAR(counts);
+        else
+            PyList_SET_ITEM(counts, i, d);
+    }
+    if (result && (!counts || PyDict_SetItemString(result, "stats", counts) < 0))
+        Py_CLEAR(result);
+    Py_XDECREF(counts);
+    for (int k = 0; k < OUT_COUNT; k++)
+        Py_XDECREF(arrays[k]);
+    PyMem_Free(stats);
+    return result;
+}
+
+/* The keywords render and render_many share, after the poses. */
+#define CAMERA_KEYWORDS "K", "fx", "fy", "cx", "cy"
+#define OUTPUT_KEYWORDS "near", "far", "outputs", "normals", "invalid"
+
+static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwargs, bool many)
+{
+    static char *single[] = { "mesh", CAMERA_KEYWORDS, "pose", "pose_c2w", OUTPUT_KEYWORDS, NULL };
+    static char *stacked[] = { "mesh", "poses", CAMERA_KEYWORDS, "poses_c2w", OUTPUT_KEYWORDS, NULL };
+    sr_py_mesh *mesh;
+    PyObject *K = Py_None, *numbers[4] = { Py_None, Py_None, Py_None, Py_None }, *w2c = Py_None, *c2w = Py_None;
+    PyObject *outputs = NULL, *normals = NULL;
+    double near = 0.0, far = 0.0;
+    float invalid = 0.0f;
+    int parsed = many ? PyArg_ParseTupleAndKeywords(args, kwargs, "O!|O$OOOOOOddOOf:render_many", stacked,
+                                                    &sr_py_mesh_type, &mesh, &w2c, &K, &numbers[0], &numbers[1],
+                                                    &numbers[2], &numbers[3], &c2w, &near, &far, &outputs, &normals,
+                                                    &invalid)
+                      : PyArg_ParseTupleAndKeywords(args, kwargs, "O!|$OOOOOOOddOOf:render", single, &sr_py_mesh_type,
+                                                    &mesh, &K, &numbers[0], &numbers[1], &numbers[2], &numbers[3],
+                                                    &w2c, &c2w, &near, &far, &outputs, &normals, &invalid);
+    if (!parsed)
+        return NULL;
+    job j = { .cam = { .near = near, .far = far }, .invalid = invalid };
+    PyObject *depth_only = outputs ? NULL : PyUnicode_FromString("depth");
+    PyObject *geometric = normals ? NULL : PyUnicode_FromString("geometric");
+    bool ok = (outputs || depth_only) && (normals || geometric) &&
+              parse_outputs(outputs ? outputs : depth_only, normals ? normals : geometric, &j) &&
+              parse_intrinsics(self, K, numbers, &j.cam);
+    Py_XDECREF(depth_only);
+    Py_XDECREF(geometric);
+    npy_intp frames = 0;
+    double(*poses)[4][4] = ok ? parse_poses(w2c, c2w, many, &j.cam, &frames) : NULL;
+    if (!poses)
+        return NULL;
+    PyObject *result = render_frames(self, mesh, &j, poses, frames, many);
+    PyMem_Free(poses);
+    return result;
+}
+
+static PyObject *renderer_render(sr_py_renderer *self, PyObject *args, PyObject *kwargs)
+{
+    return render_call(self, args, kwargs, false);
+}
+
+static PyObject *renderer_render_many(sr_py_renderer *self, PyObject *args, PyObject *kwargs)
+{
+    return render_call(self, args, kwargs, true);
+}
+
+static PyObject *renderer_width(sr_py_renderer *self, void *closure)
+{
+    (void)closure;
+    return PyLong_FromLong(self->fb.width);
+}
+
+static PyObject *renderer_height(sr_py_renderer *self, void *closure)
+{
+    (void)closure;
+    return PyLong_FromLong(self->fb.height);
+}
+
+static PyObject *renderer_threads(sr_py_renderer *self, void *closure)
+{
+    (void)closure;
+    return PyLong_FromLong(self->threads);
+}
+
+static PyObject *renderer_repr(sr_py_renderer *self)
+{
+    return PyUnicode_FromFormat("<softrast.Renderer %dx%d, %d threads>", self->fb.width, self->fb.height,
+                                self->threads);
+}
+
+static PyMethodDef renderer_methods[] = {
+    { "render", (PyCFunction)(void (*)(void))renderer_render, METH_VARARGS | METH_KEYWORDS,
+      "render(mesh, *, K=None, fx=None, fy=None, cx=None, cy=None, pose=None, pose_c2w=None, near=0, far=0,\n"
+      "       outputs=('depth',), normals='geometric', invalid=0.0) -> dict\n\n"
+      "One pinhole view of mesh (OpenCV's convention; pose world-to-camera, identity if not given).\n"
+      "Returns new arrays for the outputs asked for among 'depth', 'range', 'face_ids', 'part_ids',\n"
+      "'normals', and 'stats' (the draw's counts)." },
+    { "render_many", (PyCFunction)(void (*)(void))renderer_render_many, METH_VARARGS | METH_KEYWORDS,
+      "render_many(mesh, poses, *, K=None, ..., poses_c2w=None, ...) -> dict\n\n"
+      "render() for each of N poses (N, 4, 4): the outputs stacked (N, H, W[, 3]), 'stats' a list." },
+    { NULL },
+};
+
+static PyGetSetDef renderer_getset[] = {
+    { "width", (getter)renderer_width, NULL, "image width in pixels", NULL },
+    { "height", (getter)renderer_height, NULL, "image height in pixels", NULL },
+    { "threads", (getter)renderer_threads, NULL, "threads a draw uses, the caller's included", NULL },
+    { NULL },
+};
+
+PyTypeObject sr_py_renderer_type = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "softrast.Renderer",
+    .tp_doc = "Renderer(width, height, threads=0): renders width x height images, reusing its buffers and\n"
+              "threads from call to call (threads 0: one a core). One call at a time: a second thread's\n"
+              "call while one runs raises RuntimeError; give each thread its own Renderer.",
+    .tp_basicsize = sizeof(sr_py_renderer),
+    .tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_BASETYPE,
+    .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)renderer_init,
+    .tp_dealloc = (destructor)renderer_dealloc,
+    .tp_repr = (reprfunc)renderer_repr,
+    .tp_methods = renderer_methods,
+    .tp_getset = renderer_getset,
+};
