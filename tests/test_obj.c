@@ -12,6 +12,7 @@
 
 #include <criterion/criterion.h>
 
+#include "io/load_report.h"
 #include "softrast_private.h"
 
 #if defined(__has_feature)
@@ -691,11 +692,26 @@ Test(obj, missing_mtl_is_an_error)
                       "cannot open material library 'x.mtl'");
 }
 
-Test(obj, unknown_material_is_an_error)
+/* As other viewers do: the faces are drawn with the default material (no
+ * texture), and the report carries one warning line for the program. */
+Test(obj, unknown_material_is_a_warning_and_the_default_material)
 {
-    write_text("a.mtl", "newmtl m\n");
-    assert_text_fails("mtllib a.mtl\nusemtl other\n", 2,
-                      "material 'other' is not in any material library");
+    write_text("a.mtl", "newmtl m\nmap_Kd t.png\n");
+    write_text(OBJ_NAME, "mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl other\nf 1/1 2/1 3/1\n");
+    sr_mesh m;
+    sr_load_report r = { 0 };
+    sr_error e = { "" };
+    cr_assert(sr_mesh_load_report(&m, NULL, tmp_path(OBJ_NAME), &r, &e), "%s", e.message);
+    cr_assert_eq(m.index_count, 3);
+    cr_assert_null(m.texture_path);
+    cr_assert_eq(r.warning_count, 1);
+    cr_assert_not_null(strstr(r.warnings[0], ":6: material 'other' is not in any material library"), "%s",
+                       r.warnings[0]);
+    cr_assert_null(strchr(r.warnings[0], '\n'));
+    cr_assert_eq(r.part_count, 1);
+    cr_assert_str_eq(r.parts[0].material, "");
+    sr_load_report_free(&r);
+    sr_mesh_free(&m);
 }
 
 Test(obj, error_in_mtl_names_the_mtl_file_and_line)

@@ -37,7 +37,10 @@
  * skinning, animation, lights and cameras are ignored. The first base-colour
  * or diffuse texture a drawn mesh uses is decoded into *texture when the
  * file embeds it (.glb, FBX; texture may be NULL to skip it, and is left
- * empty otherwise), else named by mesh->texture_path for sr_texture_load. A file over SR_MAX_MESH_VERTICES vertices or
+ * empty otherwise), else named by mesh->texture_path for sr_texture_load (found as
+ * for an OBJ's map_Kd, below). A mesh that a mirroring node transform
+ * places (negative determinant) has its winding reversed, so its outward
+ * faces stay front faces. A file over SR_MAX_MESH_VERTICES vertices or
  * SR_MAX_MESH_TRIANGLES triangles is refused before anything is allocated
  * for it. Errors: false with "FILE: reason" (Assimp's reason for its
  * formats); the mesh is left zeroed. */
@@ -66,7 +69,12 @@ SR_API bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, s
  * colors exist iff some `v` has r g b; the other vertices are white.
  * texture_path is the first `map_Kd` of a material that a face is drawn
  * with, resolved against the .mtl's folder (the .mtl against the OBJ's),
- * with Windows separators ('\') read as '/'.
+ * with Windows separators ('\') read as '/'; when no file is there, the
+ * first file found beside the .mtl by the name's last component in any
+ * case, as written or ending in .png .jpg .jpeg .tga or .bmp, then the same
+ * in a "textures" folder beside it ("D:\art\Wood.JPG" finds wood.png);
+ * when none is found, the path as written, which sr_texture_load then
+ * reports missing.
  * Coordinates are read in double. A mesh far from the world origin — the
  * centre of its bounds more than 16 times their largest side away — is
  * stored relative to that centre (computed in double), which becomes
@@ -79,9 +87,11 @@ SR_API bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, s
  * held before (it is not freed: pass an empty or freed mesh). Errors include
  * a malformed or non-finite number, a wrong count of numbers, an index that
  * is 0 or outside the elements read so far, a malformed face corner, a face
- * of fewer than 3 vertices, a line over 64 KiB or with a NUL byte, a missing
- * material library and, once a library is loaded, a `usemtl` of a material it
- * does not define. Loading is one pass, O(file size). */
+ * of fewer than 3 vertices, a line over 64 KiB or with a NUL byte and a
+ * missing material library. A `usemtl` of a material no library defines is
+ * not an error: its faces are drawn with the default material (no
+ * texture), as other viewers draw them, and the softrast program warns.
+ * Loading is one pass, O(file size). */
 SR_API bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err);
 
 /* ---- textures ----------------------------------------------------------- */

@@ -22,6 +22,7 @@ int sr_app_render(int argc, char **argv);
 int sr_app_view(int argc, char **argv);
 int sr_app_bench(int argc, char **argv);
 int sr_app_truth(int argc, char **argv);
+int sr_app_info(int argc, char **argv);
 
 /* Prints "softrast: error: <message>" on stderr and returns the exit status 1. */
 static inline int sr_app_fail(const char *message)

@@ -34,7 +34,7 @@ bool sr_dataset_check(const sr_dataset_job *d, const sr_pinhole_setup *p, const 
                                  "are a single image's");
     if (s->eye_set || s->target_set || s->look_at_set || s->fov_set)
         return sr_error_set(err, "--poses gives every frame's camera: --eye, --target, --up, --fov, --ortho, "
-                                 "--rotate-y and --reversed-z are the look-at camera's");
+                                 "--rotate-y, --up-axis and --reversed-z are the look-at camera's");
     if (single && *single)
         return sr_error_set(err, "%s is a single image's: a dataset's outputs are --out, --view-depth, --range, "
                                  "--face-ids, --part-ids and --normals",

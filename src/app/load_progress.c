@@ -12,6 +12,7 @@ typedef struct mesh_load {
     const char *path;
     sr_mesh *mesh;
     sr_texture *texture;
+    sr_load_report *report;
     sr_error *err;
     bool ok, done;
     pthread_mutex_t lock;
@@ -21,7 +22,7 @@ typedef struct mesh_load {
 static void *load_in_thread(void *p)
 {
     mesh_load *l = p;
-    bool ok = sr_mesh_load(l->mesh, l->texture, l->path, l->err);
+    bool ok = sr_mesh_load_report(l->mesh, l->texture, l->path, l->report, l->err);
     pthread_mutex_lock(&l->lock);
     l->ok = ok;
     l->done = true;
@@ -48,11 +49,18 @@ static bool wait_done(mesh_load *l, double ms)
 
 bool sr_app_load_mesh(const char *path, sr_mesh *mesh, sr_texture *texture, double quiet_ms, sr_error *err)
 {
-    mesh_load l = { path, mesh, texture, err, false, false, PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER };
+    return sr_app_load_mesh_report(path, mesh, texture, NULL, quiet_ms, err);
+}
+
+bool sr_app_load_mesh_report(const char *path, sr_mesh *mesh, sr_texture *texture, sr_load_report *report,
+                             double quiet_ms, sr_error *err)
+{
+    mesh_load l = { path,  mesh,  texture, report, err, false, false, PTHREAD_MUTEX_INITIALIZER,
+                    PTHREAD_COND_INITIALIZER };
     double start = sr_now_ms();
     pthread_t thread;
     if (pthread_create(&thread, NULL, load_in_thread, &l) != 0)
-        return sr_mesh_load(mesh, texture, path, err);
+        return sr_mesh_load_report(mesh, texture, path, report, err);
     bool quiet = wait_done(&l, quiet_ms);
     if (!quiet) {
         struct stat st;

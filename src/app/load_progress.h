@@ -2,6 +2,7 @@
 #ifndef SOFTRAST_APP_LOAD_PROGRESS_H
 #define SOFTRAST_APP_LOAD_PROGRESS_H
 
+#include "io/load_report.h"
 #include "softrast_private.h"
 
 /* The load a user waits for before the first frame (render, view, truth).
@@ -13,5 +14,8 @@
  * is, and a second, when it succeeds, how long it took and what it read
  * (the error, if any, is the caller's to print). */
 bool sr_app_load_mesh(const char *path, sr_mesh *mesh, sr_texture *texture, double quiet_ms, sr_error *err);
+/* The same, with the loader's report (io/load_report.h; NULL: not asked). */
+bool sr_app_load_mesh_report(const char *path, sr_mesh *mesh, sr_texture *texture, sr_load_report *report,
+                             double quiet_ms, sr_error *err);
 
 #endif

@@ -12,6 +12,7 @@ static const char USAGE[] =
     "  view [MESH.obj] [options]   fly a camera through a mesh in a window (softrast view --help)\n"
     "  bench [options]             time the benchmark scenes (softrast bench --help)\n"
     "  truth MESH [options]        the exactly nearest triangle and z_ndc per pixel (softrast truth --help)\n"
+    "  info MESH [--json]          what a mesh file holds: bounds, up axis, parts, textures (softrast info --help)\n"
     "\n"
     "softrast is a software rasterizer: every triangle is clipped in homogeneous clip space,\n"
     "rasterized with exact fixed-point edge functions and depth-tested. See docs/cli.md.";
@@ -30,6 +31,8 @@ int main(int argc, char **argv)
         return sr_app_bench(argc, argv);
     if (strcmp(argv[1], "truth") == 0)
         return sr_app_truth(argc, argv);
+    if (strcmp(argv[1], "info") == 0)
+        return sr_app_info(argc, argv);
     char message[256];
     snprintf(message, sizeof message, "unknown command '%s' (see softrast --help)", argv[1]);
     return sr_app_fail(message);

@@ -111,8 +111,8 @@ bool sr_pinhole_setup_check(const sr_pinhole_setup *p, const sr_scene_setup *s, 
         return true;
     }
     if (s->eye_set || s->target_set || s->look_at_set)
-        return sr_error_set(err, "a pose places the camera: --eye, --target, --up, --ortho, --rotate-y and "
-                                 "--reversed-z are the look-at camera's");
+        return sr_error_set(err, "a pose places the camera in the file's frame: --eye, --target, --up, --ortho, --rotate-y, "
+                                 "--up-axis and --reversed-z are the look-at camera's");
     if (p->intrinsics_set && s->fov_set)
         return sr_error_set(err, "--intrinsics and --fov both give the field of view: give one");
     return sr_pinhole_setup_check_outputs(p, err);

@@ -5,6 +5,7 @@
 
 #include "load_progress.h"
 #include "scene_setup.h"
+#include "upright.h"
 
 const char *const SR_SHADE_NAMES[] = { "lambert", "id", "color", "normal", "texture", "depth", NULL };
 const char *const SR_CULL_NAMES[] = { "back", "front", "none", NULL };
@@ -19,14 +20,15 @@ int sr_scene_default_threads(void)
 
 void sr_scene_setup_defaults(sr_scene_setup *s)
 {
-    *s = (sr_scene_setup){ .size = { 1280, 720 }, .camera = sr_camera_default(), .threads = sr_scene_default_threads() };
+    *s = (sr_scene_setup){ .size = { 1280, 720 }, .camera = sr_camera_default(), .threads = sr_scene_default_threads(),
+                          .up_axis = -1 };
     for (int k = 0; k < 3; k++) {
         s->eye[k] = s->camera.eye[k];
         s->target[k] = s->camera.target[k];
     }
 }
 
-#define SCENE_OPTION_COUNT 17
+#define SCENE_OPTION_COUNT 18
 
 static void scene_options(sr_scene_setup *s, sr_option *table)
 {
@@ -40,6 +42,7 @@ static void scene_options(sr_scene_setup *s, sr_option *table)
         { "--far", SR_OPT_FLOAT, &s->camera.far, "F", "far clip plane distance, or inf (default 100, or fitted to a framed mesh)", 1e-30, 3e38, .allow_infinity = true, .seen = &s->far_set },
         { "--ortho", SR_OPT_FLOAT, &s->camera.ortho_height, "HEIGHT", "orthographic projection of this view height", 1e-30, 3e38, .seen = &s->look_at_set },
         { "--rotate-y", SR_OPT_FLOAT, &s->rotate_y, "DEG", "turn the mesh about +y; positive turns +z toward +x", -1e6, 1e6, .seen = &s->look_at_set },
+        { "--up-axis", SR_OPT_CHOICE, &s->up_axis, "x|y|z|-x|-y|-z", "the file's up axis, shown up (default: the file's, else its format's; softrast info FILE)", .choices = SR_AXIS_NAMES, .seen = &s->look_at_set },
         { "--cull", SR_OPT_CHOICE, &s->cull, "back|front|none", "faces to drop (default back; none with a pose)", .choices = SR_CULL_NAMES, .seen = &s->cull_set },
         { "--front", SR_OPT_CHOICE, &s->front, "cw|ccw", "winding on screen of a front face (default cw)", .choices = FRONT_NAMES },
         { "--shade", SR_OPT_CHOICE, &s->shade, "id|color|normal|texture|lambert|depth", "shading mode (default lambert)", .choices = SR_SHADE_NAMES },
@@ -108,8 +111,12 @@ static bool load_texture(const sr_scene_setup *s, sr_scene *scene, sr_error *err
 bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err)
 {
     *scene = (sr_scene){ 0 };
-    if (!sr_app_load_mesh(s->mesh_path, &scene->mesh, &scene->texture, SR_APP_LOAD_QUIET_MS, err))
+    if (!sr_app_load_mesh_report(s->mesh_path, &scene->mesh, &scene->texture, &scene->report, SR_APP_LOAD_QUIET_MS,
+                                 err))
         return false;
+    sr_scene_print_warnings(&scene->report);
+    sr_axis up = s->up_axis >= 0 ? (sr_axis)s->up_axis : (sr_axis)scene->report.up;
+    sr_upright_matrix(up, scene->mesh.z_negated, scene->upright);
     bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);
     if (s->texture_path || !wants_texture)
         sr_texture_free(&scene->texture); /* the file's own, embedded: replaced, or not needed */
@@ -127,9 +134,18 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
     return true;
 }
 
+void sr_scene_print_warnings(const sr_load_report *r)
+{
+    for (uint32_t i = 0; i < r->warning_count && i < SR_REPORT_MAX_WARNINGS; i++)
+        fprintf(stderr, "softrast: warning: %s\n", r->warnings[i]);
+    if (r->warning_count > SR_REPORT_MAX_WARNINGS)
+        fprintf(stderr, "softrast: warning: %u more warnings like these\n", r->warning_count - SR_REPORT_MAX_WARNINGS);
+}
+
 void sr_scene_free(sr_scene *scene)
 {
     sr_mesh_free(&scene->mesh);
+    sr_load_report_free(&scene->report);
     sr_texture_free(&scene->texture);
     sr_framebuffer_destroy(&scene->fb);
     sr_workspace_destroy(scene->workspace);
@@ -168,6 +184,7 @@ void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene)
     float aspect = (float)s->size[0] / (float)s->size[1];
     if (!s->eye_set && !s->target_set && sr_mesh_bounds(&scene->mesh, lo, hi)) {
         memcpy(s->camera.origin, scene->mesh.origin, sizeof s->camera.origin);
+        sr_upright_bounds(scene->upright, lo, hi, s->camera.origin);
         sr_camera_frame_bounds(&s->camera, lo, hi, aspect);
         if (!s->near_set && !s->far_set)
             fit_depth_range(&s->camera, lo, hi);
@@ -195,7 +212,9 @@ bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc 
                             .texture = scene->texture.texels ? &scene->texture : NULL,
                             .threads = s->threads, .workspace = scene->workspace, .study = study };
     *study = (sr_draw_study){ .simd = (sr_simd)s->simd };
-    glm_rotate_make(desc->world, glm_rad(s->rotate_y), (vec3){ 0.0f, 1.0f, 0.0f });
+    mat4 turn;
+    glm_rotate_make(turn, glm_rad(s->rotate_y), (vec3){ 0.0f, 1.0f, 0.0f });
+    glm_mat4_mul(turn, (vec4 *)scene->upright, desc->world);
     sr_camera_view_d(&s->camera, &desc->view_d);
     sr_camera_projection(&s->camera, aspect, desc->projection);
     return true;

@@ -3,6 +3,7 @@
 #ifndef SOFTRAST_APP_SCENE_SETUP_H
 #define SOFTRAST_APP_SCENE_SETUP_H
 
+#include "io/load_report.h"
 #include "options.h"
 #include "softrast_private.h"
 
@@ -14,8 +15,9 @@ typedef struct sr_scene_setup {
     sr_camera camera;
     double eye[3], target[3]; /* world points of --eye and --target, kept in double */
     bool size_set, eye_set, target_set, near_set, far_set, fov_set, cull_set;
-    bool look_at_set; /* an option of the look-at camera alone: --up, --ortho, --rotate-y, --reversed-z */
+    bool look_at_set; /* an option of the look-at camera alone: --up, --ortho, --rotate-y, --up-axis, --reversed-z */
     float rotate_y;
+    int up_axis; /* --up-axis: an sr_axis of the file's frame, or -1: what the file says */
     int shade, cull, front, filter, simd; /* sr_shade, sr_cull, sr_front, sr_filter, sr_simd */
     const char *texture_path;
     int threads; /* threads in all for each draw */
@@ -24,6 +26,8 @@ typedef struct sr_scene_setup {
 /* What the files gave, owned here and released by sr_scene_free. */
 typedef struct sr_scene {
     sr_mesh mesh;
+    sr_load_report report; /* what the loader found besides the mesh */
+    mat4 upright;          /* the world turn that shows the file's up axis as +y (upright.h) */
     sr_texture texture;
     sr_framebuffer fb;
     sr_workspace *workspace; /* reused by every draw of the scene */
@@ -47,12 +51,16 @@ bool sr_scene_setup_parse(sr_scene_setup *s, const sr_option *own, const char *c
                           int argc, char **argv, bool *help, sr_error *err);
 
 /* Loads the mesh, then the texture and normals: all of them when `everything`
- * (the viewer switches modes), else only what s->shade reads. Creates the
- * framebuffer at s->size. */
+ * (the viewer switches modes), else only what s->shade reads. Prints the
+ * loader's warnings, one line each. Turns the scene upright (--up-axis, else
+ * the file's up axis). Creates the framebuffer at s->size. */
 bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err);
 void sr_scene_free(sr_scene *scene);
 
-/* Places the camera: framed on the mesh (from the mesh's origin) when
+/* The loader's warnings on stderr, "softrast: warning: …", one line each. */
+void sr_scene_print_warnings(const sr_load_report *r);
+
+/* Places the camera: framed on the upright mesh (from the mesh's origin) when
  * neither --eye nor --target was given; then, unless --near or --far was
  * given, near and far stay 0.1 and 100 if the mesh lies between them and
  * are fitted to its bounding sphere if it does not. Else, for a mesh with an origin (one
@@ -62,7 +70,8 @@ void sr_scene_free(sr_scene *scene);
  * eye and target are floats as given, as the mesh's positions are. */
 void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene);
 
-/* The draw desc for s's camera and shading at the framebuffer's size. */
+/* The draw desc for s's camera and shading at the framebuffer's size; its
+ * world is --rotate-y after the upright turn. */
 bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc *desc, sr_draw_study *study,
                    sr_error *err);
 

@@ -11,12 +11,17 @@
  * is multiplied into the vertex colours (white where a mesh has none). Positions are gathered in
  * double and stored relative to a far mesh's centre, as OBJ's are. A
  * texture embedded in the file (.glb, FBX) is decoded here; one beside it
- * is named by texture_path. The
- * import runs in a child process (isolated_load.h): Assimp is not ours to
- * make crash- and hang-free.
+ * is named by texture_path, found by texture_find.h's rules. A mesh that
+ * a mirroring node transform places (its determinant negative) has its
+ * winding reversed before Assimp flattens the scene, which Assimp does not
+ * do: its outward faces stay front faces (glTF requires it; a DirectX .x
+ * file exported from Blender mirrors its root frame). The import runs in a
+ * child process (isolated_load.h): Assimp is not ours to make crash- and
+ * hang-free.
  */
 #include <assimp/cimport.h>
 #include <assimp/material.h>
+#include <assimp/metadata.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <ctype.h>
@@ -24,6 +29,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "core/error.h"
 #include "core/input_file.h"
@@ -31,6 +37,8 @@
 #include "mesh_loaders.h"
 #include "mesh_origin.h"
 #include "obj_parse.h"
+#include "assimp_report.h"
+#include "texture_find.h"
 #include "texture_read.h"
 
 #define IMPORT_STEPS                                                                                      \
@@ -165,7 +173,9 @@ static bool find_texture(const struct aiScene *sc, const char *path, sr_mesh *me
         return decode_embedded(inside, path, tex, err);
     if (name.data[0] == '*')
         return true; /* an index past the file's textures: none */
-    mesh->texture_path = sr_obj_path_beside(path, name.data);
+    mesh->texture_path = sr_texture_find(path, name.data);
+    if (!mesh->texture_path) /* missing: named as written, for the warning */
+        mesh->texture_path = sr_obj_path_beside(path, name.data);
     return mesh->texture_path || sr_error_set(err, "%s: out of memory", path);
 }
 
@@ -257,24 +267,45 @@ static bool import_error(const char *path, sr_error *err)
     return sr_error_set(err, "%s: %s", path, reason);
 }
 
-/* In the child process: Assimp's import, converted. */
-static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err)
+/* In the child process: Assimp's import, its mirrored meshes turned
+ * outward, flattened and converted; what it found into report. */
+static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr_load_report *report, sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
-    const struct aiScene *sc = aiImportFile(path, IMPORT_STEPS);
+    const struct aiScene *sc = aiImportFile(path, 0);
+    if (!sc)
+        return import_error(path, err);
+    uint32_t mirrored = sr_assimp_unmirror(sc, report);
+    sc = aiApplyPostProcessing(sc, IMPORT_STEPS); /* the steps aiImportFile would run, in its order */
     if (!sc)
         return import_error(path, err);
     bool ok = build_mesh(sc, path, mesh, err) && find_texture(sc, path, mesh, texture, err);
+    if (ok && report) {
+        report->mirrored_meshes = mirrored;
+        ok = sr_assimp_report(sc, path, report) || sr_error_set(err, "%s: out of memory", path);
+    }
     aiReleaseImport(sc);
     if (!ok)
         sr_mesh_free(mesh);
     return ok;
 }
 
-bool sr_assimp_load(sr_mesh *mesh, sr_texture *texture, const char *path, unsigned seconds, sr_error *err)
+static bool import_plain(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err)
 {
-    bool ok = sr_isolated_load(mesh, texture, path, import_here, seconds, err);
+    return import_here(mesh, texture, path, NULL, err);
+}
+
+bool sr_assimp_load_report(sr_mesh *mesh, sr_texture *texture, const char *path, unsigned seconds,
+                           sr_load_report *report, sr_error *err)
+{
+    bool ok = report ? sr_isolated_load_report(mesh, texture, path, import_here, seconds, report, err)
+                     : sr_isolated_load(mesh, texture, path, import_plain, seconds, err);
     if (ok)
         sr_mesh_update_bounds(mesh);
     return ok;
+}
+
+bool sr_assimp_load(sr_mesh *mesh, sr_texture *texture, const char *path, unsigned seconds, sr_error *err)
+{
+    return sr_assimp_load_report(mesh, texture, path, seconds, NULL, err);
 }

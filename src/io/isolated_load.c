@@ -26,8 +26,15 @@ typedef struct wire_header {
     uint32_t has_normals, has_uvs, has_colors, part_count;
     uint32_t texture_width, texture_height; /* 0: no texture */
     uint32_t text_len; /* the texture path (ok) or the message (not ok), without its NUL */
+    uint32_t has_report; /* a report follows the arrays */
     double origin[3];
 } wire_header;
+
+/* The loader the child runs: one of the two kinds. */
+typedef struct child_loader {
+    sr_isolated_loader plain;
+    sr_isolated_report_loader reporting;
+} child_loader;
 
 /* Moves n bytes through the pipe, whole: write when `out`, else read. */
 static bool transfer(int fd, void *data, size_t n, bool out)
@@ -82,7 +89,55 @@ static int wire_arrays(sr_mesh *m, sr_texture *t, wire_array out[WIRE_ARRAYS])
     return n;
 }
 
-static void child_run(int fd, const char *path, sr_isolated_loader load, unsigned seconds)
+/* The report's fixed part, then its parts and textures. */
+static bool send_report(int fd, const sr_load_report *r)
+{
+    return write_all(fd, r, sizeof *r) && write_all(fd, r->parts, r->part_count * sizeof *r->parts) &&
+           write_all(fd, r->textures, r->texture_count * sizeof *r->textures);
+}
+
+static void terminate(char *text)
+{
+    text[SR_REPORT_TEXT - 1] = '\0';
+}
+
+/* The child's report, checked: counts within the limits, enumerations in
+ * range, every text ended. */
+static bool receive_report(int fd, sr_load_report *r)
+{
+    sr_load_report got;
+    if (!read_all(fd, &got, sizeof got) || got.part_count > SR_REPORT_MAX_PARTS ||
+        got.texture_count > SR_REPORT_MAX_TEXTURES || got.up >= SR_AXIS_COUNT || got.up_found > SR_FOUND_READ ||
+        got.units_found > SR_FOUND_READ)
+        return false;
+    got.parts = calloc(got.part_count ? got.part_count : 1, sizeof *got.parts);
+    got.textures = calloc(got.texture_count ? got.texture_count : 1, sizeof *got.textures);
+    bool ok = got.parts && got.textures && read_all(fd, got.parts, got.part_count * sizeof *got.parts) &&
+              read_all(fd, got.textures, got.texture_count * sizeof *got.textures);
+    terminate(got.format);
+    terminate(got.up_why);
+    terminate(got.units_why);
+    for (uint32_t i = 0; i < SR_REPORT_MAX_WARNINGS; i++)
+        terminate(got.warnings[i]);
+    for (uint32_t i = 0; ok && i < got.part_count; i++) {
+        terminate(got.parts[i].material);
+        if (got.parts[i].texture < -1 || got.parts[i].texture >= (int32_t)got.texture_count)
+            got.parts[i].texture = -1;
+    }
+    for (uint32_t i = 0; ok && i < got.texture_count; i++) {
+        terminate(got.textures[i].name);
+        terminate(got.textures[i].path);
+        ok = got.textures[i].status <= SR_TEXTURE_MISSING;
+    }
+    if (!ok) {
+        sr_load_report_free(&got);
+        return false;
+    }
+    *r = got;
+    return true;
+}
+
+static void child_run(int fd, const char *path, child_loader load, unsigned seconds)
 {
     /* A crash must end the child with its signal, whatever handlers the
      * parent installed (a sanitizer's, a fuzzer's, an embedder's). */
@@ -94,9 +149,10 @@ static void child_run(int fd, const char *path, sr_isolated_loader load, unsigne
     sr_mesh m;
     sr_texture t = { 0 };
     sr_error err = { "" };
-    bool ok = load(&m, &t, path, &err);
+    sr_load_report report = { 0 };
+    bool ok = load.reporting ? load.reporting(&m, &t, path, &report, &err) : load.plain(&m, &t, path, &err);
     const char *text = ok ? (m.texture_path ? m.texture_path : "") : err.message;
-    wire_header h = { .ok = ok, .text_len = (uint32_t)strlen(text) };
+    wire_header h = { .ok = ok, .text_len = (uint32_t)strlen(text), .has_report = ok && load.reporting };
     if (ok) {
         h.vertex_count = m.vertex_count;
         h.index_count = m.index_count;
@@ -112,6 +168,8 @@ static void child_run(int fd, const char *path, sr_isolated_loader load, unsigne
     wire_array arrays[WIRE_ARRAYS];
     for (int i = 0, n = ok ? wire_arrays(&m, &t, arrays) : 0; sent && i < n; i++)
         sent = write_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
+    if (sent && h.has_report)
+        sent = send_report(fd, &report);
     _exit(sent ? 0 : 1); /* no atexit handlers of the parent's libraries in the child */
 }
 
@@ -122,7 +180,7 @@ static bool texture_fits(uint32_t width, uint32_t height)
 }
 
 static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, sr_texture *texture, const char *path,
-                         sr_error *err)
+                         sr_load_report *report, sr_error *err)
 {
     if (h->vertex_count > SR_MAX_MESH_VERTICES || h->index_count / 3 > SR_MAX_MESH_TRIANGLES ||
         h->index_count % 3 != 0 || h->part_count > h->index_count / 3 || h->text_len > SR_ERROR_MAX * 8 ||
@@ -156,16 +214,23 @@ static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, sr_texture
     wire_array arrays[WIRE_ARRAYS];
     for (int i = 0, n = wire_arrays(mesh, texture, arrays); ok && i < n; i++)
         ok = read_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
-    return ok || sr_error_set(err, "%s: the importer stopped while sending the mesh", path);
+    if (!ok)
+        return sr_error_set(err, "%s: the importer stopped while sending the mesh", path);
+    sr_load_report unwanted = { 0 };
+    if (h->has_report && !receive_report(fd, report ? report : &unwanted))
+        return sr_error_set(err, "%s: the importer sent a report past the limits", path);
+    sr_load_report_free(&unwanted);
+    return true;
 }
 
-static bool receive(int fd, sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err)
+static bool receive(int fd, sr_mesh *mesh, sr_texture *texture, const char *path, sr_load_report *report,
+                    sr_error *err)
 {
     wire_header h;
     if (!read_all(fd, &h, sizeof h))
         return sr_error_set(err, "%s: the importer sent nothing", path);
     if (h.ok)
-        return receive_mesh(fd, &h, mesh, texture, path, err);
+        return receive_mesh(fd, &h, mesh, texture, path, report, err);
     char message[SR_ERROR_MAX] = "";
     size_t n = h.text_len < sizeof message - 1 ? h.text_len : sizeof message - 1;
     read_all(fd, message, n);
@@ -186,8 +251,8 @@ static bool child_status(pid_t pid, const char *path, unsigned seconds, sr_error
     return true;
 }
 
-bool sr_isolated_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_isolated_loader load, unsigned seconds,
-                      sr_error *err)
+static bool isolated_load(sr_mesh *mesh, sr_texture *texture, const char *path, child_loader load, unsigned seconds,
+                          sr_load_report *report, sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
     *texture = (sr_texture){ 0 };
@@ -206,12 +271,25 @@ bool sr_isolated_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_i
     }
     close(fds[1]);
     sr_error received = { "" }, died = { "" };
-    bool ok = receive(fds[0], mesh, texture, path, &received);
+    bool ok = receive(fds[0], mesh, texture, path, report, &received);
     close(fds[0]);
     bool lived = child_status(pid, path, seconds, &died);
     if (lived && ok)
         return true;
     sr_mesh_free(mesh);
     sr_texture_free(texture);
+    sr_load_report_free(report);
     return sr_error_set(err, "%s", lived ? received.message : died.message);
+}
+
+bool sr_isolated_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_isolated_loader load, unsigned seconds,
+                      sr_error *err)
+{
+    return isolated_load(mesh, texture, path, (child_loader){ .plain = load }, seconds, NULL, err);
+}
+
+bool sr_isolated_load_report(sr_mesh *mesh, sr_texture *texture, const char *path, sr_isolated_report_loader load,
+                             unsigned seconds, sr_load_report *report, sr_error *err)
+{
+    return isolated_load(mesh, texture, path, (child_loader){ .reporting = load }, seconds, report, err);
 }

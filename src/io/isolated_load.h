@@ -5,6 +5,8 @@
 
 #include "softrast/files.h"
 
+#include "load_report.h"
+
 typedef bool (*sr_isolated_loader)(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err);
 
 /* Runs load(mesh, texture, path) in a child limited to `seconds` (CPU and
@@ -15,5 +17,13 @@ typedef bool (*sr_isolated_loader)(sr_mesh *mesh, sr_texture *texture, const cha
  * then empty. */
 bool sr_isolated_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_isolated_loader load, unsigned seconds,
                       sr_error *err);
+
+/* The same with a loader that also fills a report (load_report.h): the
+ * child's report comes back into report (when not NULL), checked against
+ * the report's limits, its texts NUL-terminated. */
+typedef bool (*sr_isolated_report_loader)(sr_mesh *mesh, sr_texture *texture, const char *path,
+                                          sr_load_report *report, sr_error *err);
+bool sr_isolated_load_report(sr_mesh *mesh, sr_texture *texture, const char *path, sr_isolated_report_loader load,
+                             unsigned seconds, sr_load_report *report, sr_error *err);
 
 #endif

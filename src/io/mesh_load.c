@@ -25,17 +25,26 @@ static bool regular_file(const char *path, sr_error *err)
     return true;
 }
 
-bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err)
+bool sr_mesh_load_report(sr_mesh *mesh, sr_texture *texture, const char *path, sr_load_report *report,
+                         sr_error *err)
 {
     sr_texture unwanted;
     sr_texture *embedded = texture ? texture : &unwanted;
     *embedded = (sr_texture){ 0 };
+    if (report)
+        *report = (sr_load_report){ 0 };
     if (ends_with_obj(path))
-        return sr_obj_load(mesh, path, err);
+        return sr_obj_load_report(mesh, path, report, err);
     *mesh = (sr_mesh){ 0 };
-    bool ok = regular_file(path, err) && sr_assimp_load(mesh, embedded, path, SR_IMPORT_SECONDS, err);
+    bool ok = regular_file(path, err) &&
+              sr_assimp_load_report(mesh, embedded, path, SR_IMPORT_SECONDS, report, err);
     mesh->z_negated = ok; /* as OBJ's: Assimp's formats are right-handed too */
     if (!texture)
         sr_texture_free(&unwanted);
     return ok;
+}
+
+bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err)
+{
+    return sr_mesh_load_report(mesh, texture, path, NULL, err);
 }

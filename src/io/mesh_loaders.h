@@ -5,6 +5,8 @@
 
 #include "softrast/files.h"
 
+#include "load_report.h"
+
 /* The CPU time an import may take before it is stopped as a hang. */
 #define SR_IMPORT_SECONDS 120u
 
@@ -12,5 +14,13 @@
  * file embeds goes into texture. False with "FILE: reason" in err, mesh and
  * texture empty. */
 bool sr_assimp_load(sr_mesh *mesh, sr_texture *texture, const char *path, unsigned seconds, sr_error *err);
+/* The same, with what the importer found into report (NULL: not asked). */
+bool sr_assimp_load_report(sr_mesh *mesh, sr_texture *texture, const char *path, unsigned seconds,
+                           sr_load_report *report, sr_error *err);
+
+/* sr_obj_load, with what the file says of itself into report (NULL: not
+ * asked): parts are the runs of faces of one material, a `usemtl` of a
+ * material no library defines is a warning there. */
+bool sr_obj_load_report(sr_mesh *mesh, const char *path, sr_load_report *report, sr_error *err);
 
 #endif

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include "mtl.h"
+#include "texture_find.h"
 
 static bool out_of_memory(const sr_line_reader *in, sr_error *err)
 {
@@ -48,11 +49,18 @@ static bool parse_map_kd(sr_array *lib, sr_line_reader *in, char *cursor, sr_err
     if (!*file || file[0] == '-')
         return sr_line_fail(in, err, "'map_Kd' needs a file name");
     sr_material *m = (sr_material *)lib->data + lib->count - 1;
-    char *path = sr_obj_path_beside(in->path, file);
-    if (!path)
+    char *found = sr_texture_find(in->path, file);
+    char *path = found ? found : sr_obj_path_beside(in->path, file), *written = strdup(file);
+    if (!path || !written) {
+        free(path);
+        free(written);
         return out_of_memory(in, err);
+    }
     free(m->map_kd); /* a repeated map_Kd overrides, as in other readers */
+    free(m->map_kd_written);
     m->map_kd = path;
+    m->map_kd_written = written;
+    m->map_kd_found = found != NULL;
     return true;
 }
 
@@ -171,6 +179,7 @@ void sr_mtl_free(sr_mtl_libs *libs)
     for (size_t i = 0; i < libs->materials.count; i++) {
         free(m[i].name);
         free(m[i].map_kd);
+        free(m[i].map_kd_written);
     }
     sr_array_free(&libs->materials);
     sr_array_free(&libs->files);

@@ -13,7 +13,10 @@
 
 typedef struct sr_material {
     char *name;
-    char *map_kd; /* resolved against the .mtl's folder; NULL if none */
+    char *map_kd;         /* the file found (texture_find.h), else the name resolved
+                             against the .mtl's folder; NULL if none */
+    char *map_kd_written; /* the name as the .mtl writes it */
+    bool map_kd_found;    /* map_kd is a file that exists */
 } sr_material;
 
 /* The materials of every library an OBJ names, and which files those were. */

@@ -16,6 +16,7 @@
 
 #include "softrast/files.h"
 
+#include "load_report.h"
 #include "mtl.h"
 #include "obj_parse.h"
 #include "core/error.h"
@@ -44,6 +45,8 @@ typedef struct obj_reader {
     bool has_mtllib;
     ptrdiff_t material;  /* selected by usemtl, or -1 */
     const char *texture; /* first map_Kd used by a face; owned by materials */
+    sr_load_report *report; /* NULL: nobody asked */
+    ptrdiff_t run_material; /* the material of the report's last part */
 } obj_reader;
 
 static bool out_of_memory(const obj_reader *o)
@@ -282,10 +285,31 @@ static bool emit_triangle(obj_reader *o, uint32_t a, uint32_t b, uint32_t c)
 
 /* Streams the fan: on reading corner k >= 2 the fan triangle (c0, c(k-1), ck)
  * is complete, and it is written reversed as (c0, ck, c(k-1)). */
+/* The report's parts are the runs of faces drawn with one material (an
+ * OBJ has no meshes of its own); each material's texture is listed once. */
+static bool report_face(obj_reader *o, size_t first_index)
+{
+    sr_load_report *r = o->report;
+    uint32_t first = (uint32_t)(first_index / 3), added = (uint32_t)((o->indices.count - first_index) / 3);
+    if (!r || added == 0)
+        return true;
+    if (r->part_count > 0 && o->run_material == o->material && r->parts_unlisted == 0) {
+        r->parts[r->part_count - 1].triangle_count += added;
+        return true;
+    }
+    const sr_material *m = o->material >= 0 ? (const sr_material *)o->materials.materials.data + o->material : NULL;
+    int32_t texture = -1;
+    if (m && m->map_kd)
+        texture = sr_report_add_texture(r, m->map_kd_written, m->map_kd_found ? m->map_kd : NULL,
+                                    m->map_kd_found ? SR_TEXTURE_FOUND : SR_TEXTURE_MISSING);
+    o->run_material = o->material;
+    return sr_report_add_part(r, first, added, m ? m->name : "", texture) || out_of_memory(o);
+}
+
 static bool parse_face(obj_reader *o, char *cursor)
 {
     uint32_t first = 0, prev = 0;
-    size_t n = 0;
+    size_t n = 0, first_index = o->indices.count;
     for (char *tok; (tok = sr_obj_next_token(&cursor)); n++) {
         uint32_t id = 0; /* set by parse_face_corner; -O2 cannot see it */
         if (!parse_face_corner(o, tok, &id))
@@ -300,7 +324,7 @@ static bool parse_face(obj_reader *o, char *cursor)
         return sr_line_fail(&o->in, o->err, "a face needs at least 3 vertices, got %zu", n);
     if (!o->texture && o->material >= 0)
         o->texture = ((const sr_material *)o->materials.materials.data)[o->material].map_kd;
-    return true;
+    return report_face(o, first_index);
 }
 
 /* ---- materials ---- */
@@ -312,16 +336,17 @@ static bool parse_mtllib(obj_reader *o, char *cursor)
 }
 
 /* Without any mtllib, usemtl only names a group; with one, a name missing
- * from every library is an error rather than a silently untextured mesh. */
+ * from every library draws its faces with the default material (no
+ * texture), as other viewers do, and is one warning in the report. */
 static bool parse_usemtl(obj_reader *o, char *cursor)
 {
     const char *name = sr_obj_rest(cursor);
     if (!o->has_mtllib)
         return true;
     o->material = sr_mtl_find(&o->materials, name);
-    if (o->material < 0)
-        return sr_line_fail(&o->in, o->err, "material '%s' is not in any material library",
-                            name);
+    if (o->material < 0 && o->report)
+        sr_report_warn(o->report, "%s:%zu: material '%.80s' is not in any material library; its faces are drawn "
+                                  "with the default material", o->in.path, o->in.line, name);
     return true;
 }
 
@@ -346,6 +371,10 @@ static bool parse_statement(obj_reader *o, char *line)
         return parse_mtllib(o, cursor);
     if (strcmp(keyword, "usemtl") == 0)
         return parse_usemtl(o, cursor);
+    if (o->report && strcmp(keyword, "l") == 0)
+        o->report->lines++;
+    if (o->report && strcmp(keyword, "p") == 0)
+        o->report->points++;
     return true; /* o, g, s, l, p, vp, curves, …: nothing softrast draws */
 }
 
@@ -445,10 +474,12 @@ static void obj_reader_free(obj_reader *o)
     sr_mtl_free(&o->materials);
 }
 
-bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err)
+bool sr_obj_load_report(sr_mesh *mesh, const char *path, sr_load_report *report, sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
-    obj_reader o = { .err = err, .material = -1 };
+    obj_reader o = { .err = err, .material = -1, .report = report, .run_material = -2 };
+    if (report)
+        sr_report_obj_format(report);
     if (!sr_line_reader_open(&o.in, path))
         return sr_error_set(err, "%s: cannot open: %s", path, o.in.why);
     bool ok = read_statements(&o) && build_mesh(&o, mesh);
@@ -458,4 +489,9 @@ bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err)
         mesh->z_negated = true;
     }
     return ok;
+}
+
+bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err)
+{
+    return sr_obj_load_report(mesh, path, NULL, err);
 }

@@ -1,0 +1,257 @@
+/* What an Assimp scene says of itself (assimp_report.h). */
+#include <assimp/cimport.h>
+#include <assimp/importerdesc.h>
+#include <assimp/material.h>
+#include <assimp/metadata.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "assimp_report.h"
+#include "texture_find.h"
+
+/* ---- mirrored meshes ---- */
+
+static double determinant3(const struct aiMatrix4x4 *m)
+{
+    return (double)m->a1 * ((double)m->b2 * m->c3 - (double)m->b3 * m->c2) -
+           (double)m->a2 * ((double)m->b1 * m->c3 - (double)m->b3 * m->c1) +
+           (double)m->a3 * ((double)m->b1 * m->c2 - (double)m->b2 * m->c1);
+}
+
+enum { PLACED_PLAIN = 1, PLACED_MIRRORED = 2 };
+
+/* Marks how each mesh is placed: plain, mirrored or both. The sign of
+ * the global determinant is the parity of the local ones' signs. */
+static void mark_placements(const struct aiScene *sc, const struct aiNode *node, bool mirrored, uint8_t *placed,
+                            unsigned depth)
+{
+    if (!node || depth > 1024) /* a hostile hierarchy: no deeper than this */
+        return;
+    mirrored ^= determinant3(&node->mTransformation) < 0.0;
+    for (unsigned i = 0; i < node->mNumMeshes; i++)
+        if (node->mMeshes[i] < sc->mNumMeshes)
+            placed[node->mMeshes[i]] |= mirrored ? PLACED_MIRRORED : PLACED_PLAIN;
+    for (unsigned i = 0; i < node->mNumChildren; i++)
+        mark_placements(sc, node->mChildren[i], mirrored, placed, depth + 1);
+}
+
+static void reverse_faces(struct aiMesh *m)
+{
+    for (unsigned f = 0; f < m->mNumFaces; f++) {
+        unsigned *c = m->mFaces[f].mIndices, n = m->mFaces[f].mNumIndices;
+        for (unsigned i = 0; c && i < n / 2; i++) {
+            unsigned t = c[i];
+            c[i] = c[n - 1 - i];
+            c[n - 1 - i] = t;
+        }
+    }
+}
+
+uint32_t sr_assimp_unmirror(const struct aiScene *sc, sr_load_report *report)
+{
+    uint8_t *placed = calloc(sc->mNumMeshes ? sc->mNumMeshes : 1, 1);
+    if (!placed)
+        return 0;
+    mark_placements(sc, sc->mRootNode, false, placed, 0);
+    uint32_t reversed = 0, both = 0;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        if (placed[i] == PLACED_MIRRORED) {
+            reverse_faces(sc->mMeshes[i]); /* the child's own copy of the scene, ours to change */
+            reversed++;
+        }
+        both += placed[i] == (PLACED_PLAIN | PLACED_MIRRORED);
+    }
+    if (both && report)
+        sr_report_warn(report, "%u meshes are placed both mirrored and not; their mirrored copies are drawn inside out",
+                       both);
+    free(placed);
+    return reversed;
+}
+
+/* ---- metadata ---- */
+
+static const struct aiMetadataEntry *metadata(const struct aiScene *sc, const char *key)
+{
+    const struct aiMetadata *md = sc->mMetaData;
+    for (unsigned i = 0; md && i < md->mNumProperties; i++)
+        if (strcmp(md->mKeys[i].data, key) == 0 && md->mValues[i].mData)
+            return &md->mValues[i];
+    return NULL;
+}
+
+static bool metadata_int(const struct aiScene *sc, const char *key, int *out)
+{
+    const struct aiMetadataEntry *e = metadata(sc, key);
+    if (!e || e->mType != AI_INT32)
+        return false;
+    *out = *(const int32_t *)e->mData;
+    return true;
+}
+
+static bool metadata_number(const struct aiScene *sc, const char *key, double *out)
+{
+    const struct aiMetadataEntry *e = metadata(sc, key);
+    if (e && e->mType == AI_FLOAT)
+        *out = *(const float *)e->mData;
+    else if (e && e->mType == AI_DOUBLE)
+        *out = *(const double *)e->mData;
+    else if (e && e->mType == AI_INT32)
+        *out = *(const int32_t *)e->mData;
+    else
+        return false;
+    return true;
+}
+
+static const char *ending(const char *path)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    return dot && (!slash || dot > slash) ? dot + 1 : "";
+}
+
+static void report_importer(const struct aiScene *sc, const char *path, sr_load_report *r)
+{
+    const struct aiMetadataEntry *e = metadata(sc, "SourceAsset_Format");
+    const struct aiImporterDesc *d = aiGetImporterDesc(ending(path));
+    if (e && e->mType == AI_AISTRING)
+        sr_report_copy(r->format, ((const struct aiString *)e->mData)->data);
+    else if (d && d->mName)
+        sr_report_copy(r->format, d->mName);
+    else
+        sr_report_copy(r->format, ending(path));
+}
+
+/* ---- axes and units, by what the file or its format says ---- */
+
+typedef struct format_axes {
+    const char *endings; /* space-separated, lower case */
+    sr_axis up;
+    sr_found found;
+    const char *why;
+    double metres; /* 0: unknown */
+    sr_found units_found;
+    const char *units_why;
+} format_axes;
+
+/* Checked against assimp-testmodels (docs/conventions.md, "Axes and
+ * units"): which way each format's scenes arrive up from Assimp. */
+static const format_axes FORMATS[] = {
+    { "gltf glb", SR_AXIS_PY, SR_FOUND_READ, "glTF 2.0 defines +y up", 1.0, SR_FOUND_READ, "glTF 2.0 defines metres" },
+    { "dae zae", SR_AXIS_PY, SR_FOUND_READ, "Assimp turns COLLADA's <up_axis> to +y itself", 0, SR_FOUND_UNKNOWN, "not reported by Assimp" },
+    { "3ds md2 ifc ifczip", SR_AXIS_PY, SR_FOUND_READ, "Assimp turns this format to +y up itself", 0, SR_FOUND_UNKNOWN, "not reported by Assimp" },
+    { "x", SR_AXIS_PY, SR_FOUND_READ, "DirectX .x files are +y up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
+    { "3mf", SR_AXIS_PZ, SR_FOUND_READ, "3MF defines +z up (the build direction)", 0.001, SR_FOUND_GUESSED, "3MF's default unit, millimetres" },
+    { "amf", SR_AXIS_PZ, SR_FOUND_READ, "AMF defines +z up (the build direction)", 0.001, SR_FOUND_GUESSED, "AMF's default unit, millimetres" },
+    { "stl", SR_AXIS_PZ, SR_FOUND_GUESSED, "STL states no axis; 3D-printing tools take +z up", 0.001, SR_FOUND_GUESSED, "STL states no unit; 3D printing takes millimetres" },
+    { "blend", SR_AXIS_PZ, SR_FOUND_READ, "Blender's world is +z up", 1.0, SR_FOUND_GUESSED, "Blender's default unit, metres" },
+    { "smd", SR_AXIS_PZ, SR_FOUND_GUESSED, "SMD states no axis; the Source engine is +z up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
+    { "cob scn", SR_AXIS_PZ, SR_FOUND_GUESSED, "COB states no axis; trueSpace is +z up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
+};
+
+static bool listed(const char *endings, const char *e)
+{
+    size_t n = strlen(e);
+    for (const char *s = endings; n > 0 && *s;) {
+        size_t len = strcspn(s, " ");
+        if (len == n && strncasecmp(s, e, n) == 0)
+            return true;
+        s += len + (s[len] == ' ');
+    }
+    return false;
+}
+
+static void report_axes(const struct aiScene *sc, const char *path, sr_load_report *r)
+{
+    *r = (sr_load_report){ .up = SR_AXIS_PY, .up_found = SR_FOUND_GUESSED };
+    sr_report_copy(r->up_why, "the format states no axis; +y up assumed");
+    sr_report_copy(r->units_why, "the format states no unit");
+    for (size_t i = 0; i < sizeof FORMATS / sizeof *FORMATS; i++) {
+        const format_axes *f = &FORMATS[i];
+        if (!listed(f->endings, ending(path)))
+            continue;
+        r->up = f->up;
+        r->up_found = f->found;
+        sr_report_copy(r->up_why, f->why);
+        r->metres_per_unit = f->metres;
+        r->units_found = f->units_found;
+        sr_report_copy(r->units_why, f->units_why);
+    }
+    int axis, sign;
+    if (metadata_int(sc, "UpAxis", &axis) && axis >= 0 && axis <= 2) { /* FBX's GlobalSettings */
+        sign = metadata_int(sc, "UpAxisSign", &sign) && sign < 0 ? 1 : 0;
+        r->up = (uint32_t)(2 * axis + sign);
+        r->up_found = SR_FOUND_READ;
+        sr_report_copy(r->up_why, "the file's UpAxis and UpAxisSign");
+    }
+    double cm;
+    if (metadata_number(sc, "UnitScaleFactor", &cm) && cm > 0.0) { /* FBX: centimetres per unit */
+        r->metres_per_unit = cm / 100.0;
+        r->units_found = SR_FOUND_READ;
+        sr_report_copy(r->units_why, "the file's UnitScaleFactor (centimetres per unit)");
+    }
+}
+
+/* ---- parts, textures, what is left out ---- */
+
+static int32_t part_texture(const struct aiScene *sc, const struct aiMaterial *mat, const char *path,
+                            sr_load_report *r)
+{
+    static const enum aiTextureType kinds[] = { aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE };
+    struct aiString name;
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        if (aiGetMaterialTexture(mat, kinds[k], 0, &name, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS ||
+            name.length == 0)
+            continue;
+        bool embedded = name.data[0] == '*';
+        for (unsigned i = 0; !embedded && i < sc->mNumTextures; i++)
+            embedded = strcmp(sc->mTextures[i]->mFilename.data, name.data) == 0;
+        if (embedded)
+            return sr_report_add_texture(r, name.data, NULL, SR_TEXTURE_EMBEDDED);
+        char *found = sr_texture_find(path, name.data);
+        int32_t t = sr_report_add_texture(r, name.data, found, found ? SR_TEXTURE_FOUND : SR_TEXTURE_MISSING);
+        free(found);
+        return t;
+    }
+    return -1;
+}
+
+bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_load_report *r)
+{
+    uint32_t mirrored = r->mirrored_meshes, warnings = r->warning_count;
+    char kept[SR_REPORT_MAX_WARNINGS][SR_REPORT_TEXT];
+    memcpy(kept, r->warnings, sizeof kept);
+    report_axes(sc, path, r);
+    report_importer(sc, path, r);
+    r->mirrored_meshes = mirrored;
+    r->warning_count = warnings;
+    memcpy(r->warnings, kept, sizeof kept);
+    r->animations = sc->mNumAnimations;
+    r->cameras = sc->mNumCameras;
+    r->lights = sc->mNumLights;
+    uint32_t first = 0;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *m = sc->mMeshes[i];
+        if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || m->mNumVertices == 0) {
+            for (unsigned f = 0; f < m->mNumFaces; f++) {
+                r->points += m->mFaces[f].mNumIndices == 1;
+                r->lines += m->mFaces[f].mNumIndices == 2;
+            }
+            continue;
+        }
+        uint32_t count = 0;
+        for (unsigned f = 0; f < m->mNumFaces; f++)
+            count += m->mFaces[f].mNumIndices == 3;
+        if (count == 0)
+            continue;
+        r->skinned_meshes += m->mNumBones > 0;
+        const struct aiMaterial *mat = m->mMaterialIndex < sc->mNumMaterials ? sc->mMaterials[m->mMaterialIndex] : NULL;
+        struct aiString name = { 0 };
+        if (mat)
+            aiGetMaterialString(mat, AI_MATKEY_NAME, &name);
+        int32_t texture = mat ? part_texture(sc, mat, path, r) : -1;
+        if (!sr_report_add_part(r, first, count, name.data, texture))
+            return false;
+        first += count;
+    }
+    return true;
+}

@@ -1,0 +1,22 @@
+/* src/io/assimp_report.h — private to src/io: what an Assimp scene says of
+ * itself (importer, axes, units, parts, textures, what is left out), and
+ * its mirrored meshes turned outward. Run in the import's child process. */
+#ifndef SOFTRAST_IO_ASSIMP_REPORT_H
+#define SOFTRAST_IO_ASSIMP_REPORT_H
+
+#include <assimp/scene.h>
+#include <stdint.h>
+
+#include "load_report.h"
+
+/* Before the scene is flattened: reverses the faces of every mesh that
+ * mirroring node transforms alone place (their global determinant
+ * negative), so flattening keeps its outward faces outward. A mesh placed
+ * both mirrored and not is left as it is, with a warning in report (which
+ * may be NULL). Returns the meshes reversed. */
+uint32_t sr_assimp_unmirror(const struct aiScene *sc, sr_load_report *report);
+
+/* The flattened scene's report; false when out of memory. */
+bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_load_report *report);
+
+#endif

@@ -1,0 +1,285 @@
+/* Scenes drawn as their files mean them (issue 33, first slice): `softrast
+ * info`, the upright turn, textures found as people expect, a usemtl
+ * without a material, mirrored meshes. Each scene is written at test time. */
+#include <cJSON.h>
+#include <criterion/criterion.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "run_helpers.h"
+#include "softrast_private.h"
+#include "temp_dir.h"
+
+#define SIDE 64
+
+TestSuite(scene_files, .init = temp_dir_make, .fini = temp_dir_remove);
+
+/* A triangle 2 wide at z = 0 and 3 tall up +z, facing -y: upright for a
+ * +z-up file, Blender's front toward the viewer. */
+static const char TRIANGLE_STL[] = "solid t\nfacet normal 0 -1 0\nouter loop\nvertex -1 0 0\nvertex 1 0 0\n"
+                                   "vertex 0 0 3\nendloop\nendfacet\nendsolid t\n";
+
+static const char TRIANGLE_ZUP_DAE[] =
+    "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+    "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+    "<asset><unit name=\"meter\" meter=\"1\"/><up_axis>Z_UP</up_axis></asset>\n"
+    "<library_geometries><geometry id=\"tri\"><mesh>\n"
+    "<source id=\"pos\"><float_array id=\"pos-a\" count=\"9\">-1 0 0 1 0 0 0 0 3</float_array>\n"
+    "<technique_common><accessor source=\"#pos-a\" count=\"3\" stride=\"3\"><param name=\"X\" type=\"float\"/>"
+    "<param name=\"Y\" type=\"float\"/><param name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
+    "<vertices id=\"v\"><input semantic=\"POSITION\" source=\"#pos\"/></vertices>\n"
+    "<triangles count=\"1\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/><p>0 1 2</p></triangles>\n"
+    "</mesh></geometry></library_geometries>\n"
+    "<library_visual_scenes><visual_scene id=\"s\"><node id=\"n\"><instance_geometry url=\"#tri\"/></node>"
+    "</visual_scene></library_visual_scenes>\n"
+    "<scene><instance_visual_scene url=\"#s\"/></scene>\n</COLLADA>\n";
+
+static const char TRIANGLE_OBJ[] = "v -1 0 0\nv 1 0 0\nv 0 0 3\nf 1 2 3\n";
+
+static cJSON *info_json(const char *name)
+{
+    char args[1024];
+    snprintf(args, sizeof args, "info --json %s/%s", temp_dir, name);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+    cJSON *o = cJSON_Parse(r.out);
+    cr_assert_not_null(o, "not JSON: %s", r.out);
+    return o;
+}
+
+static const char *json_string(const cJSON *o, const char *key)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    cr_assert(cJSON_IsString(v), "no string \"%s\"", key);
+    return v->valuestring;
+}
+
+/* Drawn pixels in each row of an id render (--cull none: facing aside). */
+typedef struct row_counts {
+    int count[SIDE];
+    int top, bottom; /* first and last rows drawn */
+} row_counts;
+
+static row_counts render_rows(const char *name, const char *extra)
+{
+    char args[1024], out[600];
+    snprintf(out, sizeof out, "%s/ids.png", temp_dir);
+    snprintf(args, sizeof args, "render %s/%s --size %dx%d --shade id --cull none --quiet --out %s %s", temp_dir,
+             name, SIDE, SIDE, out, extra);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+    sr_texture image;
+    sr_error err;
+    cr_assert(sr_texture_load(&image, out, &err), "%s", err.message);
+    row_counts rows = { .top = -1, .bottom = -1 };
+    for (int y = 0; y < SIDE; y++) {
+        for (int x = 0; x < SIDE; x++)
+            rows.count[y] += image.texels[y * SIDE + x] != 0;
+        if (rows.count[y] && rows.top < 0)
+            rows.top = y;
+        if (rows.count[y])
+            rows.bottom = y;
+    }
+    sr_texture_free(&image);
+    cr_assert(rows.top >= 0, "nothing drawn for %s", name);
+    return rows;
+}
+
+/* The apex (+z of the file) is narrow and on top, the base wide below. */
+static void assert_apex_up(const row_counts *rows)
+{
+    cr_assert_lt(rows->count[rows->top], rows->count[rows->bottom], "apex row %d has %d pixels, base row %d has %d",
+                 rows->top, rows->count[rows->top], rows->bottom, rows->count[rows->bottom]);
+    cr_assert_gt(rows->bottom - rows->top, SIDE / 2, "the triangle should stand tall: rows %d to %d", rows->top,
+                 rows->bottom);
+}
+
+Test(scene_files, info_json_says_an_stl_is_guessed_z_up)
+{
+    write_text(temp_dir, "t.stl", TRIANGLE_STL);
+    cJSON *o = info_json("t.stl");
+    cr_assert_str_eq(json_string(o, "up_axis"), "+z");
+    cr_assert_str_eq(json_string(o, "up_found"), "guessed");
+    cr_assert_eq(cJSON_GetObjectItem(o, "triangles")->valueint, 1);
+    const cJSON *file_max = cJSON_GetObjectItem(cJSON_GetObjectItem(o, "bounds_file"), "max");
+    const cJSON *world_min = cJSON_GetObjectItem(cJSON_GetObjectItem(o, "bounds_world"), "min");
+    cr_assert_eq(cJSON_GetArrayItem(file_max, 2)->valuedouble, 3.0);   /* the file's frame */
+    cr_assert_eq(cJSON_GetArrayItem(world_min, 2)->valuedouble, -3.0); /* softrast's: z negated */
+    cJSON_Delete(o);
+}
+
+Test(scene_files, a_z_up_stl_stands_upright_by_default)
+{
+    write_text(temp_dir, "t.stl", TRIANGLE_STL);
+    row_counts rows = render_rows("t.stl", "");
+    assert_apex_up(&rows);
+}
+
+Test(scene_files, up_axis_minus_z_turns_it_upside_down)
+{
+    write_text(temp_dir, "t.stl", TRIANGLE_STL);
+    row_counts rows = render_rows("t.stl", "--up-axis -z");
+    cr_assert_gt(rows.count[rows.top], rows.count[rows.bottom], "the base should be on top");
+}
+
+Test(scene_files, an_obj_is_y_up_unless_told)
+{
+    write_text(temp_dir, "t.obj", TRIANGLE_OBJ);
+    cJSON *o = info_json("t.obj");
+    cr_assert_str_eq(json_string(o, "up_axis"), "+y");
+    cr_assert_str_eq(json_string(o, "format"), "Wavefront OBJ");
+    cJSON_Delete(o);
+    row_counts rows = render_rows("t.obj", "--up-axis z");
+    assert_apex_up(&rows);
+}
+
+/* Assimp turns a COLLADA Z_UP scene to +y itself: what arrives is y up. */
+Test(scene_files, a_z_up_collada_arrives_upright)
+{
+    write_text(temp_dir, "t.dae", TRIANGLE_ZUP_DAE);
+    cJSON *o = info_json("t.dae");
+    cr_assert_str_eq(json_string(o, "up_axis"), "+y");
+    cr_assert_str_eq(json_string(o, "up_found"), "read");
+    cJSON_Delete(o);
+    row_counts rows = render_rows("t.dae", "");
+    assert_apex_up(&rows);
+}
+
+/* The pinhole camera speaks the file's frame: the turn is the look-at
+ * camera's alone, and --up-axis with a pose is refused. */
+Test(scene_files, up_axis_is_the_look_at_cameras)
+{
+    write_text(temp_dir, "t.stl", TRIANGLE_STL);
+    char args[1024];
+    snprintf(args, sizeof args,
+             "render %s/t.stl --up-axis z --pose-w2c 1,0,0,0,0,1,0,0,0,0,1,5,0,0,0,1 --out %s/p.png", temp_dir,
+             temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_neq(r.status, 0);
+    cr_assert_not_null(strstr(r.err, "--up-axis"), "%s", r.err);
+    cr_assert_eq(count_lines(r.err), 1, "%s", r.err);
+}
+
+static void write_red_png(const char *name)
+{
+    uint32_t red[4] = { 0xFF0000, 0xFF0000, 0xFF0000, 0xFF0000 };
+    char path[600];
+    sr_error err;
+    snprintf(path, sizeof path, "%s/%s", temp_dir, name);
+    cr_assert(sr_image_write_png(path, red, 2, 2, &err), "%s", err.message);
+}
+
+static const char QUAD_OBJ[] = "mtllib m.mtl\nusemtl skin\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                               "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
+
+/* The texture's colour at the centre of a texture-shaded render. */
+static uint32_t centre_texel(const char *obj)
+{
+    char args[1024], out[600];
+    snprintf(out, sizeof out, "%s/tex.png", temp_dir);
+    snprintf(args, sizeof args, "render %s/%s --size 16x16 --shade texture --cull none --quiet --out %s", temp_dir,
+             obj, out);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_assert_eq(r.err[0], '\0', "no warning expected: %s", r.err);
+    sr_texture image;
+    sr_error err;
+    cr_assert(sr_texture_load(&image, out, &err), "%s", err.message);
+    uint32_t c = image.texels[8 * 16 + 8];
+    sr_texture_free(&image);
+    return c;
+}
+
+Test(scene_files, a_texture_named_in_another_case_is_found)
+{
+    write_text(temp_dir, "m.obj", QUAD_OBJ);
+    write_text(temp_dir, "m.mtl", "newmtl skin\nmap_Kd IMAGE1.JPG\n");
+    write_red_png("image1.jpg"); /* a PNG by its bytes, as some files are */
+    cJSON *o = info_json("m.obj");
+    const cJSON *t = cJSON_GetArrayItem(cJSON_GetObjectItem(o, "textures"), 0);
+    cr_assert_str_eq(json_string(t, "name"), "IMAGE1.JPG");
+    cr_assert_str_eq(json_string(t, "status"), "found");
+    cr_assert_not_null(strstr(json_string(t, "path"), "/image1.jpg"));
+    const cJSON *part = cJSON_GetArrayItem(cJSON_GetObjectItem(o, "parts"), 0);
+    cr_assert_str_eq(json_string(part, "material"), "skin");
+    cr_assert_eq(cJSON_GetObjectItem(part, "texture")->valueint, 0);
+    cJSON_Delete(o);
+    cr_assert_eq(centre_texel("m.obj"), 0xFF0000u);
+}
+
+Test(scene_files, a_windows_path_is_found_by_base_name_in_textures)
+{
+    write_text(temp_dir, "m.obj", QUAD_OBJ);
+    write_text(temp_dir, "m.mtl", "newmtl skin\nmap_Kd D:\\projects\\art\\Skin.tga\n");
+    char dir[600];
+    snprintf(dir, sizeof dir, "%s/Textures", temp_dir);
+    cr_assert_eq(mkdir(dir, 0700), 0);
+    write_red_png("Textures/skin.png");
+    cr_assert_eq(centre_texel("m.obj"), 0xFF0000u);
+}
+
+Test(scene_files, a_missing_texture_is_one_warning_and_drawn_untextured)
+{
+    write_text(temp_dir, "m.obj", QUAD_OBJ);
+    write_text(temp_dir, "m.mtl", "newmtl skin\nmap_Kd gone.png\n");
+    char args[1024];
+    snprintf(args, sizeof args, "render %s/m.obj --size 16x16 --quiet --out %s/o.png", temp_dir, temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_assert_eq(count_lines(r.err), 1, "%s", r.err);
+    cr_assert_eq(strncmp(r.err, "softrast: warning: ", 19), 0, "%s", r.err);
+    cr_assert_not_null(strstr(r.err, "gone.png"), "%s", r.err);
+    cJSON *o = info_json("m.obj");
+    const cJSON *t = cJSON_GetArrayItem(cJSON_GetObjectItem(o, "textures"), 0);
+    cr_assert_str_eq(json_string(t, "status"), "missing");
+    cJSON_Delete(o);
+}
+
+Test(scene_files, a_usemtl_without_a_material_is_one_warning)
+{
+    write_text(temp_dir, "m.obj", "mtllib m.mtl\nusemtl nowhere\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+    write_text(temp_dir, "m.mtl", "newmtl skin\n");
+    char args[1024];
+    snprintf(args, sizeof args, "render %s/m.obj --size 16x16 --quiet --out %s/o.png", temp_dir, temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_assert_eq(count_lines(r.err), 1, "%s", r.err);
+    cr_assert_eq(strncmp(r.err, "softrast: warning: ", 19), 0, "%s", r.err);
+    cr_assert_not_null(strstr(r.err, "m.obj:2: material 'nowhere' is not in any material library"), "%s", r.err);
+}
+
+/* A glTF node with scale -1 mirrors its tetrahedron: drawn right side out,
+ * back-face culling changes nothing, as glTF requires. */
+static const char MIRRORED_GLTF[] =
+    "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+    "\"nodes\":[{\"mesh\":0,\"scale\":[-1,1,1]}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+    "\"indices\":1}]}],\"buffers\":[{\"byteLength\":72,\"uri\":\"data:application/octet-stream;base64,"
+    "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAACAAEAAAABAAMAAAADAAIAAQACAAMA\"}],"
+    "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},{\"buffer\":0,\"byteOffset\":48,"
+    "\"byteLength\":24}],\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+    "\"min\":[0,0,0],\"max\":[1,1,1]},{\"bufferView\":1,\"componentType\":5123,\"count\":12,\"type\":\"SCALAR\"}]}";
+
+Test(scene_files, a_mirrored_node_keeps_its_faces_outward)
+{
+    write_text(temp_dir, "m.gltf", MIRRORED_GLTF);
+    cJSON *o = info_json("m.gltf");
+    cr_assert_eq(cJSON_GetObjectItem(o, "mirrored_meshes")->valueint, 1);
+    cJSON_Delete(o);
+    char args[1024];
+    const char *const culls[] = { "back", "none" };
+    sr_texture depth[2];
+    for (int i = 0; i < 2; i++) {
+        char out[600];
+        sr_error err;
+        snprintf(out, sizeof out, "%s/%s.png", temp_dir, culls[i]);
+        snprintf(args, sizeof args, "render %s/m.gltf --size 32x32 --eye 2,3,-4 --target 0,0,0 --shade depth --cull %s "
+                 "--quiet --out %s", temp_dir, culls[i], out);
+        run_result r = run_softrast(temp_dir, args);
+        cr_assert_eq(r.status, 0, "%s", r.err);
+        cr_assert(sr_texture_load(&depth[i], out, &err), "%s", err.message);
+    }
+    cr_assert_eq(memcmp(depth[0].texels, depth[1].texels, 32 * 32 * sizeof(uint32_t)), 0,
+                 "culling back faces changed the picture: the mirrored mesh is inside out");
+    sr_texture_free(&depth[0]);
+    sr_texture_free(&depth[1]);
+}
