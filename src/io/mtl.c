@@ -49,18 +49,17 @@ static bool parse_map_kd(sr_array *lib, sr_line_reader *in, char *cursor, sr_err
     if (!*file || file[0] == '-')
         return sr_line_fail(in, err, "'map_Kd' needs a file name");
     sr_material *m = (sr_material *)lib->data + lib->count - 1;
-    char *found = sr_texture_find(in->path, file);
-    char *path = found ? found : sr_obj_path_beside(in->path, file), *written = strdup(file);
-    if (!path || !written) {
+    char *path = sr_obj_path_beside(in->path, file), *written = strdup(file), *library = strdup(in->path);
+    if (!path || !written || !library) {
         free(path);
         free(written);
+        free(library);
         return out_of_memory(in, err);
     }
     free(m->map_kd); /* a repeated map_Kd overrides, as in other readers */
     free(m->map_kd_written);
-    m->map_kd = path;
-    m->map_kd_written = written;
-    m->map_kd_found = found != NULL;
+    free(m->library);
+    *m = (sr_material){ .name = m->name, .map_kd = path, .map_kd_written = written, .library = library };
     return true;
 }
 
@@ -173,6 +172,19 @@ ptrdiff_t sr_mtl_find(const sr_mtl_libs *libs, const char *name)
     return -1;
 }
 
+void sr_mtl_find_texture(sr_material *m)
+{
+    if (!m->map_kd || m->map_kd_searched)
+        return;
+    m->map_kd_searched = true;
+    char *found = sr_texture_find(m->library, m->map_kd_written);
+    if (found) {
+        free(m->map_kd);
+        m->map_kd = found;
+        m->map_kd_found = true;
+    }
+}
+
 void sr_mtl_free(sr_mtl_libs *libs)
 {
     sr_material *m = libs->materials.data;
@@ -180,6 +192,7 @@ void sr_mtl_free(sr_mtl_libs *libs)
         free(m[i].name);
         free(m[i].map_kd);
         free(m[i].map_kd_written);
+        free(m[i].library);
     }
     sr_array_free(&libs->materials);
     sr_array_free(&libs->files);

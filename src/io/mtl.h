@@ -13,9 +13,11 @@
 
 typedef struct sr_material {
     char *name;
-    char *map_kd;         /* the file found (texture_find.h), else the name resolved
-                             against the .mtl's folder; NULL if none */
+    char *map_kd;         /* the name resolved against the .mtl's folder, or once
+                             searched (sr_mtl_find_texture) the file found; NULL if none */
     char *map_kd_written; /* the name as the .mtl writes it */
+    char *library;        /* the .mtl's path, where the search starts */
+    bool map_kd_searched; /* sr_mtl_find_texture looked for it */
     bool map_kd_found;    /* map_kd is a file that exists */
 } sr_material;
 
@@ -41,6 +43,11 @@ bool sr_mtl_load(sr_mtl_libs *libs, const sr_line_reader *obj, char *names, sr_e
 
 /* Index of the first material called `name`, or -1. */
 ptrdiff_t sr_mtl_find(const sr_mtl_libs *libs, const char *name);
+
+/* Looks for m's texture by texture_find.h's rules, once: only the
+ * materials a mesh uses are searched for, so a library of thousands
+ * whose textures are missing costs no folder scans. */
+void sr_mtl_find_texture(sr_material *m);
 
 void sr_mtl_free(sr_mtl_libs *libs);
 

@@ -287,6 +287,15 @@ static bool emit_triangle(obj_reader *o, uint32_t a, uint32_t b, uint32_t c)
  * is complete, and it is written reversed as (c0, ck, c(k-1)). */
 /* The report's parts are the runs of faces drawn with one material (an
  * OBJ has no meshes of its own); each material's texture is listed once. */
+/* The material faces use now, its texture looked for; NULL for none. */
+static const sr_material *current_material(obj_reader *o)
+{
+    sr_material *m = o->material >= 0 ? (sr_material *)o->materials.materials.data + o->material : NULL;
+    if (m)
+        sr_mtl_find_texture(m);
+    return m;
+}
+
 static bool report_face(obj_reader *o, size_t first_index)
 {
     sr_load_report *r = o->report;
@@ -297,7 +306,7 @@ static bool report_face(obj_reader *o, size_t first_index)
         r->parts[r->part_count - 1].triangle_count += added;
         return true;
     }
-    const sr_material *m = o->material >= 0 ? (const sr_material *)o->materials.materials.data + o->material : NULL;
+    const sr_material *m = current_material(o);
     int32_t texture = -1;
     if (m && m->map_kd)
         texture = sr_report_add_texture(r, m->map_kd_written, m->map_kd_found ? m->map_kd : NULL,
@@ -323,7 +332,7 @@ static bool parse_face(obj_reader *o, char *cursor)
     if (n < 3)
         return sr_line_fail(&o->in, o->err, "a face needs at least 3 vertices, got %zu", n);
     if (!o->texture && o->material >= 0)
-        o->texture = ((const sr_material *)o->materials.materials.data)[o->material].map_kd;
+        o->texture = current_material(o)->map_kd;
     return report_face(o, first_index);
 }
 
