@@ -54,6 +54,17 @@ static const char *json_string(const cJSON *o, const char *key)
     return v->valuestring;
 }
 
+/* Writes text as `name`; its info --json, whose up axis must be `axis`,
+ * read or guessed as `found` says. */
+static cJSON *info_with_up(const char *name, const char *text, const char *axis, const char *found)
+{
+    write_text(temp_dir, name, text);
+    cJSON *o = info_json(name);
+    cr_assert_str_eq(json_string(o, "up_axis"), axis, "%s", name);
+    cr_assert_str_eq(json_string(o, "up_found"), found, "%s", name);
+    return o;
+}
+
 /* Drawn pixels in each row of an id render (--cull none: facing aside). */
 typedef struct row_counts {
     int count[SIDE];
@@ -96,10 +107,7 @@ static void assert_apex_up(const row_counts *rows)
 
 Test(scene_files, info_json_says_an_stl_is_guessed_z_up)
 {
-    write_text(temp_dir, "t.stl", TRIANGLE_STL);
-    cJSON *o = info_json("t.stl");
-    cr_assert_str_eq(json_string(o, "up_axis"), "+z");
-    cr_assert_str_eq(json_string(o, "up_found"), "guessed");
+    cJSON *o = info_with_up("t.stl", TRIANGLE_STL, "+z", "guessed");
     cr_assert_eq(cJSON_GetObjectItem(o, "triangles")->valueint, 1);
     const cJSON *file_max = cJSON_GetObjectItem(cJSON_GetObjectItem(o, "bounds_file"), "max");
     const cJSON *world_min = cJSON_GetObjectItem(cJSON_GetObjectItem(o, "bounds_world"), "min");
@@ -124,9 +132,7 @@ Test(scene_files, up_axis_minus_z_turns_it_upside_down)
 
 Test(scene_files, an_obj_is_y_up_unless_told)
 {
-    write_text(temp_dir, "t.obj", TRIANGLE_OBJ);
-    cJSON *o = info_json("t.obj");
-    cr_assert_str_eq(json_string(o, "up_axis"), "+y");
+    cJSON *o = info_with_up("t.obj", TRIANGLE_OBJ, "+y", "guessed");
     cr_assert_str_eq(json_string(o, "format"), "Wavefront OBJ");
     cJSON_Delete(o);
     row_counts rows = render_rows("t.obj", "--up-axis z");
@@ -136,10 +142,7 @@ Test(scene_files, an_obj_is_y_up_unless_told)
 /* Assimp turns a COLLADA Z_UP scene to +y itself: what arrives is y up. */
 Test(scene_files, a_z_up_collada_arrives_upright)
 {
-    write_text(temp_dir, "t.dae", TRIANGLE_ZUP_DAE);
-    cJSON *o = info_json("t.dae");
-    cr_assert_str_eq(json_string(o, "up_axis"), "+y");
-    cr_assert_str_eq(json_string(o, "up_found"), "read");
+    cJSON *o = info_with_up("t.dae", TRIANGLE_ZUP_DAE, "+y", "read");
     cJSON_Delete(o);
     row_counts rows = render_rows("t.dae", "");
     assert_apex_up(&rows);

@@ -69,8 +69,7 @@ int main(int argc, char **argv)
     sr_pinhole_fit_clip(&cam, &mesh);
     sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .threads = threads,
                           .workspace = sr_workspace_create(), .clear = true };
-    sr_pinhole_matrices(&cam, &mesh, width, height, &desc);
-    fb.reversed_z = true;
+    sr_pinhole_matrices(&cam, &mesh, &fb, &desc);
     size_t n = (size_t)width * (size_t)height;
     sr_pinhole_outputs out = { .depth = malloc(n * sizeof(float)), .face_ids = malloc(n * sizeof(uint32_t)) };
     double *draw = malloc(2 * (size_t)frames * sizeof *draw), *resolve = draw + frames;

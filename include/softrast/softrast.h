@@ -370,12 +370,11 @@ SR_API bool sr_pinhole_pose_from_c2w(const double c2w[4][4], double w2c[4][4], s
  * camera, with room on both sides; near stays above 1e-6 of far. */
 SR_API void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh);
 
-/* The draw's view_d and projection for cam at width x height (near and far
+/* The draw's view_d and projection for cam at fb's size (near and far
  * set); world is left as the identity. The projection is reversed z (near
- * → 1, far → 0): draw into a framebuffer with reversed_z. Culling keeps
- * the file's front faces, as for the look-at camera. */
-SR_API void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, int width, int height,
-                                sr_draw_desc *desc);
+ * → 1, far → 0), so fb is made reversed_z too (clear it in the draw: desc's
+ * clear). Culling keeps the file's front faces, as for the look-at camera. */
+SR_API void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, sr_framebuffer *fb, sr_draw_desc *desc);
 
 /* What sr_pinhole_resolve writes per pixel, each width x height values
  * (normals: x 3), row 0 at the top; a NULL array is not wanted. */

@@ -66,7 +66,6 @@ static int renderer_init(sr_py_renderer *self, PyObject *args, PyObject *kwargs)
         sr_py_raise(PyExc_ValueError, &err);
         return -1;
     }
-    fb.reversed_z = true;
     sr_workspace *workspace = sr_workspace_create();
     if (!workspace) {
         sr_framebuffer_destroy(&fb);
@@ -233,7 +232,7 @@ static bool render_one(sr_py_renderer *self, const sr_mesh *mesh, sr_pinhole *ca
     sr_pinhole_fit_clip(cam, mesh);
     sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .threads = self->threads,
                           .workspace = self->workspace, .clear = true };
-    sr_pinhole_matrices(cam, mesh, self->fb.width, self->fb.height, &desc);
+    sr_pinhole_matrices(cam, mesh, &self->fb, &desc);
     return sr_draw(&self->fb, &desc, stats, err) && sr_pinhole_resolve(cam, mesh, &self->fb, out, err);
 }
 

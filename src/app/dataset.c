@@ -104,13 +104,9 @@ static bool render_frame(const sr_dataset_job *d, const sr_pinhole_setup *p, con
     int size[2], digits = frame_digits(sr_transforms_count(t));
     sr_draw_desc desc;
     sr_draw_study study;
-    if (!sr_transforms_camera(t, i, &cam, size, err) || !sr_scene_desc(s, scene, &desc, &study, err))
+    if (!sr_transforms_camera(t, i, &cam, size, err) || !sr_pinhole_setup_clip(s, &scene->mesh, &cam, err) ||
+        !sr_scene_desc(s, scene, &desc, &study, err))
         return false;
-    if (s->near_set || s->far_set) {
-        cam.near = s->camera.near;
-        cam.far = s->camera.far;
-    }
-    sr_pinhole_fit_clip(&cam, &scene->mesh);
     sr_pinhole_setup_desc(s, &cam, scene, &desc);
     desc.clear = true;
     char rel[PATH_MAX], path[PATH_MAX];

@@ -133,10 +133,19 @@ bool sr_pinhole_setup_camera(const sr_pinhole_setup *p, const sr_scene_setup *s,
         cam->cx = 0.5 * (width - 1);
         cam->cy = 0.5 * (height - 1);
     }
-    double pose[4][4];
-    memcpy(pose, p->c2w_set ? p->pose_c2w : p->pose_w2c, sizeof pose);
-    if (p->c2w_set ? !sr_pinhole_pose_from_c2w(pose, cam->w2c, err) : (memcpy(cam->w2c, pose, sizeof pose), false))
-        return false;
+    if (p->c2w_set) {
+        double c2w[4][4];
+        memcpy(c2w, p->pose_c2w, sizeof c2w);
+        if (!sr_pinhole_pose_from_c2w(c2w, cam->w2c, err))
+            return false;
+    } else {
+        memcpy(cam->w2c, p->pose_w2c, sizeof cam->w2c);
+    }
+    return sr_pinhole_setup_clip(s, mesh, cam, err);
+}
+
+bool sr_pinhole_setup_clip(const sr_scene_setup *s, const sr_mesh *mesh, sr_pinhole *cam, sr_error *err)
+{
     if (s->near_set || s->far_set) {
         cam->near = s->camera.near;
         cam->far = s->camera.far;
@@ -230,8 +239,7 @@ static bool write_resolved(const sr_pinhole_setup *p, const sr_pinhole *cam, con
 
 void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, sr_draw_desc *desc)
 {
-    scene->fb.reversed_z = true;
-    sr_pinhole_matrices(cam, &scene->mesh, scene->fb.width, scene->fb.height, desc);
+    sr_pinhole_matrices(cam, &scene->mesh, &scene->fb, desc);
     if (!s->cull_set)
         desc->cull = SR_CULL_NONE;
 }
@@ -248,7 +256,7 @@ bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, sr
     sr_framebuffer ids;
     if (!sr_framebuffer_create(&ids, scene->fb.width, scene->fb.height, err))
         return false;
-    ids.reversed_z = true;
+    ids.reversed_z = scene->fb.reversed_z; /* desc's matrices are the scene framebuffer's */
     sr_draw_desc id_desc = *desc;
     id_desc.shade = SR_SHADE_ID;
     id_desc.clear = true;

@@ -56,6 +56,10 @@ bool sr_pinhole_setup_check_outputs(const sr_pinhole_setup *p, sr_error *err);
 bool sr_pinhole_setup_camera(const sr_pinhole_setup *p, const sr_scene_setup *s, const sr_mesh *mesh,
                              sr_pinhole *cam, sr_error *err);
 
+/* cam's clip planes: --near and --far where given, else fitted to the
+ * mesh; false, with one line, for a camera sr_pinhole_check refuses. */
+bool sr_pinhole_setup_clip(const sr_scene_setup *s, const sr_mesh *mesh, sr_pinhole *cam, sr_error *err);
+
 /* Whether any of the outputs measured from the pinhole camera was asked for. */
 bool sr_pinhole_setup_wants_depth(const sr_pinhole_setup *p);
 

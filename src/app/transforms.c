@@ -21,6 +21,7 @@ enum { FL_X, FL_Y, CX, CY, W, H, ANGLE_X, ANGLE_Y, FIELDS };
 static const char *const FIELD_NAMES[FIELDS] = { "fl_x", "fl_y", "cx", "cy", "w", "h", "camera_angle_x",
                                                  "camera_angle_y" };
 
+/* The whole file, a regular one (sr_input_open), read at its size. */
 static char *read_text(const char *path, sr_error *err)
 {
     const char *why;
@@ -29,25 +30,18 @@ static char *read_text(const char *path, sr_error *err)
         sr_error_set(err, "%s: cannot open: %s", path, why);
         return NULL;
     }
-    size_t cap = 1 << 16, n = 0;
-    char *text = malloc(cap);
-    while (text) {
-        n += fread(text + n, 1, cap - n - 1, f);
-        if (n < cap - 1 || cap >= SR_TRANSFORMS_MAX_BYTES)
-            break;
-        char *grown = realloc(text, cap *= 2);
-        if (!grown)
-            free(text);
-        text = grown;
-    }
-    bool failed = ferror(f), too_big = text && n >= SR_TRANSFORMS_MAX_BYTES - 1;
+    off_t size = fseeko(f, 0, SEEK_END) == 0 ? ftello(f) : -1;
+    char *text = size >= 0 && size < SR_TRANSFORMS_MAX_BYTES && fseeko(f, 0, SEEK_SET) == 0 ? malloc((size_t)size + 1)
+                                                                                          : NULL;
+    bool read = text && fread(text, 1, (size_t)size, f) == (size_t)size;
     fclose(f);
-    if (!text || failed || too_big) {
+    if (!read) {
+        bool too_big = size >= SR_TRANSFORMS_MAX_BYTES, no_memory = size >= 0 && !too_big && !text;
         free(text);
-        sr_error_set(err, "%s: %s", path, !text ? "out of memory" : failed ? "cannot read" : "larger than 256 MB");
+        sr_error_set(err, "%s: %s", path, too_big ? "larger than 256 MB" : no_memory ? "out of memory" : "cannot read");
         return NULL;
     }
-    text[n] = '\0';
+    text[size] = '\0';
     return text;
 }
 

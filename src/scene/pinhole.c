@@ -121,8 +121,9 @@ void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh)
     cam->near = fmax(FIT_NEAR_SLACK * nearest, FIT_NEAR_MIN * cam->far);
 }
 
-void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, int width, int height, sr_draw_desc *desc)
+void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, sr_framebuffer *fb, sr_draw_desc *desc)
 {
+    fb->reversed_z = true;
     /* view = F · w2c · S: S undoes the loader's z negation, F turns the
      * camera's y down into softrast's view y up. */
     double s = mesh->z_negated ? -1.0 : 1.0;
@@ -133,7 +134,7 @@ void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, int width, 
     /* Pixel x + 0.5 is u (softrast samples pixel centres at x + 0.5, OpenCV
      * at u), so x_ndc = (2(fx·X/Z + cx) + 1)/W − 1, and y likewise with
      * y_ndc up. Each entry is computed in double and rounded once. */
-    double w = width, h = height, n = cam->near, f = cam->far;
+    double w = fb->width, h = fb->height, n = cam->near, f = cam->far;
     glm_mat4_zero(desc->projection);
     desc->projection[0][0] = (float)(2.0 * cam->fx / w);
     desc->projection[2][0] = (float)((2.0 * cam->cx + 1.0) / w - 1.0);
@@ -176,7 +177,7 @@ static void normalize_into(const double v[3], float out[3])
  * front side, its part and its vertex normals. */
 typedef struct resolved_triangle {
     uint32_t slot, part;
-    double v0[3], e1[3], e2[3], cross[3], cross_squared, front[3];
+    double v0[3], e1[3], e2[3], cross[3], cross_squared, offset, front[3]; /* offset: cross · v0 */
     double vertex_normals[3][3];
 } resolved_triangle;
 
@@ -207,6 +208,7 @@ static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, uint32_
     }
     sr_dvec3_cross(t->e1, t->e2, t->cross);
     t->cross_squared = sr_dvec3_dot(t->cross, t->cross);
+    t->offset = sr_dvec3_dot(t->cross, t->v0);
     /* The loader reversed a z-negated file's winding: its front side is the other one. */
     for (int k = 0; k < 3; k++)
         t->front[k] = mesh->z_negated ? -t->cross[k] : t->cross[k];
@@ -225,7 +227,7 @@ static double surface_point(const sr_pinhole *cam, const resolved_triangle *t, i
                             double point[3])
 {
     const double ray[3] = { (x - cam->cx) / cam->fx, (y - cam->cy) / cam->fy, 1.0 };
-    double z = sr_dvec3_dot(t->cross, t->v0) / sr_dvec3_dot(t->cross, ray);
+    double z = t->offset / sr_dvec3_dot(t->cross, ray);
     if (!(z > 0.0) || !isfinite(z)) /* the ray runs in the plane: an edge-on triangle */
         z = z_of_depth(cam, stored_depth);
     for (int k = 0; k < 3; k++)
