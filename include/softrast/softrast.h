@@ -154,7 +154,14 @@ typedef struct sr_texture {
  * clears to 1.0 and keeps the nearer fragment with LESS; reversed_z clears to
  * 0.0 and tests GREATER, for a camera with reversed_z, which spreads float
  * precision evenly over distance. The caller owns the memory: either
- * sr_framebuffer_create/destroy, or fill the struct with buffers of its own. */
+ * sr_framebuffer_create/destroy, or fill the struct with buffers of its own.
+ *
+ * ids is optional (NULL: none): where it is given, every draw writes the
+ * triangle id + 1 of each fragment that passes the depth test there, the
+ * value SR_SHADE_ID writes to color, whatever the shading; clearing sets it
+ * to 0. So one draw gives the shaded image and what each pixel shows (what
+ * sr_pinhole_resolve reads), and a draw without the plane pays nothing for
+ * it. */
 #define SR_MAX_FRAMEBUFFER_SIDE 16384
 #define SR_DEPTH_CLEAR 1.0f          /* standard: nothing drawn */
 #define SR_DEPTH_CLEAR_REVERSED 0.0f /* reversed_z: nothing drawn */
@@ -164,12 +171,19 @@ typedef struct sr_framebuffer {
     uint32_t *color; /* width * height */
     float *depth;    /* width * height */
     bool reversed_z; /* clear to 0, test GREATER */
+    uint32_t *ids;   /* optional, width * height: triangle id + 1 where drawn, 0 where cleared */
 } sr_framebuffer;
 
-/* False (with a message) for a side < 1 or > SR_MAX_FRAMEBUFFER_SIDE, or out of memory. */
+/* Color and depth, no ids. False (with a message) for a side < 1 or >
+ * SR_MAX_FRAMEBUFFER_SIDE, or out of memory. */
 SR_API bool sr_framebuffer_create(sr_framebuffer *fb, int width, int height, sr_error *err);
+/* Gives a framebuffer of sr_framebuffer_create an ids plane, zeroed (none
+ * yet: a new one; one already: kept). False (with a message, fb unchanged)
+ * when out of memory. */
+SR_API bool sr_framebuffer_create_ids(sr_framebuffer *fb, sr_error *err);
+/* Frees the planes sr_framebuffer_create and sr_framebuffer_create_ids made. */
 SR_API void sr_framebuffer_destroy(sr_framebuffer *fb);
-/* Color to `color`, depth to the clear value of fb's convention. */
+/* Color to `color`, depth to the clear value of fb's convention, ids (if any) to 0. */
 SR_API void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color);
 
 /* The clear value of fb's depth convention. */
@@ -387,15 +401,19 @@ typedef struct sr_pinhole_outputs {
     bool interpolated_normals; /* the vertex normals interpolated at the surface point; false: the
                                   triangle's own, by its winding (the file's front side) */
     float invalid;    /* depth and range where nothing is drawn: 0, or NAN */
+    int threads;      /* threads in all, the caller's included; 0 or 1: one */
 } sr_pinhole_outputs;
 
-/* The outputs asked for, from ids: the framebuffer of an SR_SHADE_ID draw
- * of mesh with cam's matrices (its color the triangle id + 1 per pixel).
- * Each pixel's surface point is the ray through its centre met with the
- * plane of the triangle it shows, in double, each value rounded to float
- * once (where the ray runs in that plane, the depth buffer's value gives
- * the point). False, with one line in err, for a mesh without positions,
- * or interpolated normals of a mesh without normals. */
+/* The outputs asked for, from ids: the framebuffer of a draw of mesh with
+ * cam's matrices, which says what each pixel shows in its ids plane
+ * (sr_framebuffer.ids: a draw in any shading gives color and these outputs
+ * at once) or, without one, in its color (an SR_SHADE_ID draw). Each
+ * pixel's surface point is the ray through its centre met with the plane
+ * of the triangle it shows, in double, each value rounded to float once
+ * (where the ray runs in that plane, the depth buffer's value gives the
+ * point). The threads take equal bands of rows; every value is the same
+ * for every thread count. False, with one line in err, for a mesh without
+ * positions, or interpolated normals of a mesh without normals. */
 SR_API bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
                                const sr_pinhole_outputs *out, sr_error *err);
 

@@ -1,7 +1,9 @@
 /* pinhole.c — cameras in OpenCV's convention (softrast.h, "pinhole
  * cameras"): their checks, their clip planes, the draw's matrices, and view
- * depth and range from the triangle each pixel shows. */
+ * depth and range from the triangle each pixel shows, in bands of rows on
+ * threads. */
 #include <math.h>
+#include <pthread.h>
 #include <string.h>
 
 #include "pipeline/02_assemble.h"
@@ -250,18 +252,26 @@ static void interpolated_normal(const resolved_triangle *t, const double p[3], d
                  l2 * t->vertex_normals[2][k];
 }
 
-bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
-                        const sr_pinhole_outputs *out, sr_error *err)
+/* A resolve's threads at most, as a draw's (draw_state.h). */
+#define RESOLVE_MAX_THREADS 64
+
+/* What every thread of a resolve reads, and the plane of ids it reads. */
+typedef struct resolve_job {
+    const sr_pinhole *cam;
+    const sr_mesh *mesh;
+    const sr_framebuffer *fb;
+    const uint32_t *ids; /* fb's ids plane, or its color of an SR_SHADE_ID draw */
+    const sr_pinhole_outputs *out;
+} resolve_job;
+
+static void resolve_rows(const resolve_job *job, int y0, int y1)
 {
-    if (!mesh->positions)
-        return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
-    if (out->normals && out->interpolated_normals && !mesh->normals)
-        return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
+    const sr_pinhole_outputs *out = job->out;
     resolved_triangle t = { .slot = UINT32_MAX };
-    for (int y = 0; y < ids->height; y++)
-        for (int x = 0; x < ids->width; x++) {
-            size_t at = (size_t)y * (size_t)ids->width + (size_t)x;
-            uint32_t id = ids->color[at];
+    for (int y = y0; y < y1; y++)
+        for (int x = 0; x < job->fb->width; x++) {
+            size_t at = (size_t)y * (size_t)job->fb->width + (size_t)x;
+            uint32_t id = job->ids[at];
             if (id == 0) {
                 if (out->depth)
                     out->depth[at] = out->invalid;
@@ -276,8 +286,8 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
                 continue;
             }
             if (t.slot != id - 1)
-                resolve_triangle(cam, mesh, id - 1, &t);
-            double p[3], z = surface_point(cam, &t, x, y, ids->depth[at], p);
+                resolve_triangle(job->cam, job->mesh, id - 1, &t);
+            double p[3], z = surface_point(job->cam, &t, x, y, job->fb->depth[at], p);
             if (out->depth)
                 out->depth[at] = (float)z;
             if (out->range)
@@ -293,5 +303,46 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
                 normalize_into(out->interpolated_normals ? n : t.front, &out->normals[3 * at]);
             }
         }
+}
+
+/* One thread's rows: band k of `bands` equal runs of rows. */
+typedef struct resolve_band {
+    const resolve_job *job;
+    int k, bands;
+    pthread_t thread;
+} resolve_band;
+
+static void *resolve_band_run(void *arg)
+{
+    const resolve_band *b = arg;
+    int height = b->job->fb->height;
+    resolve_rows(b->job, (int)((int64_t)height * b->k / b->bands), (int)((int64_t)height * (b->k + 1) / b->bands));
+    return NULL;
+}
+
+bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
+                        const sr_pinhole_outputs *out, sr_error *err)
+{
+    if (!mesh->positions)
+        return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
+    if (out->normals && out->interpolated_normals && !mesh->normals)
+        return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
+    resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color, out };
+    /* Each pixel's values are its own, whichever thread computes them: the
+     * bands change no bit. More threads than rows would have empty bands. */
+    int bands = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;
+    bands = bands > ids->height ? ids->height : bands;
+    resolve_band band[RESOLVE_MAX_THREADS];
+    int started = 1; /* band 0 is the caller's */
+    for (int k = 0; k < bands; k++)
+        band[k] = (resolve_band){ .job = &job, .k = k, .bands = bands };
+    while (started < bands && pthread_create(&band[started].thread, NULL, resolve_band_run, &band[started]) == 0)
+        started++;
+    /* A thread that could not start: its bands run here, after band 0. */
+    for (int k = 0; k < bands; k++)
+        if (k == 0 || k >= started)
+            resolve_band_run(&band[k]);
+    for (int k = 1; k < started; k++)
+        pthread_join(band[k].thread, NULL);
     return true;
 }
