@@ -24,7 +24,8 @@ typedef struct render_job {
 } render_job;
 
 typedef struct frame_times {
-    double median, min;
+    double median, min; /* of the draws */
+    double resolve;     /* the pinhole outputs' resolve after them, files aside (0: none) */
 } frame_times;
 
 static const char USAGE[] =
@@ -172,11 +173,12 @@ static void explain_nothing_drawn(const sr_scene_setup *setup, const sr_scene *s
 static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_simd simd, const sr_mesh *mesh)
 {
     const char *why = nothing_drawn(s);
-    printf("{\"frames\": %d, \"ms_median\": %.4f, \"ms_min\": %.4f, \"triangles\": %llu, \"rejected\": %llu, "
+    printf("{\"frames\": %d, \"ms_median\": %.4f, \"ms_min\": %.4f, \"resolve_ms\": %.4f, \"triangles\": %llu, "
+           "\"rejected\": %llu, "
            "\"clipped\": %llu, \"culled\": %llu, \"fragments\": %llu, \"nonfinite\": %llu, \"drawn\": %llu, "
            "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu, \"simd\": \"%s\", "
            "\"nothing_drawn\": %s%s%s, \"rejected_by_plane\": ",
-           frames, t->median, t->min, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
+           frames, t->median, t->min, t->resolve, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
            (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->fragments,
            (unsigned long long)s->nonfinite, (unsigned long long)s->drawn, (unsigned long long)s->cuts_float,
            (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact,
@@ -209,10 +211,12 @@ static void report_done(const render_job *job, const sr_framebuffer *fb, const s
     fputs(line, stderr);
 }
 
-/* The pinhole camera of the options, into desc. */
+/* The pinhole camera of the options, into desc, and the framebuffer's ids
+ * plane for its outputs: the frames draw color and ids at once. */
 static bool use_pinhole(render_job *job, sr_scene *scene, sr_pinhole *cam, sr_draw_desc *desc, sr_error *err)
 {
-    if (!sr_pinhole_setup_camera(&job->pinhole, &job->scene, &scene->mesh, cam, err))
+    if (!sr_pinhole_setup_camera(&job->pinhole, &job->scene, &scene->mesh, cam, err) ||
+        !sr_pinhole_setup_ids(&job->pinhole, scene, err))
         return false;
     sr_pinhole_setup_desc(&job->scene, cam, scene, desc);
     return true;
@@ -240,7 +244,7 @@ static bool render(void *j, sr_scene *scene, sr_error *err)
         sr_scene_frame_camera(&job->scene, scene);
     if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) || (pinhole && !use_pinhole(job, scene, &cam, &desc, err)) ||
         !run_frames(job->frames, scene, &desc, &stats, &times, err) || !write_outputs(job, scene, err) ||
-        (pinhole && !sr_pinhole_setup_write(&job->pinhole, &cam, scene, &desc, err)))
+        (pinhole && !sr_pinhole_setup_write(&job->pinhole, &cam, scene, &desc, &times.resolve, err)))
         return false;
     if (!pinhole)
         explain_nothing_drawn(&job->scene, scene, &stats);
