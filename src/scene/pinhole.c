@@ -2,8 +2,10 @@
  * cameras"): their checks, their clip planes, the draw's matrices, and view
  * depth and range from the triangle each pixel shows, in bands of rows on
  * threads. */
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "pipeline/02_assemble.h"
@@ -175,11 +177,13 @@ static void normalize_into(const double v[3], float out[3])
 }
 
 /* Triangle `slot` in the camera frame: its corner v0, edges e1 = v1 − v0
- * and e2 = v2 − v0, their cross product e1 × e2, its normal on the file's
- * front side, its part and its vertex normals. */
+ * and e2 = v2 − v0, their cross product e1 × e2, and what the outputs ask
+ * of it: its unit normal on the file's front side (the same for every
+ * pixel, so rounded once), its part, its vertex normals. */
 typedef struct resolved_triangle {
     uint32_t slot, part;
-    double v0[3], e1[3], e2[3], cross[3], cross_squared, offset, front[3]; /* offset: cross · v0 */
+    double v0[3], e1[3], e2[3], cross[3], cross_squared, offset; /* offset: cross · v0 */
+    float front[3];
     double vertex_normals[3][3];
 } resolved_triangle;
 
@@ -196,7 +200,8 @@ static uint32_t part_of(const sr_mesh *mesh, uint32_t slot)
     return mesh->part_count ? lo + 1 : 1;
 }
 
-static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, uint32_t slot, resolved_triangle *t)
+static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, const sr_pinhole_outputs *out,
+                             uint32_t slot, resolved_triangle *t)
 {
     uint32_t idx[3];
     double v[3][3];
@@ -211,26 +216,29 @@ static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, uint32_
     sr_dvec3_cross(t->e1, t->e2, t->cross);
     t->cross_squared = sr_dvec3_dot(t->cross, t->cross);
     t->offset = sr_dvec3_dot(t->cross, t->v0);
-    /* The loader reversed a z-negated file's winding: its front side is the other one. */
-    for (int k = 0; k < 3; k++)
-        t->front[k] = mesh->z_negated ? -t->cross[k] : t->cross[k];
-    for (int c = 0; mesh->normals && c < 3; c++) {
+    if (out->normals && !out->interpolated_normals) {
+        /* The loader reversed a z-negated file's winding: its front side is the other one. */
+        double front[3];
+        for (int k = 0; k < 3; k++)
+            front[k] = mesh->z_negated ? -t->cross[k] : t->cross[k];
+        normalize_into(front, t->front);
+    }
+    for (int c = 0; out->normals && out->interpolated_normals && c < 3; c++) {
         const float *n = mesh->normals[idx[c]];
         double file[3] = { n[0], n[1], mesh->z_negated ? -(double)n[2] : n[2] };
         rotate(cam, file, t->vertex_normals[c]);
     }
-    t->part = mesh->parts ? part_of(mesh, slot) : 1;
+    t->part = out->part_ids && mesh->parts ? part_of(mesh, slot) : 1;
     t->slot = slot;
 }
 
-/* The surface point of pixel (x, y) on triangle t: its view z, and the
- * point itself. */
-static double surface_point(const sr_pinhole *cam, const resolved_triangle *t, int x, int y, float stored_depth,
-                            double point[3])
+/* The surface point on triangle t of the ray through a pixel's centre,
+ * ((x − cx)/fx, (y − cy)/fy, 1): its view z, and the point itself. */
+static double surface_point(const sr_pinhole *cam, const resolved_triangle *t, const double ray[3],
+                            float stored_depth, double point[3])
 {
-    const double ray[3] = { (x - cam->cx) / cam->fx, (y - cam->cy) / cam->fy, 1.0 };
     double z = t->offset / sr_dvec3_dot(t->cross, ray);
-    if (!(z > 0.0) || !isfinite(z)) /* the ray runs in the plane: an edge-on triangle */
+    if (!(z > 0.0 && z <= DBL_MAX)) /* the ray runs in the plane: an edge-on triangle */
         z = z_of_depth(cam, stored_depth);
     for (int k = 0; k < 3; k++)
         point[k] = z * ray[k];
@@ -262,12 +270,20 @@ typedef struct resolve_job {
     const sr_framebuffer *fb;
     const uint32_t *ids; /* fb's ids plane, or its color of an SR_SHADE_ID draw */
     const sr_pinhole_outputs *out;
+    double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
 } resolve_job;
+
+/* The triangles a thread keeps resolved, by slot modulo this many: a
+ * row's pixels come back to the triangles of the row above, and a
+ * triangle's set-up costs many pixels' work. */
+#define TRIANGLE_CACHE 256
 
 static void resolve_rows(const resolve_job *job, int y0, int y1)
 {
     const sr_pinhole_outputs *out = job->out;
-    resolved_triangle t = { .slot = UINT32_MAX };
+    resolved_triangle cache[TRIANGLE_CACHE];
+    for (int i = 0; i < TRIANGLE_CACHE; i++)
+        cache[i].slot = UINT32_MAX;
     for (int y = y0; y < y1; y++)
         for (int x = 0; x < job->fb->width; x++) {
             size_t at = (size_t)y * (size_t)job->fb->width + (size_t)x;
@@ -285,9 +301,11 @@ static void resolve_rows(const resolve_job *job, int y0, int y1)
                     memset(&out->normals[3 * at], 0, 3 * sizeof *out->normals);
                 continue;
             }
-            if (t.slot != id - 1)
-                resolve_triangle(job->cam, job->mesh, id - 1, &t);
-            double p[3], z = surface_point(job->cam, &t, x, y, job->fb->depth[at], p);
+            resolved_triangle *t = &cache[(id - 1) % TRIANGLE_CACHE];
+            if (t->slot != id - 1)
+                resolve_triangle(job->cam, job->mesh, out, id - 1, t);
+            const double ray[3] = { job->ray_x[x], job->ray_y[y], 1.0 };
+            double p[3], z = surface_point(job->cam, t, ray, job->fb->depth[at], p);
             if (out->depth)
                 out->depth[at] = (float)z;
             if (out->range)
@@ -295,12 +313,15 @@ static void resolve_rows(const resolve_job *job, int y0, int y1)
             if (out->face_ids)
                 out->face_ids[at] = id;
             if (out->part_ids)
-                out->part_ids[at] = t.part;
+                out->part_ids[at] = t->part;
             if (out->normals) {
-                double n[3];
-                if (out->interpolated_normals)
-                    interpolated_normal(&t, p, n);
-                normalize_into(out->interpolated_normals ? n : t.front, &out->normals[3 * at]);
+                if (out->interpolated_normals) {
+                    double n[3];
+                    interpolated_normal(t, p, n);
+                    normalize_into(n, &out->normals[3 * at]);
+                } else {
+                    memcpy(&out->normals[3 * at], t->front, sizeof t->front);
+                }
             }
         }
 }
@@ -327,7 +348,17 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
         return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
     if (out->normals && out->interpolated_normals && !mesh->normals)
         return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
-    resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color, out };
+    resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color, out,
+                        malloc((size_t)ids->width * sizeof *job.ray_x), malloc((size_t)ids->height * sizeof *job.ray_y) };
+    if (!job.ray_x || !job.ray_y) {
+        free(job.ray_x);
+        free(job.ray_y);
+        return sr_error_set(err, "out of memory for the rays of a %dx%d view", ids->width, ids->height);
+    }
+    for (int x = 0; x < ids->width; x++)
+        job.ray_x[x] = (x - cam->cx) / cam->fx;
+    for (int y = 0; y < ids->height; y++)
+        job.ray_y[y] = (y - cam->cy) / cam->fy;
     /* Each pixel's values are its own, whichever thread computes them: the
      * bands change no bit. More threads than rows would have empty bands. */
     int bands = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;
@@ -344,5 +375,7 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
             resolve_band_run(&band[k]);
     for (int k = 1; k < started; k++)
         pthread_join(band[k].thread, NULL);
+    free(job.ray_x);
+    free(job.ray_y);
     return true;
 }
