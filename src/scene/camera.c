@@ -153,27 +153,24 @@ void sr_camera_view(const sr_camera *cam, mat4 out)
     sr_dmat4_to_mat4(&view, out);
 }
 
-/* z_clip = a·z_view + b (w is z_view for perspective, 1 for orthographic):
- * the z row for the reversed and infinite mappings, in double so the
- * coefficients are the correctly rounded ones (the point of reversed z),
- * and for a standard perspective whose n·f overflows float (a framed mesh
- * near float's range) though a and b themselves fit. */
+/* z_clip = a·z_view + b (w is z_view for perspective, 1 for orthographic),
+ * in every mode from double, so the coefficients are the correctly rounded
+ * ones: cglm's float f/(f − n) is off by an ulp or more, a bias every depth
+ * carries (and n·f may overflow float for a scene near float's range though
+ * a and b themselves fit). */
 static void z_row_in_double(const sr_camera *cam, mat4 out)
 {
     double n = cam->near, f = cam->far, a, b;
-    bool ortho = cam->ortho_height > 0.0f, infinite = isinf(f);
-    if (ortho) {
-        a = -1.0 / (f - n);
-        b = f / (f - n);
-    } else if (infinite) {
-        a = cam->reversed_z ? 0.0 : 1.0;
-        b = cam->reversed_z ? n : -n;
-    } else if (!cam->reversed_z) {
-        a = f / (f - n);
-        b = -n * f / (f - n);
+    bool reversed = cam->reversed_z;
+    if (cam->ortho_height > 0.0f) {
+        a = (reversed ? -1.0 : 1.0) / (f - n);
+        b = (reversed ? f : -n) / (f - n);
+    } else if (isinf(f)) {
+        a = reversed ? 0.0 : 1.0;
+        b = reversed ? n : -n;
     } else {
-        a = -n / (f - n);
-        b = n * f / (f - n);
+        a = (reversed ? -n : f) / (f - n);
+        b = (reversed ? n * f : -n * f) / (f - n);
     }
     out[2][2] = sr_double_to_float(a);
     out[3][2] = sr_double_to_float(b);
@@ -188,8 +185,7 @@ void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out)
     } else {
         glm_perspective_lh_zo(glm_rad(cam->fov_deg), aspect, cam->near, far, out);
     }
-    if (cam->reversed_z || isinf(cam->far) || !isfinite(out[3][2]))
-        z_row_in_double(cam, out);
+    z_row_in_double(cam, out);
 }
 
 double sr_camera_view_distance(float z_ndc, const void *camera)

@@ -1,6 +1,7 @@
-/* sr_camera_frame_bounds and sr_camera_fit_clip: near and far fitted to a
- * scene of any size, so the library's first picture is never empty, and the
- * contract's planes kept while the scene lies between them. */
+/* The look-at camera: sr_camera_frame_bounds and sr_camera_fit_clip fit
+ * near and far to a scene of any size, so the library's first picture is
+ * never empty, and keep the contract's planes while the scene lies between
+ * them; sr_camera_projection's depth row is the correctly rounded one. */
 #include <criterion/criterion.h>
 
 #include "softrast_private.h"
@@ -104,4 +105,31 @@ Test(camera_fit, framed_tiny_mesh_draws)
     cr_assert(sr_draw(&fb, &desc, &stats, NULL));
     cr_expect_eq(stats.rejected, 0);
     cr_expect_gt(stats.fragments, 32 * 32 / 8, "%llu fragments", (unsigned long long)stats.fragments);
+}
+
+/* The depth row z_clip = a·z_view + b of every mode, a and b the double
+ * values rounded once (cglm's float f/(f − n) is an ulp off, a bias every
+ * depth carried). */
+Test(camera_projection, depth_row_is_rounded_once_from_double)
+{
+    static const float planes[][2] = { { 0.1f, 100.0f }, { 1.0f, 2000.0f }, { 0.01f, 1e4f }, { 3.0f, 7.0f } };
+    for (size_t i = 0; i < sizeof planes / sizeof planes[0]; i++)
+        for (int mode = 0; mode < 4; mode++) {
+            sr_camera cam = sr_camera_default();
+            double n = cam.near = planes[i][0], f = cam.far = planes[i][1];
+            cam.reversed_z = mode & 1;
+            cam.ortho_height = (mode & 2) ? 2.0f : 0.0f;
+            mat4 p;
+            sr_camera_projection(&cam, 1.5f, p);
+            double a, b;
+            if (cam.ortho_height > 0.0f) {
+                a = (cam.reversed_z ? -1.0 : 1.0) / (f - n);
+                b = (cam.reversed_z ? f : -n) / (f - n);
+            } else {
+                a = (cam.reversed_z ? -n : f) / (f - n);
+                b = (cam.reversed_z ? n * f : -n * f) / (f - n);
+            }
+            cr_expect_eq(p[2][2], (float)a, "near %g far %g mode %d: a %.9g, want %.9g", n, f, mode, p[2][2], a);
+            cr_expect_eq(p[3][2], (float)b, "near %g far %g mode %d: b %.9g, want %.9g", n, f, mode, p[3][2], b);
+        }
 }
