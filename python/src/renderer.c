@@ -224,16 +224,27 @@ static double (*parse_poses(PyObject *w2c, PyObject *c2w, bool many, const sr_pi
     return poses;
 }
 
+/* Part ids the caller gave (mesh.c's part_map) for the library's runs. */
+static void map_parts(uint32_t *ids, size_t count, const uint32_t *part_map)
+{
+    for (size_t i = 0; i < count; i++)
+        ids[i] = ids[i] ? part_map[ids[i] - 1] : 0;
+}
+
 /* One frame: clip planes fitted where 0, the id view drawn, the outputs
  * resolved from it. Runs without the GIL. */
-static bool render_one(sr_py_renderer *self, const sr_mesh *mesh, sr_pinhole *cam, const sr_pinhole_outputs *out,
-                       sr_stats *stats, sr_error *err)
+static bool render_one(sr_py_renderer *self, const sr_py_mesh *pm, const sr_mesh *mesh, sr_pinhole *cam,
+                       const sr_pinhole_outputs *out, sr_stats *stats, sr_error *err)
 {
     sr_pinhole_fit_clip(cam, mesh);
     sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .threads = self->threads,
                           .workspace = self->workspace, .clear = true };
     sr_pinhole_matrices(cam, mesh, &self->fb, &desc);
-    return sr_draw(&self->fb, &desc, stats, err) && sr_pinhole_resolve(cam, mesh, &self->fb, out, err);
+    if (!sr_draw(&self->fb, &desc, stats, err) || !sr_pinhole_resolve(cam, mesh, &self->fb, out, err))
+        return false;
+    if (out->part_ids && pm->part_map)
+        map_parts(out->part_ids, (size_t)self->fb.width * (size_t)self->fb.height, pm->part_map);
+    return true;
 }
 
 static PyObject *stats_dict(const sr_stats *s)
@@ -313,7 +324,7 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
                                        .interpolated_normals = j->interpolated, .invalid = j->invalid };
 #undef FRAME
             Py_BEGIN_ALLOW_THREADS
-            ok = render_one(self, &m, &cam, &out, &stats[i], &err);
+            ok = render_one(self, mesh, &m, &cam, &out, &stats[i], &err);
             Py_END_ALLOW_THREADS
             if (!ok)
                 sr_py_raise(PyExc_ValueError, &err);
