@@ -14,7 +14,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path[:0] = [os.path.dirname(HERE), os.path.join(ROOT, "tools")]
+sys.path += [os.path.dirname(HERE), os.path.join(ROOT, "tools")]  # an installed softrast first, else the in-place build
 import numpy as np  # noqa: E402
 
 import pinhole_sheet  # noqa: E402
