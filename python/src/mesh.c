@@ -231,7 +231,8 @@ static int mesh_init(sr_py_mesh *self, PyObject *args, PyObject *kwargs)
         goto done;
     }
     set_positions(&self->mesh, PyArray_DATA(positions));
-    for (npy_intp i = 0; i < 3 * triangles; i++) /* winding reversed with z; an index past the vertices: sr_draw refuses it */
+    /* the winding reversed with z; an index past the vertices: sr_draw refuses it */
+    for (npy_intp i = 0; i < 3 * triangles; i++)
         self->mesh.indices[i] = (uint32_t)f[i % 3 == 0 ? i : i % 3 == 1 ? i + 1 : i - 1];
     if (!set_attributes(self, given, vertices, triangles)) {
         mesh_clear(self);
@@ -409,7 +410,8 @@ static PyGetSetDef mesh_getset[] = {
     { "texture", (getter)mesh_texture, NULL, "a copy of the texture, (H, W, 3) uint8, or None", NULL },
     { "vertex_count", (getter)mesh_vertex_count, NULL, "number of vertices", NULL },
     { "triangle_count", (getter)mesh_triangle_count, NULL, "number of triangles (face ids run 1 to this)", NULL },
-    { "part_count", (getter)mesh_part_count, NULL, "the largest part id: the file's meshes, or the largest given", NULL },
+    { "part_count", (getter)mesh_part_count, NULL, "the largest part id: the file's meshes, or the largest given",
+      NULL },
     { NULL },
 };
 

@@ -417,7 +417,8 @@ static void map_parts(uint32_t *ids, size_t count, const uint32_t *part_map)
 static bool render_one(sr_py_renderer *self, const sr_py_mesh *pm, const sr_mesh *mesh, sr_pinhole *cam,
                        const job *j, const sr_pinhole_outputs *out, uint8_t *color, sr_stats *stats, sr_error *err)
 {
-    if (!draw_views(self, mesh, &pm->texture, cam, j, stats, err) || !sr_pinhole_resolve(cam, mesh, &self->fb, out, err))
+    if (!draw_views(self, mesh, &pm->texture, cam, j, stats, err) ||
+        !sr_pinhole_resolve(cam, mesh, &self->fb, out, err))
         return false;
     if (color)
         write_color(self, j->shade, color);
