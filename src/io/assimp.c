@@ -109,8 +109,17 @@ static bool count_scene(const struct aiScene *sc, const char *path, scene_counts
             continue;
         n->vertices += m->mNumVertices;
         uint64_t before = n->indices;
-        for (unsigned f = 0; f < m->mNumFaces; f++)
-            n->indices += is_triangle(&m->mFaces[f]) ? 3u : 0u;
+        for (unsigned f = 0; f < m->mNumFaces; f++) {
+            if (!is_triangle(&m->mFaces[f]))
+                continue;
+            /* Assimp passes on what a file names: a PLY face may name a
+             * vertex the file never gave. */
+            for (int c = 0; c < 3; c++)
+                if (m->mFaces[f].mIndices[c] >= m->mNumVertices)
+                    return sr_error_set(err, "%s: mesh %u face %u names vertex %u of %u", path, i, f,
+                                        m->mFaces[f].mIndices[c], m->mNumVertices);
+            n->indices += 3u;
+        }
         n->parts += n->indices > before;
         n->normals |= m->mNormals != NULL;
         n->uvs |= m->mTextureCoords[0] != NULL;
