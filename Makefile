@@ -193,6 +193,9 @@ docs-images: build/softrast
 	./build/softrast render assets/room.obj $(ROOM_CAMERA) --size 640x360 --shade id --out docs/images/room-id.png
 	./build/softrast render assets/torus.obj --eye 0,2.2,-2.6 --target 0,0,0 --size 320x240 --shade normal --out docs/images/torus-normal.png
 	./build/softrast render $(ENGINE_GLB) --eye 300,250,-500 --target 0,0,0 --near 1 --far 5000 --size 640x360 --out docs/images/engine-gltf.png
+	./build/softrast render $(ENGINE_GLB) --eye 300,250,-500 --target 0,0,0 --near 1 --far 5000 --size 640x360 --lines --out docs/images/engine-lines.png
+	python3 tools/point_cloud.py build/knot-cloud.ply
+	./build/softrast render build/knot-cloud.ply --points --point-size 2 --eye 0,4,-9 --target 0,0,0 --size 640x360 --out docs/images/knot-points.png
 	@sh tools/deps.sh python3-numpy
 	/usr/bin/python3 tools/pinhole_sheet.py docs/images/pinhole-outputs.png build/softrast
 	$(call viewer_shot,,viewer)

@@ -60,7 +60,10 @@ typedef struct sr_error {
 
 typedef enum sr_topology {
     SR_TRIANGLE_LIST = 0, /* triangle k = (i[3k], i[3k+1], i[3k+2]) */
-    SR_TRIANGLE_STRIP     /* triangle k = (i[k], i[k+1], i[k+2]); odd k swaps its last two */
+    SR_TRIANGLE_STRIP,    /* triangle k = (i[k], i[k+1], i[k+2]); odd k swaps its last two */
+    SR_POINT_LIST,        /* point k = i[k]: a square of sr_draw_desc.point_size pixels */
+    SR_LINE_LIST,         /* line k = (i[2k], i[2k+1]) */
+    SR_LINE_STRIP         /* line k = (i[k], i[k+1]) */
 } sr_topology;
 
 /* A run of triangle slots that came from one part of a file: a loader's
@@ -72,7 +75,10 @@ typedef struct sr_mesh_part {
 /* An indexed triangle mesh in plain arrays, positions in softrast's
  * left-handed world. A triangle with a repeated index is degenerate and
  * skipped (a strip's way of restarting); triangle ids count the slots of the
- * topology from 0, degenerate ones included.
+ * topology from 0, degenerate ones included. The point and line topologies
+ * draw the same arrays as points or segments (docs/conventions.md, "Points
+ * and lines"): a line with a repeated index is skipped, and ids count
+ * points or lines as they count triangles.
  *
  * Positions are float and relative to the double `origin` (world position =
  * origin + position; zero makes them absolute): a mesh 1e7 from the world
@@ -130,7 +136,8 @@ SR_API bool sr_mesh_set_origin(sr_mesh *mesh, const double origin[3], sr_error *
  * memory. The normals array is then the caller's to free. */
 SR_API bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err);
 
-/* Number of triangle slots the topology defines (ids run over these). */
+/* Number of triangle slots the topology defines (ids run over these); 0
+ * for the point and line topologies. */
 SR_API uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh);
 
 /* ---- textures ---------------------------------------------------------- */
@@ -298,6 +305,11 @@ typedef struct sr_stats {
      * outside, or (a mesh rejected whole by its bounds) the first its
      * bounding box is outside. With nonfinite they sum to rejected. */
     uint64_t rejected_by_plane[6];
+    /* A point or line draw counts its primitives here, and in rejected,
+     * nonfinite, rejected_by_plane, clipped, drawn, fragments and the cuts
+     * as a triangle draw counts its triangles; triangles and culled stay 0
+     * (a triangle draw's counts are what they always were). */
+    uint64_t points, lines; /* assembled (a line with two distinct indices) */
 } sr_stats;
 
 /* Scratch memory and worker threads a draw reuses from frame to frame
@@ -344,7 +356,18 @@ typedef struct sr_draw_desc {
      * before it draws. */
     bool clear;
     uint32_t clear_color;
+    /* The point and line topologies (docs/conventions.md, "Points and
+     * lines"); ignored by triangles. point_size: the side of a point's
+     * square in pixels, 1 .. SR_MAX_POINT_SIZE (0: 1). line_width: rounded
+     * to a whole number of pixels, 1 .. SR_MAX_LINE_WIDTH (0: 1); a wider
+     * line repeats each pixel of the thin one across its minor axis.
+     * depth_bias: moves every point and line fragment this much nearer in
+     * z_ndc before its depth test (>= 0), so a line drawn over the
+     * triangles it borders passes where their depths tie. */
+    float point_size, line_width, depth_bias;
 } sr_draw_desc;
+#define SR_MAX_POINT_SIZE 256.0f
+#define SR_MAX_LINE_WIDTH 64.0f
 
 /* Draws the mesh into fb (which the caller clears, or desc->clear). False, with a message,
  * for a desc that cannot be drawn: no mesh, an index out of range, a shading

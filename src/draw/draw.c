@@ -57,7 +57,7 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
     if ((unsigned)d->shade >= SR_SHADE_COUNT || (unsigned)d->cull > SR_CULL_NONE ||
         (unsigned)d->front > SR_FRONT_CCW || (unsigned)d->filter > SR_FILTER_NEAREST)
         return sr_error_set(err, "draw with an unknown shading, culling, front or filter mode");
-    if (!check_accuracy_knobs(fb, study, err))
+    if (!check_accuracy_knobs(fb, study, err) || !sr_points_lines_check(d, err))
         return false;
     const double *o = d->mesh->origin;
     if (!isfinite(o[0]) || !isfinite(o[1]) || !isfinite(o[2]))
@@ -330,6 +330,18 @@ static void reject_all(const sr_draw_state *st, unsigned outside)
     sr_clip_count_rejected(stats, outside, stats->triangles);
 }
 
+/* Every thread's counts, and its cuts by precision, into stats. */
+static void sum_counts(const sr_draw_state *st, sr_stats *stats)
+{
+    for (int t = 0; t < st->threads; t++) {
+        sr_thread_work *w = &st->ws->threads[t];
+        w->stats.cuts_float = w->cuts.cuts[SR_CLIP_FLOAT];
+        w->stats.cuts_double = w->cuts.cuts[SR_CLIP_DOUBLE];
+        w->stats.cuts_exact = w->cuts.cuts[SR_CLIP_EXACT];
+        sr_stats_add(stats, &w->stats);
+    }
+}
+
 static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
 {
     for (int t = 0; t < st->threads; t++) {
@@ -344,6 +356,11 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     make_transform(st, &ph.xf);
     st->xf = &ph.xf;
     const sr_mesh *mesh = st->desc->mesh;
+    if (!sr_assemble_triangles(mesh)) {
+        bool drawn = sr_draw_points_lines(st, err);
+        sum_counts(st, stats);
+        return drawn;
+    }
     /* Bounds are of the positions: clip-space input is classified per vertex. */
     unsigned outside = 0;
     sr_clip_box box = mesh->bounded && !mesh->clip_positions
@@ -382,13 +399,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
             return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
         }
     }
-    for (int t = 0; t < st->threads; t++) {
-        sr_thread_work *w = &st->ws->threads[t];
-        w->stats.cuts_float = w->cuts.cuts[SR_CLIP_FLOAT];
-        w->stats.cuts_double = w->cuts.cuts[SR_CLIP_DOUBLE];
-        w->stats.cuts_exact = w->cuts.cuts[SR_CLIP_EXACT];
-        sr_stats_add(stats, &w->stats);
-    }
+    sum_counts(st, stats);
     return true;
 }
 

@@ -254,6 +254,8 @@ static inline void sr_stats_add(sr_stats *to, const sr_stats *from)
     to->cuts_exact += from->cuts_exact;
     for (int p = 0; p < SR_CLIP_PLANES; p++)
         to->rejected_by_plane[p] += from->rejected_by_plane[p];
+    to->points += from->points;
+    to->lines += from->lines;
 }
 
 /* The bands of rows a slot's triangle may cover: from 255, past every
@@ -311,6 +313,15 @@ bool sr_draw_binned(sr_draw_state *st);
  * fragments counted in `pixels` and its triangles in `work`. */
 sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_raster_rect rect,
                            sr_thread_work *pixels);
+
+/* The desc's point and line fields and its topology (points_lines.c);
+ * false with a message for one out of range. */
+bool sr_points_lines_check(const sr_draw_desc *d, sr_error *err);
+
+/* A draw of points or lines (points_lines.c): every primitive through
+ * stages 1 to 9 on one thread, counted in thread 0's work; false, with a
+ * message, for an index past the vertices (nothing drawn). */
+bool sr_draw_points_lines(sr_draw_state *st, sr_error *err);
 
 /* The direct path (direct.c): every slot through sr_direct_sink over the
  * whole framebuffer, on one thread, counted in thread 0's work; a
