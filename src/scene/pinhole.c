@@ -232,17 +232,95 @@ static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, const s
     t->slot = slot;
 }
 
-/* The surface point on triangle t of the ray through a pixel's centre,
- * ((x − cx)/fx, (y − cy)/fy, 1): its view z, and the point itself. */
-static double surface_point(const sr_pinhole *cam, const resolved_triangle *t, const double ray[3],
-                            float stored_depth, double point[3])
+/* The view z of the ray through a pixel centre, ((x − cx)/fx, (y − cy)/fy, 1),
+ * met with t's plane: (c·v0) / (c·ray), c = e1 × e2, the dot product summed
+ * in its usual order (c0·rx + c1·ry) + c2·1, where c1·ry (cross_y) is the
+ * row's and c2·1 is c2. NAN, ±inf or z ≤ 0 where the ray runs in the plane. */
+static inline double plane_z(const resolved_triangle *t, double cross_y, double ray_x)
 {
-    double z = t->offset / sr_dvec3_dot(t->cross, ray);
-    if (!(z > 0.0 && z <= DBL_MAX)) /* the ray runs in the plane: an edge-on triangle */
-        z = z_of_depth(cam, stored_depth);
-    for (int k = 0; k < 3; k++)
-        point[k] = z * ray[k];
-    return z;
+    return t->offset / (t->cross[0] * ray_x + cross_y + t->cross[2]);
+}
+
+static inline bool plane_z_ok(double z)
+{
+    return z > 0.0 && z <= DBL_MAX;
+}
+
+/* Two lanes of doubles, SSE2's (and every 64-bit x86's): each lane rounds
+ * as plane_z does, with the same operations in the same order. */
+typedef double resolve_v2 __attribute__((vector_size(16)));
+typedef uint64_t resolve_u2 __attribute__((vector_size(16)));
+typedef float resolve_f2 __attribute__((vector_size(8)));
+
+/* plane_z_ok as bits, in the top bit of what it returns (set: not ok): z
+ * is in (0, DBL_MAX] when its bits minus 1 are below DBL_MAX's bits, so
+ * below 2^63 once DBL_MAX's distance to 2^63 is added. Integer adds and
+ * ors, which SSE2 has for 64-bit lanes: GCC lowers a test of a double
+ * comparison's lanes to scalar code. */
+#define RESOLVE_OK_BIAS 0x0010000000000001u /* 2^63 − the bits of DBL_MAX */
+
+static inline resolve_u2 plane_z_bad(resolve_v2 z)
+{
+    resolve_u2 below = (resolve_u2)z - 1u;
+    return below | (below + RESOLVE_OK_BIAS);
+}
+
+/* z[i] for the run's n pixels, whose rays' x are ray_x[i]; false if any is
+ * not plane_z_ok (an edge-on triangle), which the caller then mends. */
+static bool run_z(const resolved_triangle *t, double ray_y, const double *ray_x, int n, double *z)
+{
+    double cross_y = t->cross[1] * ray_y;
+    int i = 0;
+    resolve_u2 bad = { 0, 0 };
+    for (; i + 2 <= n; i += 2) {
+        resolve_v2 rx, zv;
+        memcpy(&rx, ray_x + i, sizeof rx);
+        zv = t->offset / (t->cross[0] * rx + cross_y + t->cross[2]);
+        bad |= plane_z_bad(zv);
+        memcpy(z + i, &zv, sizeof zv);
+    }
+    bool all = ((bad[0] | bad[1]) >> 63) == 0;
+    if (i < n) {
+        z[i] = plane_z(t, cross_y, ray_x[i]);
+        all = all && plane_z_ok(z[i]);
+    }
+    return all;
+}
+
+/* The run's view z rounded to float, two at a time. */
+static void run_depth(const double *z, int n, float *depth)
+{
+    int i = 0;
+    for (; i + 2 <= n; i += 2) {
+        resolve_v2 zv;
+        memcpy(&zv, z + i, sizeof zv);
+        resolve_f2 f = __builtin_convertvector(zv, resolve_f2);
+        memcpy(depth + i, &f, sizeof f);
+    }
+    if (i < n)
+        depth[i] = (float)z[i];
+}
+
+/* The run's ranges |z·ray|, the ray's third coordinate 1 so the point's
+ * z: its squares summed in dot product order, two at a time; the square
+ * root lane by lane (vector extensions have none), each rounded as
+ * sqrt() rounds. */
+static void run_range(const double *z, const double *ray_x, double ray_y, int n, float *range)
+{
+    int i = 0;
+    for (; i + 2 <= n; i += 2) {
+        resolve_v2 zv, rx;
+        memcpy(&zv, z + i, sizeof zv);
+        memcpy(&rx, ray_x + i, sizeof rx);
+        resolve_v2 px = zv * rx, py = zv * ray_y, squared = px * px + py * py + zv * zv;
+        resolve_v2 length = { sqrt(squared[0]), sqrt(squared[1]) };
+        resolve_f2 f = __builtin_convertvector(length, resolve_f2);
+        memcpy(range + i, &f, sizeof f);
+    }
+    if (i < n) {
+        double px = z[i] * ray_x[i], py = z[i] * ray_y;
+        range[i] = (float)sqrt(px * px + py * py + z[i] * z[i]);
+    }
 }
 
 /* The vertex normals at point p of t, weighted by its barycentrics:
@@ -271,6 +349,7 @@ typedef struct resolve_job {
     const uint32_t *ids; /* fb's ids plane, or its color of an SR_SHADE_ID draw */
     const sr_pinhole_outputs *out;
     double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
+    double *z;             /* a row of view z for each band */
 } resolve_job;
 
 /* The triangles a thread keeps resolved, by slot modulo this many: a
@@ -278,52 +357,80 @@ typedef struct resolve_job {
  * triangle's set-up costs many pixels' work. */
 #define TRIANGLE_CACHE 256
 
-static void resolve_rows(const resolve_job *job, int y0, int y1)
+/* The n pixels from `at` on, where nothing is drawn. */
+static void resolve_empty(const sr_pinhole_outputs *out, size_t at, int n)
+{
+    for (int i = 0; out->depth && i < n; i++)
+        out->depth[at + i] = out->invalid;
+    for (int i = 0; out->range && i < n; i++)
+        out->range[at + i] = out->invalid;
+    if (out->part_ids)
+        memset(&out->part_ids[at], 0, (size_t)n * sizeof *out->part_ids);
+    if (out->normals)
+        memset(&out->normals[3 * at], 0, 3 * (size_t)n * sizeof *out->normals);
+}
+
+/* A run of n pixels of row y from column x that show triangle t: its view
+ * z into z[0..n), each output from it. */
+static void resolve_run(const resolve_job *job, const resolved_triangle *t, int y, int x, int n, double *z)
 {
     const sr_pinhole_outputs *out = job->out;
+    size_t at = (size_t)y * (size_t)job->fb->width + (size_t)x;
+    double ray_y = job->ray_y[y];
+    const double *ray_x = job->ray_x + x;
+    if (!run_z(t, ray_y, ray_x, n, z))
+        for (int i = 0; i < n; i++)
+            if (!plane_z_ok(z[i])) /* the ray runs in the plane: an edge-on triangle */
+                z[i] = z_of_depth(job->cam, job->fb->depth[at + i]);
+    if (out->depth)
+        run_depth(z, n, &out->depth[at]);
+    if (out->range)
+        run_range(z, ray_x, ray_y, n, &out->range[at]);
+    for (int i = 0; out->part_ids && i < n; i++)
+        out->part_ids[at + i] = t->part;
+    if (!out->normals)
+        return;
+    float *normals = &out->normals[3 * at];
+    if (!out->interpolated_normals)
+        for (int i = 0; i < n; i++)
+            memcpy(&normals[3 * i], t->front, sizeof t->front);
+    else
+        for (int i = 0; i < n; i++) {
+            const double p[3] = { z[i] * ray_x[i], z[i] * ray_y, z[i] };
+            double normal[3];
+            interpolated_normal(t, p, normal);
+            normalize_into(normal, &normals[3 * i]);
+        }
+}
+
+/* Rows y0 … y1 − 1, in runs of pixels that show one triangle: a run sets
+ * its triangle up once (or finds it in the cache) and each output is a
+ * loop of its own over the run. */
+static void resolve_rows(const resolve_job *job, int y0, int y1, double *z)
+{
+    const sr_pinhole_outputs *out = job->out;
+    int width = job->fb->width;
     resolved_triangle cache[TRIANGLE_CACHE];
     for (int i = 0; i < TRIANGLE_CACHE; i++)
         cache[i].slot = UINT32_MAX;
-    for (int y = y0; y < y1; y++)
-        for (int x = 0; x < job->fb->width; x++) {
-            size_t at = (size_t)y * (size_t)job->fb->width + (size_t)x;
-            uint32_t id = job->ids[at];
+    for (int y = y0; y < y1; y++) {
+        const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
+        if (out->face_ids) /* the id + 1 each pixel shows, 0 where nothing: the plane itself */
+            memcpy(&out->face_ids[(size_t)y * (size_t)width], ids, (size_t)width * sizeof *ids);
+        for (int x = 0, end; x < width; x = end) {
+            uint32_t id = ids[x];
+            for (end = x + 1; end < width && ids[end] == id;)
+                end++;
             if (id == 0) {
-                if (out->depth)
-                    out->depth[at] = out->invalid;
-                if (out->range)
-                    out->range[at] = out->invalid;
-                if (out->face_ids)
-                    out->face_ids[at] = 0;
-                if (out->part_ids)
-                    out->part_ids[at] = 0;
-                if (out->normals)
-                    memset(&out->normals[3 * at], 0, 3 * sizeof *out->normals);
+                resolve_empty(out, (size_t)y * (size_t)width + (size_t)x, end - x);
                 continue;
             }
             resolved_triangle *t = &cache[(id - 1) % TRIANGLE_CACHE];
             if (t->slot != id - 1)
                 resolve_triangle(job->cam, job->mesh, out, id - 1, t);
-            const double ray[3] = { job->ray_x[x], job->ray_y[y], 1.0 };
-            double p[3], z = surface_point(job->cam, t, ray, job->fb->depth[at], p);
-            if (out->depth)
-                out->depth[at] = (float)z;
-            if (out->range)
-                out->range[at] = (float)sqrt(sr_dvec3_dot(p, p));
-            if (out->face_ids)
-                out->face_ids[at] = id;
-            if (out->part_ids)
-                out->part_ids[at] = t->part;
-            if (out->normals) {
-                if (out->interpolated_normals) {
-                    double n[3];
-                    interpolated_normal(t, p, n);
-                    normalize_into(n, &out->normals[3 * at]);
-                } else {
-                    memcpy(&out->normals[3 * at], t->front, sizeof t->front);
-                }
-            }
+            resolve_run(job, t, y, x, end - x, z + x);
         }
+    }
 }
 
 /* One thread's rows: band k of `bands` equal runs of rows. */
@@ -337,7 +444,8 @@ static void *resolve_band_run(void *arg)
 {
     const resolve_band *b = arg;
     int height = b->job->fb->height;
-    resolve_rows(b->job, (int)((int64_t)height * b->k / b->bands), (int)((int64_t)height * (b->k + 1) / b->bands));
+    resolve_rows(b->job, (int)((int64_t)height * b->k / b->bands), (int)((int64_t)height * (b->k + 1) / b->bands),
+                 b->job->z + (size_t)b->k * (size_t)b->job->fb->width);
     return NULL;
 }
 
@@ -348,21 +456,24 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
         return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
     if (out->normals && out->interpolated_normals && !mesh->normals)
         return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
+    /* Each pixel's values are its own, whichever thread computes them: the
+     * bands change no bit. More threads than rows would have empty bands. */
+    int bands = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;
+    bands = bands > ids->height ? ids->height : bands;
+    size_t width = (size_t)ids->width;
     resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color, out,
-                        malloc((size_t)ids->width * sizeof *job.ray_x), malloc((size_t)ids->height * sizeof *job.ray_y) };
-    if (!job.ray_x || !job.ray_y) {
+                        malloc(width * sizeof *job.ray_x), malloc((size_t)ids->height * sizeof *job.ray_y),
+                        malloc((size_t)bands * width * sizeof *job.z) };
+    if (!job.ray_x || !job.ray_y || !job.z) {
         free(job.ray_x);
         free(job.ray_y);
+        free(job.z);
         return sr_error_set(err, "out of memory for the rays of a %dx%d view", ids->width, ids->height);
     }
     for (int x = 0; x < ids->width; x++)
         job.ray_x[x] = (x - cam->cx) / cam->fx;
     for (int y = 0; y < ids->height; y++)
         job.ray_y[y] = (y - cam->cy) / cam->fy;
-    /* Each pixel's values are its own, whichever thread computes them: the
-     * bands change no bit. More threads than rows would have empty bands. */
-    int bands = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;
-    bands = bands > ids->height ? ids->height : bands;
     resolve_band band[RESOLVE_MAX_THREADS];
     int started = 1; /* band 0 is the caller's */
     for (int k = 0; k < bands; k++)
@@ -377,5 +488,6 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
         pthread_join(band[k].thread, NULL);
     free(job.ray_x);
     free(job.ray_y);
+    free(job.z);
     return true;
 }
