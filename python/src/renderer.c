@@ -1,9 +1,10 @@
-/* softrast.Renderer: framebuffers and a workspace reused from call to
- * call, and the pinhole renders over them. Each render is the command
- * line's: an SR_SHADE_ID draw into a reversed-z framebuffer with the
- * matrices of sr_pinhole_matrices (and for colour a shaded draw with the
- * same matrices), then sr_pinhole_resolve into new numpy arrays, with the
- * GIL released around all of it. */
+/* softrast.Renderer: a framebuffer with an ids plane and a workspace
+ * reused from call to call, and the pinhole renders over them. Each render
+ * is the command line's: one draw into the reversed-z framebuffer with the
+ * matrices of sr_pinhole_matrices, shaded as the colour output asks (else
+ * SR_SHADE_ID), writing colour, depth and ids at once, then
+ * sr_pinhole_resolve of the ids on the renderer's threads into new numpy
+ * arrays, with the GIL released around all of it. */
 #include <math.h>
 #include <string.h>
 #include <unistd.h>
@@ -23,8 +24,7 @@ static const char *const SHADE_NAMES[SR_SHADE_COUNT] = { "lambert", "id", "color
 
 typedef struct sr_py_renderer {
     PyObject_HEAD
-    sr_framebuffer fb;     /* the id view: reversed z, triangle id + 1 per pixel */
-    sr_framebuffer shaded; /* the colour view, made at the first call that asks for colour */
+    sr_framebuffer fb; /* reversed z, with the ids plane the resolve reads */
     sr_workspace *workspace;
     int threads;
     pid_t pid;  /* the process whose threads the workspace holds (a forked child has none of them) */
@@ -47,7 +47,6 @@ static void renderer_release(sr_py_renderer *self)
         sr_workspace_destroy(self->workspace); /* in a forked child its threads are not there to end */
     self->workspace = NULL;
     sr_framebuffer_destroy(&self->fb);
-    sr_framebuffer_destroy(&self->shaded);
 }
 
 static void renderer_dealloc(sr_py_renderer *self)
@@ -74,6 +73,11 @@ static int renderer_init(sr_py_renderer *self, PyObject *args, PyObject *kwargs)
     sr_error err;
     if (!sr_framebuffer_create(&fb, width, height, &err)) {
         sr_py_raise(PyExc_ValueError, &err);
+        return -1;
+    }
+    if (!sr_framebuffer_create_ids(&fb, &err)) {
+        sr_framebuffer_destroy(&fb);
+        sr_py_raise(PyExc_MemoryError, &err);
         return -1;
     }
     sr_workspace *workspace = sr_workspace_create();
@@ -365,41 +369,33 @@ static double (*parse_poses(PyObject *w2c, PyObject *c2w, bool many, const sr_pi
     return poses;
 }
 
-/* Whether the colour output needs a shaded draw of its own: the id and
- * depth views are the id draw's colour and depth. */
-static bool shades(const job *j)
+/* The draw's shading: the colour output's, else SR_SHADE_ID (the
+ * cheapest; the ids plane is written in every mode). */
+static sr_shade draw_shade(const job *j)
 {
-    return j->wanted[OUT_COLOR] && j->shade != SR_SHADE_ID && j->shade != SR_SHADE_DEPTH;
+    return j->wanted[OUT_COLOR] ? j->shade : SR_SHADE_ID;
 }
 
-/* The views a frame's outputs come from: the id view in self->fb and, when
- * shades(j), the colour in self->shaded, a second draw with the same
- * matrices (the same triangle wins every pixel). When sr_framebuffer gains
- * an id plane (issue 34) this is the one place that becomes one draw. */
-static bool draw_views(sr_py_renderer *self, const sr_mesh *mesh, const sr_texture *texture, sr_pinhole *cam,
-                       const job *j, sr_stats *stats, sr_error *err)
+/* The one draw a frame's outputs come from: colour, depth and ids into
+ * self->fb (the ids plane is what sr_pinhole_resolve reads). */
+static bool draw_view(sr_py_renderer *self, const sr_mesh *mesh, const sr_texture *texture, sr_pinhole *cam,
+                      const job *j, sr_stats *stats, sr_error *err)
 {
     sr_pinhole_fit_clip(cam, mesh);
-    sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .threads = self->threads,
-                          .workspace = self->workspace, .clear = true };
-    sr_pinhole_matrices(cam, mesh, &self->fb, &desc);
-    if (!sr_draw(&self->fb, &desc, stats, err))
-        return false;
-    if (!shades(j))
-        return true;
-    desc.shade = j->shade;
-    desc.texture = texture->texels ? texture : NULL;
+    sr_draw_desc desc = { .mesh = mesh, .shade = draw_shade(j), .cull = SR_CULL_NONE, .threads = self->threads,
+                          .workspace = self->workspace, .clear = true,
+                          .texture = j->wanted[OUT_COLOR] && texture->texels ? texture : NULL };
     glm_vec3_copy((float *)j->light, desc.light_dir);
-    self->shaded.reversed_z = self->fb.reversed_z;
-    return sr_draw(&self->shaded, &desc, NULL, err);
+    sr_pinhole_matrices(cam, mesh, &self->fb, &desc);
+    return sr_draw(&self->fb, &desc, stats, err);
 }
 
-/* The colour output, (H, W, 3) uint8, from the view the shading wrote. */
+/* The colour output, (H, W, 3) uint8, from the draw's colour. */
 static void write_color(sr_py_renderer *self, sr_shade shade, uint8_t *rgb)
 {
-    const uint32_t *packed = shade == SR_SHADE_ID ? self->fb.color : self->shaded.color;
     if (shade == SR_SHADE_DEPTH) /* as --shade depth: the written range from white (near) to dark gray */
-        sr_framebuffer_depth_to_gray(&self->fb, self->shaded.color);
+        sr_framebuffer_depth_to_gray(&self->fb, self->fb.color);
+    const uint32_t *packed = self->fb.color;
     for (size_t i = 0; i < (size_t)self->fb.width * (size_t)self->fb.height; i++)
         for (int k = 0; k < 3; k++)
             rgb[3 * i + k] = (uint8_t)(packed[i] >> (16 - 8 * k));
@@ -412,12 +408,12 @@ static void map_parts(uint32_t *ids, size_t count, const uint32_t *part_map)
         ids[i] = ids[i] ? part_map[ids[i] - 1] : 0;
 }
 
-/* One frame: clip planes fitted where 0, the views drawn, the outputs
- * resolved from them. Runs without the GIL. */
+/* One frame: clip planes fitted where 0, the view drawn, the outputs
+ * resolved from its ids. Runs without the GIL. */
 static bool render_one(sr_py_renderer *self, const sr_py_mesh *pm, const sr_mesh *mesh, sr_pinhole *cam,
                        const job *j, const sr_pinhole_outputs *out, uint8_t *color, sr_stats *stats, sr_error *err)
 {
-    if (!draw_views(self, mesh, &pm->texture, cam, j, stats, err) ||
+    if (!draw_view(self, mesh, &pm->texture, cam, j, stats, err) ||
         !sr_pinhole_resolve(cam, mesh, &self->fb, out, err))
         return false;
     if (color)
@@ -435,10 +431,9 @@ static PyObject *stats_dict(const sr_stats *s)
                          (unsigned long long)s->drawn, "fragments", (unsigned long long)s->fragments);
 }
 
-/* Claims the renderer for one call (refusing a second thread's), makes
- * the workspace anew in a forked child and the colour view when first
- * wanted. */
-static bool claim(sr_py_renderer *self, const job *j)
+/* Claims the renderer for one call (refusing a second thread's), making
+ * the workspace anew in a forked child. */
+static bool claim(sr_py_renderer *self)
 {
     if (self->pid != getpid()) {
         sr_workspace *workspace = sr_workspace_create(); /* the parent's is left: its threads are not here */
@@ -459,13 +454,6 @@ static bool claim(sr_py_renderer *self, const job *j)
                                             "use one Renderer per thread");
         return false;
     }
-    sr_error err;
-    if (shades(j) || (j->wanted[OUT_COLOR] && j->shade == SR_SHADE_DEPTH)) { /* depth's gray is made there */
-        if (!self->shaded.color && !sr_framebuffer_create(&self->shaded, self->fb.width, self->fb.height, &err)) {
-            sr_py_raise(PyExc_MemoryError, &err);
-            return false;
-        }
-    }
     self->busy = true;
     return true;
 }
@@ -479,7 +467,7 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
         PyErr_SetString(PyExc_ValueError, "the mesh is empty (Mesh.__init__ was not called)");
         return NULL;
     }
-    bool lit = shades(j) && (j->shade == SR_SHADE_LAMBERT || j->shade == SR_SHADE_NORMAL);
+    bool lit = draw_shade(j) == SR_SHADE_LAMBERT || draw_shade(j) == SR_SHADE_NORMAL;
     if (((j->wanted[OUT_NORMALS] && j->interpolated) || lit) && !mesh->mesh.normals &&
         !sr_mesh_compute_normals(&mesh->mesh, &err)) /* with the GIL held: no render reads it now */
         return sr_py_raise(PyExc_ValueError, &err);
@@ -497,7 +485,7 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
         int type = k == OUT_COLOR ? NPY_UINT8 : k == OUT_FACE_IDS || k == OUT_PART_IDS ? NPY_UINT32 : NPY_FLOAT32;
         ok = (arrays[k] = (PyArrayObject *)PyArray_SimpleNew(nd, many ? dims : dims + 1, type)) != NULL;
     }
-    ok = ok && claim(self, j);
+    ok = ok && claim(self);
     if (ok) {
         mesh->renders++;
         sr_mesh m = mesh->mesh; /* a copy: Mesh's normals may be filled in meanwhile */
@@ -510,7 +498,8 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
                                        .face_ids = FRAME(OUT_FACE_IDS, uint32_t, 1),
                                        .part_ids = FRAME(OUT_PART_IDS, uint32_t, 1),
                                        .normals = FRAME(OUT_NORMALS, float, 3),
-                                       .interpolated_normals = j->interpolated, .invalid = j->invalid };
+                                       .interpolated_normals = j->interpolated, .invalid = j->invalid,
+                                       .threads = self->threads };
             uint8_t *color = FRAME(OUT_COLOR, uint8_t, 3);
 #undef FRAME
             Py_BEGIN_ALLOW_THREADS
