@@ -7,6 +7,7 @@
 #include "pipeline/04_clip/clip.h"
 #include "pipeline/01_vertex.h"
 #include "pipeline/06_viewport.h"
+#include "pipeline/07_cull.h"
 #include "core/error.h"
 #include "core/clock.h"
 #include "core/dmat4.h"
@@ -319,6 +320,27 @@ static sr_draw_path path_of(const sr_draw_state *st)
     return pixel_count(st) >= TILES_MIN_PIXELS && !pixel_sized_slots(st) ? SR_PATH_TILES : SR_PATH_DIRECT;
 }
 
+/* The sub-pixel lanes (pipeline/08_raster/subpixel.h) pay where most
+ * triangles cover no pixel centre: a draw of more triangle slots than
+ * pixels. With two pixels a slot (the dense torus at 1920x1080) too few
+ * drop out to pay for the lanes. The observer sees every triangle that
+ * survives culling, so a draw with one sets each up, as does a snap finer
+ * than the lanes hold. */
+static bool subpixel_lanes(const sr_draw_state *st)
+{
+    return !st->study.one_by_one && !st->study.observer && st->vp.subpixel_bits <= SR_SUBPIXEL_LANES_MAX_BITS &&
+           (int64_t)st->slots > pixel_count(st);
+}
+
+static sr_subpixel_rules subpixel_rules(const sr_draw_state *st)
+{
+    const sr_draw_desc *d = st->desc;
+    return (sr_subpixel_rules){ .bits = st->vp.subpixel_bits, .width = st->fb->width, .height = st->fb->height,
+                                .keep_cw = sr_cull_keeps(1, d->cull, d->front),
+                                .keep_ccw = sr_cull_keeps(-1, d->cull, d->front),
+                                .avx2 = st->shade.simd >= SR_SIMD_AVX2 };
+}
+
 /* A mesh outside the view: every assembled triangle is rejected, nothing
  * is transformed. */
 static void reject_all(const sr_draw_state *st, unsigned outside)
@@ -449,6 +471,8 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     st.clip_tolerance = 1.0 / ((double)((int64_t)1 << st.vp.subpixel_bits) * side * st.vp.guard);
     shade_context_make(desc, study.simd, &layout, &st.shade);
     st.screen_stride = sr_screen_stride(layout.count);
+    st.subpixel_lanes = subpixel_lanes(&st);
+    st.subpixel = subpixel_rules(&st);
     sr_stats scratch = { 0 };
     bool ok = draw_with(&st, stats ? stats : &scratch, err);
     if (!desc->workspace)
