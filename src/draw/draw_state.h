@@ -142,6 +142,7 @@ struct sr_workspace {
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
     sr_array row_bands;    /* unsigned char: the band of rows of each vertex inside, when st->band_rows */
     sr_array slot_bands;   /* sr_band_span: the row-band path's bands each slot may cover */
+    sr_array material_shades; /* sr_shade_context: a mesh's materials' (materials.c) */
     sr_band_costs band_costs; /* of the row-band path's last draw */
     sr_thread_work threads[SR_MAX_THREADS];
 };

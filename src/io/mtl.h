@@ -11,7 +11,7 @@
 
 #include "obj_parse.h"
 
-typedef struct sr_material {
+typedef struct sr_mtl_material {
     char *name;
     char *map_kd;         /* the name resolved against the .mtl's folder, or once
                              searched (sr_mtl_find_texture) the file found; NULL if none */
@@ -19,11 +19,11 @@ typedef struct sr_material {
     char *library;        /* the .mtl's path, where the search starts */
     bool map_kd_searched; /* sr_mtl_find_texture looked for it */
     bool map_kd_found;    /* map_kd is a file that exists */
-} sr_material;
+} sr_mtl_material;
 
 /* The materials of every library an OBJ names, and which files those were. */
 typedef struct sr_mtl_libs {
-    sr_array materials; /* sr_material */
+    sr_array materials; /* sr_mtl_material */
     sr_array files;     /* sr_mtl_file_id of each library read */
 } sr_mtl_libs;
 
@@ -47,7 +47,7 @@ ptrdiff_t sr_mtl_find(const sr_mtl_libs *libs, const char *name);
 /* Looks for m's texture by texture_find.h's rules, once: only the
  * materials a mesh uses are searched for, so a library of thousands
  * whose textures are missing costs no folder scans. */
-void sr_mtl_find_texture(sr_material *m);
+void sr_mtl_find_texture(sr_mtl_material *m);
 
 void sr_mtl_free(sr_mtl_libs *libs);
 

@@ -288,9 +288,9 @@ static bool emit_triangle(obj_reader *o, uint32_t a, uint32_t b, uint32_t c)
 /* The report's parts are the runs of faces drawn with one material (an
  * OBJ has no meshes of its own); each material's texture is listed once. */
 /* The material faces use now, its texture looked for; NULL for none. */
-static const sr_material *current_material(obj_reader *o)
+static const sr_mtl_material *current_material(obj_reader *o)
 {
-    sr_material *m = o->material >= 0 ? (sr_material *)o->materials.materials.data + o->material : NULL;
+    sr_mtl_material *m = o->material >= 0 ? (sr_mtl_material *)o->materials.materials.data + o->material : NULL;
     if (m)
         sr_mtl_find_texture(m);
     return m;
@@ -306,7 +306,7 @@ static bool report_face(obj_reader *o, size_t first_index)
         r->parts[r->part_count - 1].triangle_count += added;
         return true;
     }
-    const sr_material *m = current_material(o);
+    const sr_mtl_material *m = current_material(o);
     int32_t texture = -1;
     if (m && m->map_kd)
         texture = sr_report_add_texture(r, m->map_kd_written, m->map_kd_found ? m->map_kd : NULL,
