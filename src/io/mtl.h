@@ -1,13 +1,14 @@
 /* src/io/mtl.h — private to src/io: the part of a Wavefront material library
- * (.mtl) that softrast uses, each material's name and diffuse texture
- * (`map_Kd`). Everything else in the file (Ka, Kd, Ns, illum, other maps) is
- * read past.
+ * (.mtl) that softrast uses, each material's name, diffuse colour (`Kd`)
+ * and diffuse texture (`map_Kd`). Everything else in the file (Ka, Ns,
+ * illum, d, other maps) is read past.
  */
 #ifndef SOFTRAST_IO_MTL_H
 #define SOFTRAST_IO_MTL_H
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "obj_parse.h"
 
@@ -19,6 +20,9 @@ typedef struct sr_mtl_material {
     char *library;        /* the .mtl's path, where the search starts */
     bool map_kd_searched; /* sr_mtl_find_texture looked for it */
     bool map_kd_found;    /* map_kd is a file that exists */
+    float kd[3];          /* the diffuse colour, when has_kd */
+    bool has_kd;
+    int64_t mesh_material; /* the loaded mesh's material made of it, or -1 before a face uses it */
 } sr_mtl_material;
 
 /* The materials of every library an OBJ names, and which files those were. */
