@@ -235,8 +235,10 @@ install: build/softrast $(PUBLIC_LIBS)
 # Installs into a scratch prefix and builds the examples against the
 # installed copy, the way a user of the library would: the one that only
 # draws links the core alone (no SDL anywhere on its link line or in the
-# binary), the one that reads an OBJ and writes a PNG links the files
-# library too. Every exported symbol must be declared in the headers.
+# binary), the one that reads a mesh file and writes a PNG links the files
+# library too, and must draw a tiny OBJ, a cube and a glTF scene of
+# hundreds of units alike (near and far fitted). Every exported symbol must
+# be declared in the headers.
 INSTALL_CHECK := $(CURDIR)/build/install-check
 INSTALL_PC     = PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig pkg-config
 test-install:
@@ -249,9 +251,13 @@ test-install:
 		$$($(INSTALL_PC) --cflags --libs softrast) -o $(INSTALL_CHECK)/draw_into_buffer
 	@if ldd $(INSTALL_CHECK)/draw_into_buffer | grep -qi sdl; then echo "draw_into_buffer links SDL"; exit 1; fi
 	$(INSTALL_CHECK)/draw_into_buffer $(INSTALL_CHECK)/draw_into_buffer.ppm
-	$(CC) -std=c11 -Wall -Wextra -Werror examples/render_obj.c \
-		$$($(INSTALL_PC) --cflags --libs softrast-files) -o $(INSTALL_CHECK)/render_obj
-	$(INSTALL_CHECK)/render_obj assets/cube.obj $(INSTALL_CHECK)/render_obj.png
+	$(CC) -std=c11 -Wall -Wextra -Werror examples/render_mesh.c \
+		$$($(INSTALL_PC) --cflags --libs softrast-files) -o $(INSTALL_CHECK)/render_mesh
+	@printf 'v 0 0 0\nv 0.001 0 0\nv 0 0.001 0\nf 1 2 3\n' > $(INSTALL_CHECK)/tiny.obj
+	@for mesh in assets/cube.obj $(INSTALL_CHECK)/tiny.obj $(ENGINE_GLB); do \
+	   out=$$($(INSTALL_CHECK)/render_mesh $$mesh $(INSTALL_CHECK)/render_mesh.png) || exit 1; \
+	   echo "render_mesh $$mesh: $$out"; \
+	   case "$$out" in *" 0 fragments"*) echo "render_mesh drew nothing of $$mesh"; exit 1;; esac; done
 	mkdir -p $(INSTALL_CHECK)/shots && cd / && $(INSTALL_CHECK)/bin/softrast view --no-window --script $(CURDIR)/tests/flights/room_walls.txt --frames 1 \
 		--shots $(INSTALL_CHECK)/shots && test -s $(INSTALL_CHECK)/shots/frame-0000.png
 	cd / && $(INSTALL_CHECK)/bin/softrast bench --scene fly --frames 1 >/dev/null

@@ -238,13 +238,24 @@ Test(cli, default_camera_draws_a_big_mesh_far_from_the_origin)
     cr_expect_gt(drawn, 64 * 64 / 4, "%ld of %d pixels drawn: %s", drawn, 64 * 64, r.out);
 }
 
+/* A tiny mesh seen from an eye the user places: the target is the mesh's
+ * centre and near and far are fitted to it, as --help says (the contract's
+ * near 0.1 cut it whole). */
+Test(cli, eye_without_target_looks_at_the_mesh_with_fitted_planes)
+{
+    run_result r = render_draws_something("v 0 0 0\nv 0.001 0 0\nv 0 0.001 0\nf 1 2 3\n",
+                                          "--size 32x32 --shade id --eye 0.0003,0.0003,-0.01");
+    cr_expect_not_null(strstr(r.out, "\"rejected\": 0,"), "%s", r.out);
+}
+
 /* A render that draws nothing used to be silent with exit 0; now one
- * warning line says why, with the numbers, and --stats says it too. */
+ * warning line says why, with the numbers, and --stats says it too. The
+ * far plane is given, so it is not fitted to the mesh. */
 Test(cli, nothing_drawn_says_why)
 {
     char args[256];
-    snprintf(args, sizeof args, "render %s/tri.obj --size 32x32 --eye 0,0,-500 --target 0,0,0 --stats --quiet",
-             temp_dir);
+    snprintf(args, sizeof args,
+             "render %s/tri.obj --size 32x32 --eye 0,0,-500 --target 0,0,0 --far 100 --stats --quiet", temp_dir);
     run_result r = run_softrast(temp_dir, args);
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cr_assert_eq(count_lines(r.err), 1, "stderr: %s", r.err);

@@ -268,8 +268,17 @@ SR_API sr_camera sr_camera_default(void);
 
 /* Points the camera from -z at the centre of [lo, hi] (relative to the
  * camera's origin, as eye and target are), far enough back that the
- * bounding sphere fits the vertical and horizontal fov. */
+ * bounding sphere fits the vertical and horizontal fov, and fits near and
+ * far to it (sr_camera_fit_clip). */
 SR_API void sr_camera_frame_bounds(sr_camera *cam, const vec3 lo, const vec3 hi, float aspect);
+
+/* Keeps near and far while the bounding sphere of [lo, hi] lies between
+ * them along the view axis (or the eye is inside it and far reaches past
+ * it); else far goes just past the sphere and near just before it (an eye
+ * inside keeps its near), near staying above 1e-5 of far. So a scene of any
+ * size and distance is drawn whole, with the depth precision the contract's
+ * 0.1 .. 100 would not give it. */
+SR_API void sr_camera_fit_clip(sr_camera *cam, const vec3 lo, const vec3 hi);
 
 /* False, with one line in err, for a camera no matrix can be built from. */
 SR_API bool sr_camera_check(const sr_camera *cam, sr_error *err);

@@ -234,47 +234,54 @@ static bool has_origin(const sr_mesh *mesh)
     return mesh->origin[0] != 0.0 || mesh->origin[1] != 0.0 || mesh->origin[2] != 0.0;
 }
 
-/* Slack around the framed mesh's bounding sphere when near and far are
- * fitted to it, so its nearest and farthest points are never clipped. */
-#define FIT_NEAR_SLACK 0.99f
-#define FIT_FAR_SLACK 1.01f
-
-/* The contract's near and far while the framed mesh lies between them (its
- * images do not change); else near and far hug the mesh's bounding sphere,
- * as large a near as the view allows, so a mesh of any size is drawn whole
- * with depth precision to spare. The framing keeps the eye outside the
- * sphere, so near stays positive. */
-static void fit_depth_range(sr_camera *cam, const vec3 lo, const vec3 hi)
+/* The scene's bounds turned upright, relative to origin (the camera's). */
+static bool upright_bounds(const sr_scene *scene, const double origin[3], vec3 lo, vec3 hi)
 {
-    float radius = 0.5f * sr_vec3_distance_d(lo, hi);
-    float distance = sr_vec3_distance_d(cam->eye, cam->target);
-    float nearest = distance - radius, farthest = distance + radius;
-    if (nearest >= cam->near && farthest <= cam->far)
-        return;
-    cam->near = FIT_NEAR_SLACK * nearest;
-    cam->far = FIT_FAR_SLACK * farthest;
+    if (!sr_mesh_bounds(&scene->mesh, lo, hi))
+        return false;
+    double turned[3];
+    memcpy(turned, scene->mesh.origin, sizeof turned);
+    sr_upright_bounds(scene->upright, lo, hi, turned);
+    for (int k = 0; k < 3; k++) {
+        float shift = sr_double_to_float(turned[k] - origin[k]);
+        lo[k] += shift;
+        hi[k] += shift;
+    }
+    return true;
 }
 
+/* Framed from -z when neither --eye nor --target is given; else the eye
+ * given looks at the target given or the scene's centre. Near and far are
+ * fitted to the scene unless one of them is given (sr_camera_fit_clip keeps
+ * the contract's defaults while the scene lies between them, so its images
+ * do not change). */
 void sr_scene_frame_camera(sr_scene_setup *s, const sr_scene *scene)
 {
     vec3 lo, hi;
-    float aspect = (float)s->size[0] / (float)s->size[1];
+    float near = s->camera.near, far = s->camera.far;
     if (!s->eye_set && !s->target_set && sr_mesh_bounds(&scene->mesh, lo, hi)) {
         memcpy(s->camera.origin, scene->mesh.origin, sizeof s->camera.origin);
         sr_upright_bounds(scene->upright, lo, hi, s->camera.origin);
-        sr_camera_frame_bounds(&s->camera, lo, hi, aspect);
-        if (!s->near_set && !s->far_set)
-            fit_depth_range(&s->camera, lo, hi);
-        return;
+        sr_camera_frame_bounds(&s->camera, lo, hi, (float)s->size[0] / (float)s->size[1]);
+    } else {
+        static const double world_origin[3];
+        const double *origin = !has_origin(&scene->mesh) ? world_origin
+                             : s->target_set && !s->eye_set  ? s->target
+                                                              : s->eye;
+        for (int k = 0; k < 3; k++) {
+            s->camera.origin[k] = origin[k];
+            s->camera.eye[k] = sr_double_to_float(s->eye[k] - origin[k]);
+            s->camera.target[k] = sr_double_to_float(s->target[k] - origin[k]);
+        }
+        if (upright_bounds(scene, origin, lo, hi)) {
+            if (!s->target_set)
+                glm_vec3_center(lo, hi, s->camera.target);
+            sr_camera_fit_clip(&s->camera, lo, hi);
+        }
     }
-    static const double world_origin[3];
-    const double *origin = !has_origin(&scene->mesh) ? world_origin
-                         : s->target_set && !s->eye_set  ? s->target
-                                                          : s->eye;
-    for (int k = 0; k < 3; k++) {
-        s->camera.origin[k] = origin[k];
-        s->camera.eye[k] = sr_double_to_float(s->eye[k] - origin[k]);
-        s->camera.target[k] = sr_double_to_float(s->target[k] - origin[k]);
+    if (s->near_set || s->far_set) {
+        s->camera.near = near;
+        s->camera.far = far;
     }
 }
 

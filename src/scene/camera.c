@@ -9,6 +9,22 @@
 
 #define FRAME_MARGIN 1.05f /* a little room around the framed bounds */
 
+/* Slack around the bounding sphere when near and far are fitted to it, so
+ * its nearest and farthest points are never clipped; an eye inside the
+ * sphere keeps near above FIT_NEAR_MIN of far (the depth buffer's
+ * resolution near the eye). */
+#define FIT_NEAR_SLACK 0.99f
+#define FIT_FAR_SLACK 1.01f
+#define FIT_NEAR_MIN 1e-5f
+
+static bool all_finite(const float *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return false;
+    return true;
+}
+
 sr_camera sr_camera_default(void)
 {
     return (sr_camera){ .eye = { 0.0f, 0.0f, -3.0f }, .target = { 0.0f, 0.0f, 0.0f }, .up = { 0.0f, 1.0f, 0.0f },
@@ -29,14 +45,35 @@ void sr_camera_frame_bounds(sr_camera *cam, const vec3 lo, const vec3 hi, float 
     cam->eye[2] -= distance;
     if (cam->ortho_height > 0.0f)
         cam->ortho_height = 2.0f * FRAME_MARGIN * radius;
+    sr_camera_fit_clip(cam, lo, hi);
 }
 
-static bool all_finite(const float *v, int n)
+void sr_camera_fit_clip(sr_camera *cam, const vec3 lo, const vec3 hi)
 {
-    for (int i = 0; i < n; i++)
-        if (!isfinite(v[i]))
-            return false;
-    return true;
+    /* In double: a scene near float's range still has a finite span. */
+    double centre[3], axis[3], to_centre[3], length2 = 0.0, along = 0.0, dist2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        centre[k] = 0.5 * ((double)lo[k] + (double)hi[k]);
+        axis[k] = (double)cam->target[k] - cam->eye[k];
+        to_centre[k] = centre[k] - cam->eye[k];
+        length2 += axis[k] * axis[k];
+        along += to_centre[k] * axis[k];
+        dist2 += to_centre[k] * to_centre[k];
+    }
+    double radius = sr_vec3_distance_d(lo, hi) * 0.5;
+    if (!(length2 > 0.0) || !isfinite(length2) || !isfinite(along) || !isfinite(radius))
+        return;
+    along /= sqrt(length2);
+    double nearest = along - radius, farthest = along + radius;
+    bool inside = dist2 <= radius * radius;
+    if (!(farthest > 0.0) || ((nearest >= cam->near || inside) && farthest <= cam->far))
+        return;
+    cam->far = sr_double_to_float(FIT_FAR_SLACK * farthest);
+    if (!inside)
+        cam->near = sr_double_to_float(FIT_NEAR_SLACK * nearest);
+    float near_min = FIT_NEAR_MIN * cam->far;
+    if (!(cam->near >= near_min))
+        cam->near = near_min;
 }
 
 bool sr_camera_check(const sr_camera *cam, sr_error *err)
@@ -116,27 +153,24 @@ void sr_camera_view(const sr_camera *cam, mat4 out)
     sr_dmat4_to_mat4(&view, out);
 }
 
-/* z_clip = a·z_view + b (w is z_view for perspective, 1 for orthographic):
- * the z row for the reversed and infinite mappings, in double so the
- * coefficients are the correctly rounded ones (the point of reversed z),
- * and for a standard perspective whose n·f overflows float (a framed mesh
- * near float's range) though a and b themselves fit. */
+/* z_clip = a·z_view + b (w is z_view for perspective, 1 for orthographic),
+ * in every mode from double, so the coefficients are the correctly rounded
+ * ones: cglm's float f/(f − n) is off by an ulp or more, a bias every depth
+ * carries (and n·f may overflow float for a scene near float's range though
+ * a and b themselves fit). */
 static void z_row_in_double(const sr_camera *cam, mat4 out)
 {
     double n = cam->near, f = cam->far, a, b;
-    bool ortho = cam->ortho_height > 0.0f, infinite = isinf(f);
-    if (ortho) {
-        a = -1.0 / (f - n);
-        b = f / (f - n);
-    } else if (infinite) {
-        a = cam->reversed_z ? 0.0 : 1.0;
-        b = cam->reversed_z ? n : -n;
-    } else if (!cam->reversed_z) {
-        a = f / (f - n);
-        b = -n * f / (f - n);
+    bool reversed = cam->reversed_z;
+    if (cam->ortho_height > 0.0f) {
+        a = (reversed ? -1.0 : 1.0) / (f - n);
+        b = (reversed ? f : -n) / (f - n);
+    } else if (isinf(f)) {
+        a = reversed ? 0.0 : 1.0;
+        b = reversed ? n : -n;
     } else {
-        a = -n / (f - n);
-        b = n * f / (f - n);
+        a = (reversed ? -n : f) / (f - n);
+        b = (reversed ? n * f : -n * f) / (f - n);
     }
     out[2][2] = sr_double_to_float(a);
     out[3][2] = sr_double_to_float(b);
@@ -151,8 +185,7 @@ void sr_camera_projection(const sr_camera *cam, float aspect, mat4 out)
     } else {
         glm_perspective_lh_zo(glm_rad(cam->fov_deg), aspect, cam->near, far, out);
     }
-    if (cam->reversed_z || isinf(cam->far) || !isfinite(out[3][2]))
-        z_row_in_double(cam, out);
+    z_row_in_double(cam, out);
 }
 
 double sr_camera_view_distance(float z_ndc, const void *camera)
