@@ -39,10 +39,10 @@ ALL_SRC     := $(LIB_SRC) $(STUDIES_SRC) $(APP_SRC) src/app/main.c $(TEST_SRC)
 APP_LIBS = $(1)/rooms/libapp.a $(1)/rooms/libstudies.a $(1)/rooms/libfiles.a $(1)/rooms/libcore.a
 PUBLIC_LIBS := build/libsoftrast.a build/libsoftrast-files.a
 
-# The 8-lane span kernels are built for AVX2 (chosen at run time when the
-# CPU has it); never -mfma, which would round differently from the scalar path.
+# The 8-lane span kernels and sub-pixel lanes are built for AVX2 (chosen at
+# run time when the CPU has it); never -mfma, which would round differently from the scalar path.
 ifeq ($(shell uname -m),x86_64)
-AVX2_OBJ := $(patsubst %,%/src/pipeline/08_raster/span_avx2.o,build build/san build/fuzz)
+AVX2_OBJ := $(foreach f,span_avx2 subpixel_avx2,$(patsubst %,%/src/pipeline/08_raster/$(f).o,build build/san build/fuzz))
 $(AVX2_OBJ): ALL_CFLAGS += -mavx2
 $(AVX2_OBJ): FUZZ_CFLAGS += -mavx2
 AVX512_OBJ := $(patsubst %,%/src/pipeline/08_raster/span_avx512.o,build build/san build/fuzz)
@@ -193,6 +193,9 @@ docs-images: build/softrast
 	./build/softrast render assets/room.obj $(ROOM_CAMERA) --size 640x360 --shade id --out docs/images/room-id.png
 	./build/softrast render assets/torus.obj --eye 0,2.2,-2.6 --target 0,0,0 --size 320x240 --shade normal --out docs/images/torus-normal.png
 	./build/softrast render $(ENGINE_GLB) --eye 300,250,-500 --target 0,0,0 --near 1 --far 5000 --size 640x360 --out docs/images/engine-gltf.png
+	./build/softrast render $(ENGINE_GLB) --eye 300,250,-500 --target 0,0,0 --near 1 --far 5000 --size 640x360 --lines --out docs/images/engine-lines.png
+	python3 tools/point_cloud.py build/knot-cloud.ply
+	./build/softrast render build/knot-cloud.ply --points --point-size 2 --eye 0,4,-9 --target 0,0,0 --size 640x360 --out docs/images/knot-points.png
 	@sh tools/deps.sh python3-numpy
 	/usr/bin/python3 tools/pinhole_sheet.py docs/images/pinhole-outputs.png build/softrast
 	$(call viewer_shot,,viewer)

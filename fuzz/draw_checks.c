@@ -336,6 +336,88 @@ static void check_threads(const scene *sc)
     sr_workspace_destroy(ws);
 }
 
+/* The primitives a point or line topology assembles from the indices:
+ * every index a point; a list's pairs, a strip's windows of two, without
+ * the repeated ones. */
+static uint64_t primitive_count(const sr_mesh *m)
+{
+    if (m->topology == SR_POINT_LIST)
+        return m->index_count;
+    uint64_t n = 0;
+    bool strip = m->topology == SR_LINE_STRIP;
+    for (uint32_t k = 0; strip ? k + 1 < m->index_count : 2 * k + 1 < m->index_count; k++) {
+        uint32_t first = strip ? k : 2 * k;
+        n += m->indices[first] != m->indices[first + 1];
+    }
+    return n;
+}
+
+/* The scene's vertices and indices as points, a line list and a line
+ * strip (docs/conventions.md, "Points and lines"), in id shading, 1..4
+ * pixels wide: drawn exactly when the indices are valid; counted as
+ * points or lines (never as triangles), each dropped one counted once;
+ * every id in range with its depth written, every depth in [0, 1]; the
+ * same image, depth and counts on one thread and on several. */
+static void check_points_lines(const scene *sc)
+{
+    static const sr_topology topologies[] = { SR_POINT_LIST, SR_LINE_LIST, SR_LINE_STRIP };
+    for (int t = 0; t < 3; t++) {
+        scene as = *sc;
+        as.mesh.topology = topologies[t];
+        float size = (float)(1 + sc->chunk_slots % 4);
+        sr_framebuffer one, many;
+        sr_stats one_stats, many_stats;
+        CHECK(sr_framebuffer_create(&one, sc->width, sc->height, NULL), "framebuffer");
+        CHECK(sr_framebuffer_create(&many, sc->width, sc->height, NULL), "framebuffer");
+        bool ok[2];
+        for (int k = 0; k < 2; k++) {
+            sr_framebuffer *fb = k ? &many : &one;
+            fb->reversed_z = sc->reversed_z;
+            sr_framebuffer_clear(fb, 0);
+            sr_draw_desc desc = { .mesh = &as.mesh, .shade = SR_SHADE_ID, .point_size = size, .line_width = size,
+                                  .threads = k ? 2 + sc->threads : 1 };
+            glm_mat4_copy((vec4 *)sc->world, desc.world);
+            glm_mat4_copy((vec4 *)sc->view, desc.view);
+            glm_mat4_copy((vec4 *)sc->projection, desc.projection);
+            *(k ? &many_stats : &one_stats) = (sr_stats){ 0 };
+            ok[k] = sr_draw(fb, &desc, k ? &many_stats : &one_stats, NULL);
+        }
+        CHECK(ok[0] == sc->indices_valid && ok[1] == ok[0], "topology %d drawn %d/%d, indices valid %d",
+              (int)topologies[t], ok[0], ok[1], sc->indices_valid);
+        CHECK(stats_equal(&one_stats, &many_stats), "topology %d: threads count differently", (int)topologies[t]);
+        const sr_stats *s = &one_stats;
+        uint64_t n = ok[0] ? primitive_count(&as.mesh) : 0;
+        CHECK(s->triangles == 0 && s->culled == 0 && s->points + s->lines == n &&
+                  (topologies[t] == SR_POINT_LIST ? s->lines == 0 && s->clipped == 0 : s->points == 0),
+              "topology %d: %llu points, %llu lines, %llu triangles, %llu clipped of %llu", (int)topologies[t],
+              (unsigned long long)s->points, (unsigned long long)s->lines, (unsigned long long)s->triangles,
+              (unsigned long long)s->clipped, (unsigned long long)n);
+        bool points = topologies[t] == SR_POINT_LIST; /* a point is drawn or rejected, a line may be cut away */
+        CHECK(s->nonfinite <= s->rejected && s->rejected + s->drawn <= n && s->clipped <= n &&
+                  (!points || s->rejected + s->drawn == n),
+              "topology %d: rejected %llu (nonfinite %llu), drawn %llu of %llu", (int)topologies[t],
+              (unsigned long long)s->rejected, (unsigned long long)s->nonfinite, (unsigned long long)s->drawn,
+              (unsigned long long)n);
+        float clear = sr_framebuffer_depth_clear(&one);
+        uint64_t written = 0;
+        for (int p = 0; p < sc->width * sc->height; p++) {
+            float z = one.depth[p];
+            CHECK(one.color[p] == many.color[p] && memcmp(&one.depth[p], &many.depth[p], sizeof z) == 0,
+                  "topology %d pixel %d: one thread and several differ", (int)topologies[t], p);
+            CHECK(isfinite(z) && z >= 0.0f && z <= 1.0f, "topology %d pixel %d: depth %a", (int)topologies[t], p, z);
+            CHECK(one.color[p] <= sr_assemble_point_line_slots(&as.mesh), "topology %d pixel %d: id %u",
+                  (int)topologies[t], p, one.color[p]);
+            CHECK((one.color[p] != 0) == (z != clear), "topology %d pixel %d: id %u, depth %a", (int)topologies[t], p,
+                  one.color[p], z);
+            written += one.color[p] != 0;
+        }
+        CHECK(written <= s->fragments, "topology %d: %llu pixels written, %llu fragments", (int)topologies[t],
+              (unsigned long long)written, (unsigned long long)s->fragments);
+        sr_framebuffer_destroy(&one);
+        sr_framebuffer_destroy(&many);
+    }
+}
+
 void fuzz_draw(reader *r)
 {
     scene sc;
@@ -354,6 +436,7 @@ void fuzz_draw(reader *r)
     draw_and_check(&sc, sc.shade, sc.cull, &shaded);
     check_shading_independent(&id_runs[sc.cull], &shaded);
     check_threads(&sc);
+    check_points_lines(&sc);
     for (int c = 0; c < CULL_MODES; c++)
         draw_run_free(&id_runs[c]);
     draw_run_free(&shaded);

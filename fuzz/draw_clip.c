@@ -1,6 +1,7 @@
 /* fuzz/draw_clip.c — the clipper on its own: three clip-space vertices and a
  * plane mask, clipped in each precision and both walk directions. */
 #include "fuzz_draw.h"
+#include "pipeline/04_clip/clip_segment.h"
 
 /* w first, then x, y, z each either free or on a plane through w (tag
  * 0xE0–0xFF: ±w, a few ulps off), then the varyings. All finite: the
@@ -54,6 +55,38 @@ void print_polygon(const char *name, const sr_polygon *p, int floats)
     }
 }
 
+/* Each edge of the triangle clipped as a segment (clip_segment.h): the
+ * same ends whichever way it runs; and under adaptive and exact precision,
+ * for each polygon edge on a triangle edge, that edge's segment keeps the
+ * same ends, bit for bit (x, y, w; z too, with no depth model). */
+static void check_segments(const sr_polygon *in, const sr_polygon *out, const sr_clip_config *cfg, bool exact,
+                           bool by_edge, int floats)
+{
+    for (int e = 0; e < 3; e++) {
+        const sr_vertex_out ends[2] = { in->vert[e], in->vert[(e + 1) % 3] }, back[2] = { ends[1], ends[0] };
+        unsigned planes = (sr_clip_outcode(ends[0].v) | sr_clip_outcode(ends[1].v)) & SR_OUT_PLANES;
+        sr_vertex_out got[2], got_back[2];
+        int cut[2], cut_back[2];
+        bool kept = sr_clip_segment(ends, planes, floats, cfg, got, cut);
+        bool kept_back = sr_clip_segment(back, planes, floats, cfg, got_back, cut_back);
+        CHECK(kept == kept_back && (!kept || (vertices_identical(&got[0], &got_back[1], floats) &&
+                                               vertices_identical(&got[1], &got_back[0], floats))),
+              "edge %d clips differently backwards (kept %d, %d)", e, kept, kept_back);
+        for (int i = 0; exact && !by_edge && i < out->count; i++) {
+            if (out->line[i] != e)
+                continue;
+            const sr_vertex_out *want[2] = { &out->vert[i], &out->vert[(i + 1) % out->count] };
+            CHECK(kept, "edge %d: the triangle keeps a piece, the segment none", e);
+            for (int k = 0; k < 2; k++)
+                CHECK(memcmp(&got[k].v[SR_X], &want[k]->v[SR_X], 2 * sizeof(float)) == 0 &&
+                          got[k].v[SR_W] == want[k]->v[SR_W] && got[k].v[SR_Z] == want[k]->v[SR_Z],
+                      "edge %d end %d: segment (%a %a %a %a), triangle (%a %a %a %a)", e, k, got[k].v[0],
+                      got[k].v[1], got[k].v[2], got[k].v[3], want[k]->v[0], want[k]->v[1], want[k]->v[2],
+                      want[k]->v[3]);
+        }
+    }
+}
+
 void fuzz_clip(reader *r)
 {
     uint8_t mode = take_u8(r);
@@ -82,9 +115,14 @@ void fuzz_clip(reader *r)
         rotated.vert[i] = in.vert[(i + 1) % 3];
         reversed.vert[i] = in.vert[2 - i];
     }
+    sr_clip_counts counts = { { 0 } };
+    cfg.counts = &counts;
     int n = sr_clip_polygon(&out, planes, floats, &cfg);
+    bool by_edge = counts.edge_by_edge > 0; /* a degenerate triangle: not cut from its edges */
     sr_clip_polygon(&rotated, planes, floats, &cfg);
     sr_clip_polygon(&reversed, planes, floats, &cfg);
+    if (as_pipeline)
+        check_segments(&in, &out, &cfg, exact, by_edge, floats);
 
     CHECK(n == out.count, "returned %d, polygon holds %d", n, out.count);
     CHECK(n == 0 || (n >= 3 && n <= SR_MAX_CLIP_VERTS), "%d vertices", n);

@@ -58,9 +58,10 @@ setup(
     ext_modules=[
         Extension(
             "softrast._softrast",
-            sources=["src/module.c", "src/mesh.c", "src/renderer.c"],
+            sources=["src/module.c", "src/mesh.c", "src/renderer.c", "src/mesh_origin.c"],
             depends=["src/softrast_py.h"] + [os.path.join(ROOT, a) for a in ARCHIVES],
-            include_dirs=[os.path.join(ROOT, "include"), numpy.get_include()],
+            # src/ for io/mesh_origin.c (src/mesh_origin.c)
+            include_dirs=[os.path.join(ROOT, "include"), os.path.join(ROOT, "src"), numpy.get_include()],
             extra_compile_args=extra_compile_args,
             extra_objects=[os.path.join(ROOT, a) for a in ARCHIVES],
             # The archives' symbols stay inside the extension.

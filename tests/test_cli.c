@@ -8,6 +8,7 @@
 #include <sys/sysmacros.h>
 
 #include "cli_error.h"
+#include "softrast/files.h"
 
 /* A fresh directory holding the one-triangle mesh every test draws. */
 static void make_dir_with_triangle(void)
@@ -413,4 +414,48 @@ Test(cli, bench_shade_replaces_the_scenes_shading_or_skips)
     r = run_softrast_env(temp_dir, "timeout -s KILL 60", "bench --scene fly --frames 1 --shade color");
     cr_assert_eq(r.status, 0, "stderr: %s", r.err);
     cr_expect_not_null(strstr(r.out, "fly       skipped: it lacks what --shade color reads"), "%s", r.out);
+}
+
+/* render --points draws a PLY point cloud (vertices alone) in its own
+ * colors; --lines a mesh's edges, each once. */
+Test(cli, points_draw_a_point_cloud_in_its_colors_and_lines_the_edges)
+{
+    write_text(temp_dir, "cloud.ply",
+               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n"
+               "-0.5 0 0 255 0 0\n0.5 0 0 0 255 0\n0 0.5 0 0 0 255\n");
+    char args[1024], png[512];
+    snprintf(args, sizeof args, "render %s/cloud.ply --points --point-size 3 --size 48x48 --stats --out %s", temp_dir,
+             temp_path(png, sizeof png, "cloud.png"));
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_assert_not_null(strstr(r.out, "\"points\": 3, \"lines\": 0}"), "%s", r.out);
+    cr_assert_not_null(strstr(r.out, "\"fragments\": 27,"), "%s", r.out);
+    sr_texture image = { 0 };
+    sr_error err;
+    cr_assert(sr_texture_load(&image, png, &err), "%s", err.message);
+    int counts[3] = { 0 }, others = 0;
+    for (int i = 0; i < image.width * image.height; i++) {
+        uint32_t c = image.texels[i] & 0xFFFFFF;
+        counts[0] += c == 0xFF0000;
+        counts[1] += c == 0x00FF00;
+        counts[2] += c == 0x0000FF;
+        others += c != 0 && c != 0xFF0000 && c != 0x00FF00 && c != 0x0000FF;
+    }
+    cr_assert(counts[0] == 9 && counts[1] == 9 && counts[2] == 9 && others == 0, "%d %d %d red green blue, %d others",
+              counts[0], counts[1], counts[2], others);
+    sr_texture_free(&image);
+    /* A cube's 12 edges and 6 face diagonals, each once (its OBJ repeats
+     * every corner per face). */
+    snprintf(args, sizeof args, "render assets/cube.obj --lines --stats --quiet --size 64x64");
+    r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_assert_not_null(strstr(r.out, "\"lines\": 18}"), "%s", r.out);
+}
+
+Test(cli, points_and_lines_options_are_checked)
+{
+    assert_one_error("render %s/tri.obj --points --lines", "--points and --lines");
+    assert_one_error("render %s/tri.obj --points --point-size 0.5", "--point-size");
+    assert_one_error("render %s/tri.obj --lines --line-width 65", "--line-width");
 }

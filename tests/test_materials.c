@@ -297,3 +297,77 @@ Test(materials, a_named_texture_not_given_is_the_descs)
     sr_framebuffer_destroy(&without);
     quads_free(&mesh);
 }
+
+/* The ids plane has the MASK's holes: a pixel shows the id of the triangle
+ * whose depth it holds, on every loop, path and thread count. */
+Test(materials, the_ids_plane_keeps_the_mask_holes)
+{
+    static uint32_t texels[2] = { 0x00FF0000, 0xFF00FF00 };
+    sr_texture tex = { .width = 2, .height = 1, .texels = texels, .alpha = true };
+    sr_mesh mesh;
+    sr_mesh_part parts[2];
+    sr_material materials[2] = {
+        { .base_color = { 1, 1, 1, 1 }, .texture = &tex, .alpha_mode = SR_ALPHA_MASK, .alpha_cutoff = 0.5f },
+        { .base_color = { 0, 0, 1, 1 } },
+    };
+    quads_with(&mesh, (const quad[2]){ { 0, 32, 0.25f, 0 }, { 0, 32, 0.75f, 1 } }, 2, parts, materials, 2);
+    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_LAMBERT, .filter = SR_FILTER_NEAREST,
+                          .cull = SR_CULL_NONE };
+    scene_pixel_ortho(&desc, W, H);
+    sr_simd loops[SCENE_LOOPS];
+    size_t n = scene_available_loops(loops);
+    for (size_t l = 0; l < n; l++)
+        for (int path = 0; path < 3; path++) {
+            sr_framebuffer fb;
+            sr_stats stats;
+            sr_error err = { "" };
+            scene_fb_make(&fb, W, H);
+            cr_assert(sr_framebuffer_create_ids(&fb, &err), "%s", err.message);
+            sr_draw_path paths[3] = { SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_ROWS };
+            scene_draw_on_loop(&fb, &desc, loops[l], path ? 3 : 1, paths[path], &stats);
+            for (int y = 0; y < H; y++)
+                for (int x = 0; x < W; x++) {
+                    uint32_t id = fb.ids[y * W + x];
+                    bool front = fb.depth[y * W + x] == 0.25f;
+                    cr_assert(front ? id == 1 || id == 2 : id == 3 || id == 4,
+                              "%s, path %d: pixel (%d, %d) at depth %g has id %u", sr_simd_name(loops[l]), path, x,
+                              y, fb.depth[y * W + x], id);
+                    cr_assert_eq(front, x >= 16, "pixel (%d, %d): the hole is the left half", x, y);
+                }
+            sr_framebuffer_destroy(&fb);
+        }
+    quads_free(&mesh);
+}
+
+/* Points and lines are drawn without the materials (they are the
+ * triangles' parts): a textured material's mesh as lines draws as the
+ * same lines without materials, and texture shading of it asks for the
+ * desc's texture, with one line. */
+Test(materials, lines_of_a_mesh_with_materials_ignore_them)
+{
+    static uint32_t texels[1] = { 0x00FF0000 };
+    sr_texture tex = { .width = 1, .height = 1, .texels = texels };
+    sr_mesh mesh;
+    sr_mesh_part parts[1];
+    sr_material materials[1] = { { .base_color = { 1, 1, 1, 1 }, .texture = &tex } };
+    quads_with(&mesh, (const quad[1]){ { 2, 30, 0.5f, 0 } }, 1, parts, materials, 1);
+    mesh.topology = SR_LINE_LIST;
+    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_LAMBERT, .cull = SR_CULL_NONE };
+    scene_pixel_ortho(&desc, W, H);
+    sr_framebuffer with, without;
+    scene_fb_make(&with, W, H);
+    scene_fb_make(&without, W, H);
+    sr_error err = { "" };
+    cr_assert(sr_draw(&with, &desc, NULL, &err), "%s", err.message);
+    mesh.material_count = 0;
+    cr_assert(sr_draw(&without, &desc, NULL, &err), "%s", err.message);
+    cr_expect_eq(memcmp(with.color, without.color, W * H * sizeof *with.color), 0);
+    cr_expect_eq(memcmp(with.depth, without.depth, W * H * sizeof *with.depth), 0);
+    mesh.material_count = 1;
+    desc.shade = SR_SHADE_TEXTURE;
+    cr_expect_not(sr_draw(&with, &desc, NULL, &err));
+    cr_expect_str_eq(err.message, "texture shading needs texture coordinates and a texture");
+    sr_framebuffer_destroy(&with);
+    sr_framebuffer_destroy(&without);
+    quads_free(&mesh);
+}

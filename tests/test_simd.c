@@ -151,16 +151,17 @@ Test(simd, every_mode_and_varying_layout_has_a_kernel)
             sr_mesh m = mesh;
             m.colors = albedo == 2 ? NULL : m.colors;
             sr_shade_context l = { .layout = sr_vertex_layout((sr_shade)mode, &m, albedo == 0) };
-            for (int greater = 0; greater < 2; greater++) {
-                cr_assert_not_null(sr_span_kernel_sse2((sr_shade)mode, greater, &l),
-                                   "no 4-lane kernel for mode %d, albedo case %d (%d varyings)", mode, albedo,
-                                   l.layout.count);
+            for (int k = 0; k < 4; k++) {
+                bool greater = k & 1, ids = k & 2;
+                cr_assert_not_null(sr_span_kernel_sse2((sr_shade)mode, greater, ids, &l),
+                                   "no 4-lane kernel for mode %d, albedo case %d (%d varyings), ids %d", mode,
+                                   albedo, l.layout.count, ids);
                 cr_assert(sr_raster_simd_resolve(SR_SIMD_AVX2) != SR_SIMD_AVX2 ||
-                              sr_span_kernel_avx2((sr_shade)mode, greater, &l),
-                          "no AVX2 kernel for mode %d, albedo case %d", mode, albedo);
+                              sr_span_kernel_avx2((sr_shade)mode, greater, ids, &l),
+                          "no AVX2 kernel for mode %d, albedo case %d, ids %d", mode, albedo, ids);
                 cr_assert(sr_raster_simd_resolve(SR_SIMD_AVX512) != SR_SIMD_AVX512 ||
-                              sr_span_kernel_avx512((sr_shade)mode, greater, &l),
-                          "no AVX-512 kernel for mode %d, albedo case %d", mode, albedo);
+                              sr_span_kernel_avx512((sr_shade)mode, greater, ids, &l),
+                          "no AVX-512 kernel for mode %d, albedo case %d, ids %d", mode, albedo, ids);
             }
         }
     }

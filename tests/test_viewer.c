@@ -255,3 +255,24 @@ Test(viewer, status_line_reports_counts_and_planes)
     cr_assert_not_null(strstr(status, want), "%s", status);
     cr_assert_not_null(strstr(status, "near 0.1  far 100"), "%s", status);
 }
+
+Test(viewer, f6_draws_the_edges_with_hidden_lines_removed_and_f2_still_collects_triangles)
+{
+    sr_error err;
+    cr_assert(sr_viewer_draw(&viewer, true, &err), "%s", err.message);
+    uint64_t triangles = viewer.stats.triangles;
+    cr_assert_gt(triangles, 0);
+    press(SDLK_F6, 0);
+    press(SDLK_F2, 0);
+    cr_assert(sr_viewer_draw(&viewer, true, &err), "%s", err.message);
+    cr_assert_eq(viewer.stats.triangles, 0);
+    cr_assert_eq(viewer.stats.lines, viewer.edges.index_count / 2);
+    cr_assert_gt(viewer.stats.fragments, 0);
+    cr_assert_gt(viewer.wire_count, 0, "F2's fan triangles come from the depth pass");
+    char status[512];
+    sr_viewer_status(&viewer, status, sizeof status);
+    cr_assert_not_null(strstr(status, "lines "), "%s", status);
+    press(SDLK_F6, 0);
+    cr_assert(sr_viewer_draw(&viewer, false, &err), "%s", err.message);
+    cr_assert_eq(viewer.stats.triangles, triangles);
+}

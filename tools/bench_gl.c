@@ -16,8 +16,10 @@
 #define MAX_THREADS 64
 #define GL_NAME_CHARS 100 /* GL_RENDERER, GL_VERSION: llvmpipe's are 66 */
 
-static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "fill-flat", "depth", "inside", NULL };
-enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE, SCENE_KINDS };
+static const char *const SCENE_NAMES[] = { "all",   "dense",  "fly",  "fill", "fill-flat",
+                                           "depth", "inside", "scan", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE, SCENE_SCAN,
+       SCENE_KINDS };
 
 typedef struct job {
     int scene, frames, fill_frames, threads, simd;
@@ -67,9 +69,12 @@ static void print_row(const bench_gl_run *run, const bench_gl_result *r)
     fflush(stdout);
 }
 
-static bool make_scene(int kind, sr_bench_scene *s, sr_error *err)
+/* The scene of a kind; the scan kind has SR_BENCH_SCAN_VIEWS views. */
+static bool make_scene(int kind, int view, sr_bench_scene *s, sr_error *err)
 {
     switch (kind) {
+    case SCENE_SCAN:
+        return sr_bench_scan_view(s, view, err);
     case SCENE_DENSE:
         return sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080, SR_SHADE_LAMBERT, err);
     case SCENE_FLY:
@@ -85,10 +90,10 @@ static bool make_scene(int kind, sr_bench_scene *s, sr_error *err)
     }
 }
 
-static bool run_scene(const job *j, int kind, sr_error *err)
+static bool run_scene(const job *j, int kind, int view, sr_error *err)
 {
     sr_bench_scene s;
-    if (!make_scene(kind, &s, err))
+    if (!make_scene(kind, view, &s, err))
         return false;
     bool fill = kind == SCENE_FILL || kind == SCENE_FILL_FLAT;
     int frames = fill && j->fill_frames < j->frames ? j->fill_frames : j->frames;
@@ -156,7 +161,7 @@ static bool print_renderer(char *renderer, size_t cap, sr_error *err)
 static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|fill-flat|depth|inside",
+        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|fill-flat|depth|inside|scan",
           "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &j->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N",
@@ -192,8 +197,9 @@ static bool run(const job *j, sr_error *err)
            j->sequential ? "all softrast frames, then all llvmpipe frames (--sequential)"
                          : "softrast and llvmpipe frames alternate, so a burst of load hits both");
     for (int kind = SCENE_DENSE; kind < SCENE_KINDS; kind++)
-        if ((j->scene == SCENE_ALL || j->scene == kind) && !run_scene(j, kind, err))
-            return false;
+        for (int view = 0; view < (kind == SCENE_SCAN ? SR_BENCH_SCAN_VIEWS : 1); view++)
+            if ((j->scene == SCENE_ALL || j->scene == kind) && !run_scene(j, kind, view, err))
+                return false;
     return true;
 }
 

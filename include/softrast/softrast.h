@@ -60,7 +60,10 @@ typedef struct sr_error {
 
 typedef enum sr_topology {
     SR_TRIANGLE_LIST = 0, /* triangle k = (i[3k], i[3k+1], i[3k+2]) */
-    SR_TRIANGLE_STRIP     /* triangle k = (i[k], i[k+1], i[k+2]); odd k swaps its last two */
+    SR_TRIANGLE_STRIP,    /* triangle k = (i[k], i[k+1], i[k+2]); odd k swaps its last two */
+    SR_POINT_LIST,        /* point k = i[k]: a square of sr_draw_desc.point_size pixels */
+    SR_LINE_LIST,         /* line k = (i[2k], i[2k+1]) */
+    SR_LINE_STRIP         /* line k = (i[k], i[k+1]) */
 } sr_topology;
 
 /* A run of triangle slots that came from one part of a file: a loader's
@@ -122,7 +125,10 @@ typedef struct sr_material {
 /* An indexed triangle mesh in plain arrays, positions in softrast's
  * left-handed world. A triangle with a repeated index is degenerate and
  * skipped (a strip's way of restarting); triangle ids count the slots of the
- * topology from 0, degenerate ones included.
+ * topology from 0, degenerate ones included. The point and line topologies
+ * draw the same arrays as points or segments (docs/conventions.md, "Points
+ * and lines"): a line with a repeated index is skipped, and ids count
+ * points or lines as they count triangles.
  *
  * Positions are float and relative to the double `origin` (world position =
  * origin + position; zero makes them absolute): a mesh 1e7 from the world
@@ -186,7 +192,8 @@ SR_API bool sr_mesh_set_origin(sr_mesh *mesh, const double origin[3], sr_error *
  * memory. The normals array is then the caller's to free. */
 SR_API bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err);
 
-/* Number of triangle slots the topology defines (ids run over these). */
+/* Number of triangle slots the topology defines (ids run over these); 0
+ * for the point and line topologies. */
 SR_API uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh);
 
 /* ---- the framebuffer --------------------------------------------------- */
@@ -196,7 +203,14 @@ SR_API uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh);
  * clears to 1.0 and keeps the nearer fragment with LESS; reversed_z clears to
  * 0.0 and tests GREATER, for a camera with reversed_z, which spreads float
  * precision evenly over distance. The caller owns the memory: either
- * sr_framebuffer_create/destroy, or fill the struct with buffers of its own. */
+ * sr_framebuffer_create/destroy, or fill the struct with buffers of its own.
+ *
+ * ids is optional (NULL: none): where it is given, every draw writes the
+ * triangle id + 1 of each fragment that passes the depth test there, the
+ * value SR_SHADE_ID writes to color, whatever the shading; clearing sets it
+ * to 0. So one draw gives the shaded image and what each pixel shows (what
+ * sr_pinhole_resolve reads), and a draw without the plane pays nothing for
+ * it. */
 #define SR_MAX_FRAMEBUFFER_SIDE 16384
 #define SR_DEPTH_CLEAR 1.0f          /* standard: nothing drawn */
 #define SR_DEPTH_CLEAR_REVERSED 0.0f /* reversed_z: nothing drawn */
@@ -206,12 +220,19 @@ typedef struct sr_framebuffer {
     uint32_t *color; /* width * height */
     float *depth;    /* width * height */
     bool reversed_z; /* clear to 0, test GREATER */
+    uint32_t *ids;   /* optional, width * height: triangle id + 1 where drawn, 0 where cleared */
 } sr_framebuffer;
 
-/* False (with a message) for a side < 1 or > SR_MAX_FRAMEBUFFER_SIDE, or out of memory. */
+/* Color and depth, no ids. False (with a message) for a side < 1 or >
+ * SR_MAX_FRAMEBUFFER_SIDE, or out of memory. */
 SR_API bool sr_framebuffer_create(sr_framebuffer *fb, int width, int height, sr_error *err);
+/* Gives a framebuffer of sr_framebuffer_create an ids plane, zeroed (none
+ * yet: a new one; one already: kept). False (with a message, fb unchanged)
+ * when out of memory. */
+SR_API bool sr_framebuffer_create_ids(sr_framebuffer *fb, sr_error *err);
+/* Frees the planes sr_framebuffer_create and sr_framebuffer_create_ids made. */
 SR_API void sr_framebuffer_destroy(sr_framebuffer *fb);
-/* Color to `color`, depth to the clear value of fb's convention. */
+/* Color to `color`, depth to the clear value of fb's convention, ids (if any) to 0. */
 SR_API void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color);
 
 /* The clear value of fb's depth convention. */
@@ -326,6 +347,11 @@ typedef struct sr_stats {
      * outside, or (a mesh rejected whole by its bounds) the first its
      * bounding box is outside. With nonfinite they sum to rejected. */
     uint64_t rejected_by_plane[6];
+    /* A point or line draw counts its primitives here, and in rejected,
+     * nonfinite, rejected_by_plane, clipped, drawn, fragments and the cuts
+     * as a triangle draw counts its triangles; triangles and culled stay 0
+     * (a triangle draw's counts are what they always were). */
+    uint64_t points, lines; /* assembled (a line with two distinct indices) */
 } sr_stats;
 
 /* Scratch memory and worker threads a draw reuses from frame to frame
@@ -373,7 +399,18 @@ typedef struct sr_draw_desc {
      * before it draws. */
     bool clear;
     uint32_t clear_color;
+    /* The point and line topologies (docs/conventions.md, "Points and
+     * lines"); ignored by triangles. point_size: the side of a point's
+     * square in pixels, 1 .. SR_MAX_POINT_SIZE (0: 1). line_width: rounded
+     * to a whole number of pixels, 1 .. SR_MAX_LINE_WIDTH (0: 1); a wider
+     * line repeats each pixel of the thin one across its minor axis.
+     * depth_bias: moves every point and line fragment this much nearer in
+     * z_ndc before its depth test (>= 0), so a line drawn over the
+     * triangles it borders passes where their depths tie. */
+    float point_size, line_width, depth_bias;
 } sr_draw_desc;
+#define SR_MAX_POINT_SIZE 256.0f
+#define SR_MAX_LINE_WIDTH 64.0f
 
 /* Draws the mesh into fb (which the caller clears, or desc->clear). False, with a message,
  * for a desc that cannot be drawn: no mesh, an index out of range, a shading
@@ -439,15 +476,19 @@ typedef struct sr_pinhole_outputs {
     bool interpolated_normals; /* the vertex normals interpolated at the surface point; false: the
                                   triangle's own, by its winding (the file's front side) */
     float invalid;    /* depth and range where nothing is drawn: 0, or NAN */
+    int threads;      /* threads in all, the caller's included; 0 or 1: one */
 } sr_pinhole_outputs;
 
-/* The outputs asked for, from ids: the framebuffer of an SR_SHADE_ID draw
- * of mesh with cam's matrices (its color the triangle id + 1 per pixel).
- * Each pixel's surface point is the ray through its centre met with the
- * plane of the triangle it shows, in double, each value rounded to float
- * once (where the ray runs in that plane, the depth buffer's value gives
- * the point). False, with one line in err, for a mesh without positions,
- * or interpolated normals of a mesh without normals. */
+/* The outputs asked for, from ids: the framebuffer of a draw of mesh with
+ * cam's matrices, which says what each pixel shows in its ids plane
+ * (sr_framebuffer.ids: a draw in any shading gives color and these outputs
+ * at once) or, without one, in its color (an SR_SHADE_ID draw). Each
+ * pixel's surface point is the ray through its centre met with the plane
+ * of the triangle it shows, in double, each value rounded to float once
+ * (where the ray runs in that plane, the depth buffer's value gives the
+ * point). The threads take equal bands of rows; every value is the same
+ * for every thread count. False, with one line in err, for a mesh without
+ * positions, or interpolated normals of a mesh without normals. */
 SR_API bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
                                const sr_pinhole_outputs *out, sr_error *err);
 

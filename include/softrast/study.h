@@ -121,6 +121,7 @@ typedef struct sr_draw_study {
     sr_draw_times *times;             /* optional: the phases' wall time is added here */
     sr_draw_path path;                /* SR_PATH_BY_COST: the path by the cost estimate (below) */
     uint32_t chunk_slots;             /* 0: the draw's own; else slots per chunk of the binning or the verdicts */
+    bool one_by_one;                  /* no sub-pixel lanes: every triangle set up on its own (below) */
 } sr_draw_study;
 
 /* path: a draw takes several threads (the row bands, or the tiles), or the
@@ -140,6 +141,14 @@ typedef struct sr_draw_study {
  * triangle slots to the threads in chunks (binning: about 8 a thread of
  * 256 to 16384 slots; verdicts: 16384); a few slots a chunk split a small
  * mesh among the threads as a large one is (tests, the fuzzer). */
+
+/* one_by_one: a draw of many triangles for its pixels first tests them
+ * four or eight at a time, in SIMD lanes, for a scan box that holds no pixel
+ * centre or one they miss, and counts those as culled or drawn as stage 7
+ * would, without setting them up (docs/performance.md, "Sub-pixel
+ * triangles"); this sends every triangle through its own set-up instead,
+ * as the reference the lanes are tested against. Both draw and count the
+ * same. */
 
 /* count_hits: every pixel a fan triangle covers gets color += 1 (the caller
  * clears color to 0 first), so after the draw each pixel holds the number of

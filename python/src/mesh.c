@@ -1,47 +1,206 @@
 /* softrast.Mesh: a triangle mesh copied from numpy arrays, or loaded from a
- * file by sr_mesh_load. Positions are in the file's frame (the frame of the
- * poses): a mesh from arrays is stored as given (z_negated false); a loaded
- * one as the loader stores it, which sr_pinhole_* undo. */
+ * file by sr_mesh_load. Positions are given in the file's frame (the frame
+ * of the poses), and a mesh from arrays is stored as a loader stores a
+ * file's: z negated, winding reversed (z_negated), which sr_pinhole_* undo.
+ * So the same mesh from arrays and from a file is the same sr_mesh, and the
+ * colour output's light and normal shading are the command line's. */
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "io/mesh_origin.h" /* the loaders' rule for a mesh's origin, kept in one place */
 #include "softrast/files.h"
 #include "softrast_py.h"
 
-static void mesh_dealloc(sr_py_mesh *self)
+/* Frees what the mesh holds and leaves it empty. */
+static void mesh_clear(sr_py_mesh *self)
 {
     sr_mesh_free(&self->mesh);
+    sr_texture_free(&self->texture);
+    free(self->part_map);
+    self->part_map = NULL;
+}
+
+static void mesh_dealloc(sr_py_mesh *self)
+{
+    mesh_clear(self);
     Py_TYPE(self)->tp_free((PyObject *)self);
 }
 
-/* An optional per-vertex N x 3 float attribute into dst (vertex_count rows);
- * colors given as uint8 are read as 0..255. */
-static bool copy_attribute(PyObject *obj, const char *name, npy_intp rows, vec3 *dst)
+/* Raises ValueError "name[row, column] = value: why"; returns false. */
+static bool bad_value(const char *name, npy_intp i, int columns, double value, const char *why)
 {
+    char text[64];
+    snprintf(text, sizeof text, "%.9g", value);
+    PyErr_Format(PyExc_ValueError, "%s[%zd, %zd] = %s: %s", name, i / columns, i % columns, text, why);
+    return false;
+}
+
+/* z of the file's frame in softrast's world, as the loaders store it. */
+static double world_coordinate(const double *p, int k)
+{
+    return k == 2 ? -p[k] : p[k];
+}
+
+/* The positions, read in double, stored as float relative to the origin a
+ * loader would give them (io/mesh_origin.h): a mesh far from the world
+ * origin keeps its float precision, and a mesh near it is stored as given,
+ * so a mesh from arrays and the same mesh read from a file render alike.
+ * NaN and inf stay (the draw drops their triangles and counts them). */
+static void set_positions(sr_mesh *mesh, const double *p)
+{
+    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (uint32_t i = 0; i < mesh->vertex_count; i++) {
+        const double *v = p + 3 * (size_t)i;
+        if (isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]))
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], world_coordinate(v, k));
+                hi[k] = fmax(hi[k], world_coordinate(v, k));
+            }
+    }
+    if (lo[0] <= hi[0])
+        sr_mesh_origin_for_bounds(lo, hi, mesh->origin);
+    for (uint32_t i = 0; i < mesh->vertex_count; i++)
+        for (int k = 0; k < 3; k++)
+            mesh->positions[i][k] = (float)(world_coordinate(p + 3 * (size_t)i, k) - mesh->origin[k]);
+    mesh->z_negated = true;
+}
+
+/* An optional per-vertex attribute of `columns` floats into dst (rows of
+ * them), finite; colours (unit) in 0..1, or uint8 read as 0..255; normals
+ * (columns 3, not unit) into softrast's world, z negated. */
+static bool copy_attribute(PyObject *obj, const char *name, npy_intp rows, int columns, bool unit, float *dst)
+{
+    bool normals = columns == 3 && !unit;
     bool bytes = PyArray_Check(obj) && PyArray_TYPE((PyArrayObject *)obj) == NPY_UINT8;
-    PyArrayObject *a = sr_py_array(obj, name, NPY_FLOAT32, 2, (npy_intp[]){ rows, 3 }, "(N, 3), N the positions' rows");
+    char wanted[48];
+    snprintf(wanted, sizeof wanted, "(N, %d), N the positions' rows", columns);
+    PyArrayObject *a = sr_py_array(obj, name, NPY_FLOAT64, 2, (npy_intp[]){ rows, columns }, wanted);
     if (!a)
         return false;
-    const float *v = PyArray_DATA(a);
-    for (npy_intp i = 0; i < rows; i++)
-        for (int k = 0; k < 3; k++)
-            dst[i][k] = bytes ? v[3 * i + k] / 255.0f : v[3 * i + k];
+    const double *v = PyArray_DATA(a);
+    bool ok = true;
+    for (npy_intp i = 0; ok && i < rows * columns; i++) {
+        float x = bytes ? (float)v[i] / 255.0f : (float)v[i];
+        if (!isfinite(x))
+            ok = bad_value(name, i, columns, v[i], "not a finite float32");
+        else if (unit && !(x >= 0.0f && x <= 1.0f))
+            ok = bad_value(name, i, columns, v[i], "colours are 0..1 (or uint8)");
+        dst[i] = normals && i % 3 == 2 ? -x : x;
+    }
+    Py_DECREF(a);
+    return ok;
+}
+
+/* Part ids per face, 1 or more: the mesh's parts become the runs of equal
+ * ids (sr_mesh_part), and part_map each run's id. */
+static bool set_parts(sr_py_mesh *self, PyObject *obj, npy_intp triangles)
+{
+    PyArrayObject *a = sr_py_array(obj, "part_ids", NPY_INT64, 1, (npy_intp[]){ triangles }, "(M,), M the faces' rows");
+    if (!a)
+        return false;
+    const int64_t *id = PyArray_DATA(a);
+    uint32_t runs = 0;
+    for (npy_intp t = 0; t < triangles; t++) {
+        if (id[t] < 1 || id[t] > (int64_t)UINT32_MAX) {
+            PyErr_Format(PyExc_ValueError, "part_ids[%zd] = %lld: part ids are 1 to 2^32 - 1 (0 marks no surface)",
+                         t, (long long)id[t]);
+            Py_DECREF(a);
+            return false;
+        }
+        runs += t == 0 || id[t] != id[t - 1];
+    }
+    self->mesh.parts = malloc(runs * sizeof *self->mesh.parts);
+    self->part_map = malloc(runs * sizeof *self->part_map);
+    if (!self->mesh.parts || !self->part_map) {
+        Py_DECREF(a);
+        PyErr_NoMemory();
+        return false;
+    }
+    uint32_t run = 0;
+    for (npy_intp t = 0; t < triangles; t++) {
+        if (t > 0 && id[t] == id[t - 1]) {
+            self->mesh.parts[run - 1].triangle_count++;
+            continue;
+        }
+        self->mesh.parts[run] = (sr_mesh_part){ .first_triangle = (uint32_t)t, .triangle_count = 1 };
+        self->part_map[run++] = (uint32_t)id[t];
+    }
+    self->mesh.part_count = runs;
     Py_DECREF(a);
     return true;
 }
 
+/* An H x W x 3 or 4 uint8 image (row 0 at the top; alpha is not used) as
+ * the mesh's texture. */
+static bool set_texture(sr_texture *tex, PyObject *obj)
+{
+    PyArrayObject *a = (PyArrayObject *)PyArray_FromAny(obj, NULL, 0, 0, 0, NULL);
+    if (!a) {
+        PyErr_Clear();
+        PyErr_SetString(PyExc_ValueError, "texture: not an array (an (H, W, 3) or (H, W, 4) uint8 image)");
+        return false;
+    }
+    PyObject *shape = NULL;
+    if (PyArray_TYPE(a) != NPY_UINT8)
+        PyErr_Format(PyExc_ValueError, "texture: dtype %S is not uint8", (PyObject *)PyArray_DESCR(a));
+    else if (PyArray_NDIM(a) != 3 || (PyArray_DIM(a, 2) != 3 && PyArray_DIM(a, 2) != 4)) {
+        if ((shape = sr_py_shape_text(a)))
+            PyErr_Format(PyExc_ValueError, "texture: shape %U where (H, W, 3) or (H, W, 4) is wanted", shape);
+    } else if (PyArray_DIM(a, 0) < 1 || PyArray_DIM(a, 1) < 1 || PyArray_DIM(a, 0) > SR_MAX_TEXTURE_SIDE ||
+               PyArray_DIM(a, 1) > SR_MAX_TEXTURE_SIDE)
+        PyErr_Format(PyExc_ValueError, "texture: %zd x %zd texels; each side 1 to %d", PyArray_DIM(a, 1),
+                     PyArray_DIM(a, 0), SR_MAX_TEXTURE_SIDE);
+    Py_XDECREF(shape);
+    PyArrayObject *c = PyErr_Occurred() ? NULL : PyArray_GETCONTIGUOUS(a);
+    Py_DECREF(a);
+    if (!c)
+        return false;
+    npy_intp height = PyArray_DIM(c, 0), width = PyArray_DIM(c, 1), channels = PyArray_DIM(c, 2);
+    tex->texels = malloc((size_t)(width * height) * sizeof *tex->texels);
+    if (!tex->texels) {
+        Py_DECREF(c);
+        PyErr_NoMemory();
+        return false;
+    }
+    const uint8_t *rgb = PyArray_DATA(c);
+    for (npy_intp i = 0; i < width * height; i++, rgb += channels)
+        tex->texels[i] = (uint32_t)rgb[0] << 16 | (uint32_t)rgb[1] << 8 | rgb[2];
+    tex->width = (int)width;
+    tex->height = (int)height;
+    Py_DECREF(c);
+    return true;
+}
+
+/* The optional attributes of mesh_init, after the positions and faces. */
+static bool set_attributes(sr_py_mesh *self, PyObject *const given[5], npy_intp vertices, npy_intp triangles)
+{
+    sr_mesh *m = &self->mesh;
+    PyObject *normals = given[0], *colors = given[1], *uvs = given[2], *parts = given[3], *texture = given[4];
+    if (texture != Py_None && uvs == Py_None) {
+        PyErr_SetString(PyExc_ValueError, "texture: needs uvs, (N, 2) texture coordinates");
+        return false;
+    }
+    return (normals == Py_None || copy_attribute(normals, "normals", vertices, 3, false, &m->normals[0][0])) &&
+           (colors == Py_None || copy_attribute(colors, "colors", vertices, 3, true, &m->colors[0][0])) &&
+           (uvs == Py_None || copy_attribute(uvs, "uvs", vertices, 2, false, &m->uvs[0][0])) &&
+           (parts == Py_None || set_parts(self, parts, triangles)) &&
+           (texture == Py_None || set_texture(&self->texture, texture));
+}
+
 static int mesh_init(sr_py_mesh *self, PyObject *args, PyObject *kwargs)
 {
-    static char *names[] = { "positions", "faces", "normals", "colors", NULL };
-    PyObject *positions_obj, *faces_obj, *normals_obj = Py_None, *colors_obj = Py_None;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|OO:Mesh", names, &positions_obj, &faces_obj, &normals_obj,
-                                     &colors_obj))
+    static char *names[] = { "positions", "faces", "normals", "colors", "uvs", "part_ids", "texture", NULL };
+    PyObject *positions_obj, *faces_obj, *given[5] = { Py_None, Py_None, Py_None, Py_None, Py_None };
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|OO$OOO:Mesh", names, &positions_obj, &faces_obj, &given[0],
+                                     &given[1], &given[2], &given[3], &given[4]))
         return -1;
     if (self->renders) {
         PyErr_SetString(PyExc_RuntimeError, "Mesh.__init__ on a mesh another thread is rendering");
         return -1;
     }
-    sr_mesh_free(&self->mesh);
-    PyArrayObject *positions = sr_py_array(positions_obj, "positions", NPY_FLOAT32, 2, (npy_intp[]){ -1, 3 }, "(N, 3)");
+    mesh_clear(self);
+    PyArrayObject *positions = sr_py_array(positions_obj, "positions", NPY_FLOAT64, 2, (npy_intp[]){ -1, 3 }, "(N, 3)");
     PyArrayObject *faces = positions ? sr_py_array(faces_obj, "faces", NPY_INT64, 2, (npy_intp[]){ -1, 3 }, "(M, 3)")
                                      : NULL;
     int status = -1;
@@ -66,17 +225,17 @@ static int mesh_init(sr_py_mesh *self, PyObject *args, PyObject *kwargs)
             goto done;
         }
     sr_error err;
-    if (!sr_mesh_alloc(&self->mesh, (uint32_t)vertices, (uint32_t)(3 * triangles), normals_obj != Py_None, false,
-                       colors_obj != Py_None, &err)) {
+    if (!sr_mesh_alloc(&self->mesh, (uint32_t)vertices, (uint32_t)(3 * triangles), given[0] != Py_None,
+                       given[2] != Py_None, given[1] != Py_None, &err)) {
         sr_py_raise(PyExc_MemoryError, &err);
         goto done;
     }
-    memcpy(self->mesh.positions, PyArray_DATA(positions), (size_t)vertices * sizeof(vec3));
-    for (npy_intp i = 0; i < 3 * triangles; i++) /* an index past the vertices: sr_draw refuses it */
-        self->mesh.indices[i] = (uint32_t)f[i];
-    if ((normals_obj != Py_None && !copy_attribute(normals_obj, "normals", vertices, self->mesh.normals)) ||
-        (colors_obj != Py_None && !copy_attribute(colors_obj, "colors", vertices, self->mesh.colors))) {
-        sr_mesh_free(&self->mesh);
+    set_positions(&self->mesh, PyArray_DATA(positions));
+    /* the winding reversed with z; an index past the vertices: sr_draw refuses it */
+    for (npy_intp i = 0; i < 3 * triangles; i++)
+        self->mesh.indices[i] = (uint32_t)f[i % 3 == 0 ? i : i % 3 == 1 ? i + 1 : i - 1];
+    if (!set_attributes(self, given, vertices, triangles)) {
+        mesh_clear(self);
         goto done;
     }
     self->mesh.topology = SR_TRIANGLE_LIST;
@@ -98,15 +257,19 @@ static PyObject *mesh_load(PyObject *cls, PyObject *args)
         Py_DECREF(path);
         return NULL;
     }
-    sr_error err;
-    bool ok;
+    sr_error err, why;
+    bool ok, untextured = false;
     Py_BEGIN_ALLOW_THREADS
-    ok = sr_mesh_load(&self->mesh, NULL, PyBytes_AS_STRING(path), &err);
+    ok = sr_mesh_load(&self->mesh, &self->texture, PyBytes_AS_STRING(path), &err);
+    if (ok && !self->texture.texels && self->mesh.texture_path && self->mesh.uvs)
+        untextured = !sr_texture_load(&self->texture, self->mesh.texture_path, &why);
     Py_END_ALLOW_THREADS
     if (!ok)
         sr_py_raise(PyExc_OSError, &err);
     else if (sr_mesh_triangle_slots(&self->mesh) == 0 || !self->mesh.positions)
         PyErr_Format(PyExc_ValueError, "%s: no faces: an empty mesh, nothing to render", PyBytes_AS_STRING(path));
+    else if (untextured) /* as the command line: a model shared without its textures still draws */
+        PyErr_WarnFormat(PyExc_UserWarning, 1, "%s; the mesh is drawn untextured", why.message);
     Py_DECREF(path);
     if (PyErr_Occurred()) {
         Py_DECREF(self);
@@ -160,6 +323,49 @@ static PyObject *mesh_faces(sr_py_mesh *self, void *closure)
     return (PyObject *)a;
 }
 
+enum { ATTRIBUTE_NORMALS, ATTRIBUTE_UVS, ATTRIBUTE_COLORS };
+
+/* A copy of a per-vertex attribute, float32 (N, 3) or (N, 2), in the
+ * file's frame (normals' z as given); None when the mesh has none. */
+static PyObject *mesh_attribute(sr_py_mesh *self, void *closure)
+{
+    const sr_mesh *m = &self->mesh;
+    int which = *(const int *)closure, columns = which == ATTRIBUTE_UVS ? 2 : 3;
+    const float *v = which == ATTRIBUTE_NORMALS ? (const float *)m->normals
+                     : which == ATTRIBUTE_UVS   ? (const float *)m->uvs
+                                                : (const float *)m->colors;
+    if (!v)
+        Py_RETURN_NONE;
+    npy_intp dims[2] = { m->vertex_count, columns };
+    PyArrayObject *a = (PyArrayObject *)PyArray_SimpleNew(2, dims, NPY_FLOAT32);
+    if (!a)
+        return NULL;
+    float *out = PyArray_DATA(a);
+    for (size_t i = 0; i < (size_t)m->vertex_count * (size_t)columns; i++)
+        out[i] = which == ATTRIBUTE_NORMALS && i % 3 == 2 && m->z_negated ? -v[i] : v[i];
+    return (PyObject *)a;
+}
+
+static const int NORMALS = ATTRIBUTE_NORMALS, UVS = ATTRIBUTE_UVS, COLORS = ATTRIBUTE_COLORS;
+
+/* A copy of the texture, (H, W, 3) uint8, row 0 at the top; None without one. */
+static PyObject *mesh_texture(sr_py_mesh *self, void *closure)
+{
+    (void)closure;
+    const sr_texture *t = &self->texture;
+    if (!t->texels)
+        Py_RETURN_NONE;
+    npy_intp dims[3] = { t->height, t->width, 3 };
+    PyArrayObject *a = (PyArrayObject *)PyArray_SimpleNew(3, dims, NPY_UINT8);
+    if (!a)
+        return NULL;
+    uint8_t *rgb = PyArray_DATA(a);
+    for (size_t i = 0; i < (size_t)t->width * (size_t)t->height; i++)
+        for (int k = 0; k < 3; k++)
+            rgb[3 * i + k] = (uint8_t)(t->texels[i] >> (16 - 8 * k));
+    return (PyObject *)a;
+}
+
 static PyObject *mesh_vertex_count(sr_py_mesh *self, void *closure)
 {
     (void)closure;
@@ -175,7 +381,10 @@ static PyObject *mesh_triangle_count(sr_py_mesh *self, void *closure)
 static PyObject *mesh_part_count(sr_py_mesh *self, void *closure)
 {
     (void)closure;
-    return PyLong_FromUnsignedLong(self->mesh.part_count ? self->mesh.part_count : 1);
+    uint32_t count = self->mesh.part_count ? self->mesh.part_count : 1;
+    for (uint32_t run = 0; self->part_map && run < self->mesh.part_count; run++)
+        count = run == 0 || self->part_map[run] > count ? self->part_map[run] : count;
+    return PyLong_FromUnsignedLong(count);
 }
 
 static PyObject *mesh_repr(sr_py_mesh *self)
@@ -194,19 +403,28 @@ static PyMethodDef mesh_methods[] = {
 static PyGetSetDef mesh_getset[] = {
     { "positions", (getter)mesh_positions, NULL, "a copy of the positions, (N, 3), in the file's frame", NULL },
     { "faces", (getter)mesh_faces, NULL, "a copy of the faces, int64 (M, 3), in the file's winding", NULL },
+    { "normals", (getter)mesh_attribute, NULL, "a copy of the vertex normals, (N, 3), in the file's frame, or None",
+      (void *)&NORMALS },
+    { "uvs", (getter)mesh_attribute, NULL, "a copy of the texture coordinates, (N, 2), or None", (void *)&UVS },
+    { "colors", (getter)mesh_attribute, NULL, "a copy of the vertex colours, (N, 3) 0..1, or None", (void *)&COLORS },
+    { "texture", (getter)mesh_texture, NULL, "a copy of the texture, (H, W, 3) uint8, or None", NULL },
     { "vertex_count", (getter)mesh_vertex_count, NULL, "number of vertices", NULL },
     { "triangle_count", (getter)mesh_triangle_count, NULL, "number of triangles (face ids run 1 to this)", NULL },
-    { "part_count", (getter)mesh_part_count, NULL, "the file's meshes (part ids run 1 to this)", NULL },
+    { "part_count", (getter)mesh_part_count, NULL, "the largest part id: the file's meshes, or the largest given",
+      NULL },
     { NULL },
 };
 
 PyTypeObject sr_py_mesh_type = {
     PyVarObject_HEAD_INIT(NULL, 0)
     .tp_name = "softrast.Mesh",
-    .tp_doc = "Mesh(positions, faces, normals=None, colors=None): a triangle mesh, copied.\n\n"
+    .tp_doc = "Mesh(positions, faces, normals=None, colors=None, *, uvs=None, part_ids=None, texture=None):\n"
+              "a triangle mesh, copied.\n\n"
               "positions (N, 3) float32/float64 in the frame of the poses; faces (M, 3) int32/int64 vertex\n"
               "indices, face id k + 1 in the outputs; the geometric normal is e1 x e2 of the given order\n"
-              "(e1 = p1 - p0, e2 = p2 - p0); normals (N, 3) optional; colors (N, 3) 0..1 (or uint8).",
+              "(e1 = p1 - p0, e2 = p2 - p0). Optional: normals (N, 3); colors (N, 3) 0..1 (or uint8);\n"
+              "uvs (N, 2), (0, 0) the texture's bottom left; part_ids (M,) 1 or more, the part_ids output;\n"
+              "texture (H, W, 3 or 4) uint8, row 0 at the top.",
     .tp_basicsize = sizeof(sr_py_mesh),
     .tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_BASETYPE,
     .tp_new = PyType_GenericNew,

@@ -8,8 +8,7 @@ PyObject *sr_py_raise(PyObject *type, const sr_error *err)
     return NULL;
 }
 
-/* "(5,)", "(2, 3)": an array's shape for a message. */
-static PyObject *shape_text(const PyArrayObject *a)
+PyObject *sr_py_shape_text(const PyArrayObject *a)
 {
     PyObject *dims = PyTuple_New(PyArray_NDIM(a));
     for (int k = 0; dims && k < PyArray_NDIM(a); k++)
@@ -47,7 +46,7 @@ PyArrayObject *sr_py_array(PyObject *obj, const char *name, int type, int ndim, 
     for (int k = 0; fits && k < ndim; k++)
         fits = shape[k] < 0 || PyArray_DIM(any, k) == shape[k];
     if (!fits) {
-        PyObject *got = shape_text(any);
+        PyObject *got = sr_py_shape_text(any);
         if (got)
             PyErr_Format(PyExc_ValueError, "%s: shape %U where %s is wanted", name, got, wanted);
         Py_XDECREF(got);

@@ -1,23 +1,30 @@
-/* softrast.Renderer: a framebuffer and a workspace reused from call to
+/* softrast.Renderer: framebuffers and a workspace reused from call to
  * call, and the pinhole renders over them. Each render is the command
  * line's: an SR_SHADE_ID draw into a reversed-z framebuffer with the
- * matrices of sr_pinhole_matrices, then sr_pinhole_resolve into new numpy
- * arrays, with the GIL released around both. */
+ * matrices of sr_pinhole_matrices (and for colour a shaded draw with the
+ * same matrices), then sr_pinhole_resolve into new numpy arrays, with the
+ * GIL released around all of it. */
+#include <math.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "softrast_py.h"
 
-enum { OUT_DEPTH, OUT_RANGE, OUT_FACE_IDS, OUT_PART_IDS, OUT_NORMALS, OUT_COUNT };
-static const char *const OUT_NAMES[OUT_COUNT] = { "depth", "range", "face_ids", "part_ids", "normals" };
-#define OUT_LIST "'depth', 'range', 'face_ids', 'part_ids', 'normals'"
+enum { OUT_COLOR, OUT_DEPTH, OUT_RANGE, OUT_FACE_IDS, OUT_PART_IDS, OUT_NORMALS, OUT_COUNT };
+static const char *const OUT_NAMES[OUT_COUNT] = { "color", "depth", "range", "face_ids", "part_ids", "normals" };
+#define OUT_LIST "'color', 'depth', 'range', 'face_ids', 'part_ids', 'normals'"
+
+/* The colour output's shading modes, named as the command line's --shade, in sr_shade's order. */
+static const char *const SHADE_NAMES[SR_SHADE_COUNT] = { "lambert", "id", "color", "normal", "texture", "depth" };
+#define SHADE_LIST "'lambert', 'id', 'color', 'normal', 'texture', 'depth'"
 
 /* The draw's own limit on threads; more are drawn with this many. */
 #define MAX_THREADS 64
 
 typedef struct sr_py_renderer {
     PyObject_HEAD
-    sr_framebuffer fb; /* the id view: reversed z, triangle id + 1 per pixel */
+    sr_framebuffer fb;     /* the id view: reversed z, triangle id + 1 per pixel */
+    sr_framebuffer shaded; /* the colour view, made at the first call that asks for colour */
     sr_workspace *workspace;
     int threads;
     pid_t pid;  /* the process whose threads the workspace holds (a forked child has none of them) */
@@ -30,6 +37,8 @@ typedef struct job {
     bool wanted[OUT_COUNT];
     bool interpolated;
     float invalid;
+    sr_shade shade; /* the colour output's */
+    vec3 light;     /* toward the light in softrast's world; zero: SR_DEFAULT_LIGHT */
 } job;
 
 static void renderer_release(sr_py_renderer *self)
@@ -38,6 +47,7 @@ static void renderer_release(sr_py_renderer *self)
         sr_workspace_destroy(self->workspace); /* in a forked child its threads are not there to end */
     self->workspace = NULL;
     sr_framebuffer_destroy(&self->fb);
+    sr_framebuffer_destroy(&self->shaded);
 }
 
 static void renderer_dealloc(sr_py_renderer *self)
@@ -98,14 +108,42 @@ static bool parse_number(PyObject *obj, const char *name, double *out)
     return true;
 }
 
-/* fx, fy, cx, cy from K or from the numbers (fy defaults to fx, cx and cy
- * to the centre); sr_pinhole_check judges their values. */
-static bool parse_intrinsics(const sr_py_renderer *self, PyObject *K, PyObject *const numbers[4], sr_pinhole *cam)
+/* fx = fy and a centred principal point from a vertical field of view in
+ * degrees, as the command line's --fov without --intrinsics. */
+static bool intrinsics_from_fov(const sr_py_renderer *self, PyObject *fov, sr_pinhole *cam)
+{
+    double deg = SR_CAMERA_FOV;
+    if (fov != Py_None && !parse_number(fov, "fov", &deg))
+        return false;
+    if (!(deg > 0.0 && deg < 180.0)) {
+        char text[32];
+        snprintf(text, sizeof text, "%g", deg);
+        PyErr_Format(PyExc_ValueError, "fov: %s degrees; the vertical field of view is above 0 and below 180", text);
+        return false;
+    }
+    /* in float degrees, as the command line's --fov (sr_camera.fov_deg) */
+    cam->fx = cam->fy = 0.5 * self->fb.height / tan(0.5 * (double)(float)deg * GLM_PI / 180.0);
+    cam->cx = 0.5 * (self->fb.width - 1);
+    cam->cy = 0.5 * (self->fb.height - 1);
+    return true;
+}
+
+/* fx, fy, cx, cy from K, from the numbers (fy defaults to fx, cx and cy to
+ * the centre) or from fov (the look-at camera's default: 60 degrees);
+ * sr_pinhole_check judges their values. */
+static bool parse_intrinsics(const sr_py_renderer *self, PyObject *K, PyObject *const numbers[4], PyObject *fov,
+                             bool look_at, sr_pinhole *cam)
 {
     static const char *const names[4] = { "fx", "fy", "cx", "cy" };
     bool any = false;
     for (int k = 0; k < 4; k++)
         any = any || numbers[k] != Py_None;
+    if (fov != Py_None && (any || K != Py_None)) {
+        PyErr_SetString(PyExc_ValueError, "give the intrinsics as K, as fx, fy, cx, cy or as fov, not two of them");
+        return false;
+    }
+    if (fov != Py_None || (look_at && !any && K == Py_None))
+        return intrinsics_from_fov(self, fov, cam);
     if (K != Py_None) {
         if (any) {
             PyErr_SetString(PyExc_ValueError, "give the intrinsics as K or as fx, fy, cx, cy, not both");
@@ -125,7 +163,7 @@ static bool parse_intrinsics(const sr_py_renderer *self, PyObject *K, PyObject *
     if (numbers[0] == Py_None) {
         PyErr_SetString(PyExc_ValueError, any ? "fy, cx and cy need fx"
                                               : "give the intrinsics: K (3x3) or fx (and fy, cx, cy), in pixels, "
-                                                "OpenCV's convention");
+                                                "OpenCV's convention, or fov (vertical, degrees)");
         return false;
     }
     double v[4] = { 0, 0, 0.5 * (self->fb.width - 1), 0.5 * (self->fb.height - 1) };
@@ -138,6 +176,52 @@ static bool parse_intrinsics(const sr_py_renderer *self, PyObject *K, PyObject *
     return true;
 }
 
+/* A name among `count` names, or -1. */
+static int name_index(PyObject *name, const char *const *names, int count)
+{
+    for (int k = 0; PyUnicode_Check(name) && k < count; k++)
+        if (PyUnicode_CompareWithASCIIString(name, names[k]) == 0)
+            return k;
+    return -1;
+}
+
+/* Three finite numbers: a point or a direction. */
+static bool parse_vector(PyObject *obj, const char *name, double out[3])
+{
+    PyArrayObject *a = sr_py_array(obj, name, NPY_FLOAT64, 1, (npy_intp[]){ 3 }, "(3,)");
+    if (!a)
+        return false;
+    const double *v = PyArray_DATA(a);
+    bool finite = isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+    memcpy(out, v, 3 * sizeof *out);
+    Py_DECREF(a);
+    if (!finite)
+        PyErr_Format(PyExc_ValueError, "%s: every entry must be finite", name);
+    return finite;
+}
+
+/* The colour output's shading, and its light: a direction in the poses'
+ * frame, into softrast's world (z negated, as every mesh is stored: mesh.c). */
+static bool parse_shading(PyObject *shade, PyObject *light, job *j)
+{
+    int k = shade ? name_index(shade, SHADE_NAMES, SR_SHADE_COUNT) : SR_SHADE_LAMBERT;
+    if (k < 0) {
+        PyErr_Format(PyExc_ValueError, "shade: %R is not one of " SHADE_LIST, shade);
+        return false;
+    }
+    j->shade = (sr_shade)k;
+    double l[3] = { 0, 0, 0 };
+    if (light != Py_None && !parse_vector(light, "light", l))
+        return false;
+    if (light != Py_None && l[0] == 0.0 && l[1] == 0.0 && l[2] == 0.0) {
+        PyErr_SetString(PyExc_ValueError, "light: (0, 0, 0) has no direction");
+        return false;
+    }
+    for (int i = 0; i < 3; i++)
+        j->light[i] = (float)(i == 2 ? -l[i] : l[i]);
+    return true;
+}
+
 static bool parse_outputs(PyObject *outputs, PyObject *normals, job *j)
 {
     PyObject *seq = PyUnicode_Check(outputs) ? PyTuple_Pack(1, outputs)
@@ -147,10 +231,8 @@ static bool parse_outputs(PyObject *outputs, PyObject *normals, job *j)
     bool ok = true;
     for (Py_ssize_t i = 0; ok && i < PySequence_Fast_GET_SIZE(seq); i++) {
         PyObject *name = PySequence_Fast_GET_ITEM(seq, i);
-        int k = 0;
-        while (k < OUT_COUNT && !(PyUnicode_Check(name) && PyUnicode_CompareWithASCIIString(name, OUT_NAMES[k]) == 0))
-            k++;
-        if (k == OUT_COUNT) {
+        int k = name_index(name, OUT_NAMES, OUT_COUNT);
+        if (k < 0) {
             PyErr_Format(PyExc_ValueError, "outputs: %R is not one of " OUT_LIST, name);
             ok = false;
         } else
@@ -166,6 +248,65 @@ static bool parse_outputs(PyObject *outputs, PyObject *normals, job *j)
         return false;
     }
     return true;
+}
+
+static double norm(const double v[3])
+{
+    return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+static void cross(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The world-to-camera pose, a new (4, 4) array, of a camera at eye
+ * looking at target with up toward the top of the image, in the poses'
+ * frame (OpenCV's axes: x = forward x up to the right, y down, z forward).
+ * In a right-handed frame the image is not mirrored: a look-at from +z
+ * with up +y shows +x on the right. */
+static PyObject *look_at_pose(PyObject *eye_obj, PyObject *target_obj, PyObject *up_obj)
+{
+    double eye[3], target[3], up[3] = { 0.0, 1.0, 0.0 }, x[3], y[3], z[3];
+    if (eye_obj == Py_None || target_obj == Py_None) {
+        PyErr_SetString(PyExc_ValueError, "the look-at camera needs eye and target (and up, default (0, 1, 0))");
+        return NULL;
+    }
+    if (!parse_vector(eye_obj, "eye", eye) || !parse_vector(target_obj, "target", target) ||
+        (up_obj != Py_None && !parse_vector(up_obj, "up", up)))
+        return NULL;
+    for (int k = 0; k < 3; k++)
+        z[k] = target[k] - eye[k];
+    double forward = norm(z), upward = norm(up);
+    if (!(forward > 0.0) || !isfinite(forward)) {
+        PyErr_SetString(PyExc_ValueError, "eye and target: the same point (or too far apart), no view direction");
+        return NULL;
+    }
+    for (int k = 0; k < 3; k++)
+        z[k] /= forward;
+    cross(z, up, x);
+    double side = norm(x);
+    if (!(side > 1e-6 * upward)) {
+        PyErr_SetString(PyExc_ValueError, "up: zero or along the view direction (target - eye)");
+        return NULL;
+    }
+    for (int k = 0; k < 3; k++)
+        x[k] /= side;
+    cross(z, x, y);
+    npy_intp dims[2] = { 4, 4 };
+    PyArrayObject *a = (PyArrayObject *)PyArray_ZEROS(2, dims, NPY_FLOAT64, 0);
+    if (!a)
+        return NULL;
+    double(*w2c)[4] = PyArray_DATA(a);
+    const double *rows[3] = { x, y, z };
+    for (int r = 0; r < 3; r++) {
+        memcpy(w2c[r], rows[r], 3 * sizeof(double));
+        w2c[r][3] = -(rows[r][0] * eye[0] + rows[r][1] * eye[1] + rows[r][2] * eye[2]);
+    }
+    w2c[3][3] = 1.0;
+    return (PyObject *)a;
 }
 
 /* Poses, world-to-camera, from w2c or c2w (one of them, or neither: one
@@ -224,16 +365,66 @@ static double (*parse_poses(PyObject *w2c, PyObject *c2w, bool many, const sr_pi
     return poses;
 }
 
-/* One frame: clip planes fitted where 0, the id view drawn, the outputs
- * resolved from it. Runs without the GIL. */
-static bool render_one(sr_py_renderer *self, const sr_mesh *mesh, sr_pinhole *cam, const sr_pinhole_outputs *out,
-                       sr_stats *stats, sr_error *err)
+/* Whether the colour output needs a shaded draw of its own: the id and
+ * depth views are the id draw's colour and depth. */
+static bool shades(const job *j)
+{
+    return j->wanted[OUT_COLOR] && j->shade != SR_SHADE_ID && j->shade != SR_SHADE_DEPTH;
+}
+
+/* The views a frame's outputs come from: the id view in self->fb and, when
+ * shades(j), the colour in self->shaded, a second draw with the same
+ * matrices (the same triangle wins every pixel). When sr_framebuffer gains
+ * an id plane (issue 34) this is the one place that becomes one draw. */
+static bool draw_views(sr_py_renderer *self, const sr_mesh *mesh, const sr_texture *texture, sr_pinhole *cam,
+                       const job *j, sr_stats *stats, sr_error *err)
 {
     sr_pinhole_fit_clip(cam, mesh);
     sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .threads = self->threads,
                           .workspace = self->workspace, .clear = true };
     sr_pinhole_matrices(cam, mesh, &self->fb, &desc);
-    return sr_draw(&self->fb, &desc, stats, err) && sr_pinhole_resolve(cam, mesh, &self->fb, out, err);
+    if (!sr_draw(&self->fb, &desc, stats, err))
+        return false;
+    if (!shades(j))
+        return true;
+    desc.shade = j->shade;
+    desc.texture = texture->texels ? texture : NULL;
+    glm_vec3_copy((float *)j->light, desc.light_dir);
+    self->shaded.reversed_z = self->fb.reversed_z;
+    return sr_draw(&self->shaded, &desc, NULL, err);
+}
+
+/* The colour output, (H, W, 3) uint8, from the view the shading wrote. */
+static void write_color(sr_py_renderer *self, sr_shade shade, uint8_t *rgb)
+{
+    const uint32_t *packed = shade == SR_SHADE_ID ? self->fb.color : self->shaded.color;
+    if (shade == SR_SHADE_DEPTH) /* as --shade depth: the written range from white (near) to dark gray */
+        sr_framebuffer_depth_to_gray(&self->fb, self->shaded.color);
+    for (size_t i = 0; i < (size_t)self->fb.width * (size_t)self->fb.height; i++)
+        for (int k = 0; k < 3; k++)
+            rgb[3 * i + k] = (uint8_t)(packed[i] >> (16 - 8 * k));
+}
+
+/* Part ids the caller gave (mesh.c's part_map) for the library's runs. */
+static void map_parts(uint32_t *ids, size_t count, const uint32_t *part_map)
+{
+    for (size_t i = 0; i < count; i++)
+        ids[i] = ids[i] ? part_map[ids[i] - 1] : 0;
+}
+
+/* One frame: clip planes fitted where 0, the views drawn, the outputs
+ * resolved from them. Runs without the GIL. */
+static bool render_one(sr_py_renderer *self, const sr_py_mesh *pm, const sr_mesh *mesh, sr_pinhole *cam,
+                       const job *j, const sr_pinhole_outputs *out, uint8_t *color, sr_stats *stats, sr_error *err)
+{
+    if (!draw_views(self, mesh, &pm->texture, cam, j, stats, err) ||
+        !sr_pinhole_resolve(cam, mesh, &self->fb, out, err))
+        return false;
+    if (color)
+        write_color(self, j->shade, color);
+    if (out->part_ids && pm->part_map)
+        map_parts(out->part_ids, (size_t)self->fb.width * (size_t)self->fb.height, pm->part_map);
+    return true;
 }
 
 static PyObject *stats_dict(const sr_stats *s)
@@ -244,9 +435,10 @@ static PyObject *stats_dict(const sr_stats *s)
                          (unsigned long long)s->drawn, "fragments", (unsigned long long)s->fragments);
 }
 
-/* Claims the renderer for one call (refusing a second thread's) and makes
- * the workspace anew in a forked child. */
-static bool claim(sr_py_renderer *self)
+/* Claims the renderer for one call (refusing a second thread's), makes
+ * the workspace anew in a forked child and the colour view when first
+ * wanted. */
+static bool claim(sr_py_renderer *self, const job *j)
 {
     if (self->pid != getpid()) {
         sr_workspace *workspace = sr_workspace_create(); /* the parent's is left: its threads are not here */
@@ -267,6 +459,13 @@ static bool claim(sr_py_renderer *self)
                                             "use one Renderer per thread");
         return false;
     }
+    sr_error err;
+    if (shades(j) || (j->wanted[OUT_COLOR] && j->shade == SR_SHADE_DEPTH)) { /* depth's gray is made there */
+        if (!self->shaded.color && !sr_framebuffer_create(&self->shaded, self->fb.width, self->fb.height, &err)) {
+            sr_py_raise(PyExc_MemoryError, &err);
+            return false;
+        }
+    }
     self->busy = true;
     return true;
 }
@@ -280,7 +479,8 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
         PyErr_SetString(PyExc_ValueError, "the mesh is empty (Mesh.__init__ was not called)");
         return NULL;
     }
-    if (j->wanted[OUT_NORMALS] && j->interpolated && !mesh->mesh.normals &&
+    bool lit = shades(j) && (j->shade == SR_SHADE_LAMBERT || j->shade == SR_SHADE_NORMAL);
+    if (((j->wanted[OUT_NORMALS] && j->interpolated) || lit) && !mesh->mesh.normals &&
         !sr_mesh_compute_normals(&mesh->mesh, &err)) /* with the GIL held: no render reads it now */
         return sr_py_raise(PyExc_ValueError, &err);
     npy_intp width = self->fb.width, height = self->fb.height, pixels = width * height;
@@ -293,11 +493,11 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
         if (!j->wanted[k])
             continue;
         npy_intp dims[4] = { frames, height, width, 3 };
-        int nd = (many ? 3 : 2) + (k == OUT_NORMALS);
-        int type = k == OUT_FACE_IDS || k == OUT_PART_IDS ? NPY_UINT32 : NPY_FLOAT32;
+        int nd = (many ? 3 : 2) + (k == OUT_NORMALS || k == OUT_COLOR);
+        int type = k == OUT_COLOR ? NPY_UINT8 : k == OUT_FACE_IDS || k == OUT_PART_IDS ? NPY_UINT32 : NPY_FLOAT32;
         ok = (arrays[k] = (PyArrayObject *)PyArray_SimpleNew(nd, many ? dims : dims + 1, type)) != NULL;
     }
-    ok = ok && claim(self);
+    ok = ok && claim(self, j);
     if (ok) {
         mesh->renders++;
         sr_mesh m = mesh->mesh; /* a copy: Mesh's normals may be filled in meanwhile */
@@ -311,9 +511,10 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
                                        .part_ids = FRAME(OUT_PART_IDS, uint32_t, 1),
                                        .normals = FRAME(OUT_NORMALS, float, 3),
                                        .interpolated_normals = j->interpolated, .invalid = j->invalid };
+            uint8_t *color = FRAME(OUT_COLOR, uint8_t, 3);
 #undef FRAME
             Py_BEGIN_ALLOW_THREADS
-            ok = render_one(self, &m, &cam, &out, &stats[i], &err);
+            ok = render_one(self, mesh, &m, &cam, j, &out, color, &stats[i], &err);
             Py_END_ALLOW_THREADS
             if (!ok)
                 sr_py_raise(PyExc_ValueError, &err);
@@ -344,38 +545,51 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
     return result;
 }
 
-/* The keywords render and render_many share, after the poses. */
-#define CAMERA_KEYWORDS "K", "fx", "fy", "cx", "cy"
-#define OUTPUT_KEYWORDS "near", "far", "outputs", "normals", "invalid"
+/* The keywords render and render_many share: the intrinsics, and after the poses the rest. */
+#define CAMERA_KEYWORDS "K", "fx", "fy", "cx", "cy", "fov"
+#define OUTPUT_KEYWORDS "near", "far", "outputs", "normals", "invalid", "shade", "light"
 
 static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwargs, bool many)
 {
-    static char *single[] = { "mesh", CAMERA_KEYWORDS, "pose", "pose_c2w", OUTPUT_KEYWORDS, NULL };
+    static char *single[] = { "mesh", CAMERA_KEYWORDS, "pose", "pose_c2w", "eye", "target", "up", OUTPUT_KEYWORDS,
+                              NULL };
     static char *stacked[] = { "mesh", "poses", CAMERA_KEYWORDS, "poses_c2w", OUTPUT_KEYWORDS, NULL };
     sr_py_mesh *mesh;
-    PyObject *K = Py_None, *numbers[4] = { Py_None, Py_None, Py_None, Py_None }, *w2c = Py_None, *c2w = Py_None;
-    PyObject *outputs = NULL, *normals = NULL;
+    PyObject *K = Py_None, *numbers[4] = { Py_None, Py_None, Py_None, Py_None }, *fov = Py_None;
+    PyObject *w2c = Py_None, *c2w = Py_None, *eye = Py_None, *target = Py_None, *up = Py_None;
+    PyObject *outputs = NULL, *normals = NULL, *shade = NULL, *light = Py_None;
     double near = 0.0, far = 0.0;
     float invalid = 0.0f;
-    int parsed = many ? PyArg_ParseTupleAndKeywords(args, kwargs, "O!|O$OOOOOOddOOf:render_many", stacked,
+    int parsed = many ? PyArg_ParseTupleAndKeywords(args, kwargs, "O!|O$OOOOOOOddOOfOO:render_many", stacked,
                                                     &sr_py_mesh_type, &mesh, &w2c, &K, &numbers[0], &numbers[1],
-                                                    &numbers[2], &numbers[3], &c2w, &near, &far, &outputs, &normals,
-                                                    &invalid)
-                      : PyArg_ParseTupleAndKeywords(args, kwargs, "O!|$OOOOOOOddOOf:render", single, &sr_py_mesh_type,
-                                                    &mesh, &K, &numbers[0], &numbers[1], &numbers[2], &numbers[3],
-                                                    &w2c, &c2w, &near, &far, &outputs, &normals, &invalid);
+                                                    &numbers[2], &numbers[3], &fov, &c2w, &near, &far, &outputs,
+                                                    &normals, &invalid, &shade, &light)
+                      : PyArg_ParseTupleAndKeywords(args, kwargs, "O!|$OOOOOOOOOOOddOOfOO:render", single,
+                                                    &sr_py_mesh_type, &mesh, &K, &numbers[0], &numbers[1],
+                                                    &numbers[2], &numbers[3], &fov, &w2c, &c2w, &eye, &target, &up,
+                                                    &near, &far, &outputs, &normals, &invalid, &shade, &light);
     if (!parsed)
         return NULL;
+    bool look_at = eye != Py_None || target != Py_None || up != Py_None;
+    if (look_at && (w2c != Py_None || c2w != Py_None)) {
+        PyErr_SetString(PyExc_ValueError, "a pose and the look-at camera (eye, target, up) both place the camera: "
+                                          "give one");
+        return NULL;
+    }
     job j = { .cam = { .near = near, .far = far }, .invalid = invalid };
     PyObject *depth_only = outputs ? NULL : PyUnicode_FromString("depth");
     PyObject *geometric = normals ? NULL : PyUnicode_FromString("geometric");
     bool ok = (outputs || depth_only) && (normals || geometric) &&
               parse_outputs(outputs ? outputs : depth_only, normals ? normals : geometric, &j) &&
-              parse_intrinsics(self, K, numbers, &j.cam);
+              parse_shading(shade, light, &j) && parse_intrinsics(self, K, numbers, fov, look_at, &j.cam);
     Py_XDECREF(depth_only);
     Py_XDECREF(geometric);
+    PyObject *looking = ok && look_at ? look_at_pose(eye, target, up) : NULL;
     npy_intp frames = 0;
-    double(*poses)[4][4] = ok ? parse_poses(w2c, c2w, many, &j.cam, &frames) : NULL;
+    double(*poses)[4][4] = ok && (looking || !look_at) ? parse_poses(looking ? looking : w2c, c2w, many, &j.cam,
+                                                                     &frames)
+                                                       : NULL;
+    Py_XDECREF(looking);
     if (!poses)
         return NULL;
     PyObject *result = render_frames(self, mesh, &j, poses, frames, many);
@@ -419,11 +633,12 @@ static PyObject *renderer_repr(sr_py_renderer *self)
 
 static PyMethodDef renderer_methods[] = {
     { "render", (PyCFunction)(void (*)(void))renderer_render, METH_VARARGS | METH_KEYWORDS,
-      "render(mesh, *, K=None, fx=None, fy=None, cx=None, cy=None, pose=None, pose_c2w=None, near=0, far=0,\n"
-      "       outputs=('depth',), normals='geometric', invalid=0.0) -> dict\n\n"
-      "One pinhole view of mesh (OpenCV's convention; pose world-to-camera, identity if not given).\n"
-      "Returns new arrays for the outputs asked for among 'depth', 'range', 'face_ids', 'part_ids',\n"
-      "'normals', and 'stats' (the draw's counts)." },
+      "render(mesh, *, K=None, fx=None, fy=None, cx=None, cy=None, fov=None, pose=None, pose_c2w=None,\n"
+      "       eye=None, target=None, up=None, near=0, far=0, outputs=('depth',), normals='geometric',\n"
+      "       invalid=0.0, shade='lambert', light=None) -> dict\n\n"
+      "One pinhole view of mesh (OpenCV's convention; pose world-to-camera, identity if not given, or\n"
+      "the look-at camera eye, target, up). Returns new arrays for the outputs asked for among 'color',\n"
+      "'depth', 'range', 'face_ids', 'part_ids', 'normals', and 'stats' (the draw's counts)." },
     { "render_many", (PyCFunction)(void (*)(void))renderer_render_many, METH_VARARGS | METH_KEYWORDS,
       "render_many(mesh, poses, *, K=None, ..., poses_c2w=None, ...) -> dict\n\n"
       "render() for each of N poses (N, 4, 4): the outputs stacked (N, H, W[, 3]), 'stats' a list." },

@@ -18,10 +18,15 @@
 
 #include "softrast/softrast.h"
 
-/* softrast.Mesh: an sr_mesh that owns its arrays. */
+/* softrast.Mesh: an sr_mesh that owns its arrays, and its texture. */
 typedef struct sr_py_mesh {
     PyObject_HEAD
     sr_mesh mesh;
+    sr_texture texture; /* empty: none */
+    /* Part ids given as arrays: mesh.parts are the runs of equal ids in
+     * face order, and part_map[run] the id the caller gave that run (the
+     * library's part_ids output is run + 1). NULL for a loaded mesh. */
+    uint32_t *part_map;
     int renders; /* renders using it with the GIL released: __init__ waits for none */
 } sr_py_mesh;
 
@@ -34,6 +39,9 @@ extern PyTypeObject sr_py_renderer_type;
  * ValueError naming `name` and the shape wanted, `wanted` ("(N, 3)"). */
 PyArrayObject *sr_py_array(PyObject *obj, const char *name, int type, int ndim, const npy_intp *shape,
                            const char *wanted);
+
+/* "(5,)", "(2, 3)": an array's shape for a message (a new str, or NULL). */
+PyObject *sr_py_shape_text(const PyArrayObject *a);
 
 /* Raises `type` with the library's one line; returns NULL. */
 PyObject *sr_py_raise(PyObject *type, const sr_error *err);

@@ -29,3 +29,11 @@ def cli():
 @pytest.fixture
 def root():
     return ROOT
+
+
+@pytest.fixture
+def png():
+    """tools/pinhole_sheet.py's PNG reader and writer (zlib alone, no PIL)."""
+    sys.path.insert(0, os.path.join(ROOT, "tools"))
+    import pinhole_sheet
+    return pinhole_sheet

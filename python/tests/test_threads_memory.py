@@ -161,7 +161,14 @@ SANITISED = any("asan" in os.environ.get(v, "") or "san" in os.environ.get(v, ""
 @pytest.mark.skipif(SANITISED, reason="memory is measured on the optimised build only")
 def test_resident_memory_stays_flat_over_10000_renders():
     rng = np.random.default_rng(3)
-    mesh = softrast.Mesh(rng.uniform(-1, 1, (200, 3)), rng.integers(0, 200, (300, 3)))
+    positions, faces = rng.uniform(-1, 1, (200, 3)), rng.integers(0, 200, (300, 3))
+
+    def dressed():  # every attribute, far from the origin: made and freed every tenth render
+        return softrast.Mesh(positions + [1e7, 0, 0], faces, normals=positions, colors=rng.uniform(0, 1, (200, 3)),
+                             uvs=positions[:, :2], part_ids=np.arange(1, 301),
+                             texture=rng.integers(0, 256, (64, 64, 4), dtype=np.uint8))
+
+    mesh = softrast.Mesh(positions, faces)
     pose = look_pose([0, 0, -3], [0, 0, 0])
     r = softrast.Renderer(64, 48, threads=2)
     poses = np.stack([pose] * 4)
@@ -170,11 +177,14 @@ def test_resident_memory_stays_flat_over_10000_renders():
         for i in range(n):
             if i % 10 == 0:
                 r.render_many(mesh, poses, fx=40, outputs=("depth",))
+            elif i % 10 == 5:
+                r.render(dressed(), eye=(1e7, 0, -3), target=(1e7, 0, 0), outputs=("color", "part_ids"),
+                         shade="texture")
             else:
-                r.render(mesh, fx=40, pose=pose, outputs=("depth", "range", "face_ids", "part_ids", "normals"),
+                r.render(mesh, fx=40, pose=pose, outputs=("color", "depth", "range", "face_ids", "part_ids", "normals"),
                          normals="interpolated" if i % 2 else "geometric")
             if i % 100 == 0:  # made, used and freed, threads and all
-                softrast.Renderer(16, 16, threads=2).render(mesh, fx=10, pose=pose)
+                softrast.Renderer(16, 16, threads=2).render(mesh, fx=10, pose=pose, outputs=("color",))
 
     renders(1000)
     after_1000 = resident_bytes()

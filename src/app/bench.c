@@ -17,8 +17,9 @@
 
 #define MAX_FRAMES 10000
 
-static const char *const SCENE_NAMES[] = { "all", "dense", "fly", "fill", "fill-flat", "depth", "inside", NULL };
-enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE };
+static const char *const SCENE_NAMES[] = { "all",   "dense",  "fly",  "fill", "fill-flat",
+                                           "depth", "inside", "scan", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE, SCENE_SCAN };
 
 typedef struct bench_job {
     int scene, frames, threads, simd, shade; /* shade: -1 for each scene's own */
@@ -37,7 +38,7 @@ static const char USAGE[] =
 static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|fill-flat|depth|inside", "which scenes (default all)", .choices = SCENE_NAMES },
+        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|fill-flat|depth|inside|scan", "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--simd", SR_OPT_CHOICE, &job->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
@@ -60,7 +61,7 @@ static void print_header(const bench_job *job)
                "| serial rest |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         return;
     }
-    printf("%-9s %10s %11s %10s %10s %10s %12s %8s\n", "scene", "triangles", "size", "ms median", "ms min",
+    printf("%-17s %10s %11s %10s %10s %10s %12s %8s\n", "scene", "triangles", "size", "ms median", "ms min",
            "Mtri/s", "Mfragment/s", "Gpix/s");
 }
 
@@ -71,7 +72,7 @@ static void print_row(const char *name, const sr_bench_scene *s, const bench_res
     /* Gpix/s: fragments that passed the depth test, each shaded and written,
      * per second at the median frame. */
     double mfragments = r->stats.fragments / r->median / 1e3;
-    printf("%-9s %10llu %11s %10.2f %10.2f %10.2f %12.1f %8.3f\n", name, (unsigned long long)r->stats.triangles,
+    printf("%-17s %10llu %11s %10.2f %10.2f %10.2f %12.1f %8.3f\n", name, (unsigned long long)r->stats.triangles,
            size, r->median, r->min, r->stats.triangles / r->median / 1e3, mfragments, mfragments / 1e3);
     fflush(stdout);
 }
@@ -136,7 +137,12 @@ static bool run(const bench_job *job, sr_error *err)
     if (wants(job, SCENE_DEPTH) && !run_scene(&s, sr_bench_dense(&s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080,
                                                                  SR_SHADE_DEPTH, err), job, &r, err))
         return false;
-    return !wants(job, SCENE_INSIDE) || run_scene(&s, sr_bench_inside(&s, err), job, &r, err);
+    if (wants(job, SCENE_INSIDE) && !run_scene(&s, sr_bench_inside(&s, err), job, &r, err))
+        return false;
+    for (int v = 0; v < SR_BENCH_SCAN_VIEWS; v++)
+        if (wants(job, SCENE_SCAN) && !run_scene(&s, sr_bench_scan_view(&s, v, err), job, &r, err))
+            return false;
+    return true;
 }
 
 /* The folder --report, --stability and --cost-model write to, checked

@@ -96,7 +96,7 @@ static bool dataset_size(const sr_transforms *t, const sr_dataset_job *d, sr_sce
     return true;
 }
 
-/* Frame i: its camera, its draw, its files. */
+/* Frame i: its camera, its one draw (color and ids), its files. */
 static bool render_frame(const sr_dataset_job *d, const sr_pinhole_setup *p, const sr_scene_setup *s,
                          const sr_transforms *t, int i, sr_scene *scene, sr_error *err)
 {
@@ -122,7 +122,8 @@ static bool render_frame(const sr_dataset_job *d, const sr_pinhole_setup *p, con
                 return false;
             frame.paths[k] = paths[k];
         }
-    return sr_pinhole_setup_write(&frame, &cam, scene, &desc, err);
+    double resolve_ms;
+    return sr_pinhole_setup_write(&frame, &cam, scene, &desc, &resolve_ms, err);
 }
 
 /* Every frame's keys, its range's or not, and the file into DIR. */
@@ -158,7 +159,7 @@ bool sr_dataset_render(const sr_dataset_job *d, const sr_pinhole_setup *p, sr_sc
     bool ok = end <= count || sr_error_set(err, "--frame-range %d:%d ends past the %d frames of %s (B is at most %d)",
                                             first, end, count, d->poses_path, count);
     ok = ok && dataset_size(t, d, s, err) && sr_scene_load(s, false, scene, err) &&
-         make_output_dirs(d, names, err);
+         sr_pinhole_setup_ids(p, scene, err) && make_output_dirs(d, names, err);
     bool progress = isatty(STDERR_FILENO);
     for (int i = first; ok && i < end; i++) {
         ok = render_frame(d, p, s, t, i, scene, err);

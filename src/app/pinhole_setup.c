@@ -5,6 +5,7 @@
 #include <strings.h>
 
 #include "pinhole_setup.h"
+#include "core/clock.h"
 
 static const char *const INVALID_NAMES[] = { "zero", "nan", NULL };
 static const char *const NORMAL_KIND_NAMES[] = { "geometric", "interpolated", NULL };
@@ -213,25 +214,28 @@ static bool write_output(const sr_pinhole_setup *p, sr_measured i, const char *p
                               i == SR_MEASURED_NORMALS ? 3 : 1, err);
 }
 
-/* The outputs asked for, resolved from ids (an SR_SHADE_ID draw with cam). */
+/* The outputs asked for, resolved on `threads` from fb (a draw with cam
+ * into fb and its ids plane); the resolve's time to *resolve_ms. */
 static bool write_resolved(const sr_pinhole_setup *p, const sr_pinhole *cam, const sr_mesh *mesh,
-                           const sr_framebuffer *ids, sr_error *err)
+                           const sr_framebuffer *fb, int threads, double *resolve_ms, sr_error *err)
 {
-    size_t n = (size_t)ids->width * (size_t)ids->height;
+    size_t n = (size_t)fb->width * (size_t)fb->height;
     void *values[SR_MEASURED_COUNT] = { 0 };
     bool ok = true;
     for (int i = 0; i < SR_MEASURED_COUNT; i++)
         if (p->paths[i] && !(values[i] = malloc(n * (i == SR_MEASURED_NORMALS ? 3 : 1) * sizeof(float))))
             ok = false;
     if (!ok)
-        sr_error_set(err, "out of memory for %dx%d outputs", ids->width, ids->height);
+        sr_error_set(err, "out of memory for %dx%d outputs", fb->width, fb->height);
     sr_pinhole_outputs out = { .depth = values[SR_MEASURED_DEPTH], .range = values[SR_MEASURED_RANGE],
                                .face_ids = values[SR_MEASURED_FACE_IDS], .part_ids = values[SR_MEASURED_PART_IDS],
                                .normals = values[SR_MEASURED_NORMALS], .interpolated_normals = p->normal_kind == 1,
-                               .invalid = p->invalid ? NAN : 0.0f };
-    ok = ok && sr_pinhole_resolve(cam, mesh, ids, &out, err);
+                               .invalid = p->invalid ? NAN : 0.0f, .threads = threads };
+    double start = sr_now_ms();
+    ok = ok && sr_pinhole_resolve(cam, mesh, fb, &out, err);
+    *resolve_ms = sr_now_ms() - start;
     for (int i = 0; ok && i < SR_MEASURED_COUNT; i++)
-        ok = !p->paths[i] || write_output(p, (sr_measured)i, p->paths[i], values[i], ids->width, ids->height, err);
+        ok = !p->paths[i] || write_output(p, (sr_measured)i, p->paths[i], values[i], fb->width, fb->height, err);
     for (int i = 0; i < SR_MEASURED_COUNT; i++)
         free(values[i]);
     return ok;
@@ -244,23 +248,18 @@ void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_sc
         desc->cull = SR_CULL_NONE;
 }
 
-bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, sr_scene *scene,
-                            const sr_draw_desc *desc, sr_error *err)
+bool sr_pinhole_setup_ids(const sr_pinhole_setup *p, sr_scene *scene, sr_error *err)
 {
+    return !sr_pinhole_setup_wants_depth(p) || sr_framebuffer_create_ids(&scene->fb, err);
+}
+
+bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, sr_scene *scene,
+                            const sr_draw_desc *desc, double *resolve_ms, sr_error *err)
+{
+    *resolve_ms = 0.0;
     if (!sr_pinhole_setup_wants_depth(p))
         return true;
     if (p->paths[SR_MEASURED_NORMALS] && p->normal_kind && !sr_mesh_compute_normals(&scene->mesh, err))
         return false;
-    if (desc->shade == SR_SHADE_ID)
-        return write_resolved(p, cam, &scene->mesh, &scene->fb, err);
-    sr_framebuffer ids;
-    if (!sr_framebuffer_create(&ids, scene->fb.width, scene->fb.height, err))
-        return false;
-    ids.reversed_z = scene->fb.reversed_z; /* desc's matrices are the scene framebuffer's */
-    sr_draw_desc id_desc = *desc;
-    id_desc.shade = SR_SHADE_ID;
-    id_desc.clear = true;
-    bool ok = sr_draw(&ids, &id_desc, NULL, err) && write_resolved(p, cam, &scene->mesh, &ids, err);
-    sr_framebuffer_destroy(&ids);
-    return ok;
+    return write_resolved(p, cam, &scene->mesh, &scene->fb, desc->threads, resolve_ms, err);
 }

@@ -69,9 +69,16 @@ bool sr_pinhole_setup_wants_depth(const sr_pinhole_setup *p);
  * wound one way). */
 void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, sr_draw_desc *desc);
 
-/* The outputs asked for, from the frame just drawn with desc: its own ids
- * in id shading, else one more draw of them. */
+/* Gives the scene's framebuffer an ids plane where outputs are asked for:
+ * then the draw that makes the color image also says what each pixel
+ * shows, and no second draw is needed. */
+bool sr_pinhole_setup_ids(const sr_pinhole_setup *p, sr_scene *scene, sr_error *err);
+
+/* The outputs asked for, resolved on desc's threads from the frame just
+ * drawn with desc into the framebuffer and its ids plane
+ * (sr_pinhole_setup_ids); *resolve_ms is the resolve's time, files aside
+ * (0 when nothing was asked for). */
 bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, sr_scene *scene,
-                            const sr_draw_desc *desc, sr_error *err);
+                            const sr_draw_desc *desc, double *resolve_ms, sr_error *err);
 
 #endif

@@ -8,11 +8,12 @@
 #include "transforms.h"
 #include "pinhole_setup.h"
 #include "scene_setup.h"
+#include "wireframe.h"
 #include "core/clock.h"
 #include "scene/frame.h"
 
 #define MAX_FRAMES 100000
-#define RENDER_OPTION_COUNT 9 /* render's own, before the pinhole camera's */
+#define RENDER_OPTION_COUNT 13 /* render's own, before the pinhole camera's */
 
 typedef struct render_job {
     sr_scene_setup scene;
@@ -21,10 +22,13 @@ typedef struct render_job {
     const char *out_path, *depth_path, *depth_png_path;
     int frames;
     bool stats, quiet;
+    bool points, lines; /* draw the mesh's vertices, or its edges with hidden lines removed */
+    float point_size, line_width;
 } render_job;
 
 typedef struct frame_times {
-    double median, min;
+    double median, min; /* of the draws */
+    double resolve;     /* the pinhole outputs' resolve after them, files aside (0: none) */
 } frame_times;
 
 static const char USAGE[] =
@@ -36,7 +40,8 @@ static const char USAGE[] =
 
 static void job_defaults(render_job *job)
 {
-    *job = (render_job){ .frames = 1, .pinhole = { .depth_scale = SR_DEPTH_PNG_SCALE } };
+    *job = (render_job){ .frames = 1, .pinhole = { .depth_scale = SR_DEPTH_PNG_SCALE }, .point_size = 1.0f,
+                         .line_width = 1.0f };
     sr_scene_setup_defaults(&job->scene);
 }
 
@@ -58,6 +63,10 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
         { "--poses", SR_OPT_STRING, &job->dataset.poses_path, "transforms.json", "render every frame of a NeRF / instant-ngp / nerfstudio camera dataset (with --out-dir)" },
         { "--out-dir", SR_OPT_STRING, &job->dataset.out_dir, "DIR", "with --poses: each output NAME.EXT to DIR/NAME/frame_IIIII.EXT, and DIR/transforms.json" },
         { "--frame-range", SR_OPT_RANGE, job->dataset.range, "A:B", "with --poses: frames A up to, not including, B (a shard)", 0, SR_TRANSFORMS_MAX_FRAMES, .seen = &job->dataset.range_set },
+        { "--points", SR_OPT_FLAG, &job->points, NULL, "draw the mesh's vertices as points (a point cloud: with its colors)" },
+        { "--lines", SR_OPT_FLAG, &job->lines, NULL, "draw the mesh's edges, hidden lines removed" },
+        { "--point-size", SR_OPT_FLOAT, &job->point_size, "PX", "with --points: each point a square this many pixels wide (default 1)", 1.0, SR_MAX_POINT_SIZE },
+        { "--line-width", SR_OPT_FLOAT, &job->line_width, "PX", "with --lines: lines this many whole pixels wide (default 1)", 1.0, SR_MAX_LINE_WIDTH },
     };
     sr_pinhole_setup_options(&job->pinhole, own + RENDER_OPTION_COUNT);
     if (!sr_scene_setup_parse(&job->scene, own, NULL, USAGE, argc, argv, help, err))
@@ -72,21 +81,39 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
     const char *single[] = { job->depth_path ? "--depth" : job->depth_png_path ? "--depth-png" : NULL, NULL };
     if (*help)
         return true;
+    if (job->points && job->lines)
+        return sr_error_set(err, "--points and --lines draw one or the other");
+    for (int k = 0; k < SR_MEASURED_COUNT; k++)
+        if ((job->points || job->lines) && job->pinhole.paths[k])
+            return sr_error_set(err, "--points and --lines draw color and depth: not the measured outputs (--view-depth, ...)");
+    if ((job->points || job->lines) && (job->dataset.poses_path || job->dataset.out_dir))
+        return sr_error_set(err, "--points and --lines are not for --poses");
     if (job->dataset.poses_path || job->dataset.out_dir)
         return sr_dataset_check(&job->dataset, &job->pinhole, &job->scene, single[0] ? single : NULL, err);
     return !job->dataset.range_set ? sr_pinhole_setup_check(&job->pinhole, &job->scene, err)
                                     : sr_error_set(err, "--frame-range goes with --poses");
 }
 
-static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr_stats *stats,
-                       frame_times *times, sr_error *err)
+/* One timed frame: desc, or with `lines` the hidden-line frame of desc's
+ * triangles and those lines, counted as the lines' draw. */
+static bool draw_frame(sr_scene *scene, const sr_draw_desc *desc, const sr_draw_desc *lines, sr_stats *stats,
+                       double *ms, sr_error *err)
+{
+    sr_stats fill;
+    if (lines)
+        return sr_wireframe_frame(&scene->fb, desc, lines, &fill, stats, ms, err);
+    return sr_frame_draw_timed(&scene->fb, desc, stats, ms, err);
+}
+
+static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, const sr_draw_desc *lines,
+                       sr_stats *stats, frame_times *times, sr_error *err)
 {
     double *ms = malloc((size_t)frames * sizeof *ms), warm;
     if (!ms)
         return sr_error_set(err, "out of memory for %d frame times", frames);
-    bool ok = frames == 1 || sr_frame_draw_timed(&scene->fb, desc, stats, &warm, err);
+    bool ok = frames == 1 || draw_frame(scene, desc, lines, stats, &warm, err);
     for (int f = 0; ok && f < frames; f++)
-        ok = sr_frame_draw_timed(&scene->fb, desc, stats, &ms[f], err);
+        ok = draw_frame(scene, desc, lines, stats, &ms[f], err);
     if (ok)
         sr_median_min(ms, frames, &times->median, &times->min);
     free(ms);
@@ -114,11 +141,27 @@ static void print_parts(const sr_mesh *mesh)
     printf("]");
 }
 
+/* What the draw counted: "triangles", "points" or "lines", and how many. */
+static const char *primitives_of(const sr_stats *s, unsigned long long *count)
+{
+    *count = s->points ? s->points : s->lines ? s->lines : s->triangles;
+    return s->points ? "points" : s->lines ? "lines" : "triangles";
+}
+
 /* Why no pixel was drawn, in words, or NULL when some were. */
 static const char *nothing_drawn(const sr_stats *s)
 {
     if (s->fragments > 0)
         return NULL;
+    if (s->points || s->lines) {
+        unsigned long long n;
+        primitives_of(s, &n);
+        if (s->nonfinite == n)
+            return "every point or line has a non-finite position or varying (NaN, inf or past float range)";
+        if (s->rejected == n)
+            return "every point or line lies outside the view volume (or is non-finite)";
+        return "the points or lines drawn cover no pixel centre";
+    }
     if (s->triangles == 0)
         return "the mesh has no triangles";
     if (s->nonfinite == s->triangles)
@@ -158,8 +201,10 @@ static void explain_nothing_drawn(const sr_scene_setup *setup, const sr_scene *s
     sr_mesh_bounds(&scene->mesh, lo, hi);
     const double *m = scene->mesh.origin, *c = setup->camera.origin;
     const float *eye = setup->camera.eye, *at = setup->camera.target;
-    fprintf(stderr, "softrast: warning: nothing drawn: %s (%llu triangles: %llu rejected outside", why,
-            (unsigned long long)s->triangles, (unsigned long long)s->rejected);
+    unsigned long long count;
+    const char *noun = primitives_of(s, &count);
+    fprintf(stderr, "softrast: warning: nothing drawn: %s (%llu %s: %llu rejected outside", why, count, noun,
+            (unsigned long long)s->rejected);
     print_rejected_by_plane(stderr, s, false);
     fprintf(stderr,
             ", %llu of them non-finite, %llu culled); the mesh spans %g,%g,%g to %g,%g,%g in softrast's world (the file's z negated), the eye "
@@ -172,11 +217,12 @@ static void explain_nothing_drawn(const sr_scene_setup *setup, const sr_scene *s
 static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_simd simd, const sr_mesh *mesh)
 {
     const char *why = nothing_drawn(s);
-    printf("{\"frames\": %d, \"ms_median\": %.4f, \"ms_min\": %.4f, \"triangles\": %llu, \"rejected\": %llu, "
+    printf("{\"frames\": %d, \"ms_median\": %.4f, \"ms_min\": %.4f, \"resolve_ms\": %.4f, \"triangles\": %llu, "
+           "\"rejected\": %llu, "
            "\"clipped\": %llu, \"culled\": %llu, \"fragments\": %llu, \"nonfinite\": %llu, \"drawn\": %llu, "
            "\"cuts_float\": %llu, \"cuts_double\": %llu, \"cuts_exact\": %llu, \"simd\": \"%s\", "
            "\"nothing_drawn\": %s%s%s, \"rejected_by_plane\": ",
-           frames, t->median, t->min, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
+           frames, t->median, t->min, t->resolve, (unsigned long long)s->triangles, (unsigned long long)s->rejected,
            (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->fragments,
            (unsigned long long)s->nonfinite, (unsigned long long)s->drawn, (unsigned long long)s->cuts_float,
            (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact,
@@ -184,7 +230,7 @@ static void print_stats(int frames, const frame_times *t, const sr_stats *s, sr_
     print_rejected_by_plane(stdout, s, true);
     printf(", \"parts\": ");
     print_parts(mesh);
-    printf("}\n");
+    printf(", \"points\": %llu, \"lines\": %llu}\n", (unsigned long long)s->points, (unsigned long long)s->lines);
 }
 
 /* The one line a successful render prints on stderr, stdout being for the
@@ -201,20 +247,45 @@ static void report_done(const render_job *job, const sr_framebuffer *fb, const s
         if (paths[i] && n < (int)sizeof line)
             n += snprintf(line + n, sizeof line - (size_t)n, "%s%s", written++ ? ", " : "wrote ",
                           is_stdout(paths[i]) ? "stdout" : paths[i]);
-    const char *format = written ? " (%dx%d, %llu triangles drawn)\n"
-                                 : "drew %dx%d (%llu triangles drawn); nothing written: name a file with --out, "
+    const char *format = written ? " (%dx%d, %llu %s drawn)\n"
+                                 : "drew %dx%d (%llu %s drawn); nothing written: name a file with --out, "
                                    "--depth, --depth-png, --view-depth or --range\n";
+    unsigned long long count;
     if (n < (int)sizeof line)
-        snprintf(line + n, sizeof line - (size_t)n, format, fb->width, fb->height, (unsigned long long)s->drawn);
+        snprintf(line + n, sizeof line - (size_t)n, format, fb->width, fb->height, (unsigned long long)s->drawn,
+                 primitives_of(s, &count));
     fputs(line, stderr);
 }
 
-/* The pinhole camera of the options, into desc. */
+/* The pinhole camera of the options, into desc, and the framebuffer's ids
+ * plane for its outputs: the frames draw color and ids at once. */
 static bool use_pinhole(render_job *job, sr_scene *scene, sr_pinhole *cam, sr_draw_desc *desc, sr_error *err)
 {
-    if (!sr_pinhole_setup_camera(&job->pinhole, &job->scene, &scene->mesh, cam, err))
+    if (!sr_pinhole_setup_camera(&job->pinhole, &job->scene, &scene->mesh, cam, err) ||
+        !sr_pinhole_setup_ids(&job->pinhole, scene, err))
         return false;
     sr_pinhole_setup_desc(&job->scene, cam, scene, desc);
+    return true;
+}
+
+/* With --points, desc draws the mesh's vertices; with --lines, *lines its
+ * edges after desc's triangles (sr_wireframe_frame). */
+static bool primitives_desc(const render_job *job, const sr_scene *scene, sr_mesh *primitives, sr_draw_desc *desc,
+                            sr_draw_desc *lines, sr_error *err)
+{
+    if (job->points) {
+        if (!sr_wireframe_points(&scene->mesh, primitives, err))
+            return false;
+        desc->mesh = primitives;
+        desc->point_size = job->point_size;
+    } else if (job->lines) {
+        if (!sr_wireframe_edges(&scene->mesh, primitives, err))
+            return false;
+        *lines = *desc;
+        lines->mesh = primitives;
+        lines->line_width = job->line_width;
+        lines->depth_bias = sr_wireframe_depth_bias(desc, scene->fb.height);
+    }
     return true;
 }
 
@@ -236,11 +307,20 @@ static bool render(void *j, sr_scene *scene, sr_error *err)
     }
     if (!sr_scene_load(&job->scene, false, scene, err))
         return false;
+    if (job->points && !job->scene.shade_set && scene->mesh.colors)
+        job->scene.shade = SR_SHADE_COLOR; /* a point cloud's own colors */
     if (!pinhole)
         sr_scene_frame_camera(&job->scene, scene);
+    sr_mesh primitives = { 0 };
+    sr_draw_desc lines;
     if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) || (pinhole && !use_pinhole(job, scene, &cam, &desc, err)) ||
-        !run_frames(job->frames, scene, &desc, &stats, &times, err) || !write_outputs(job, scene, err) ||
-        (pinhole && !sr_pinhole_setup_write(&job->pinhole, &cam, scene, &desc, err)))
+        !primitives_desc(job, scene, &primitives, &desc, &lines, err))
+        return false;
+    bool ok = run_frames(job->frames, scene, &desc, job->lines ? &lines : NULL, &stats, &times, err) &&
+              write_outputs(job, scene, err) &&
+              (!pinhole || sr_pinhole_setup_write(&job->pinhole, &cam, scene, &desc, &times.resolve, err));
+    sr_wireframe_free(&primitives);
+    if (!ok)
         return false;
     if (!pinhole)
         explain_nothing_drawn(&job->scene, scene, &stats);

@@ -45,7 +45,7 @@ static void scene_options(sr_scene_setup *s, sr_option *table)
         { "--up-axis", SR_OPT_CHOICE, &s->up_axis, "x|y|z|-x|-y|-z", "the file's up axis, shown up (default: the file's, else its format's; softrast info FILE)", .choices = SR_AXIS_NAMES, .seen = &s->look_at_set },
         { "--cull", SR_OPT_CHOICE, &s->cull, "back|front|none", "faces to drop (default back; none with a pose)", .choices = SR_CULL_NAMES, .seen = &s->cull_set },
         { "--front", SR_OPT_CHOICE, &s->front, "cw|ccw", "winding on screen of a front face (default cw)", .choices = FRONT_NAMES },
-        { "--shade", SR_OPT_CHOICE, &s->shade, "id|color|normal|texture|lambert|depth", "shading mode (default lambert)", .choices = SR_SHADE_NAMES },
+        { "--shade", SR_OPT_CHOICE, &s->shade, "id|color|normal|texture|lambert|depth", "shading mode (default lambert)", .choices = SR_SHADE_NAMES, .seen = &s->shade_set },
         { "--texture", SR_OPT_STRING, &s->texture_path, "FILE.png", "texture (default: the mesh's map_Kd, if any)" },
         { "--reversed-z", SR_OPT_FLAG, &s->camera.reversed_z, NULL, "reversed depth: near maps to 1, far to 0, test GREATER, clear 0", .seen = &s->look_at_set },
         { "--filter", SR_OPT_CHOICE, &s->filter, "bilinear|nearest", "texture filter (default bilinear)", .choices = FILTER_NAMES },

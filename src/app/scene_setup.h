@@ -14,7 +14,7 @@ typedef struct sr_scene_setup {
     int size[2];
     sr_camera camera;
     double eye[3], target[3]; /* world points of --eye and --target, kept in double */
-    bool size_set, eye_set, target_set, near_set, far_set, fov_set, cull_set;
+    bool size_set, eye_set, target_set, near_set, far_set, fov_set, cull_set, shade_set;
     bool look_at_set; /* an option of the look-at camera alone: --up, --ortho, --rotate-y, --up-axis, --reversed-z */
     float rotate_y;
     int up_axis; /* --up-axis: an sr_axis of the file's frame, or -1: what the file says */

@@ -8,6 +8,7 @@
 #include "pipeline/04_clip/clip.h"
 #include "pipeline/01_vertex.h"
 #include "pipeline/06_viewport.h"
+#include "pipeline/07_cull.h"
 #include "core/error.h"
 #include "core/clock.h"
 #include "core/dmat4.h"
@@ -58,7 +59,7 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
     if ((unsigned)d->shade >= SR_SHADE_COUNT || (unsigned)d->cull > SR_CULL_NONE ||
         (unsigned)d->front > SR_FRONT_CCW || (unsigned)d->filter > SR_FILTER_NEAREST)
         return sr_error_set(err, "draw with an unknown shading, culling, front or filter mode");
-    if (!check_accuracy_knobs(fb, study, err))
+    if (!check_accuracy_knobs(fb, study, err) || !sr_points_lines_check(d, err))
         return false;
     const double *o = d->mesh->origin;
     if (!isfinite(o[0]) || !isfinite(o[1]) || !isfinite(o[2]))
@@ -74,7 +75,8 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
     bool materials = d->mesh->material_count > 0;
     if (materials && !sr_materials_check(d->mesh, err))
         return false;
-    if (l->uv >= 0 && (!d->mesh->uvs || (!materials && (!d->texture || !d->texture->texels))))
+    bool material_textures = materials && sr_assemble_triangles(d->mesh); /* draw_layout */
+    if (l->uv >= 0 && (!d->mesh->uvs || (!material_textures && (!d->texture || !d->texture->texels))))
         return sr_error_set(err, "texture shading needs texture coordinates and a texture");
     if (d->texture && d->texture->texels &&
         (d->texture->width < 1 || d->texture->height < 1 || d->texture->width > SR_MAX_TEXTURE_SIDE ||
@@ -325,6 +327,27 @@ static sr_draw_path path_of(const sr_draw_state *st)
     return pixel_count(st) >= TILES_MIN_PIXELS && !pixel_sized_slots(st) ? SR_PATH_TILES : SR_PATH_DIRECT;
 }
 
+/* The sub-pixel lanes (pipeline/08_raster/subpixel.h) pay where most
+ * triangles cover no pixel centre: a draw of more triangle slots than
+ * pixels. With two pixels a slot (the dense torus at 1920x1080) too few
+ * drop out to pay for the lanes. The observer sees every triangle that
+ * survives culling, so a draw with one sets each up, as does a snap finer
+ * than the lanes hold. */
+static bool subpixel_lanes(const sr_draw_state *st)
+{
+    return !st->study.one_by_one && !st->study.observer && st->vp.subpixel_bits <= SR_SUBPIXEL_LANES_MAX_BITS &&
+           (int64_t)st->slots > pixel_count(st);
+}
+
+static sr_subpixel_rules subpixel_rules(const sr_draw_state *st)
+{
+    const sr_draw_desc *d = st->desc;
+    return (sr_subpixel_rules){ .bits = st->vp.subpixel_bits, .width = st->fb->width, .height = st->fb->height,
+                                .keep_cw = sr_cull_keeps(1, d->cull, d->front),
+                                .keep_ccw = sr_cull_keeps(-1, d->cull, d->front),
+                                .avx2 = st->shade.simd >= SR_SIMD_AVX2 };
+}
+
 /* A mesh outside the view: every assembled triangle is rejected, nothing
  * is transformed. */
 static void reject_all(const sr_draw_state *st, unsigned outside)
@@ -334,6 +357,18 @@ static void reject_all(const sr_draw_state *st, unsigned outside)
     for (uint32_t k = 0; k < st->slots; k++)
         stats->triangles += sr_assemble_triangle(st->desc->mesh, k, idx);
     sr_clip_count_rejected(stats, outside, stats->triangles);
+}
+
+/* Every thread's counts, and its cuts by precision, into stats. */
+static void sum_counts(const sr_draw_state *st, sr_stats *stats)
+{
+    for (int t = 0; t < st->threads; t++) {
+        sr_thread_work *w = &st->ws->threads[t];
+        w->stats.cuts_float = w->cuts.cuts[SR_CLIP_FLOAT];
+        w->stats.cuts_double = w->cuts.cuts[SR_CLIP_DOUBLE];
+        w->stats.cuts_exact = w->cuts.cuts[SR_CLIP_EXACT];
+        sr_stats_add(stats, &w->stats);
+    }
 }
 
 static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
@@ -350,6 +385,11 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     make_transform(st, &ph.xf);
     st->xf = &ph.xf;
     const sr_mesh *mesh = st->desc->mesh;
+    if (!sr_assemble_triangles(mesh)) {
+        bool drawn = sr_draw_points_lines(st, err);
+        sum_counts(st, stats);
+        return drawn;
+    }
     /* Bounds are of the positions: clip-space input is classified per vertex. */
     unsigned outside = 0;
     sr_clip_box box = mesh->bounded && !mesh->clip_positions
@@ -388,13 +428,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
             return sr_error_set(err, "out of memory for the tile bins of %u triangles", st->slots);
         }
     }
-    for (int t = 0; t < st->threads; t++) {
-        sr_thread_work *w = &st->ws->threads[t];
-        w->stats.cuts_float = w->cuts.cuts[SR_CLIP_FLOAT];
-        w->stats.cuts_double = w->cuts.cuts[SR_CLIP_DOUBLE];
-        w->stats.cuts_exact = w->cuts.cuts[SR_CLIP_EXACT];
-        sr_stats_add(stats, &w->stats);
-    }
+    sum_counts(st, stats);
     return true;
 }
 
@@ -418,11 +452,12 @@ static int thread_count(const sr_draw_desc *d, const sr_draw_study *s)
 
 /* The varyings the mode reads: a mesh with materials is textured where
  * one of them has a texture (and the mesh uvs); texture shading of one
- * whose materials have none draws their colours, from no varyings. */
+ * whose materials have none draws their colours, from no varyings. Points
+ * and lines are drawn without the materials (sr_materials_make). */
 static sr_varying_layout draw_layout(sr_shade mode, const sr_draw_desc *d)
 {
     const sr_mesh *mesh = d->mesh;
-    if (mesh->material_count == 0)
+    if (mesh->material_count == 0 || !sr_assemble_triangles(mesh))
         return sr_vertex_layout(mode, mesh, d->texture && d->texture->texels);
     bool textured = mesh->materials && sr_materials_textured(mesh, d->texture) && mesh->uvs;
     if (mode == SR_SHADE_TEXTURE && !textured)
@@ -458,6 +493,8 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     st.clip_tolerance = 1.0 / ((double)((int64_t)1 << st.vp.subpixel_bits) * side * st.vp.guard);
     shade_context_make(desc, study.simd, &layout, &st.shade);
     st.screen_stride = sr_screen_stride(layout.count);
+    st.subpixel_lanes = subpixel_lanes(&st);
+    st.subpixel = subpixel_rules(&st);
     sr_stats scratch = { 0 };
     bool ok = sr_materials_make(&st, err) && draw_with(&st, stats ? stats : &scratch, err);
     if (!desc->workspace)

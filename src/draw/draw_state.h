@@ -15,6 +15,7 @@
 #include "core/array.h"
 #include "pipeline/08_raster/raster.h"
 #include "pipeline/08_raster/raster_setup.h"
+#include "pipeline/08_raster/subpixel.h"
 #include "softrast/softrast.h"
 #include "softrast/study.h"
 #include "pipeline/01_vertex.h"
@@ -141,7 +142,8 @@ struct sr_workspace {
     sr_array screen;   /* screen vertices, sr_draw_state.screen_stride bytes apart, valid where the outcode is 0 */
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
     sr_array row_bands;    /* unsigned char: the band of rows of each vertex inside, when st->band_rows */
-    sr_array slot_bands;   /* sr_band_span: the row-band path's bands each slot may cover */
+    sr_array band_slots;   /* sr_band_slot: the row-band path's kept slots, each chunk's from its first slot on */
+    sr_array chunk_kept;   /* uint32_t: how many slots each chunk of the verdicts kept in band_slots */
     sr_array material_shades; /* sr_shade_context: a mesh's materials' (materials.c) */
     sr_band_costs band_costs; /* of the row-band path's last draw */
     sr_thread_work threads[SR_MAX_THREADS];
@@ -164,6 +166,8 @@ typedef struct sr_draw_state {
     uint32_t vertex_count, slots;
     int tile_rows, tiles; /* the binned path's tiles: strips of whole rows */
     int band_rows;        /* > 0: the vertex phase notes each inside vertex's band of this many rows */
+    bool subpixel_lanes;  /* the sub-pixel lanes drop the triangles that draw nothing (primitives.c) */
+    sr_subpixel_rules subpixel;
 } sr_draw_state;
 
 /* The bytes of an sr_screen_vertex up to its last varying, with
@@ -240,6 +244,25 @@ static inline unsigned sr_slot_verdict(const sr_mesh *mesh, const unsigned char 
     return any;
 }
 
+/* A slot the verdicts kept: its triangle's indices and the OR of their
+ * outcodes (sr_slot_verdict). */
+typedef struct sr_kept_slot {
+    uint32_t k, idx[3];
+    unsigned planes;
+} sr_kept_slot;
+
+/* The slots whose verdicts are taken at a time: the sub-pixel lanes' batch. */
+#define SR_VERDICT_BATCH SR_SUBPIXEL_BATCH
+
+/* Stages 2 and 3 for slots [first, end), at most SR_VERDICT_BATCH of them,
+ * and with st->subpixel_lanes the sub-pixel lanes: the slots that may
+ * draw into kept[], in order, their screen vertices prefetched, counted in
+ * stats as far as decided (a triangle the lanes drop is counted culled or
+ * drawn there); returns how many. The indices are prefetched up to the
+ * draw's last slot, before last_end. */
+int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end, sr_stats *stats,
+                     sr_kept_slot *kept);
+
 /* Adds every count of `from` to `to`. */
 static inline void sr_stats_add(sr_stats *to, const sr_stats *from)
 {
@@ -255,14 +278,21 @@ static inline void sr_stats_add(sr_stats *to, const sr_stats *from)
     to->cuts_exact += from->cuts_exact;
     for (int p = 0; p < SR_CLIP_PLANES; p++)
         to->rejected_by_plane[p] += from->rejected_by_plane[p];
+    to->points += from->points;
+    to->lines += from->lines;
 }
 
-/* The bands of rows a slot's triangle may cover: from 255, past every
- * band, when the verdict left no triangle; every band when a vertex lies
- * outside a plane. */
+/* The bands of rows a slot's triangle may cover: every band when a vertex
+ * lies outside a plane. */
 typedef struct sr_band_span {
     unsigned char first, last;
 } sr_band_span;
+
+/* A slot the row bands' verdicts kept, and its span. */
+typedef struct sr_band_slot {
+    uint32_t k;
+    sr_band_span span;
+} sr_band_slot;
 
 /* The span of a triangle that crosses a plane (its clipped polygon may
  * reach any row); a triangle inside every plane as tall as the
@@ -277,10 +307,11 @@ static inline bool sr_band_span_is_every(sr_band_span s)
     return s.first == 0 && s.last == SR_ROW_BANDS - 1;
 }
 
-/* Stages 4 to 7 for the draw's slots whose span meets bands [lo, hi]
- * (row_bands.c), in order: into `own` where the span starts there, the thread
- * that counts the slot, else into `shared`. */
-void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_span *spans, unsigned lo, unsigned hi);
+/* Stages 4 to 7 for the kept slots[0 .. count) whose span meets bands
+ * [lo, hi] (row_bands.c), in order: into `own` where the span starts
+ * there, the thread that counts the slot, else into `shared`. */
+void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slot *slots, uint32_t count,
+                        unsigned lo, unsigned hi);
 
 /* Runs fn(ctx, t) for t = 0 .. threads-1, t = 0 on the calling thread and
  * the others on the pool's workers (started as needed), and returns when
@@ -312,6 +343,15 @@ bool sr_draw_binned(sr_draw_state *st);
  * fragments counted in `pixels` and its triangles in `work`. */
 sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_raster_rect rect,
                            sr_thread_work *pixels);
+
+/* The desc's point and line fields and its topology (points_lines.c);
+ * false with a message for one out of range. */
+bool sr_points_lines_check(const sr_draw_desc *d, sr_error *err);
+
+/* A draw of points or lines (points_lines.c): every primitive through
+ * stages 1 to 9 on one thread, counted in thread 0's work; false, with a
+ * message, for an index past the vertices (nothing drawn). */
+bool sr_draw_points_lines(sr_draw_state *st, sr_error *err);
 
 /* The direct path (direct.c): every slot through sr_direct_sink over the
  * whole framebuffer, on one thread, counted in thread 0's work; a

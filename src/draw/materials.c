@@ -13,6 +13,7 @@
 #include "draw_state.h"
 #include "materials.h"
 #include "core/error.h"
+#include "pipeline/02_assemble.h"
 
 /* BLEND, until blending is drawn: MASK at this cutoff. */
 #define BLEND_AS_MASK_CUTOFF 0.5f
@@ -107,7 +108,8 @@ static void material_context(const sr_shade_context *base, const sr_material *m,
 bool sr_materials_make(sr_draw_state *st, sr_error *err)
 {
     const sr_mesh *mesh = st->desc->mesh;
-    if (mesh->material_count == 0 || (st->mode != SR_SHADE_LAMBERT && st->mode != SR_SHADE_TEXTURE))
+    if (mesh->material_count == 0 || (st->mode != SR_SHADE_LAMBERT && st->mode != SR_SHADE_TEXTURE) ||
+        !sr_assemble_triangles(mesh))
         return true;
     sr_array *a = &st->ws->material_shades;
     if (!sr_array_reserve(a, mesh->material_count, sizeof(sr_shade_context)))

@@ -91,14 +91,6 @@ static void emit_kept(sr_fan_sink *sink, const uint32_t idx[3], unsigned planes,
         emit_clipped(sink, idx, planes, k);
 }
 
-/* The slots whose verdicts are taken before any of them is drawn. */
-#define VERDICT_BATCH 64
-
-typedef struct kept_slot {
-    uint32_t k, idx[3];
-    unsigned planes;
-} kept_slot;
-
 /* Prefetches the screen vertices of the triangle whose indices are idx[]:
  * the vertex phase wrote them all (32 to 64 bytes each, megabytes for a
  * dense mesh) long before, so without it the culling's first read of a
@@ -118,7 +110,7 @@ typedef struct kept_slot {
  * prefetched; returns how many it kept. The indices are prefetched up to
  * the draw's last slot, before `last_end`. */
 static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end, sr_stats *stats,
-                         kept_slot *kept)
+                         sr_kept_slot *kept)
 {
     const char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
@@ -127,7 +119,7 @@ static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, 
     int count = 0;
     for (uint32_t k = first; k < end; k++) {
         SR_PREFETCH_SLOT_INDICES(mesh, k, last_end);
-        kept_slot *s = &kept[count];
+        sr_kept_slot *s = &kept[count];
         s->planes = sr_slot_verdict(mesh, outcodes, stats, k, s->idx);
         if (s->planes == SR_SLOT_GONE)
             continue;
@@ -139,6 +131,51 @@ static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, 
     return count;
 }
 
+/* The triangles of kept[0 .. count) inside every plane that the sub-pixel
+ * lanes find draw no pixel (subpixel.h) are counted in stats as stage 7
+ * counts them and dropped; the others stay, in order, and their count is
+ * returned. */
+static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count, sr_stats *stats)
+{
+    if (count == 0)
+        return 0;
+    sr_subpixel_batch b = { { { 0 } } }; /* the last group's lanes past count, defined */
+    uint64_t inside = 0;
+    const char *screen = st->ws->screen.data;
+    size_t stride = st->screen_stride;
+    for (int j = 0; j < count; j++) {
+        /* A vertex outside a plane has no screen vertex this draw: its
+         * triangle's lane holds zeros, and `inside` ignores it. Inside every
+         * plane a coordinate is below 2^30 (SR_FIXED_POINT_BITS), so exact
+         * in 32 bits. */
+        const sr_kept_slot *s = &kept[j];
+        const sr_screen_vertex *v0 = (const sr_screen_vertex *)(screen + s->idx[0] * stride),
+                               *v1 = (const sr_screen_vertex *)(screen + s->idx[1] * stride),
+                               *v2 = (const sr_screen_vertex *)(screen + s->idx[2] * stride);
+        bool in = s->planes == 0;
+        b.x[0][j] = in ? (int32_t)v0->x : 0, b.y[0][j] = in ? (int32_t)v0->y : 0;
+        b.x[1][j] = in ? (int32_t)v1->x : 0, b.y[1][j] = in ? (int32_t)v1->y : 0;
+        b.x[2][j] = in ? (int32_t)v2->x : 0, b.y[2][j] = in ? (int32_t)v2->y : 0;
+        inside |= (uint64_t)in << j;
+    }
+    sr_subpixel_verdict v = sr_subpixel_reject(&b, count, &st->subpixel);
+    uint64_t culled = v.culled & inside, drawn = v.drawn & inside;
+    stats->culled += (uint64_t)__builtin_popcountll(culled);
+    stats->drawn += (uint64_t)__builtin_popcountll(drawn);
+    int n = 0;
+    uint64_t used = count == SR_SUBPIXEL_BATCH ? ~(uint64_t)0 : ((uint64_t)1 << count) - 1;
+    for (uint64_t m = ~(culled | drawn) & used; m; m &= m - 1)
+        kept[n++] = kept[__builtin_ctzll(m)];
+    return n;
+}
+
+int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end, sr_stats *stats,
+                     sr_kept_slot *kept)
+{
+    int count = take_verdicts(st, first, end, last_end, stats, kept);
+    return st->subpixel_lanes ? drop_subpixel(st, kept, count, stats) : count;
+}
+
 /* A batch's verdicts, then its kept slots drawn. The verdicts' counts stay
  * in a local: a slot drawn between two verdicts made them reload what the
  * drawing might have written. */
@@ -146,9 +183,9 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
 {
     sr_stats verdicts = { 0 };
     for (uint32_t batch = first; batch < end;) {
-        uint32_t batch_end = end - batch > VERDICT_BATCH ? batch + VERDICT_BATCH : end;
-        kept_slot kept[VERDICT_BATCH];
-        int count = take_verdicts(sink->st, batch, batch_end, end, &verdicts, kept);
+        uint32_t batch_end = end - batch > SR_VERDICT_BATCH ? batch + SR_VERDICT_BATCH : end;
+        sr_kept_slot kept[SR_VERDICT_BATCH];
+        int count = sr_draw_verdicts(sink->st, batch, batch_end, end, &verdicts, kept);
         for (int j = 0; j < count; j++)
             emit_kept(sink, kept[j].idx, kept[j].planes, kept[j].k);
         batch = batch_end;
@@ -156,10 +193,10 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
     sr_stats_add(&sink->work->stats, &verdicts);
 }
 
-/* The slots ahead whose screen vertices the row bands prefetch, counted
- * over every slot though a thread draws only those that meet its rows: a
- * shorter distance left the culling waiting on them, a longer one gained
- * nothing. */
+/* The kept slots ahead whose screen vertices the row bands prefetch,
+ * counted over every kept slot though a thread draws only those that meet
+ * its rows: a shorter distance left the culling waiting on them, a longer
+ * one gained nothing. */
 #define PREFETCH_SLOTS 48
 
 static bool span_meets(sr_band_span span, unsigned lo, unsigned hi)
@@ -167,21 +204,21 @@ static bool span_meets(sr_band_span span, unsigned lo, unsigned hi)
     return span.first <= hi && span.last >= lo;
 }
 
-void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_span *spans, unsigned lo, unsigned hi)
+void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slot *slots, uint32_t count,
+                        unsigned lo, unsigned hi)
 {
     const sr_draw_state *st = own->st;
-    uint32_t end = st->slots;
     const char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
     const sr_mesh *mesh = st->desc->mesh;
     const unsigned char *outcodes = st->ws->outcodes.data;
-    for (uint32_t k = 0; k < end; k++) {
-        if (end - k > PREFETCH_SLOTS && span_meets(spans[k + PREFETCH_SLOTS], lo, hi))
-            PREFETCH_TRIANGLE(screen, stride, sr_assemble_slot_indices(mesh, k + PREFETCH_SLOTS));
-        sr_band_span span = spans[k];
+    for (uint32_t i = 0; i < count; i++) {
+        if (count - i > PREFETCH_SLOTS && span_meets(slots[i + PREFETCH_SLOTS].span, lo, hi))
+            PREFETCH_TRIANGLE(screen, stride, sr_assemble_slot_indices(mesh, slots[i + PREFETCH_SLOTS].k));
+        sr_band_span span = slots[i].span;
         if (!span_meets(span, lo, hi))
             continue;
-        uint32_t idx[3];
+        uint32_t k = slots[i].k, idx[3];
         sr_assemble_triangle(mesh, k, idx); /* it has a triangle: the verdict kept it */
         /* A span of every band may be of a triangle that crosses a plane. */
         unsigned planes =

@@ -28,11 +28,9 @@
 typedef struct rows_phase {
     sr_draw_state *st;
     sr_chunks slots;
+    uint32_t chunks; /* of the verdicts */
     int first_band[SR_MAX_THREADS + 1]; /* thread t draws bands first_band[t] .. first_band[t + 1] - 1 */
 } rows_phase;
-
-_Static_assert(SR_ROW_BANDS < 255, "band 255 is past every band");
-static const sr_band_span no_triangle = { 255, 0 };
 
 /* The bands a kept slot's triangle may cover: from its highest vertex's
  * to its lowest one's (its covered pixel centres lie between their rows),
@@ -51,21 +49,29 @@ static void verdicts(void *ctx, int t)
 {
     rows_phase *ph = ctx;
     const sr_draw_state *st = ph->st;
-    const sr_mesh *mesh = st->desc->mesh;
-    const unsigned char *outcodes = st->ws->outcodes.data, *bands = st->ws->row_bands.data;
-    sr_band_span *spans = st->ws->slot_bands.data;
+    const unsigned char *bands = st->ws->row_bands.data;
+    sr_band_slot *slots = st->ws->band_slots.data;
+    uint32_t *chunk_kept = st->ws->chunk_kept.data;
     /* Local: stores to the thread's would alias every pointer above. */
     sr_stats counted = { 0 };
     uint32_t per_band[SR_ROW_BANDS] = { 0 };
-    uint32_t first, end, idx[3];
-    while (sr_chunks_take(&ph->slots, &first, &end))
-        for (uint32_t k = first; k < end; k++) {
-            SR_PREFETCH_SLOT_INDICES(mesh, k, end);
-            unsigned planes = sr_slot_verdict(mesh, outcodes, &counted, k, idx);
-            spans[k] = planes == SR_SLOT_GONE ? no_triangle : span_of(bands, idx, planes);
-            if (planes == 0)
-                per_band[spans[k].first]++;
+    uint32_t first, end;
+    while (sr_chunks_take(&ph->slots, &first, &end)) {
+        uint32_t kept_in_chunk = 0;
+        for (uint32_t batch = first; batch < end;) {
+            uint32_t batch_end = end - batch > SR_VERDICT_BATCH ? batch + SR_VERDICT_BATCH : end;
+            sr_kept_slot kept[SR_VERDICT_BATCH];
+            int count = sr_draw_verdicts(st, batch, batch_end, end, &counted, kept);
+            for (int j = 0; j < count; j++) {
+                sr_band_span span = span_of(bands, kept[j].idx, kept[j].planes);
+                slots[first + kept_in_chunk++] = (sr_band_slot){ kept[j].k, span };
+                if (kept[j].planes == 0)
+                    per_band[span.first]++;
+            }
+            batch = batch_end;
         }
+        chunk_kept[first / ph->slots.size] = kept_in_chunk;
+    }
     sr_thread_work *w = &st->ws->threads[t];
     sr_stats_add(&w->stats, &counted);
     memcpy(w->band_triangles, per_band, sizeof per_band);
@@ -148,18 +154,26 @@ static void draw_band(void *ctx, int t)
      * (this thread's rows') to w. */
     sr_thread_work uncounted = { .stats = { 0 } };
     sr_fan_sink own = sr_direct_sink(st, w, rows, w), shared = sr_direct_sink(st, &uncounted, rows, w);
-    sr_draw_kept_slots(&own, &shared, st->ws->slot_bands.data, (unsigned)lo, (unsigned)hi);
+    /* The chunks in order, each's kept slots from its first slot on: every
+     * kept slot in submission order, and only those. */
+    const sr_band_slot *slots = st->ws->band_slots.data;
+    const uint32_t *chunk_kept = st->ws->chunk_kept.data;
+    for (uint32_t c = 0; c < ph->chunks; c++)
+        sr_draw_kept_slots(&own, &shared, slots + (size_t)c * ph->slots.size, chunk_kept[c], (unsigned)lo,
+                           (unsigned)hi);
     sr_tiny_queue_flush(&w->stats.fragments, &w->simd_draws);
     w->band_cpu_ms = sr_clock_ms(CLOCK_THREAD_CPUTIME_ID) - start;
 }
 
 bool sr_draw_rows(sr_draw_state *st)
 {
-    if (!sr_array_reserve(&st->ws->slot_bands, st->slots, sizeof(sr_band_span)))
+    uint32_t chunk = st->study.chunk_slots ? st->study.chunk_slots : VERDICT_CHUNK;
+    rows_phase ph = { .st = st, .chunks = st->slots / chunk + (st->slots % chunk != 0) };
+    if (!sr_array_reserve(&st->ws->band_slots, st->slots, sizeof(sr_band_slot)) ||
+        !sr_array_reserve(&st->ws->chunk_kept, ph.chunks, sizeof(uint32_t)))
         return false;
     sr_draw_times *times = st->study.times;
-    rows_phase ph = { .st = st };
-    sr_chunks_init(&ph.slots, st->slots, st->study.chunk_slots ? st->study.chunk_slots : VERDICT_CHUNK);
+    sr_chunks_init(&ph.slots, st->slots, chunk);
     sr_parallel_run(&st->ws->pool, st->threads, verdicts, &ph, times ? &times->primitives : NULL);
     int bands = sr_band_count(st->fb->height);
     uint64_t count[SR_ROW_BANDS] = { 0 };

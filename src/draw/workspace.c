@@ -38,7 +38,8 @@ void sr_workspace_destroy(sr_workspace *ws)
     sr_pool_stop(&ws->pool);
     sr_array_free(&ws->outcodes);
     sr_array_free(&ws->row_bands);
-    sr_array_free(&ws->slot_bands);
+    sr_array_free(&ws->band_slots);
+    sr_array_free(&ws->chunk_kept);
     sr_array_free(&ws->screen);
     sr_array_free(&ws->tile_order);
     sr_array_free(&ws->material_shades);

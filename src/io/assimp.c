@@ -55,6 +55,24 @@ static bool is_triangles(const struct aiMesh *m)
     return (m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) && m->mNumVertices > 0;
 }
 
+/* A point cloud: meshes of vertices and no faces (a PLY of vertices
+ * alone). Its vertices are kept, for drawing as points; it has no node
+ * transforms to apply and skips the post-processing, whose
+ * PreTransformVertices crashes on a mesh without faces in Assimp 5.2. */
+static bool is_point_cloud(const struct aiScene *sc)
+{
+    for (unsigned i = 0; i < sc->mNumMeshes; i++)
+        if (sc->mMeshes[i]->mNumFaces > 0)
+            return false;
+    return sc->mNumMeshes > 0;
+}
+
+/* The meshes whose vertices the mesh gets. */
+static bool is_kept(const struct aiScene *sc, const struct aiMesh *m)
+{
+    return is_triangles(m) || (m->mNumVertices > 0 && is_point_cloud(sc));
+}
+
 static bool is_triangle(const struct aiFace *f)
 {
     return f->mNumIndices == 3;
@@ -82,12 +100,21 @@ static bool count_scene(const struct aiScene *sc, const char *path, scene_counts
     *n = (scene_counts){ 0 };
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         const struct aiMesh *m = sc->mMeshes[i];
-        if (!is_triangles(m))
+        if (!is_kept(sc, m))
             continue;
         n->vertices += m->mNumVertices;
         uint64_t before = n->indices;
-        for (unsigned f = 0; f < m->mNumFaces; f++)
-            n->indices += is_triangle(&m->mFaces[f]) ? 3u : 0u;
+        for (unsigned f = 0; f < m->mNumFaces; f++) {
+            if (!is_triangle(&m->mFaces[f]))
+                continue;
+            /* Assimp passes on what a file names: a PLY face may name a
+             * vertex the file never gave. */
+            for (int c = 0; c < 3; c++)
+                if (m->mFaces[f].mIndices[c] >= m->mNumVertices)
+                    return sr_error_set(err, "%s: mesh %u face %u names vertex %u of %u", path, i, f,
+                                        m->mFaces[f].mIndices[c], m->mNumVertices);
+            n->indices += 3u;
+        }
         n->parts += n->indices > before;
         n->normals |= m->mNormals != NULL;
         n->uvs |= m->mTextureCoords[0] != NULL;
@@ -247,7 +274,7 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
     uint32_t v = 0, x = 0, part = 0;
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         const struct aiMesh *m = sc->mMeshes[i];
-        if (!is_triangles(m))
+        if (!is_kept(sc, m))
             continue;
         for (unsigned j = 0; j < m->mNumVertices; j++, v++) {
             const struct aiVector3D p = m->mVertices[j];
@@ -285,7 +312,7 @@ static bool scene_origin(const struct aiScene *sc, const char *path, double orig
     double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         const struct aiMesh *m = sc->mMeshes[i];
-        for (unsigned j = 0; is_triangles(m) && j < m->mNumVertices; j++) {
+        for (unsigned j = 0; is_kept(sc, m) && j < m->mNumVertices; j++) {
             const double p[3] = { m->mVertices[j].x, m->mVertices[j].y, -(double)m->mVertices[j].z };
             for (int k = 0; k < 3; k++) {
                 if (!isfinite(p[k]))
@@ -339,7 +366,8 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
     if (!sc)
         return import_error(path, err);
     uint32_t mirrored = sr_assimp_unmirror(sc, report);
-    sc = aiApplyPostProcessing(sc, IMPORT_STEPS); /* the steps aiImportFile would run, in its order */
+    if (!is_point_cloud(sc))
+        sc = aiApplyPostProcessing(sc, IMPORT_STEPS); /* the steps aiImportFile would run, in its order */
     if (!sc)
         return import_error(path, err);
     bool ok = build_mesh(sc, path, mesh, err) && find_texture(sc, path, mesh, texture, err) &&

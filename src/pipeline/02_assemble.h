@@ -1,6 +1,6 @@
 /* 02_assemble.h — stage 2: primitive assembly.
  *
- * Turns a mesh's index array into triangles. TriangleList: triangle k is
+ * Turns a mesh's index array into triangles (points and lines: below). TriangleList: triangle k is
  * (i[3k], i[3k+1], i[3k+2]). TriangleStrip: triangle k is (i[k], i[k+1],
  * i[k+2]) with the last two swapped for odd k, so all keep one winding. A
  * triangle with a repeated index is degenerate and is skipped (the strip's
@@ -15,13 +15,41 @@
 
 #include "softrast/softrast.h"
 
+/* Whether the mesh draws triangles (else points or lines: points_lines.c). */
+static inline bool sr_assemble_triangles(const sr_mesh *mesh)
+{
+    return mesh->topology == SR_TRIANGLE_LIST || mesh->topology == SR_TRIANGLE_STRIP;
+}
+
 /* How many triangle slots the mesh's indices make: a list's triples, a
- * strip's windows of three. */
+ * strip's windows of three; none for points and lines. */
 static inline uint32_t sr_assemble_slots(const sr_mesh *mesh)
 {
     if (mesh->topology == SR_TRIANGLE_STRIP)
         return mesh->index_count >= 3 ? mesh->index_count - 2 : 0;
-    return mesh->index_count / 3;
+    return mesh->topology == SR_TRIANGLE_LIST ? mesh->index_count / 3 : 0;
+}
+
+/* How many point or line slots: every index a point; a line list's pairs,
+ * a line strip's windows of two. */
+static inline uint32_t sr_assemble_point_line_slots(const sr_mesh *mesh)
+{
+    if (mesh->topology == SR_POINT_LIST)
+        return mesh->index_count;
+    if (mesh->topology == SR_LINE_STRIP)
+        return mesh->index_count >= 2 ? mesh->index_count - 1 : 0;
+    return mesh->index_count / 2;
+}
+
+/* Writes line k's two vertex indices (a strip's k and k + 1, so
+ * neighbours share a vertex); false if it is degenerate (a repeated
+ * index: a strip's way of restarting, as for triangles). */
+static inline bool sr_assemble_line(const sr_mesh *mesh, uint32_t k, uint32_t out[2])
+{
+    size_t first = mesh->topology == SR_LINE_STRIP ? (size_t)k : 2 * (size_t)k;
+    out[0] = mesh->indices[first];
+    out[1] = mesh->indices[first + 1];
+    return out[0] != out[1];
 }
 
 /* Writes triangle k's three vertex indices; false if it is degenerate.

@@ -134,6 +134,12 @@ bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyi
     return map_vertex(v, clip_d, false, varyings, vp, out);
 }
 
+bool sr_viewport_map_checked_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
+                               sr_screen_vertex *out)
+{
+    return map_vertex(v, clip_d, true, varyings, vp, out);
+}
+
 bool sr_viewport_map_polygon(const sr_polygon *poly, const double tri_d[3][4], int varyings, const sr_viewport *vp,
                              sr_screen_vertex *out)
 {

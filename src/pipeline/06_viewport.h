@@ -45,6 +45,14 @@ bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp
 bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
                        sr_screen_vertex *out);
 
+/* sr_viewport_map_d for a clip position in double that may not be of use
+ * (a cut's point from its lines, which may barely meet): where it is not
+ * finite, has w <= 0 or lies past the slack, the vertex maps from its
+ * float position alone. A clipped line's cut ends map so
+ * (points_lines.c), as a clipped triangle's vertices do below. */
+bool sr_viewport_map_checked_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
+                               sr_screen_vertex *out);
+
 /* Maps the polygon the clipper made from a triangle (sr_clip_polygon) whose
  * vertices' clip positions in double are tri_d, into out[0 .. count): each
  * vertex as sr_viewport_map_d maps it with the triangle's point on its two

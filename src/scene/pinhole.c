@@ -1,7 +1,11 @@
 /* pinhole.c — cameras in OpenCV's convention (softrast.h, "pinhole
  * cameras"): their checks, their clip planes, the draw's matrices, and view
- * depth and range from the triangle each pixel shows. */
+ * depth and range from the triangle each pixel shows, in bands of rows on
+ * threads. */
+#include <float.h>
 #include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "pipeline/02_assemble.h"
@@ -173,11 +177,13 @@ static void normalize_into(const double v[3], float out[3])
 }
 
 /* Triangle `slot` in the camera frame: its corner v0, edges e1 = v1 − v0
- * and e2 = v2 − v0, their cross product e1 × e2, its normal on the file's
- * front side, its part and its vertex normals. */
+ * and e2 = v2 − v0, their cross product e1 × e2, and what the outputs ask
+ * of it: its unit normal on the file's front side (the same for every
+ * pixel, so rounded once), its part, its vertex normals. */
 typedef struct resolved_triangle {
     uint32_t slot, part;
-    double v0[3], e1[3], e2[3], cross[3], cross_squared, offset, front[3]; /* offset: cross · v0 */
+    double v0[3], e1[3], e2[3], cross[3], cross_squared, offset; /* offset: cross · v0 */
+    float front[3];
     double vertex_normals[3][3];
 } resolved_triangle;
 
@@ -194,7 +200,8 @@ static uint32_t part_of(const sr_mesh *mesh, uint32_t slot)
     return mesh->part_count ? lo + 1 : 1;
 }
 
-static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, uint32_t slot, resolved_triangle *t)
+static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, const sr_pinhole_outputs *out,
+                             uint32_t slot, resolved_triangle *t)
 {
     uint32_t idx[3];
     double v[3][3];
@@ -209,26 +216,29 @@ static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, uint32_
     sr_dvec3_cross(t->e1, t->e2, t->cross);
     t->cross_squared = sr_dvec3_dot(t->cross, t->cross);
     t->offset = sr_dvec3_dot(t->cross, t->v0);
-    /* The loader reversed a z-negated file's winding: its front side is the other one. */
-    for (int k = 0; k < 3; k++)
-        t->front[k] = mesh->z_negated ? -t->cross[k] : t->cross[k];
-    for (int c = 0; mesh->normals && c < 3; c++) {
+    if (out->normals && !out->interpolated_normals) {
+        /* The loader reversed a z-negated file's winding: its front side is the other one. */
+        double front[3];
+        for (int k = 0; k < 3; k++)
+            front[k] = mesh->z_negated ? -t->cross[k] : t->cross[k];
+        normalize_into(front, t->front);
+    }
+    for (int c = 0; out->normals && out->interpolated_normals && c < 3; c++) {
         const float *n = mesh->normals[idx[c]];
         double file[3] = { n[0], n[1], mesh->z_negated ? -(double)n[2] : n[2] };
         rotate(cam, file, t->vertex_normals[c]);
     }
-    t->part = mesh->parts ? part_of(mesh, slot) : 1;
+    t->part = out->part_ids && mesh->parts ? part_of(mesh, slot) : 1;
     t->slot = slot;
 }
 
-/* The surface point of pixel (x, y) on triangle t: its view z, and the
- * point itself. */
-static double surface_point(const sr_pinhole *cam, const resolved_triangle *t, int x, int y, float stored_depth,
-                            double point[3])
+/* The surface point on triangle t of the ray through a pixel's centre,
+ * ((x − cx)/fx, (y − cy)/fy, 1): its view z, and the point itself. */
+static double surface_point(const sr_pinhole *cam, const resolved_triangle *t, const double ray[3],
+                            float stored_depth, double point[3])
 {
-    const double ray[3] = { (x - cam->cx) / cam->fx, (y - cam->cy) / cam->fy, 1.0 };
     double z = t->offset / sr_dvec3_dot(t->cross, ray);
-    if (!(z > 0.0) || !isfinite(z)) /* the ray runs in the plane: an edge-on triangle */
+    if (!(z > 0.0 && z <= DBL_MAX)) /* the ray runs in the plane: an edge-on triangle */
         z = z_of_depth(cam, stored_depth);
     for (int k = 0; k < 3; k++)
         point[k] = z * ray[k];
@@ -250,18 +260,34 @@ static void interpolated_normal(const resolved_triangle *t, const double p[3], d
                  l2 * t->vertex_normals[2][k];
 }
 
-bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
-                        const sr_pinhole_outputs *out, sr_error *err)
+/* A resolve's threads at most, as a draw's (draw_state.h). */
+#define RESOLVE_MAX_THREADS 64
+
+/* What every thread of a resolve reads, and the plane of ids it reads. */
+typedef struct resolve_job {
+    const sr_pinhole *cam;
+    const sr_mesh *mesh;
+    const sr_framebuffer *fb;
+    const uint32_t *ids; /* fb's ids plane, or its color of an SR_SHADE_ID draw */
+    const sr_pinhole_outputs *out;
+    double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
+} resolve_job;
+
+/* The triangles a thread keeps resolved, by slot modulo this many: a
+ * row's pixels come back to the triangles of the row above, and a
+ * triangle's set-up costs many pixels' work. */
+#define TRIANGLE_CACHE 256
+
+static void resolve_rows(const resolve_job *job, int y0, int y1)
 {
-    if (!mesh->positions)
-        return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
-    if (out->normals && out->interpolated_normals && !mesh->normals)
-        return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
-    resolved_triangle t = { .slot = UINT32_MAX };
-    for (int y = 0; y < ids->height; y++)
-        for (int x = 0; x < ids->width; x++) {
-            size_t at = (size_t)y * (size_t)ids->width + (size_t)x;
-            uint32_t id = ids->color[at];
+    const sr_pinhole_outputs *out = job->out;
+    resolved_triangle cache[TRIANGLE_CACHE];
+    for (int i = 0; i < TRIANGLE_CACHE; i++)
+        cache[i].slot = UINT32_MAX;
+    for (int y = y0; y < y1; y++)
+        for (int x = 0; x < job->fb->width; x++) {
+            size_t at = (size_t)y * (size_t)job->fb->width + (size_t)x;
+            uint32_t id = job->ids[at];
             if (id == 0) {
                 if (out->depth)
                     out->depth[at] = out->invalid;
@@ -275,9 +301,11 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
                     memset(&out->normals[3 * at], 0, 3 * sizeof *out->normals);
                 continue;
             }
-            if (t.slot != id - 1)
-                resolve_triangle(cam, mesh, id - 1, &t);
-            double p[3], z = surface_point(cam, &t, x, y, ids->depth[at], p);
+            resolved_triangle *t = &cache[(id - 1) % TRIANGLE_CACHE];
+            if (t->slot != id - 1)
+                resolve_triangle(job->cam, job->mesh, out, id - 1, t);
+            const double ray[3] = { job->ray_x[x], job->ray_y[y], 1.0 };
+            double p[3], z = surface_point(job->cam, t, ray, job->fb->depth[at], p);
             if (out->depth)
                 out->depth[at] = (float)z;
             if (out->range)
@@ -285,13 +313,69 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
             if (out->face_ids)
                 out->face_ids[at] = id;
             if (out->part_ids)
-                out->part_ids[at] = t.part;
+                out->part_ids[at] = t->part;
             if (out->normals) {
-                double n[3];
-                if (out->interpolated_normals)
-                    interpolated_normal(&t, p, n);
-                normalize_into(out->interpolated_normals ? n : t.front, &out->normals[3 * at]);
+                if (out->interpolated_normals) {
+                    double n[3];
+                    interpolated_normal(t, p, n);
+                    normalize_into(n, &out->normals[3 * at]);
+                } else {
+                    memcpy(&out->normals[3 * at], t->front, sizeof t->front);
+                }
             }
         }
+}
+
+/* One thread's rows: band k of `bands` equal runs of rows. */
+typedef struct resolve_band {
+    const resolve_job *job;
+    int k, bands;
+    pthread_t thread;
+} resolve_band;
+
+static void *resolve_band_run(void *arg)
+{
+    const resolve_band *b = arg;
+    int height = b->job->fb->height;
+    resolve_rows(b->job, (int)((int64_t)height * b->k / b->bands), (int)((int64_t)height * (b->k + 1) / b->bands));
+    return NULL;
+}
+
+bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
+                        const sr_pinhole_outputs *out, sr_error *err)
+{
+    if (!mesh->positions)
+        return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
+    if (out->normals && out->interpolated_normals && !mesh->normals)
+        return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
+    resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color, out,
+                        malloc((size_t)ids->width * sizeof *job.ray_x), malloc((size_t)ids->height * sizeof *job.ray_y) };
+    if (!job.ray_x || !job.ray_y) {
+        free(job.ray_x);
+        free(job.ray_y);
+        return sr_error_set(err, "out of memory for the rays of a %dx%d view", ids->width, ids->height);
+    }
+    for (int x = 0; x < ids->width; x++)
+        job.ray_x[x] = (x - cam->cx) / cam->fx;
+    for (int y = 0; y < ids->height; y++)
+        job.ray_y[y] = (y - cam->cy) / cam->fy;
+    /* Each pixel's values are its own, whichever thread computes them: the
+     * bands change no bit. More threads than rows would have empty bands. */
+    int bands = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;
+    bands = bands > ids->height ? ids->height : bands;
+    resolve_band band[RESOLVE_MAX_THREADS];
+    int started = 1; /* band 0 is the caller's */
+    for (int k = 0; k < bands; k++)
+        band[k] = (resolve_band){ .job = &job, .k = k, .bands = bands };
+    while (started < bands && pthread_create(&band[started].thread, NULL, resolve_band_run, &band[started]) == 0)
+        started++;
+    /* A thread that could not start: its bands run here, after band 0. */
+    for (int k = 0; k < bands; k++)
+        if (k == 0 || k >= started)
+            resolve_band_run(&band[k]);
+    for (int k = 1; k < started; k++)
+        pthread_join(band[k].thread, NULL);
+    free(job.ray_x);
+    free(job.ray_y);
     return true;
 }

@@ -73,6 +73,19 @@ bool sr_bench_dense_default(sr_bench_scene *s, sr_error *err)
     return sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080, SR_SHADE_LAMBERT, err);
 }
 
+bool sr_bench_scan_view(sr_bench_scene *s, int v, sr_error *err)
+{
+    static const char *const names[SR_BENCH_SCAN_VIEWS] = { "scan-640x480", "scan-640x480-cull", "scan-320x240",
+                                                            "scan-320x240-cull" };
+    bool small = v >= 2, cull = v % 2 == 1;
+    if (!sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, small ? 320 : 640, small ? 240 : 480, SR_SHADE_ID, err))
+        return false;
+    s->name = names[v];
+    s->what = "the dense torus at a vision user's size, face ids";
+    s->cull = cull ? SR_CULL_BACK : SR_CULL_NONE;
+    return true;
+}
+
 /* The room and its texture, wherever the program's data is (io/data_find.h). */
 static bool load_room(sr_bench_scene *s, sr_error *err)
 {

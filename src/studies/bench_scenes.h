@@ -32,6 +32,13 @@ bool sr_bench_dense_default(sr_bench_scene *s, sr_error *err);
  * ahead overlap many times. */
 bool sr_bench_inside(sr_bench_scene *s, sr_error *err);
 
+/* The dense torus as a vision user renders a scan: SR_BENCH_DENSE_TRIANGLES
+ * triangles at 640x480 and 320x240, face ids, culling off (a ray caster
+ * sees both faces) and on; most triangles cover no pixel centre. View v of
+ * SR_BENCH_SCAN_VIEWS, named scan-WxH or scan-WxH-cull. */
+#define SR_BENCH_SCAN_VIEWS 4
+bool sr_bench_scan_view(sr_bench_scene *s, int v, sr_error *err);
+
 /* The room from assets/, on a path through its walls and pillars. */
 bool sr_bench_fly(sr_bench_scene *s, sr_error *err);
 

@@ -79,10 +79,19 @@ bool sr_framebuffer_create(sr_framebuffer *fb, int width, int height, sr_error *
     return true;
 }
 
+bool sr_framebuffer_create_ids(sr_framebuffer *fb, sr_error *err)
+{
+    if (fb->ids)
+        return true;
+    fb->ids = plane_alloc(pixel_count(fb) * sizeof *fb->ids);
+    return fb->ids || sr_error_set(err, "out of memory for the ids of a %dx%d framebuffer", fb->width, fb->height);
+}
+
 void sr_framebuffer_destroy(sr_framebuffer *fb)
 {
     free(fb->color);
     free(fb->depth);
+    free(fb->ids);
     *fb = (sr_framebuffer){ 0 };
 }
 
@@ -110,6 +119,8 @@ void sr_framebuffer_clear_rows(sr_framebuffer *fb, int y0, int y1, uint32_t colo
     uint32_t clear_bits;
     memcpy(&clear_bits, &clear, sizeof clear_bits);
     fill_words(fb->depth + first, clear_bits, n);
+    if (fb->ids)
+        memset(fb->ids + first, 0, n * sizeof *fb->ids);
 }
 
 void sr_framebuffer_clear(sr_framebuffer *fb, uint32_t color)

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "app/wireframe.h"
 #include "scene/frame.h"
 #include "overlay.h"
 #include "viewer.h"
@@ -20,6 +21,7 @@ static const char HELP_TEXT[] =
     "R         reset camera  Esc    quit\n"
     "F1 help   F2 wireframe (clipped triangles in red)\n"
     "F3 shading mode         F5 culling mode\n"
+    "F6 the mesh's edges, hidden lines removed\n"
     "F4 depth view           L  depth: z_ndc / linear distance\n"
     "Z         reversed z (near 1, far 0, GREATER) on / off\n"
     "[ ]  near plane / 2, x 2    { }  far plane / 2, x 2\n"
@@ -50,6 +52,7 @@ bool sr_viewer_init(sr_viewer *v, const sr_scene_setup *setup, sr_error *err)
 
 void sr_viewer_free(sr_viewer *v)
 {
+    sr_wireframe_free(&v->edges);
     sr_scene_free(&v->scene);
     free(v->display);
     free(v->wires);
@@ -132,7 +135,19 @@ bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
         study.observer = collect_wire;
         study.observer_user = v;
     }
-    bool ok = sr_frame_draw_timed(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
+    bool ok;
+    if (v->hidden_lines) {
+        if (!v->edges.indices && !sr_wireframe_edges(&v->scene.mesh, &v->edges, err))
+            return false;
+        sr_draw_desc lines = desc;
+        sr_stats fill;
+        lines.mesh = &v->edges;
+        lines.study = NULL; /* the clipping diagnostic (F2) is the triangles' */
+        lines.depth_bias = sr_wireframe_depth_bias(&desc, v->scene.fb.height);
+        ok = sr_wireframe_frame(&v->scene.fb, &desc, &lines, &fill, &v->stats, &v->frame_ms, err);
+    } else {
+        ok = sr_frame_draw_timed(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
+    }
     show_image(v);
     if (ok && overlays)
         draw_overlays(v);
@@ -148,13 +163,14 @@ void sr_viewer_status(const sr_viewer *v, char *buf, size_t cap)
         eye[k] = cam->origin[k] + cam->eye[k];
     snprintf(buf, cap,
              "%.1f ms  %.0f fps  %s%s  cull %s  %s   F1 help\n"
-             "triangles %llu  rejected %llu  clipped %llu  culled %llu  drawn %llu\n"
+             "%s %llu  rejected %llu  clipped %llu  culled %llu  drawn %llu\n"
              "cut vertices: float %llu  double %llu  exact %llu\n"
              "eye %.3g %.3g %.3g  near %.3g  far %.3g%s  speed %.3g",
              v->frame_ms, v->frame_ms > 0.0 ? 1000.0 / v->frame_ms : 0.0, SR_SHADE_NAMES[v->setup.shade],
              v->show_depth ? (v->depth_linear ? " (depth view, linear)" : " (depth view)") : "",
              SR_CULL_NAMES[v->setup.cull], sr_simd_name(sr_raster_simd_resolve((sr_simd)v->setup.simd)),
-             (unsigned long long)s->triangles, (unsigned long long)s->rejected,
+             s->lines ? "lines" : "triangles", (unsigned long long)(s->lines ? s->lines : s->triangles),
+             (unsigned long long)s->rejected,
              (unsigned long long)s->clipped, (unsigned long long)s->culled, (unsigned long long)s->drawn, (unsigned long long)s->cuts_float,
              (unsigned long long)s->cuts_double, (unsigned long long)s->cuts_exact, eye[0], eye[1], eye[2],
              v->setup.camera.near, v->setup.camera.far, v->setup.camera.reversed_z ? " (reversed z)" : "", v->speed);

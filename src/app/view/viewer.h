@@ -42,6 +42,8 @@ typedef struct sr_viewer {
     float speed; /* units per second */
     unsigned held; /* sr_viewer_move bits */
     bool mouse_look, look_button, show_depth, depth_linear, wireframe, help, quit;
+    bool hidden_lines; /* F6: the mesh's edges, hidden lines removed (app/wireframe.h) */
+    sr_mesh edges;     /* the mesh's edges, made at the first F6 */
     bool screenshot_wanted;
     sr_stats stats;
     double frame_ms;

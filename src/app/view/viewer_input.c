@@ -56,6 +56,7 @@ static void key_down(sr_viewer *v, const SDL_KeyboardEvent *k)
     case SDLK_F3:           cycle_shade(v); break;
     case SDLK_F4:           v->show_depth = !v->show_depth; break;
     case SDLK_F5:           v->setup.cull = (v->setup.cull + 1) % (SR_CULL_NONE + 1); break;
+    case SDLK_F6:           v->hidden_lines = !v->hidden_lines; break;
     case SDLK_F12:          v->screenshot_wanted = true; break;
     case SDLK_l:            v->depth_linear = !v->depth_linear; break;
     case SDLK_z:            v->setup.camera.reversed_z = v->scene.fb.reversed_z = !v->scene.fb.reversed_z; break;

@@ -164,10 +164,11 @@ static inline bool mode_reads_varyings(sr_shade mode)
     return mode != SR_SHADE_ID && mode != SR_SHADE_DEPTH && mode != SR_RASTER_COUNT_HITS;
 }
 
-/* Depth test, depth write and shading of covered pixel i of a row; returns
- * 1 if the fragment passed. Counting hits, the pixel only counts one more. */
+/* Depth test, depth write, id write (with_ids: fb has an ids plane) and
+ * shading of covered pixel i of a row; returns 1 if the fragment passed.
+ * Counting hits, the pixel only counts one more. */
 static inline __attribute__((always_inline)) uint64_t
-fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
+fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids, sr_interp interp,
            const sr_shade_context *shade, uint32_t id, size_t at, float z_row, float k, int64_t e1, int64_t e2)
 {
     if (mode == SR_RASTER_COUNT_HITS) {
@@ -185,6 +186,8 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_i
             return 0;
     }
     fb->depth[at] = z;
+    if (with_ids)
+        fb->ids[at] = id + 1u;
     if (mode != SR_SHADE_DEPTH) {
         fb->color[at] = mode == SR_SHADE_LAMBERT && sr_interp_flat_normal(interp)
                             ? sr_shade_lit(shade, var, s->lambert)
@@ -206,7 +209,7 @@ static inline bool wide(const setup *s)
 
 /* A tiny box's covered pixels, in the rows' order. */
 static inline __attribute__((always_inline)) uint64_t
-tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
+tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids, sr_interp interp,
           const sr_shade_context *shade, uint32_t id)
 {
     uint64_t fragments = 0;
@@ -215,17 +218,18 @@ tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_in
         /* The edges only for the varyings: a mode without leaves them unset
          * when the mask came from binning (setup_in). */
         bool edges = mode_reads_varyings(mode);
-        fragments += fill_pixel(s, fb, mode, greater, interp, shade, id, p.at, p.z_row, p.k,
+        fragments += fill_pixel(s, fb, mode, greater, with_ids, interp, shade, id, p.at, p.z_row, p.k,
                                 edges ? sr_edge_at(&s->e[1], p.px, p.py) : 0,
                                 edges ? sr_edge_at(&s->e[2], p.px, p.py) : 0);
     }
     return fragments;
 }
 
-/* The scalar per-pixel loop; always inlined with a constant mode and depth
- * test so each combination gets its own loop with those branches folded away. */
+/* The scalar per-pixel loop; always inlined with a constant mode, depth
+ * test and ids plane so each combination gets its own loop with those
+ * branches folded away. */
 static inline __attribute__((always_inline)) uint64_t
-raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
+raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids, sr_interp interp,
             const sr_shade_context *shade, uint32_t id)
 {
     uint64_t fragments = 0;
@@ -238,7 +242,8 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_
         float k = r.k;
         for (int d = 0; d < r.count; d++, e0 += step[0], e1 += step[1], e2 += step[2], k += 1.0f)
             if (spans || s->covered || (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias))
-                fragments += fill_pixel(s, fb, mode, greater, interp, shade, id, r.at + (size_t)d, r.z, k, e1, e2);
+                fragments += fill_pixel(s, fb, mode, greater, with_ids, interp, shade, id, r.at + (size_t)d, r.z, k,
+                                        e1, e2);
     }
     return fragments;
 }
@@ -352,19 +357,27 @@ sr_box_cover sr_raster_classify(const setup *s, sr_raster_rect b)
 }
 
 static inline __attribute__((always_inline)) uint64_t
-raster_pixels(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, sr_interp interp,
+raster_pixels(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids, sr_interp interp,
               const sr_shade_context *shade, uint32_t id)
 {
-    return s->tiny ? tiny_loop(s, fb, mode, greater, interp, shade, id)
-                   : raster_loop(s, fb, mode, greater, interp, shade, id);
+    return s->tiny ? tiny_loop(s, fb, mode, greater, with_ids, interp, shade, id)
+                   : raster_loop(s, fb, mode, greater, with_ids, interp, shade, id);
+}
+
+static inline __attribute__((always_inline)) uint64_t
+raster_tests(const setup *s, sr_framebuffer *fb, sr_shade mode, bool with_ids, sr_interp interp,
+             const sr_shade_context *shade, uint32_t id)
+{
+    return fb->reversed_z ? raster_pixels(s, fb, mode, true, with_ids, interp, shade, id)
+                          : raster_pixels(s, fb, mode, false, with_ids, interp, shade, id);
 }
 
 static inline __attribute__((always_inline)) uint64_t
 raster_interp(const setup *s, sr_framebuffer *fb, sr_shade mode, sr_interp interp, const sr_shade_context *shade,
               uint32_t id)
 {
-    return fb->reversed_z ? raster_pixels(s, fb, mode, true, interp, shade, id)
-                          : raster_pixels(s, fb, mode, false, interp, shade, id);
+    return fb->ids ? raster_tests(s, fb, mode, true, interp, shade, id)
+                   : raster_tests(s, fb, mode, false, interp, shade, id);
 }
 
 /* One loop per interp for the modes that read varyings. */
@@ -541,12 +554,12 @@ static uint64_t draw_unqueued(sr_framebuffer *fb, const setup *s, sr_shade mode,
     if (mode_reads_varyings(mode))
         sr_tiny_queue_drain();
     int width = s->box.x1 - s->box.x0;
-    sr_span_kernel kernel = box_is_tiny(s->box) ? NULL : sr_span_kernel_for(shade, mode, fb->reversed_z, width);
+    sr_span_kernel kernel = box_is_tiny(s->box) ? NULL : sr_span_kernel_for(shade, mode, fb->reversed_z, fb->ids, width);
     *simd = kernel && edges_fit_double(s);
     if (*simd)
         return kernel(s, shade, fb, triangle_id);
     if (mode == SR_RASTER_COUNT_HITS) /* past the enum's cases, so not in the switch */
-        return raster_pixels(s, fb, SR_RASTER_COUNT_HITS, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
+        return raster_pixels(s, fb, SR_RASTER_COUNT_HITS, false, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
     switch (mode) {
     case SR_SHADE_ID:      return raster_mode(s, fb, SR_SHADE_ID, shade, triangle_id);
     case SR_SHADE_COLOR:   return raster_mode(s, fb, SR_SHADE_COLOR, shade, triangle_id);
@@ -564,7 +577,7 @@ static SR_ALWAYS_INLINE uint64_t setup_draw(sr_framebuffer *fb, const setup *s, 
                                             const sr_shade_context *shade, uint32_t triangle_id, bool *simd)
 {
     if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && mode_reads_varyings(mode) &&
-        sr_tiny_queue_push(s, fb, mode, shade)) {
+        sr_tiny_queue_push(s, fb, mode, shade, triangle_id)) {
         *simd = false; /* the queue counts its draws and fragments when it is shaded */
         return 0;
     }
@@ -573,7 +586,8 @@ static SR_ALWAYS_INLINE uint64_t setup_draw(sr_framebuffer *fb, const setup *s, 
 
 /* The rows a box that is not tiny prefetches (FETCHED_ROWS) before its
  * set-up, from the framebuffer drawn into directly, not a tile's: its
- * first depth and color line of each row, the color for writing. The
+ * first depth and color line of each row (and ids line, where fb has
+ * them), the color and ids for writing. The
  * kernels' depth loads waited on memory, and the compare after them was
  * where the kernels' time went: fetched here, they arrive during the
  * set-up and the tiny queue's shading. A tile's rows are in the cache
@@ -597,11 +611,13 @@ static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_r
     if (fetch_rows && !box_is_tiny(box)) {
         /* In the body: gcc drops a call of a function of prefetches. */
         int rows = box.y1 - box.y0 < FETCHED_ROWS ? box.y1 - box.y0 : FETCHED_ROWS;
-        size_t at = (size_t)box.y0 * (size_t)fb->width + (size_t)box.x0;
+        size_t first = (size_t)box.y0 * (size_t)fb->width + (size_t)box.x0, at = first;
         for (int r = 0; r < rows; r++, at += (size_t)fb->width) {
             __builtin_prefetch(fb->depth + at);
             __builtin_prefetch(fb->color + at, 1);
         }
+        for (int r = 0; fb->ids && r < rows; r++, first += (size_t)fb->width)
+            __builtin_prefetch(fb->ids + first, 1);
     }
     setup s;
     if (!setup_in(tri, area2, box, subpixel_bits, mode, shade, mask_known, mask, &s))

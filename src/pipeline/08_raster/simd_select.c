@@ -10,8 +10,8 @@
 static sr_simd simd_probe(void)
 {
     static const sr_shade_context none = { .layout = { .count = 0, .color = -1, .uv = -1, .normal = -1 } };
-    bool avx512 = sr_span_kernel_avx512(SR_SHADE_ID, false, &none) != NULL;
-    bool avx2 = sr_span_kernel_avx2(SR_SHADE_ID, false, &none) != NULL;
+    bool avx512 = sr_span_kernel_avx512(SR_SHADE_ID, false, false, &none) != NULL;
+    bool avx2 = sr_span_kernel_avx2(SR_SHADE_ID, false, false, &none) != NULL;
 #if defined(__x86_64__) || defined(__i386__)
     avx2 = avx2 && __builtin_cpu_supports("avx2");
     /* The AVX-512 loop runs the AVX2 kernels on narrow work too. */
@@ -55,14 +55,15 @@ const char *sr_simd_name(sr_simd simd)
  * loops"). */
 #define SR_AVX512_MIN_WIDTH 16
 
-sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater, int width)
+sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater, bool with_ids,
+                                  int width)
 {
     switch (sr_raster_simd_resolve(shade->simd)) {
     case SR_SIMD_AVX512:
-        return width >= SR_AVX512_MIN_WIDTH ? sr_span_kernel_avx512(mode, greater, shade)
-                                            : sr_span_kernel_avx2(mode, greater, shade);
-    case SR_SIMD_AVX2: return sr_span_kernel_avx2(mode, greater, shade);
-    case SR_SIMD_SSE2: return sr_span_kernel_sse2(mode, greater, shade);
+        return width >= SR_AVX512_MIN_WIDTH ? sr_span_kernel_avx512(mode, greater, with_ids, shade)
+                                            : sr_span_kernel_avx2(mode, greater, with_ids, shade);
+    case SR_SIMD_AVX2: return sr_span_kernel_avx2(mode, greater, with_ids, shade);
+    case SR_SIMD_SSE2: return sr_span_kernel_sse2(mode, greater, with_ids, shade);
     default:           return NULL;
     }
 }

@@ -14,11 +14,12 @@ sr_simd sr_raster_simd_resolve(sr_simd want);
 const char *sr_simd_name(sr_simd simd); /* "auto", "scalar", "sse2", "avx2", "avx512" */
 extern const char *const sr_simd_names[SR_SIMD_COUNT + 1]; /* indexed by sr_simd, NULL-terminated */
 
-/* The kernel for the loop shade->simd resolves to on this CPU and a box
- * `width` pixels wide, or NULL (the scalar loop; or a layout no kernel was
+/* The kernel for the loop shade->simd resolves to on this CPU, a box
+ * `width` pixels wide and a framebuffer with an ids plane or not, or NULL (the scalar loop; or a layout no kernel was
  * compiled for): the AVX-512 loop draws boxes under SR_AVX512_MIN_WIDTH
  * with the AVX2 kernels (simd_select.c). */
-sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater, int width);
+sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater, bool with_ids,
+                                  int width);
 
 /* The tiny queue's shader for the loop shade->simd resolves to on this
  * CPU, or NULL (the scalar loop; a mode without varyings; a layout no

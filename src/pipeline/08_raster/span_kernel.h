@@ -528,7 +528,8 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
  * scalar loop drops them (sr_shade_alpha_passes). */
 static inline __attribute__((always_inline)) uint64_t
 fill_group_masked(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, float *depth,
-                  uint32_t *color, albedo a, sr_interp interp, int n, vi pass, vf z, const edge_lanes e[3])
+                  uint32_t *ids, uint32_t *color, albedo a, sr_interp interp, bool with_ids, uint32_t id, int n,
+                  vi pass, vf z, const edge_lanes e[3])
 {
     lanes p;
     p.l1 = edge_to_float(e[1]) * s->inv_area2;
@@ -540,17 +541,20 @@ fill_group_masked(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade
     if (!passed)
         return 0;
     store_where(depth, pass, (vi)z, n);
+    if (with_ids)
+        store_where(ids, pass, (vi){ 0 } + (int32_t)(id + 1u), n);
     vf k = sr_interp_flat_normal(interp) ? t->lambert : lambert_lanes(c, p.var);
     store_where(color, pass, lit_albedo_lanes(a, t, texel, k), n);
     return (uint64_t)__builtin_popcount(passed);
 }
 
-/* Depth test, depth write and shading of up to SPAN_LANES pixels at depth
- * and color: `live` marks the lanes within the row. */
+/* Depth test, depth write, id write (with_ids) and shading of up to
+ * SPAN_LANES pixels at depth, ids and color: `live` marks the lanes within
+ * the row. */
 static inline __attribute__((always_inline)) uint64_t
-fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, float *depth, uint32_t *color,
-           sr_shade mode, albedo a, sr_interp interp, bool greater, uint32_t id, int n, vi live,
-           float z_row, vf k, const edge_lanes e[3])
+fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, float *depth, uint32_t *ids,
+           uint32_t *color, sr_shade mode, albedo a, sr_interp interp, bool greater, bool with_ids, uint32_t id, int n,
+           vi live, float z_row, vf k, const edge_lanes e[3])
 {
     vf z = depth_lanes(s, z_row, k);
     vf stored = (vf)load_lanes(depth, n);
@@ -559,8 +563,10 @@ fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_contex
     if (!passed)
         return 0;
     if (a == ALBEDO_TEXTURE_MASKED)
-        return fill_group_masked(s, t, c, depth, color, a, interp, n, pass, z, e);
+        return fill_group_masked(s, t, c, depth, ids, color, a, interp, with_ids, id, n, pass, z, e);
     store_where(depth, pass, (vi)z, n);
+    if (with_ids)
+        store_where(ids, pass, (vi){ 0 } + (int32_t)(id + 1u), n);
     if (color_per_triangle(mode, a, interp)) {
         store_where(color, pass, t->color, n);
     } else if (mode != SR_SHADE_DEPTH) {
@@ -580,15 +586,18 @@ fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_contex
  * undefined. */
 #define PREFETCH_BYTES 512
 
-static inline __attribute__((always_inline)) void prefetch_ahead(const float *depth, const uint32_t *color)
+static inline __attribute__((always_inline)) void prefetch_ahead(const float *depth, const uint32_t *ids,
+                                                                 const uint32_t *color, bool with_ids)
 {
     __builtin_prefetch((const void *)((uintptr_t)depth + PREFETCH_BYTES), 1);
+    if (with_ids)
+        __builtin_prefetch((const void *)((uintptr_t)ids + PREFETCH_BYTES), 1);
     __builtin_prefetch((const void *)((uintptr_t)color + PREFETCH_BYTES), 1);
 }
 
 static inline __attribute__((always_inline)) uint64_t
 span_row(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, sr_framebuffer *fb,
-         sr_shade mode, albedo a, sr_interp interp, bool greater, uint32_t id, const sr_row_range *r)
+         sr_shade mode, albedo a, sr_interp interp, bool greater, bool with_ids, uint32_t id, const sr_row_range *r)
 {
     vi lane = lanes_index();
     vf column = r->k + __builtin_convertvector(lane, vf); /* exact: small integers */
@@ -605,15 +614,17 @@ span_row(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context 
         step[k] = (vdh){ 0 } + per_pixel * SPAN_LANES;
     }
     /* The row's pixels, held apart from fb, so the compiler need not load
-     * fb->depth and fb->color again after each store. */
+     * fb->depth, fb->ids and fb->color again after each store. */
     float *depth = fb->depth + r->at;
+    uint32_t *ids = with_ids ? fb->ids + r->at : NULL;
     uint32_t *color = fb->color + r->at;
     uint64_t fragments = 0;
     for (int d = 0; d < r->count; d += SPAN_LANES, column += (float)SPAN_LANES) {
         int n = r->count - d < SPAN_LANES ? r->count - d : SPAN_LANES;
-        prefetch_ahead(depth + d, color + d);
-        fragments += fill_group(s, t, c, depth + d, color + d, mode, a, interp, greater, id, n, lane < n, r->z,
-                                column, e);
+        uint32_t *ids_at = with_ids ? ids + d : NULL;
+        prefetch_ahead(depth + d, ids_at, color + d, with_ids);
+        fragments += fill_group(s, t, c, depth + d, ids_at, color + d, mode, a, interp, greater, with_ids, id, n,
+                                lane < n, r->z, column, e);
         for (int k = 1; k < 3; k++) {
             e[k].lo += step[k];
             e[k].hi += step[k];
@@ -624,7 +635,7 @@ span_row(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context 
 
 static inline __attribute__((always_inline)) uint64_t
 span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-          sr_interp interp, bool greater, uint32_t id)
+          sr_interp interp, bool greater, bool with_ids, uint32_t id)
 {
     triangle_lanes t = { .w = (vf){ 0 } + s->w, .lambert = (vf){ 0 } + s->lambert };
     triangle_lanes_init(&t, c);
@@ -635,7 +646,7 @@ span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, 
         sr_row_range r;
         sr_row_make(s, fb, true, j, &r);
         if (r.count > 0)
-            fragments += span_row(s, &t, c, fb, mode, a, interp, greater, id, &r);
+            fragments += span_row(s, &t, c, fb, mode, a, interp, greater, with_ids, id, &r);
     }
     return fragments;
 }
@@ -643,25 +654,31 @@ span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, 
 /* One loop per interp for the modes that read varyings. */
 static inline __attribute__((always_inline)) uint64_t
 span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-              bool greater, uint32_t id)
+              bool greater, bool with_ids, uint32_t id)
 {
     if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_FLAT_NORMAL)
-        return span_rows(s, c, fb, mode, a, SR_INTERP_FLAT_NORMAL, greater, id);
+        return span_rows(s, c, fb, mode, a, SR_INTERP_FLAT_NORMAL, greater, with_ids, id);
     if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_PERSPECTIVE_FLAT_NORMAL)
-        return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, greater, id);
+        return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, greater, with_ids, id);
     if (varying_count(mode, a) > 0 && !sr_interp_divides(s->interp))
-        return span_rows(s, c, fb, mode, a, SR_INTERP_AFFINE, greater, id);
-    return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, id);
+        return span_rows(s, c, fb, mode, a, SR_INTERP_AFFINE, greater, with_ids, id);
+    return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, with_ids, id);
 }
 
-#define SPAN_KERNEL(mode, a, greater, name)                                                                   \
+#define SPAN_KERNEL(mode, a, greater, with_ids, name)                                                         \
     static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id)  \
     {                                                                                                         \
-        return span_triangle(s, c, fb, mode, a, greater, id);                                                 \
+        return span_triangle(s, c, fb, mode, a, greater, with_ids, id);                                       \
     }
 
-#define SPAN_KERNELS(mode, a, name) SPAN_KERNEL(mode, a, false, name##_less) SPAN_KERNEL(mode, a, true, name##_greater)
-#define KERNEL_PAIR(name) { name##_less, name##_greater }
+/* A mode's kernels for each depth test, without and with an ids plane
+ * (a constant, so a draw without one pays no test per pixel for it). */
+#define SPAN_KERNELS(mode, a, name)                                                                           \
+    SPAN_KERNEL(mode, a, false, false, name##_less) SPAN_KERNEL(mode, a, true, false, name##_greater)         \
+    SPAN_KERNEL(mode, a, false, true, name##_less_ids) SPAN_KERNEL(mode, a, true, true, name##_greater_ids)
+/* [with ids][greater] */
+typedef sr_span_kernel kernel_set[2][2];
+#define KERNEL_SET(name) { { name##_less, name##_greater }, { name##_less_ids, name##_greater_ids } }
 
 /* The modes and layouts with varyings: each has span kernels and, where
  * the file builds them (SPAN_TINY_GETTER, below), a tiny queue shader. */
@@ -712,38 +729,37 @@ static bool plain(const sr_shade_context *c)
     return !c->tinted && !c->alpha_min;
 }
 
-static const sr_span_kernel *kernel_pair(sr_shade mode, const sr_shade_context *c)
+static const kernel_set *kernel_set_of(sr_shade mode, const sr_shade_context *c)
 {
-    static const sr_span_kernel lambert[][2] = {
-        [ALBEDO_GRAY] = KERNEL_PAIR(span_lambert_gray),
-        [ALBEDO_COLOR] = KERNEL_PAIR(span_lambert_color),
-        [ALBEDO_TEXTURE] = KERNEL_PAIR(span_lambert_texture),
-        [ALBEDO_COLOR_TINTED] = KERNEL_PAIR(span_lambert_color_tinted),
-        [ALBEDO_TEXTURE_TINTED] = KERNEL_PAIR(span_lambert_texture_tinted),
-        [ALBEDO_TEXTURE_MASKED] = KERNEL_PAIR(span_lambert_texture_masked),
+    static const kernel_set lambert[] = {
+        [ALBEDO_GRAY] = KERNEL_SET(span_lambert_gray),
+        [ALBEDO_COLOR] = KERNEL_SET(span_lambert_color),
+        [ALBEDO_TEXTURE] = KERNEL_SET(span_lambert_texture),
+        [ALBEDO_COLOR_TINTED] = KERNEL_SET(span_lambert_color_tinted),
+        [ALBEDO_TEXTURE_TINTED] = KERNEL_SET(span_lambert_texture_tinted),
+        [ALBEDO_TEXTURE_MASKED] = KERNEL_SET(span_lambert_texture_masked),
     };
-    static const sr_span_kernel id[2] = KERNEL_PAIR(span_id), depth[2] = KERNEL_PAIR(span_depth),
-                                color[2] = KERNEL_PAIR(span_color), normal[2] = KERNEL_PAIR(span_normal),
-                                texture[2] = KERNEL_PAIR(span_texture);
+    static const kernel_set id = KERNEL_SET(span_id), depth = KERNEL_SET(span_depth), color = KERNEL_SET(span_color),
+                            normal = KERNEL_SET(span_normal), texture = KERNEL_SET(span_texture);
     const sr_varying_layout *l = &c->layout;
     switch (mode) {
     case SR_SHADE_LAMBERT: {
         albedo a = lambert_albedo(c);
-        return a == ALBEDO_NONE ? NULL : lambert[a];
+        return a == ALBEDO_NONE ? NULL : &lambert[a];
     }
-    case SR_SHADE_ID:      return id;
-    case SR_SHADE_DEPTH:   return depth;
-    case SR_SHADE_COLOR:   return layout_is(l, 3, 0, -1, -1) ? color : NULL;
-    case SR_SHADE_NORMAL:  return layout_is(l, 3, -1, -1, 0) ? normal : NULL;
-    case SR_SHADE_TEXTURE: return layout_is(l, 2, -1, 0, -1) && plain(c) ? texture : NULL;
+    case SR_SHADE_ID:      return &id;
+    case SR_SHADE_DEPTH:   return &depth;
+    case SR_SHADE_COLOR:   return layout_is(l, 3, 0, -1, -1) ? &color : NULL;
+    case SR_SHADE_NORMAL:  return layout_is(l, 3, -1, -1, 0) ? &normal : NULL;
+    case SR_SHADE_TEXTURE: return layout_is(l, 2, -1, 0, -1) && plain(c) ? &texture : NULL;
     default:               return NULL;
     }
 }
 
-sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater, const sr_shade_context *c)
+sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater, bool with_ids, const sr_shade_context *c)
 {
-    const sr_span_kernel *pair = kernel_pair(mode, c);
-    return pair ? pair[greater] : NULL;
+    const kernel_set *set = kernel_set_of(mode, c);
+    return set ? (*set)[with_ids][greater] : NULL;
 }
 
 #ifdef SPAN_TINY_GETTER
@@ -819,7 +835,7 @@ sr_tiny_shader SPAN_TINY_GETTER(sr_shade mode, const sr_shade_context *c)
                                               [ALBEDO_COLOR_TINTED] = span_lambert_color_tinted_tiny,
                                               [ALBEDO_TEXTURE_TINTED] = span_lambert_texture_tinted_tiny,
                                               [ALBEDO_TEXTURE_MASKED] = NULL };
-    if (!kernel_pair(mode, c)) /* the layouts the kernels were compiled for */
+    if (!kernel_set_of(mode, c)) /* the layouts the kernels were compiled for */
         return NULL;
     switch (mode) {
     case SR_SHADE_LAMBERT: return lambert[lambert_albedo(c)];

@@ -13,6 +13,7 @@ typedef struct tiny_queue_state {
     sr_shade mode;
     sr_tiny_shader shader; /* for fb, shade and mode; NULL: none, the tiny loop draws */
     uint64_t fragments, draws; /* passed since the last flush: pixels, triangles with one at least */
+    uint32_t id[SR_TINY_QUEUE_TRIANGLES]; /* each queued triangle's id, by its number as queued */
 } tiny_queue_state;
 
 static _Thread_local tiny_queue_state tiny_pending;
@@ -31,23 +32,29 @@ static void renumber_triangle(sr_tiny_queue *q, int varyings, int from, int to)
     }
 }
 
-/* The queued pixels' depth tests and writes, in the queue's order, and the
- * queue kept to the pixels that passed, their triangles numbered again
+/* The queued pixels' depth tests and writes (and with_ids, their ids'), in
+ * the queue's order, and the queue kept to the pixels that passed, their triangles numbered again
  * without those left with none: the shaders take a group of lanes to span
  * at most SR_SIMD_MAX_LANES triangles, each with a pixel (tiny_queue.h). Up
  * to the first pixel that fails, nothing moves. */
-static SR_ALWAYS_INLINE void test_depths(tiny_queue_state *t, bool greater)
+static SR_ALWAYS_INLINE void test_depths(tiny_queue_state *t, bool greater, bool with_ids)
 {
     sr_tiny_queue *q = &t->q;
     float *depth = t->fb->depth;
+    uint32_t *ids = t->fb->ids;
     int p = 0;
-    for (; p < q->pixels && sr_depth_passes(q->z[p], depth[q->at[p]], greater); p++)
+    for (; p < q->pixels && sr_depth_passes(q->z[p], depth[q->at[p]], greater); p++) {
         depth[q->at[p]] = q->z[p];
+        if (with_ids)
+            ids[q->at[p]] = t->id[q->triangle[p]] + 1u;
+    }
     int kept = p, last = p > 0 ? q->triangle[p - 1] : -1, renumbered = last;
     for (; p < q->pixels; p++) {
         if (!sr_depth_passes(q->z[p], depth[q->at[p]], greater))
             continue;
         depth[q->at[p]] = q->z[p];
+        if (with_ids) /* t->id is by the numbers as queued, which renumbering leaves */
+            ids[q->at[p]] = t->id[q->triangle[p]] + 1u;
         if (q->triangle[p] != last) {
             last = q->triangle[p];
             renumber_triangle(q, t->shade->layout.count, last, ++renumbered);
@@ -70,10 +77,11 @@ static void tiny_queue_drain(tiny_queue_state *t)
     sr_tiny_queue *q = &t->q;
     if (q->pixels == 0)
         return;
-    if (t->fb->reversed_z)
-        test_depths(t, true);
+    bool greater = t->fb->reversed_z;
+    if (t->fb->ids)
+        greater ? test_depths(t, true, true) : test_depths(t, false, true);
     else
-        test_depths(t, false);
+        greater ? test_depths(t, true, false) : test_depths(t, false, false);
     if (q->pixels > 0) {
         for (int l = q->pixels; l < q->pixels + SR_SIMD_MAX_LANES; l++) {
             q->l1[l] = q->l2[l] = 0.0f;
@@ -121,9 +129,10 @@ static sr_tiny_queue *tiny_queue_for(sr_framebuffer *fb, const sr_shade_context 
 }
 
 /* The tiny loop's covered pixels queued with their depths, λ1 and λ2 (the
- * loop's values), and the triangle's interpolants. */
-static void push(const sr_tri_setup *s, const sr_framebuffer *fb, sr_tiny_queue *q)
+ * loop's values), and the triangle's interpolants and id. */
+static void push(const sr_tri_setup *s, const sr_framebuffer *fb, uint32_t id, tiny_queue_state *state)
 {
+    sr_tiny_queue *q = &state->q;
     int p = q->pixels, t = q->triangles;
     for (uint64_t m = s->tiny; m; m &= m - 1) {
         sr_tiny_pixel px = sr_tiny_pixel_of(s, fb, __builtin_ctzll(m));
@@ -136,6 +145,7 @@ static void push(const sr_tri_setup *s, const sr_framebuffer *fb, sr_tiny_queue 
     }
     if (p == q->pixels)
         return;
+    state->id[t] = id;
     q->param[SR_TINY_IW0][t] = s->iw0;
     q->param[SR_TINY_DIW1][t] = s->diw1;
     q->param[SR_TINY_DIW2][t] = s->diw2;
@@ -148,10 +158,11 @@ static void push(const sr_tri_setup *s, const sr_framebuffer *fb, sr_tiny_queue 
     q->triangles = t + 1;
 }
 
-bool sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade)
+bool sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                        uint32_t triangle_id)
 {
     sr_tiny_queue *q = tiny_queue_for(fb, shade, mode);
     if (q)
-        push(s, fb, q);
+        push(s, fb, triangle_id, &tiny_pending);
     return q != NULL;
 }

@@ -21,10 +21,12 @@
 
 /* A tiny triangle of SR_INTERP_PERSPECTIVE in a mode with varyings (the
  * rasterizer's call): its covered pixels queued on this thread's queue,
- * with their depths, to be tested when it is shaded; true. False, and
+ * with their depths and its id, to be tested (and the id + 1 written where
+ * fb has an ids plane) when it is shaded; true. False, and
  * nothing done, where no shader takes fb, shade and mode: the tiny loop
  * draws it then. */
-bool sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade);
+bool sr_tiny_queue_push(const sr_tri_setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                        uint32_t triangle_id);
 
 /* Tests and shades this thread's queued pixels, if any, and keeps the
  * context their shader was looked up for: the rasterizer calls it before
@@ -41,7 +43,7 @@ void sr_tiny_queue_drain(void);
  * sr_raster_tiny_triangle and sr_raster_setup_draw may return with pixels
  * still queued, which their counts leave out: until this thread's flush,
  * the caller must neither change the shading context or the framebuffer
- * they were given nor clear or read its colors or depths. */
+ * they were given nor clear or read its colors, depths or ids. */
 void sr_tiny_queue_flush(uint64_t *fragments, uint64_t *draws);
 
 #endif

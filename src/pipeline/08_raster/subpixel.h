@@ -1,0 +1,36 @@
+/* subpixel.h — the triangles of a dense mesh that cover no pixel centre,
+ * found many at a time before any set-up. Not public API.
+ *
+ * Most triangles of a scan seen at a vision user's size are smaller than a
+ * pixel: their scan box (sr_raster_scan_box) holds no pixel centre, or one
+ * that they miss. Each such triangle changes nothing but the draw's counts,
+ * culled or drawn as stage 7 counts it, yet one at a time it paid for a
+ * call into the rasterizer, its box and its edges. Here four or eight
+ * triangles go through those tests at once, a triangle per lane of 32-bit integers (as
+ * Intel's Masked Occlusion Culling rejects many triangles per instruction),
+ * and the caller sends only the others on to the per-triangle set-up.
+ *
+ * Exactness: a lane decides only a triangle whose vertices span less than
+ * two pixels on each axis (so every difference of coordinates, and every
+ * product of two, fits a 32-bit integer at up to SR_SUBPIXEL_LANES_MAX_BITS
+ * subpixel bits) inside every plane (its coordinates below 2^30:
+ * SR_FIXED_POINT_BITS). Its signed area, its scan box over the whole
+ * framebuffer and, for a box of one pixel centre, the three edge functions
+ * at that centre with the top-left rule are the exact integers that stage 7
+ * and the set-up compute (07_cull.h, raster.c), so the counts and pixels
+ * are those of the one-at-a-time path at every SIMD level and thread count.
+ * A box empty over the framebuffer is empty over any tile or band of rows
+ * too, so every path may drop such a triangle. */
+#ifndef SOFTRAST_PIPELINE_SUBPIXEL_H
+#define SOFTRAST_PIPELINE_SUBPIXEL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "subpixel_lanes.h"
+
+/* The verdict on lanes [0, n) of b, n <= SR_SUBPIXEL_BATCH, at most
+ * rules->bits <= SR_SUBPIXEL_LANES_MAX_BITS; lanes past n are ignored. */
+sr_subpixel_verdict sr_subpixel_reject(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules);
+
+#endif

@@ -1,0 +1,127 @@
+/* subpixel_body.h — the body of the sub-pixel lanes (subpixel.h), one
+ * source compiled at two widths like the span kernels: four lanes of SSE2
+ * (subpixel_sse2.c) and eight of AVX2 (subpixel_avx2.c, built with -mavx2). The
+ * includer defines SUBPIXEL_LANES and SUBPIXEL_GROUPS, the name of the
+ * function it makes: sr_subpixel_verdict SUBPIXEL_GROUPS(const
+ * sr_subpixel_batch *, int n, const sr_subpixel_rules *). Every width
+ * computes the same exact integers, so the same verdicts. */
+#include <string.h>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+#include "pipeline/stages.h"
+#include "subpixel_lanes.h"
+
+typedef int32_t lanes __attribute__((vector_size(SUBPIXEL_LANES * sizeof(int32_t))));
+/* Products and their sums, which may wrap in a lane whose result is not
+ * used (a triangle too large for the lanes, or a box with no centre to
+ * test): unsigned, whose wrap is defined. Every other value is a
+ * difference of coordinates below 2^30, or of pixel indices. */
+typedef uint32_t ulanes __attribute__((vector_size(SUBPIXEL_LANES * sizeof(uint32_t))));
+
+/* a where m is all ones, b where it is 0. */
+static SR_ALWAYS_INLINE lanes pick(lanes m, lanes a, lanes b)
+{
+    return (a & m) | (b & ~m);
+}
+
+static SR_ALWAYS_INLINE lanes min_of(lanes a, lanes b)
+{
+    return pick(a < b, a, b);
+}
+
+static SR_ALWAYS_INLINE lanes max_of(lanes a, lanes b)
+{
+    return pick(a > b, a, b);
+}
+
+static SR_ALWAYS_INLINE lanes clamp_of(lanes v, lanes hi)
+{
+    return min_of(max_of(v, (lanes){ 0 }), hi);
+}
+
+static SR_ALWAYS_INLINE lanes load(const int32_t *p)
+{
+    lanes v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+
+/* a − b, wrapping. */
+static SR_ALWAYS_INLINE ulanes minus(lanes a, lanes b)
+{
+    return (ulanes)a - (ulanes)b;
+}
+
+/* Bit i set where lane i of m is all ones. */
+static SR_ALWAYS_INLINE uint64_t lane_bits(lanes m)
+{
+#if defined(__AVX2__)
+    return (uint64_t)_mm256_movemask_ps((__m256)m);
+#elif defined(__SSE2__)
+    return (uint64_t)_mm_movemask_ps((__m128)m);
+#else
+    uint64_t bits = 0;
+    for (int i = 0; i < SUBPIXEL_LANES; i++)
+        bits |= (uint64_t)(m[i] & 1) << i;
+    return bits;
+#endif
+}
+
+/* E − bias for edge p → q of a clockwise triangle at the pixel centre
+ * (cx, cy), >= 0 where the edge holds the centre: E = dx·(cy − py) −
+ * dy·(cx − px) is raster.c's a·cx + b·cy + c, and the bias is 0 on a top
+ * (dy = 0, dx > 0) or left (dy < 0) edge and 1 otherwise (E >= bias). */
+static SR_ALWAYS_INLINE lanes edge_at(lanes px, lanes py, lanes qx, lanes qy, lanes cx, lanes cy)
+{
+    lanes dx = qx - px, dy = qy - py, zero = { 0 };
+    lanes top_left = ((dy == zero) & (dx > zero)) | (dy < zero); /* all ones where the bias is 0 */
+    return (lanes)((ulanes)dx * minus(cy, py) - (ulanes)dy * minus(cx, px) - (ulanes)(top_left + 1));
+}
+
+/* Lanes [at, at + SUBPIXEL_LANES) of b. */
+static SR_ALWAYS_INLINE sr_subpixel_verdict group(const sr_subpixel_batch *b, int at, const sr_subpixel_rules *r)
+{
+    const lanes zero = { 0 };
+    int bits = r->bits;
+    int32_t one_s = (int32_t)1 << bits;
+    lanes one = zero + one_s, half = zero + one_s / 2;
+    lanes x0 = load(b->x[0] + at), x1 = load(b->x[1] + at), x2 = load(b->x[2] + at);
+    lanes y0 = load(b->y[0] + at), y1 = load(b->y[1] + at), y2 = load(b->y[2] + at);
+    lanes lo_x = min_of(min_of(x0, x1), x2), hi_x = max_of(max_of(x0, x1), x2);
+    lanes lo_y = min_of(min_of(y0, y1), y2), hi_y = max_of(max_of(y0, y1), y2);
+    /* Within two pixels on each axis: the lanes below hold every value exactly. */
+    lanes small = (hi_x - lo_x < one + one) & (hi_y - lo_y < one + one);
+    /* The scan box over the framebuffer, raster.c's scan_box. */
+    lanes box_x0 = clamp_of((lo_x - half + one - 1) >> bits, zero + r->width);
+    lanes box_x1 = clamp_of(((hi_x - half) >> bits) + 1, zero + r->width);
+    lanes box_y0 = clamp_of((lo_y - half + one - 1) >> bits, zero + r->height);
+    lanes box_y1 = clamp_of(((hi_y - half) >> bits) + 1, zero + r->height);
+    lanes empty = (box_x0 >= box_x1) | (box_y0 >= box_y1);
+    lanes one_centre = (box_x1 - box_x0 == 1) & (box_y1 - box_y0 == 1);
+    /* Stage 7's area and verdict (07_cull.h). */
+    lanes area2 = (lanes)(minus(x1, x0) * minus(y2, y0) - minus(y1, y0) * minus(x2, x0));
+    lanes cw = area2 > zero;
+    lanes keeps = (cw & (zero - (int32_t)r->keep_cw)) | ((area2 < zero) & (zero - (int32_t)r->keep_ccw));
+    /* The box's one centre against the three edges, of the triangle in
+     * clockwise order as the set-up orders it (vertices 1 and 2 swapped
+     * where the area is negative). */
+    lanes cx = (lanes)(((ulanes)box_x0 << bits) + (ulanes)half), cy = (lanes)(((ulanes)box_y0 << bits) + (ulanes)half);
+    lanes sx1 = pick(cw, x1, x2), sy1 = pick(cw, y1, y2), sx2 = pick(cw, x2, x1), sy2 = pick(cw, y2, y1);
+    lanes outside = (edge_at(x0, y0, sx1, sy1, cx, cy) | edge_at(sx1, sy1, sx2, sy2, cx, cy) |
+                     edge_at(sx2, sy2, x0, y0, cx, cy)) < zero;
+    lanes misses = empty | (one_centre & outside);
+    return (sr_subpixel_verdict){ .culled = lane_bits(small & ~keeps), .drawn = lane_bits(small & keeps & misses) };
+}
+
+sr_subpixel_verdict SUBPIXEL_GROUPS(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules)
+{
+    sr_subpixel_verdict v = { 0, 0 };
+    for (int at = 0; at < n; at += SUBPIXEL_LANES) {
+        sr_subpixel_verdict g = group(b, at, rules);
+        v.culled |= g.culled << at;
+        v.drawn |= g.drawn << at;
+    }
+    return v;
+}

@@ -1,0 +1,44 @@
+/* subpixel_lanes.h — what the sub-pixel lanes (subpixel.h) read and say,
+ * shared by their two widths (subpixel_body.h) and the choice between them
+ * (subpixel.c). Not public API. */
+#ifndef SOFTRAST_PIPELINE_SUBPIXEL_LANES_H
+#define SOFTRAST_PIPELINE_SUBPIXEL_LANES_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+/* Triangles per call: bits of a 64-bit mask. */
+#define SR_SUBPIXEL_BATCH 64
+/* The finest snap the lanes hold exactly (subpixel.h); finer draws skip them. */
+#define SR_SUBPIXEL_LANES_MAX_BITS 12
+
+/* Lane i's vertex k at (x[k][i], y[k][i]): the snapped screen position in
+ * subpixel units, as an int32 (exact: below 2^30 inside every plane). */
+typedef struct sr_subpixel_batch {
+    int32_t x[3][SR_SUBPIXEL_BATCH], y[3][SR_SUBPIXEL_BATCH];
+} sr_subpixel_batch;
+
+/* What decides a lane: the snap, the framebuffer, and which windings stage
+ * 7 keeps (sr_cull_keeps of a positive area, of a negative one); and the
+ * width of the lanes: eight of AVX2 where the draw's SIMD level has it,
+ * else four of SSE2 (the same verdicts). */
+typedef struct sr_subpixel_rules {
+    int bits, width, height;
+    bool keep_cw, keep_ccw;
+    bool avx2;
+} sr_subpixel_rules;
+
+/* The lanes of the triangles that draw no pixel, by how stage 7 counts
+ * them: culled (its area or winding), or drawn (kept, but no centre
+ * covered). Every other lane goes on to the per-triangle path. */
+typedef struct sr_subpixel_verdict {
+    uint64_t culled, drawn;
+} sr_subpixel_verdict;
+
+/* The two widths (subpixel_body.h, compiled by subpixel_sse2.c and
+ * subpixel_avx2.c): the verdicts of lanes [0, n) rounded up to a group,
+ * lanes past n included. */
+sr_subpixel_verdict sr_subpixel_groups_sse2(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules);
+sr_subpixel_verdict sr_subpixel_groups_avx2(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules);
+
+#endif

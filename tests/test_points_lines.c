@@ -1,0 +1,719 @@
+/* Points and lines (SR_POINT_LIST, SR_LINE_LIST, SR_LINE_STRIP): Direct3D
+ * 11's coverage on small scenes and against an exact diamond oracle, the
+ * segment clipper against the triangle clipper's edges bit for bit, every
+ * plane, the eye, w = 0, NaN and inf, the counts, the depth bias, and a
+ * few dEQP clipping.point.* / clipping.line.* cases (docs/conventions.md,
+ * "Points and lines"). */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include <criterion/criterion.h>
+
+#include "clip_helpers.h"
+#include "pipeline/04_clip/clip_corner.h"
+#include "pipeline/04_clip/clip_segment.h"
+#include "pipeline/06_viewport.h"
+#include "scene_helpers.h"
+
+#define W 24
+#define H 16
+#define ONE 256
+
+/* A mesh of `n` positions in pixel space (x, y, z_ndc) and indices. */
+static void pixel_mesh(sr_mesh *m, const float (*xyz)[3], uint32_t n, const uint32_t *idx, uint32_t count,
+                       sr_topology topology)
+{
+    sr_error err = { "" };
+    cr_assert(sr_mesh_alloc(m, n, count, false, false, true, &err), "%s", err.message);
+    memcpy(m->positions, xyz, n * sizeof(vec3));
+    for (uint32_t i = 0; i < n; i++)
+        m->colors[i][0] = m->colors[i][1] = m->colors[i][2] = 1.0f;
+    memcpy(m->indices, idx, count * sizeof(uint32_t));
+    m->topology = topology;
+}
+
+static sr_stats draw_desc(sr_framebuffer *fb, sr_draw_desc *desc)
+{
+    sr_stats stats = { 0 };
+    sr_error err = { "" };
+    cr_assert(sr_draw(fb, desc, &stats, &err), "sr_draw: %s", err.message);
+    return stats;
+}
+
+/* Draws m with the pixel-space camera in `shade`, counting hits if asked. */
+static sr_stats draw_pixels(sr_framebuffer *fb, const sr_mesh *m, sr_shade shade, float size, bool hits)
+{
+    sr_framebuffer_clear(fb, 0);
+    sr_draw_desc desc = { .mesh = m, .shade = shade, .point_size = size, .line_width = size,
+                          .study = &(sr_draw_study){ .count_hits = hits } };
+    scene_pixel_ortho(&desc, fb->width, fb->height);
+    return draw_desc(fb, &desc);
+}
+
+static uint32_t at(const sr_framebuffer *fb, int x, int y)
+{
+    return fb->color[y * fb->width + x];
+}
+
+/* The pixels of color c, as a string of "x,y " in row order, for exact
+ * expectations that print well. */
+static void pixels_of(const sr_framebuffer *fb, uint32_t c, char *out, size_t n)
+{
+    out[0] = '\0';
+    size_t used = 0;
+    for (int y = 0; y < fb->height; y++)
+        for (int x = 0; x < fb->width; x++)
+            if (at(fb, x, y) == c)
+                used += (size_t)snprintf(out + used, n - used, "%d,%d ", x, y);
+}
+
+Test(points, a_point_covers_the_pixel_centres_of_its_square)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    const float xyz[][3] = { { 5.5f, 5.5f, 0.5f }, { 12.0f, 4.0f, 0.5f }, { 20.5f, 10.5f, 0.5f } };
+    const uint32_t idx[] = { 0, 1, 2 };
+    sr_mesh m;
+    pixel_mesh(&m, xyz, 3, idx, 3, SR_POINT_LIST);
+    char got[512];
+    sr_stats s = draw_pixels(&fb, &m, SR_SHADE_ID, 1.0f, false);
+    cr_assert_eq(s.points, 3);
+    cr_assert_eq(s.drawn, 3);
+    cr_assert_eq(s.triangles, 0);
+    /* Size 1: the pixel whose square holds the point, left and top sides in. */
+    pixels_of(&fb, 1, got, sizeof got);
+    cr_assert_str_eq(got, "5,5 ");
+    pixels_of(&fb, 2, got, sizeof got);
+    cr_assert_str_eq(got, "11,3 ");
+    /* Size 2 on a pixel corner: four pixels; on a centre: the centres at
+     * −1 and 0 (the one at +1 is on the right and bottom sides, out). */
+    s = draw_pixels(&fb, &m, SR_SHADE_ID, 2.0f, false);
+    pixels_of(&fb, 2, got, sizeof got);
+    cr_assert_str_eq(got, "11,3 12,3 11,4 12,4 ");
+    pixels_of(&fb, 1, got, sizeof got);
+    cr_assert_str_eq(got, "4,4 5,4 4,5 5,5 ");
+    cr_assert_eq(s.fragments, 12);
+    /* Size 3 centred on a pixel: 3 × 3, and one near the edge cut by the framebuffer. */
+    s = draw_pixels(&fb, &m, SR_SHADE_ID, 5.0f, false);
+    pixels_of(&fb, 3, got, sizeof got);
+    cr_assert_str_eq(got, "18,8 19,8 20,8 21,8 22,8 18,9 19,9 20,9 21,9 22,9 18,10 19,10 20,10 21,10 22,10 "
+                          "18,11 19,11 20,11 21,11 22,11 18,12 19,12 20,12 21,12 22,12 ");
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+Test(lines, a_line_is_half_open_and_a_strip_draws_its_shared_vertex_once)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    const float xyz[][3] = { { 2.5f, 3.5f, 0.5f }, { 8.5f, 3.5f, 0.5f }, { 8.5f, 9.5f, 0.5f }, { 2.5f, 3.5f, 0.5f } };
+    const uint32_t idx[] = { 0, 1, 2, 3 };
+    sr_mesh m;
+    pixel_mesh(&m, xyz, 4, idx, 4, SR_LINE_STRIP);
+    char got[512];
+    sr_stats s = draw_pixels(&fb, &m, SR_SHADE_ID, 1.0f, false);
+    cr_assert_eq(s.lines, 3);
+    pixels_of(&fb, 1, got, sizeof got);
+    cr_assert_str_eq(got, "2,3 3,3 4,3 5,3 6,3 7,3 ");
+    pixels_of(&fb, 2, got, sizeof got);
+    cr_assert_str_eq(got, "8,3 8,4 8,5 8,6 8,7 8,8 ");
+    /* The closing diagonal (slope 1: x-major) from (8.5, 9.5) back to the
+     * strip's first vertex, whose pixel it leaves to the first line. */
+    pixels_of(&fb, 3, got, sizeof got);
+    cr_assert_str_eq(got, "3,4 4,5 5,6 6,7 7,8 8,9 ");
+    /* Every pixel once. */
+    s = draw_pixels(&fb, &m, SR_SHADE_ID, 1.0f, true);
+    for (size_t i = 0; i < scene_pixel_count(&fb); i++)
+        cr_assert_leq(fb.color[i], 1, "pixel %zu drawn %u times", i, fb.color[i]);
+    cr_assert_eq(s.fragments, 18);
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+Test(lines, lines_on_pixel_borders_follow_direct3d_diamonds)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    /* Horizontal on y = 3: each diamond's bottom corner is in (row 2);
+     * vertical on x = 12: a y-major line's right corner is in (column 11). */
+    const float xyz[][3] = { { 1.5f, 3.0f, 0.5f }, { 6.5f, 3.0f, 0.5f }, { 12.0f, 1.5f, 0.5f }, { 12.0f, 5.5f, 0.5f } };
+    const uint32_t idx[] = { 0, 1, 2, 3 };
+    sr_mesh m;
+    pixel_mesh(&m, xyz, 4, idx, 4, SR_LINE_LIST);
+    char got[512];
+    draw_pixels(&fb, &m, SR_SHADE_ID, 1.0f, false);
+    pixels_of(&fb, 1, got, sizeof got);
+    cr_assert_str_eq(got, "1,2 2,2 3,2 4,2 5,2 ");
+    pixels_of(&fb, 2, got, sizeof got);
+    cr_assert_str_eq(got, "11,1 11,2 11,3 11,4 ");
+    /* Three wide: the rows −1 … +1 of each pixel of the thin line. */
+    draw_pixels(&fb, &m, SR_SHADE_ID, 3.0f, false);
+    pixels_of(&fb, 2, got, sizeof got);
+    cr_assert_str_eq(got, "10,1 11,1 12,1 10,2 11,2 12,2 10,3 11,3 12,3 10,4 11,4 12,4 ");
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+/* ---- the diamond-exit rule against an exact oracle ---- */
+
+/* p/q with q > 0. */
+typedef struct ratio {
+    int64_t p, q;
+} ratio;
+
+static int ratio_cmp(ratio a, ratio b)
+{
+    __int128 l = (__int128)a.p * b.q, r = (__int128)b.p * a.q;
+    return (l > r) - (l < r);
+}
+
+/* Whether the segment a -> b meets the diamond |u| + |v| < h (open) or
+ * <= h (closed) around c: Liang–Barsky on its four sides, in exact ratios. */
+static bool segment_meets_diamond(const int64_t a[2], const int64_t b[2], const int64_t c[2], int64_t h, bool open)
+{
+    int64_t u0 = a[0] - c[0], v0 = a[1] - c[1], du = b[0] - a[0], dv = b[1] - a[1];
+    ratio lo = { 0, 1 }, hi = { 1, 1 };
+    bool lo_strict = false, hi_strict = false;
+    for (int su = -1; su <= 1; su += 2)
+        for (int sv = -1; sv <= 1; sv += 2) {
+            /* h − (su·u + sv·v) = alpha + beta·t, >= 0 or > 0 */
+            int64_t alpha = h - (su * u0 + sv * v0), beta = -(su * du + sv * dv);
+            if (beta == 0) {
+                if (alpha < 0 || (open && alpha == 0))
+                    return false;
+                continue;
+            }
+            ratio t = beta > 0 ? (ratio){ -alpha, beta } : (ratio){ alpha, -beta };
+            if (beta > 0) {
+                int c2 = ratio_cmp(t, lo);
+                if (c2 > 0 || (c2 == 0 && open)) {
+                    lo = t;
+                    lo_strict = open;
+                }
+            } else {
+                int c2 = ratio_cmp(t, hi);
+                if (c2 < 0 || (c2 == 0 && open)) {
+                    hi = t;
+                    hi_strict = open;
+                }
+            }
+        }
+    int c2 = ratio_cmp(lo, hi);
+    return c2 < 0 || (c2 == 0 && !lo_strict && !hi_strict);
+}
+
+static bool point_in_open_diamond(const int64_t p[2], const int64_t c[2], int64_t h)
+{
+    return llabs(p[0] - c[0]) + llabs(p[1] - c[1]) < h;
+}
+
+static bool point_on_diamond(const int64_t p[2], const int64_t c[2], int64_t h)
+{
+    return llabs(p[0] - c[0]) + llabs(p[1] - c[1]) == h;
+}
+
+Test(lines, random_lines_cover_the_pixels_whose_diamond_they_exit)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    test_rng r = { 36 };
+    sr_mesh m;
+    const float start[][3] = { { 0, 0, 0.5f }, { 0, 0, 0.5f } };
+    const uint32_t idx[] = { 0, 1 };
+    pixel_mesh(&m, start, 2, idx, 2, SR_LINE_LIST);
+    int checked = 0;
+    for (int n = 0; n < 3000; n++) {
+        int64_t e[2][2];
+        for (int k = 0; k < 2; k++) {
+            /* Some ends on whole or half pixels, where the ties are. */
+            int grid = rng_below(&r, 3) == 0 ? ONE / 2 : 1;
+            /* Inside the framebuffer: a clipped end is snapped anew. */
+            e[k][0] = rng_range(&r, 0, W * ONE) / grid * grid;
+            e[k][1] = rng_range(&r, 0, H * ONE) / grid * grid;
+            if (n % 5 == 0 && k == 1) /* short ones */
+                for (int c = 0; c < 2; c++)
+                    e[1][c] = llabs(e[0][c] + rng_range(&r, -ONE, ONE)) % ((c ? H : W) * ONE);
+            m.positions[k][0] = (float)e[k][0] / ONE;
+            m.positions[k][1] = (float)e[k][1] / ONE;
+        }
+        draw_pixels(&fb, &m, SR_SHADE_ID, 1.0f, false);
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                int64_t c[2] = { x * ONE + ONE / 2, y * ONE + ONE / 2 };
+                bool open = segment_meets_diamond(e[0], e[1], c, ONE / 2, true);
+                bool closed = segment_meets_diamond(e[0], e[1], c, ONE / 2, false);
+                if (open != closed || point_on_diamond(e[1], c, ONE / 2))
+                    continue; /* on the diamond's sides: the small scenes above pin those */
+                bool want = open && !point_in_open_diamond(e[1], c, ONE / 2);
+                cr_assert_eq(at(&fb, x, y) == 1, want,
+                             "line (%lld, %lld) -> (%lld, %lld) /256 at pixel (%d, %d): drawn %d, want %d",
+                             (long long)e[0][0], (long long)e[0][1], (long long)e[1][0], (long long)e[1][1], x, y,
+                             at(&fb, x, y) == 1, want);
+                checked++;
+            }
+    }
+    cr_assert_gt(checked, 3000 * W * H * 9 / 10);
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+/* ---- clipping: a segment is cut as the triangle edge under it ---- */
+
+/* A clip-space vertex from one of a few families: ordinary, spread over
+ * decades, on a plane or an ulp off it, behind the eye, a perspective
+ * projection's, with a varying that is its own x. */
+static sr_vertex_out random_vertex(test_rng *r, int family, const sr_clip_depth *depth)
+{
+    sr_vertex_out v = vert4(rng_uniform(r, -3, 3), rng_uniform(r, -3, 3), rng_uniform(r, -2, 3), rng_uniform(r, -1, 3));
+    float *c = v.v;
+    if (family == 1)
+        for (int k = 0; k < 4; k++)
+            c[k] = (float)rng_log_signed(r, -6, 6);
+    if (family == 2) {
+        int plane = rng_below(r, SR_CLIP_PLANES);
+        c[sr_clip_plane_table[plane].axis] = sr_clip_plane_coordinate_at((sr_clip_plane)plane, c[SR_W]);
+        if (rng_below(r, 2))
+            c[sr_clip_plane_table[plane].axis] = nextafterf(c[sr_clip_plane_table[plane].axis], INFINITY);
+    }
+    if (family == 3) {
+        c[SR_W] = (float)rng_uniform(r, -20, 60);
+        c[SR_X] = (float)(1.3 * rng_uniform(r, -30, 30));
+        c[SR_Y] = (float)(1.7 * rng_uniform(r, -30, 30));
+    }
+    if (depth->on)
+        sr_clip_z_from_w(depth, c);
+    c[SR_VARYINGS_AT] = c[SR_X];
+    return v;
+}
+
+static bool same_point(const sr_vertex_out *a, const sr_vertex_out *b, bool with_z)
+{
+    return memcmp(&a->v[SR_X], &b->v[SR_X], 2 * sizeof(float)) == 0 &&
+           memcmp(&a->v[SR_W], &b->v[SR_W], sizeof(float)) == 0 &&
+           (!with_z || memcmp(&a->v[SR_Z], &b->v[SR_Z], sizeof(float)) == 0);
+}
+
+Test(lines, segments_are_cut_as_the_triangle_edges_they_lie_on_bit_for_bit)
+{
+    test_rng r = { 3636 };
+    const sr_clip_depth depths[2] = { { .on = false }, { .on = true, .a = 100.0f / 99.9f, .b = -10.0f / 99.9f } };
+    int compared = 0, multi = 0, mapped = 0;
+    for (int n = 0; n < 40000; n++) {
+        const sr_clip_depth *depth = &depths[n % 2];
+        sr_clip_precision precision = (sr_clip_precision)(n / 2 % SR_CLIP_PRECISIONS);
+        sr_vertex_out tri[3];
+        unsigned any = 0, all = SR_OUT_PLANES;
+        for (int k = 0; k < 3; k++) {
+            tri[k] = random_vertex(&r, rng_below(&r, 4), depth);
+            unsigned code = sr_clip_outcode_with(tri[k].v, depth);
+            any |= code;
+            all &= code;
+        }
+        if ((any & SR_OUT_NONFINITE) || all || !any)
+            continue;
+        sr_clip_counts counts = { { 0 } };
+        sr_clip_config cfg = { .precision = precision, .depth = *depth, .counts = &counts };
+        sr_polygon poly = poly3(tri[0], tri[1], tri[2]);
+        int count = sr_clip_polygon(&poly, any, SR_VARYINGS_AT + 1, &cfg);
+        if (counts.edge_by_edge) /* a degenerate triangle, clipped edge by edge: its own cuts */
+            continue;
+        for (int i = 0; i < count; i++) {
+            int edge = poly.line[i];
+            if (edge >= SR_CLIP_ON_PLANE)
+                continue;
+            sr_vertex_out ends[2] = { tri[edge], tri[(edge + 1) % 3] }, out[2];
+            unsigned c0 = sr_clip_outcode_with(ends[0].v, depth), c1 = sr_clip_outcode_with(ends[1].v, depth);
+            unsigned planes = c0 | c1;
+            /* The fixed float and double knobs may keep a sliver of an edge
+             * outside a plane (a rounded cut put back inside it); the
+             * segment is rejected whole there. */
+            if (c0 & c1)
+                continue;
+            int cut[2];
+            bool kept = sr_clip_segment(ends, planes, SR_VARYINGS_AT + 1, &cfg, out, cut);
+            cr_assert(kept, "case %d: the triangle keeps a piece of edge %d, the segment none", n, edge);
+            const sr_vertex_out *want[2] = { &poly.vert[i], &poly.vert[(i + 1) % count] };
+            for (int k = 0; k < 2; k++)
+                cr_assert(same_point(&out[k], want[k], !depth->on),
+                          "case %d (precision %d, depth %d), edge %d end %d: segment (%a %a %a %a), triangle (%a %a %a %a)",
+                          n, (int)precision, depth->on, edge, k, out[k].v[0], out[k].v[1], out[k].v[2], out[k].v[3],
+                          want[k]->v[0], want[k]->v[1], want[k]->v[2], want[k]->v[3]);
+            /* And mapped to the same screen points and depths as the
+             * triangle's vertices there (depth from the point on the two
+             * lines in double). */
+            const sr_viewport vp = { 640, 480, SR_SUBPIXEL_BITS, 1.0f, *depth };
+            double tri_d[3][4], seg_d[3][4];
+            for (int v = 0; v < 3; v++)
+                to_double4(&tri[v], tri_d[v]);
+            memcpy(seg_d[0], tri_d[edge], sizeof seg_d[0]);
+            memcpy(seg_d[1], tri_d[(edge + 1) % 3], sizeof seg_d[1]);
+            memcpy(seg_d[2], tri_d[edge], sizeof seg_d[2]);
+            sr_screen_vertex poly_screen[SR_MAX_CLIP_VERTS], seg_screen[2];
+            if (sr_viewport_map_polygon(&poly, tri_d, 1, &vp, poly_screen)) {
+                for (int k = 0; k < 2; k++) {
+                    double point[4];
+                    if (cut[k] == SR_SEGMENT_END_GIVEN)
+                        memcpy(point, seg_d[k], sizeof point);
+                    else
+                        sr_clip_point_on_lines_d(seg_d, 0, SR_CLIP_ON_PLANE + cut[k], depth, point);
+                    cr_assert(sr_viewport_map_checked_d(&out[k], point, 1, &vp, &seg_screen[k]));
+                    const sr_screen_vertex *p = &poly_screen[(i + k) % count];
+                    cr_assert(seg_screen[k].x == p->x && seg_screen[k].y == p->y && seg_screen[k].z == p->z &&
+                                  seg_screen[k].x_off == p->x_off && seg_screen[k].y_off == p->y_off,
+                              "case %d, edge %d end %d: screen (%lld %lld %a), triangle's (%lld %lld %a)", n, edge, k,
+                              (long long)seg_screen[k].x, (long long)seg_screen[k].y, seg_screen[k].z,
+                              (long long)p->x, (long long)p->y, p->z);
+                }
+                mapped++;
+            }
+            compared++;
+            multi += __builtin_popcount(planes) > 1;
+        }
+    }
+    cr_assert_gt(compared, 20000, "%d edges compared", compared);
+    cr_assert_gt(multi, 2000, "%d edges over two planes or more", multi);
+    cr_assert_gt(mapped, 10000, "%d edges mapped", mapped);
+}
+
+/* A clip-space line list: positions[k] given as (x, y, z, w). */
+static void clip_lines(sr_mesh *m, const float (*c)[4], uint32_t n, sr_topology topology)
+{
+    scene_mesh_alloc(m, n, 1, false);
+    free(m->indices);
+    m->indices = malloc(n * sizeof(uint32_t));
+    m->clip_positions = malloc(n * sizeof *m->clip_positions);
+    cr_assert(m->indices && m->clip_positions);
+    m->index_count = n;
+    for (uint32_t k = 0; k < n; k++) {
+        glm_vec4_copy((float *)c[k], m->clip_positions[k]);
+        m->indices[k] = k;
+    }
+    m->topology = topology;
+}
+
+static sr_stats draw_clip_space(sr_framebuffer *fb, const sr_mesh *m, float size)
+{
+    sr_framebuffer_clear(fb, 0);
+    sr_draw_desc desc = { .mesh = m, .shade = SR_SHADE_ID, .point_size = size, .line_width = size };
+    return draw_desc(fb, &desc);
+}
+
+Test(lines, lines_through_every_plane_the_eye_and_bad_numbers_are_clipped_or_dropped)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    const float nan = NAN, inf = INFINITY;
+    const float c[][4] = {
+        { 0, 0, 0.5f, 1 }, { 3, 0, 0.5f, 1 },       /* 1: out through the right plane */
+        { -3, 0.5f, 0.5f, 1 }, { 0, 0.5f, 0.5f, 1 }, /* 2: in through the left */
+        { 0, 3, 0.5f, 1 }, { 0, -3, 0.5f, 1 },       /* 3: across top and bottom */
+        { 0.5f, 0, -1, 1 }, { 0.5f, 0, 2, 1 },       /* 4: across near and far */
+        { -0.5f, -0.5f, -0.5f, -1 }, { 0.5f, 0.5f, 0.5f, 1 }, /* 5: through the eye: cut to w = 0 */
+        { 0, 0, 0, 0 }, { 0.5f, 0.5f, 0.5f, 1 },     /* 6: from w = 0 at the origin */
+        { nan, 0, 0.5f, 1 }, { 0.5f, 0, 0.5f, 1 },   /* 7: NaN */
+        { 0, inf, 0.5f, 1 }, { 0.5f, 0, 0.5f, 1 },   /* 8: inf */
+        { 2, 2, 0.5f, 1 }, { 3, 2, 0.5f, 1 },        /* 9: outside the right plane */
+        { 0.2f, 0.2f, 0.5f, -1 }, { 0.3f, 0.2f, 0.5f, -1 }, /* 10: behind the eye */
+    };
+    sr_mesh m;
+    clip_lines(&m, c, 20, SR_LINE_LIST);
+    sr_stats s = draw_clip_space(&fb, &m, 1.0f);
+    cr_assert_eq(s.lines, 10);
+    cr_assert_eq(s.rejected, 5);
+    /* NaN, inf, and the end at w = 0 inside every plane (the eye: it maps nowhere). */
+    cr_assert_eq(s.nonfinite, 3);
+    cr_assert_eq(s.rejected_by_plane[SR_PLANE_RIGHT], 1);
+    cr_assert_eq(s.rejected_by_plane[SR_PLANE_FAR], 1, "behind the eye: past far (z > w < 0) first");
+    cr_assert_eq(s.clipped, 5);
+    /* Lines 1 to 4 drawn; 5, through the eye, is cut to w = 0 and dropped. */
+    cr_assert_eq(s.drawn, 4);
+    char got[1024];
+    /* Line 1 from the centre out through the right side, on the border of
+     * rows 7 and 8: the diamonds' bottom corners, row 7. */
+    pixels_of(&fb, 1, got, sizeof got);
+    cr_assert_str_eq(got, "12,7 13,7 14,7 15,7 16,7 17,7 18,7 19,7 20,7 21,7 22,7 23,7 ");
+    pixels_of(&fb, 2, got, sizeof got);
+    cr_assert_str_eq(got, "0,3 1,3 2,3 3,3 4,3 5,3 6,3 7,3 8,3 9,3 10,3 11,3 ");
+    /* Line 3 across the whole height on x = 0, between columns 11 and 12,
+     * but where line 2 was first at the same depth (LESS). */
+    cr_assert_eq(scene_count_color(&fb, 3), H - 1);
+    cr_assert_eq(at(&fb, 11, 0), 3);
+    cr_assert_eq(at(&fb, 11, 3), 2);
+    /* Line 4 runs along the view axis: one point on screen, no pixel. */
+    cr_assert_eq(scene_count_color(&fb, 4), 0);
+    cr_assert_eq(s.fragments, 12 + 12 + H - 1);
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+Test(points, a_point_is_kept_or_dropped_by_its_position_and_its_square_cut_to_the_framebuffer)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    const float over = 1.0f + 2.0f / W; /* the centre a pixel past the right side */
+    const float c[][4] = {
+        { 0, 0, 0.5f, 1 },      /* 1: in view */
+        { 0, 0, -0.1f, 1 },     /* 2: in front of near */
+        { 0, 0, 1.1f, 1 },      /* 3: past far */
+        { over, 0, 0.5f, 1 },   /* 4: past the right side; a wide square reaches in */
+        { 3, 0, 0.5f, 1 },      /* 5: far past it */
+        { 0, 0, 0, 0 },         /* 6: w = 0: the eye */
+        { NAN, 0, 0.5f, 1 },    /* 7 */
+        { 0, -INFINITY, 0.5f, 1 }, /* 8 */
+        { 0.5f, 0.5f, 0.5f, -1 }, /* 9: behind the eye */
+    };
+    sr_mesh m;
+    clip_lines(&m, c, 9, SR_POINT_LIST);
+    sr_stats s = draw_clip_space(&fb, &m, 5.0f);
+    cr_assert_eq(s.points, 9);
+    cr_assert_eq(s.rejected, 7);
+    cr_assert_eq(s.nonfinite, 3);
+    cr_assert_eq(s.rejected_by_plane[SR_PLANE_NEAR], 1);
+    cr_assert_eq(s.rejected_by_plane[SR_PLANE_FAR], 2, "past far, and behind the eye (z > w < 0)");
+    cr_assert_eq(s.rejected_by_plane[SR_PLANE_RIGHT], 1);
+    cr_assert_eq(s.clipped, 0);
+    cr_assert_eq(s.drawn, 2);
+    char got[1024];
+    /* 5 × 5 around (12, 8): the centres in [9.5, 14.5) and [5.5, 10.5). */
+    pixels_of(&fb, 1, got, sizeof got);
+    cr_assert_str_eq(got, "9,5 10,5 11,5 12,5 13,5 9,6 10,6 11,6 12,6 13,6 9,7 10,7 11,7 12,7 13,7 "
+                          "9,8 10,8 11,8 12,8 13,8 9,9 10,9 11,9 12,9 13,9 ");
+    /* Centred on x = 25 px: the columns with centres from 22.5, two in view. */
+    pixels_of(&fb, 4, got, sizeof got);
+    cr_assert_str_eq(got, "22,5 23,5 22,6 23,6 22,7 23,7 22,8 23,8 22,9 23,9 ");
+    /* One pixel wide, the same point reaches nothing: kept, no pixel. */
+    s = draw_clip_space(&fb, &m, 1.0f);
+    cr_assert_eq(s.drawn, 2);
+    cr_assert_eq(scene_count_color(&fb, 4), 0);
+    cr_assert_eq(s.fragments, 1);
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+/* dEQP-GLES3.functional.clipping.point.point_z_clip and wide_point_clip,
+ * their points (es3fClippingTests.cpp) on a 24 × 16 canvas: GL's clip
+ * volume has −w <= z, softrast's (Direct3D's) 0 <= z, so the points at
+ * z = −0.1 that dEQP keeps in view are dropped here; the others keep
+ * dEQP's verdicts. */
+Test(points, deqp_point_clip_cases_carry_over_but_for_the_depth_range)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    const float c[][4] = {
+        { 0.0f, 0.0f, 0.0f, 1.0f }, { 0.1f, 0.1f, 0.1f, 1.0f }, { -0.1f, 0.1f, -0.1f, 1.0f },
+        { -0.1f, -0.1f, 0.1f, 1.0f }, { 0.1f, -0.1f, -0.1f, 1.0f }, /* in GL's volume */
+        { 0.1f, 0.0f, 1.1f, 1.0f }, { -0.1f, 0.0f, -1.1f, 1.0f }, { -0.0f, -0.1f, 1.1f, 1.0f },
+        { 0.0f, 0.1f, -1.1f, 1.0f }, /* clipped in both */
+    };
+    sr_mesh m;
+    clip_lines(&m, c, 9, SR_POINT_LIST);
+    sr_stats s = draw_clip_space(&fb, &m, 1.0f);
+    cr_assert_eq(s.drawn, 3, "the three with z >= 0 of dEQP's five");
+    cr_assert_eq(s.rejected_by_plane[SR_PLANE_NEAR], 4);
+    cr_assert_eq(s.rejected_by_plane[SR_PLANE_FAR], 2);
+    /* On pixel corners, (12, 8) and (13.2, 7.2), (10.8, 8.8) in pixels. */
+    cr_assert_eq(at(&fb, 11, 7), 1);
+    cr_assert_eq(at(&fb, 13, 7), 2);
+    cr_assert_eq(at(&fb, 10, 8), 4);
+    sr_mesh_free(&m);
+    /* wide_point_clip's last three: centres a pixel past the right side
+     * (x = 25 px) or the top (y = −1 px), 5 px wide, drawn in part: the
+     * centres in [22.5, 27.5) and [−3.5, 1.5). */
+    const float over = 1.0f + 2.0f / W, over_y = 1.0f + 2.0f / H;
+    const float edge[][4] = { { over, over_y, 0.0f, 1.0f }, { 0.0f, over_y, 0.0f, 1.0f }, { over, 0.0f, 0.0f, 1.0f } };
+    clip_lines(&m, edge, 3, SR_POINT_LIST);
+    s = draw_clip_space(&fb, &m, 5.0f);
+    cr_assert_eq(s.drawn, 3);
+    cr_assert_eq(scene_count_color(&fb, 1), 2, "the corner: 2 × 1 in view");
+    cr_assert_eq(scene_count_color(&fb, 2), 5, "the top: 5 × 1");
+    cr_assert_eq(scene_count_color(&fb, 3), 10, "the right: 2 × 5");
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+/* dEQP-GLES3.functional.clipping.line.line_z_clip's lines: from the centre
+ * past the far plane (z = 2w), or past near (z = −2w). Past far they keep
+ * the piece up to z = w as in GL; past near, GL keeps the piece down to
+ * z = −w and softrast the piece down to z = 0: the centre's pixel only. */
+Test(lines, deqp_line_z_clip_cases_carry_over_but_for_the_depth_range)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, 200, 200);
+    const float c[][4] = {
+        { 0.0f, 0.0f, 0.0f, 1.0f }, { 1.3f, 1.0f, 2.0f, 1.0f },   { 0.0f, 0.0f, 0.0f, 1.0f }, { 1.3f, -1.0f, 2.0f, 1.0f },
+        { 0.0f, 0.0f, 0.0f, 1.0f }, { -1.0f, -1.1f, -2.0f, 1.0f }, { 0.0f, 0.0f, 0.0f, 1.0f }, { -1.0f, 1.1f, -2.0f, 1.0f },
+        { 0.0f, 0.0f, 0.0f, 1.0f }, { 1.0f, 0.1f, 2.0f, 0.6f },
+    };
+    sr_mesh m;
+    clip_lines(&m, c, 10, SR_LINE_LIST);
+    sr_stats s = draw_clip_space(&fb, &m, 1.0f);
+    cr_assert_eq(s.clipped, 5);
+    /* Past far: cut at t = ½, (0.65, ±0.5) NDC, 65 columns of x-major line. */
+    cr_assert_eq(scene_count_color(&fb, 1), 65);
+    cr_assert_eq(scene_count_color(&fb, 2), 65);
+    cr_assert_eq(scene_count_color(&fb, 3) + scene_count_color(&fb, 4), 0, "cut to the point z = 0 at the centre");
+    /* The last reaches z = w at t = 1/2.4, (0.5, 0.05) NDC: the columns
+     * 100 … 149, the first of them line 1's at the same depth (LESS). */
+    cr_assert_eq(scene_count_color(&fb, 5), 49);
+    cr_assert_eq(at(&fb, 100, 99), 1);
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+/* A random soup of points or lines under a perspective camera: some
+ * through the near plane, the sides and behind the eye. */
+static void random_soup(sr_mesh *m, sr_topology topology, uint32_t n, test_rng *r)
+{
+    sr_error err = { "" };
+    cr_assert(sr_mesh_alloc(m, n, n, true, false, true, &err), "%s", err.message);
+    for (uint32_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++) {
+            m->positions[i][c] = (float)rng_uniform(r, -4, 4);
+            m->colors[i][c] = (float)rng_unit(r);
+            m->normals[i][c] = (float)rng_uniform(r, -1, 1);
+        }
+        m->indices[i] = (uint32_t)rng_below(r, (int)n);
+    }
+    m->topology = topology;
+}
+
+Test(lines, points_and_lines_are_the_same_on_every_thread_count_and_path)
+{
+    const sr_topology topologies[] = { SR_POINT_LIST, SR_LINE_LIST, SR_LINE_STRIP };
+    test_rng r = { 7 };
+    for (int t = 0; t < 3; t++) {
+        sr_mesh m;
+        random_soup(&m, topologies[t], 3000, &r);
+        sr_camera cam = scene_camera(0.5f, 0.3f, -2.5f, 0, 0, 0, 70.0f, 0.1f, 10.0f);
+        sr_draw_desc desc = { .mesh = &m, .shade = SR_SHADE_LAMBERT, .point_size = 3.0f, .line_width = 2.0f };
+        scene_camera_desc(&desc, &cam, 160, 120);
+        sr_framebuffer one, other;
+        scene_fb_make(&one, 160, 120);
+        scene_fb_make(&other, 160, 120);
+        sr_stats s1, s2;
+        sr_framebuffer_clear(&one, 0);
+        scene_draw_on_loop(&one, &desc, SR_SIMD_AUTO, 1, SR_PATH_DIRECT, &s1);
+        cr_assert_gt(s1.fragments, 1000);
+        cr_assert_gt(s1.clipped + s1.rejected, 0);
+        const sr_draw_path paths[] = { SR_PATH_BY_COST, SR_PATH_TILES, SR_PATH_ROWS };
+        for (int threads = 2; threads <= 7; threads += 5)
+            for (int p = 0; p < 3; p++) {
+                sr_framebuffer_clear(&other, 0);
+                scene_draw_on_loop(&other, &desc, SR_SIMD_AUTO, threads, paths[p], &s2);
+                cr_assert(memcmp(one.color, other.color, 160 * 120 * 4) == 0 &&
+                              memcmp(one.depth, other.depth, 160 * 120 * 4) == 0 && memcmp(&s1, &s2, sizeof s1) == 0,
+                          "topology %d, %d threads, path %d", (int)topologies[t], threads, (int)paths[p]);
+            }
+        sr_framebuffer_destroy(&one);
+        sr_framebuffer_destroy(&other);
+        sr_mesh_free(&m);
+    }
+}
+
+Test(lines, a_line_over_its_triangle_needs_the_depth_bias_and_a_hidden_one_stays_hidden)
+{
+    sr_framebuffer fb, alone;
+    scene_fb_make(&fb, W, H);
+    scene_fb_make(&alone, W, H);
+    /* A triangle tilted in depth (0.03 per pixel at most), its edges as
+     * lines 1, 2 and 4, and line 3 at z = 0.9 across it, behind it where
+     * it covers (0.32 … 0.54 there). */
+    const float xyz[][3] = { { 2.0f, 2.0f, 0.2f }, { 20.0f, 3.0f, 0.7f }, { 4.0f, 14.0f, 0.4f },
+                             { 0.5f, 9.0f, 0.9f }, { 23.5f, 9.0f, 0.9f } };
+    const uint32_t tri_idx[] = { 0, 1, 2 }, line_idx[] = { 0, 1, 1, 2, 3, 4, 2, 0 };
+    sr_mesh tri, lines;
+    pixel_mesh(&tri, xyz, 5, tri_idx, 3, SR_TRIANGLE_LIST);
+    pixel_mesh(&lines, xyz, 5, line_idx, 8, SR_LINE_LIST);
+    sr_draw_desc fill = { .mesh = &tri, .shade = SR_SHADE_DEPTH, .cull = SR_CULL_NONE };
+    sr_draw_desc desc = { .mesh = &lines, .shade = SR_SHADE_ID };
+    scene_pixel_ortho(&fill, W, H);
+    scene_pixel_ortho(&desc, W, H);
+    sr_framebuffer_clear(&alone, 0);
+    draw_desc(&alone, &desc);
+    float filled[W * H];
+    for (int bias = 0; bias < 2; bias++) {
+        sr_framebuffer_clear(&fb, 0);
+        draw_desc(&fb, &fill);
+        memcpy(filled, fb.depth, sizeof filled);
+        /* More than the plane's depth over the 0.7 px a line pixel's
+         * centre may lie off the edge. */
+        desc.depth_bias = bias ? 1.0f / 16.0f : 0.0f;
+        draw_desc(&fb, &desc);
+        size_t edge_lost = 0;
+        for (int i = 0; i < W * H; i++) {
+            bool edge = alone.color[i] == 1 || alone.color[i] == 2 || alone.color[i] == 4;
+            edge_lost += edge && fb.color[i] != alone.color[i];
+            cr_assert(fb.color[i] != 3 || filled[i] == 1.0f, "pixel (%d, %d): a hidden line shows", i % W, i / W);
+            cr_assert_eq(fb.color[i] == 3, alone.color[i] == 3 && filled[i] == 1.0f);
+        }
+        /* Without a bias an edge loses where the triangle's plane at the
+         * pixel centre, off the edge's line, is nearer; with it, never. */
+        if (bias)
+            cr_assert_eq(edge_lost, 0);
+        else
+            cr_assert_gt(edge_lost, 0);
+    }
+    sr_mesh_free(&tri);
+    sr_mesh_free(&lines);
+    sr_framebuffer_destroy(&fb);
+    sr_framebuffer_destroy(&alone);
+}
+
+Test(lines, colors_are_interpolated_perspective_correctly)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, 64, 8);
+    /* Clip space: from x = −1 at w = 1 (red) to x = 3 at w = 3 (blue), on
+     * y = 0.25 w: x_ndc runs −1 → 1 while the color, linear in clip
+     * space, runs as t_clip = t_s / (3 − 2 t_s) in screen t_s. */
+    const float c[][4] = { { -1.0f, 0.25f, 0.5f, 1.0f }, { 3.0f, 0.75f, 1.5f, 3.0f } };
+    sr_mesh m;
+    clip_lines(&m, c, 2, SR_LINE_LIST);
+    m.colors = calloc(2, sizeof(vec3));
+    m.colors[0][0] = 1.0f;
+    m.colors[1][2] = 1.0f;
+    sr_framebuffer_clear(&fb, 0);
+    sr_draw_desc desc = { .mesh = &m, .shade = SR_SHADE_COLOR };
+    sr_stats s = draw_desc(&fb, &desc);
+    cr_assert_eq(s.fragments, 64);
+    for (int x = 0; x < 64; x++) {
+        double ts = (x + 0.5) / 64.0, tc = ts / (3.0 - 2.0 * ts);
+        uint32_t px = at(&fb, x, 2);
+        int red = (int)(px >> 16), blue = (int)(px & 0xFF);
+        cr_assert(abs(red - (int)lrint(255.0 * (1.0 - tc))) <= 1 && abs(blue - (int)lrint(255.0 * tc)) <= 1,
+                  "pixel %d: %06x, want t = %f", x, px, tc);
+    }
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+Test(lines, bad_point_and_line_fields_are_refused)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    const float xyz[][3] = { { 1, 1, 0.5f }, { 5, 5, 0.5f } };
+    const uint32_t idx[] = { 0, 1 }, past[] = { 0, 2 };
+    sr_mesh m;
+    pixel_mesh(&m, xyz, 2, idx, 2, SR_LINE_LIST);
+    sr_error err = { "" };
+    sr_draw_desc bad[] = { { .mesh = &m, .point_size = 0.5f }, { .mesh = &m, .point_size = NAN },
+                           { .mesh = &m, .line_width = 65.0f }, { .mesh = &m, .depth_bias = -1e-3f },
+                           { .mesh = &m, .depth_bias = INFINITY } };
+    sr_framebuffer_clear(&fb, 0x123456);
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        bad[k].shade = SR_SHADE_ID;
+        cr_assert_not(sr_draw(&fb, &bad[k], NULL, &err), "desc %zu drew", k);
+        cr_assert_neq(err.message[0], '\0');
+    }
+    m.topology = (sr_topology)9;
+    cr_assert_not(sr_draw(&fb, &(sr_draw_desc){ .mesh = &m }, NULL, &err));
+    cr_assert_str_eq(err.message, "unknown topology 9");
+    m.topology = SR_LINE_STRIP;
+    memcpy(m.indices, past, sizeof past);
+    cr_assert_not(sr_draw(&fb, &(sr_draw_desc){ .mesh = &m, .shade = SR_SHADE_ID, .clear = true }, NULL, &err));
+    cr_assert_str_eq(err.message, "mesh has an index past its 2 vertices");
+    cr_assert_eq(scene_count_color(&fb, 0x123456), (size_t)W * H, "nothing drawn or cleared");
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}

@@ -1,0 +1,315 @@
+/* The sub-pixel lanes (pipeline/08_raster/subpixel.h): each lane's verdict
+ * against the one-at-a-time path's own box, pixel mask and cull, and whole
+ * draws of dense meshes with the lanes against draws without them
+ * (sr_draw_study.one_by_one): the same ids, depths and counts, bit for bit,
+ * on every path, thread count and SIMD level. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "pipeline/07_cull.h"
+#include "pipeline/08_raster/raster.h"
+#include "pipeline/08_raster/subpixel.h"
+#include "softrast_private.h"
+#include "test_rng.h"
+
+/* What the one-at-a-time path does with a triangle, from raster.c's own
+ * functions: culled, or kept and covering no pixel centre of the
+ * framebuffer (its box empty, or tiny with an empty mask), or neither; and
+ * how many pixel centres its box holds. */
+typedef enum fate { FATE_CULLED, FATE_DRAWS_NOTHING, FATE_MAY_DRAW } fate;
+
+static int64_t box_centres(const sr_screen_vertex tri[3], const sr_subpixel_rules *r)
+{
+    sr_raster_rect box = sr_raster_scan_box(tri, (sr_raster_rect){ 0, 0, r->width, r->height }, r->bits);
+    return box.x0 >= box.x1 || box.y0 >= box.y1 ? 0 : (int64_t)(box.x1 - box.x0) * (box.y1 - box.y0);
+}
+
+static fate fate_of(const sr_screen_vertex tri[3], const sr_subpixel_rules *r, sr_cull cull, sr_front front)
+{
+    int64_t area2 = sr_cull_area2(&tri[0], &tri[1], &tri[2]);
+    if (!sr_cull_keeps(area2, cull, front))
+        return FATE_CULLED;
+    sr_raster_rect box = sr_raster_scan_box(tri, (sr_raster_rect){ 0, 0, r->width, r->height }, r->bits);
+    if (box.x0 >= box.x1 || box.y0 >= box.y1)
+        return FATE_DRAWS_NOTHING;
+    if (!sr_raster_box_is_tiny(box))
+        return FATE_MAY_DRAW;
+    const sr_screen_vertex *v[3] = { &tri[0], &tri[1], &tri[2] };
+    return sr_raster_tiny_mask(v, area2, box, r->bits) ? FATE_MAY_DRAW : FATE_DRAWS_NOTHING;
+}
+
+/* Within two pixels on each axis: what the lanes promise to decide. */
+static bool small(const sr_screen_vertex tri[3], int bits)
+{
+    int64_t two = (int64_t)2 << bits;
+    for (int k = 0; k < 3; k++)
+        for (int j = 0; j < 3; j++)
+            if (llabs(tri[k].x - tri[j].x) >= two || llabs(tri[k].y - tri[j].y) >= two)
+                return false;
+    return true;
+}
+
+/* Lane by lane: a lane says culled only of a culled triangle and draws
+ * nothing only of one that draws nothing; of a small triangle culled, or
+ * whose box holds at most one pixel centre, it says which, exactly; of any
+ * other it says nothing. Returns how many lanes dropped their triangle. */
+static int check_lanes(const sr_screen_vertex (*tris)[3], int n, const sr_subpixel_rules *r, sr_cull cull,
+                       sr_front front)
+{
+    sr_subpixel_batch b = { { { 0 } } };
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            b.x[k][i] = (int32_t)tris[i][k].x;
+            b.y[k][i] = (int32_t)tris[i][k].y;
+        }
+    sr_subpixel_verdict v = sr_subpixel_reject(&b, n, r);
+    cr_assert_eq(v.culled & v.drawn, 0, "a lane both culled and drawn");
+    int dropped = 0;
+    for (int i = 0; i < n; i++) {
+        fate f = fate_of(tris[i], r, cull, front);
+        bool culled = v.culled >> i & 1, drawn = v.drawn >> i & 1;
+        dropped += culled || drawn;
+        cr_assert(!culled || f == FATE_CULLED, "lane %d culled a triangle stage 7 keeps", i);
+        cr_assert(!drawn || f == FATE_DRAWS_NOTHING, "lane %d dropped a triangle that draws", i);
+        if (small(tris[i], r->bits) && (f == FATE_CULLED || box_centres(tris[i], r) <= 1))
+            cr_assert(culled == (f == FATE_CULLED) && drawn == (f == FATE_DRAWS_NOTHING),
+                      "lane %d left a small triangle it decides (fate %d)", i, (int)f);
+        else if (!small(tris[i], r->bits))
+            cr_assert(!culled && !drawn, "lane %d decided a triangle too large for its lanes", i);
+    }
+    return dropped;
+}
+
+static const sr_cull culls[] = { SR_CULL_NONE, SR_CULL_BACK, SR_CULL_FRONT };
+
+static sr_subpixel_rules rules_of(int bits, int width, int height, sr_cull cull, sr_front front)
+{
+    return (sr_subpixel_rules){ bits, width, height, sr_cull_keeps(1, cull, front), sr_cull_keeps(-1, cull, front) };
+}
+
+static sr_screen_vertex at(int64_t x, int64_t y)
+{
+    return (sr_screen_vertex){ .x = x, .y = y };
+}
+
+/* Random triangles of up to 3 pixels a side around the framebuffer, their
+ * vertices on a grid of quarter pixels or finer, so edges run through
+ * pixel centres and vertices sit on them (the top-left rule decides). */
+Test(subpixel, lanes_agree_with_the_box_mask_and_cull_of_each_triangle)
+{
+    test_rng rng = { 35 };
+    int dropped = 0, lanes = 0;
+    for (int bits = 2; bits <= SR_SUBPIXEL_LANES_MAX_BITS; bits += 2)
+        for (int round = 0; round < 200; round++) {
+            sr_screen_vertex tris[SR_SUBPIXEL_BATCH][3];
+            int n = 1 + rng_below(&rng, SR_SUBPIXEL_BATCH);
+            int64_t one = (int64_t)1 << bits, step = one >> rng_below(&rng, bits + 1);
+            for (int i = 0; i < n; i++) {
+                int64_t cx = rng_below(&rng, 20) - 2, cy = rng_below(&rng, 14) - 2;
+                for (int k = 0; k < 3; k++)
+                    tris[i][k] = at(cx * one + step * rng_below(&rng, (int)(3 * one / step) + 1),
+                                    cy * one + step * rng_below(&rng, (int)(3 * one / step) + 1));
+            }
+            sr_cull cull = culls[rng_below(&rng, 3)];
+            sr_front front = rng_below(&rng, 2) ? SR_FRONT_CW : SR_FRONT_CCW;
+            sr_subpixel_rules r = rules_of(bits, 16, 10, cull, front);
+            dropped += check_lanes(tris, n, &r, cull, front);
+            lanes += n;
+        }
+    cr_assert_gt(dropped, lanes / 4, "the lanes dropped only %d of %d triangles", dropped, lanes);
+}
+
+Test(subpixel, lanes_at_the_edges_of_the_rules)
+{
+    const int bits = 8, one = 256, half = 128;
+    const sr_screen_vertex tris[][3] = {
+        /* Pixel (3, 2)'s centre on a left edge: drawn; on the mirrored
+         * right edge: not; on a top edge: drawn; on a bottom one: not. */
+        { at(3 * one + half, 2 * one), at(3 * one + half, 3 * one), at(4 * one, 2 * one + half) },
+        { at(3 * one + half, 2 * one), at(3 * one, 2 * one + half), at(3 * one + half, 3 * one) },
+        { at(3 * one, 2 * one + half), at(4 * one, 2 * one + half), at(3 * one + half, 3 * one) },
+        { at(3 * one, 2 * one + half), at(3 * one + half, 2 * one), at(4 * one, 2 * one + half) },
+        /* The centre on a vertex; a box that touches a centre with its side. */
+        { at(3 * one + half, 2 * one + half), at(4 * one, 2 * one + half + 1), at(3 * one + half + 1, 3 * one) },
+        { at(3 * one + half, 2 * one), at(3 * one + half + 100, 2 * one), at(3 * one + half + 50, 2 * one + 10) },
+        /* Zero area, through a centre and beside one. */
+        { at(3 * one, 2 * one), at(4 * one, 3 * one), at(5 * one, 4 * one) },
+        { at(3 * one, 2 * one), at(3 * one, 2 * one), at(3 * one + 7, 2 * one + 3) },
+        /* Off the framebuffer's sides, and its box clamped to its last pixel. */
+        { at(-one, -one), at(-half, -one), at(-one, -half) },
+        { at(15 * one + half - 3, 9 * one + half - 3), at(16 * one + 90, 9 * one + 90),
+          at(15 * one + 90, 10 * one + 90) },
+        /* Huge: a sliver 2^29 subpixels long under one row, and a big triangle. */
+        { at(-(1 << 29), 2 * one + 10), at(1 << 29, 2 * one + 20), at(0, 2 * one + 30) },
+        { at(-(1 << 29), -(1 << 29)), at(1 << 29, 0), at(0, 1 << 29) },
+    };
+    int n = (int)(sizeof tris / sizeof *tris);
+    for (size_t c = 0; c < 3; c++)
+        for (int f = 0; f < 2; f++) {
+            sr_front front = f ? SR_FRONT_CW : SR_FRONT_CCW;
+            sr_subpixel_rules r = rules_of(bits, 16, 10, culls[c], front);
+            check_lanes(tris, n, &r, culls[c], front);
+            /* Every triangle wound the other way as well. */
+            sr_screen_vertex flipped[sizeof tris / sizeof *tris][3];
+            for (int i = 0; i < n; i++) {
+                flipped[i][0] = tris[i][0];
+                flipped[i][1] = tris[i][2];
+                flipped[i][2] = tris[i][1];
+            }
+            check_lanes(flipped, n, &r, culls[c], front);
+        }
+    /* The first one's left edge holds the centre, the second's right edge not. */
+    sr_subpixel_rules none = rules_of(bits, 16, 10, SR_CULL_NONE, SR_FRONT_CW);
+    cr_assert_eq(fate_of(tris[0], &none, SR_CULL_NONE, SR_FRONT_CW), FATE_MAY_DRAW);
+    cr_assert_eq(fate_of(tris[1], &none, SR_CULL_NONE, SR_FRONT_CW), FATE_DRAWS_NOTHING);
+}
+
+/* A dense mesh in clip space over a small framebuffer: vertices on a
+ * jittered grid of about a pixel, some on pixel centres, a few past the
+ * planes (clipped) and one NaN; triangles of neighbouring vertices in
+ * random winding, and a few long ones across the view. */
+static void dense_mesh(sr_mesh *m, test_rng *rng, int width, int height)
+{
+    const uint32_t side = 72, tris = 2 * (side - 1) * (side - 1) + 20;
+    sr_error err;
+    cr_assert(sr_mesh_alloc(m, side * side, 3 * tris, false, false, false, &err), "%s", err.message);
+    m->clip_positions = calloc(m->vertex_count, sizeof *m->clip_positions);
+    cr_assert_not_null(m->clip_positions);
+    for (uint32_t j = 0; j < side; j++)
+        for (uint32_t i = 0; i < side; i++) {
+            float *p = m->clip_positions[j * side + i];
+            float x = -1.1f + 2.2f * ((float)i + (float)rng_uniform(rng, -0.4, 0.4)) / (float)(side - 1);
+            float y = -1.1f + 2.2f * ((float)j + (float)rng_uniform(rng, -0.4, 0.4)) / (float)(side - 1);
+            if (rng_below(rng, 8) == 0) { /* on a pixel centre */
+                x = (2.0f * ((float)rng_below(rng, width) + 0.5f)) / (float)width - 1.0f;
+                y = 1.0f - (2.0f * ((float)rng_below(rng, height) + 0.5f)) / (float)height;
+            }
+            p[0] = x, p[1] = y, p[2] = (float)rng_uniform(rng, 0.05, 0.95), p[3] = 1.0f;
+        }
+    m->clip_positions[side * side / 2][0] = NAN;
+    uint32_t *idx = m->indices, n = 0;
+    for (uint32_t j = 0; j + 1 < side; j++)
+        for (uint32_t i = 0; i + 1 < side; i++) {
+            uint32_t a = j * side + i, b = a + 1, c = a + side, d = c + 1;
+            bool flip = rng_below(rng, 2);
+            uint32_t quad[2][3] = { { a, flip ? c : b, flip ? b : c }, { b, flip ? c : d, flip ? d : c } };
+            memcpy(idx + 3 * n, quad, sizeof quad);
+            n += 2;
+        }
+    while (n < tris) {
+        for (int k = 0; k < 3; k++)
+            idx[3 * n + k] = (uint32_t)rng_below(rng, (int)m->vertex_count);
+        n++;
+    }
+}
+
+typedef struct drawn {
+    sr_framebuffer fb;
+    sr_stats stats;
+} drawn;
+
+static void draw_dense(const sr_mesh *m, int width, int height, sr_shade shade, sr_cull cull, sr_front front,
+                       const sr_draw_study *study, int threads, drawn *out)
+{
+    sr_error err;
+    cr_assert(sr_framebuffer_create(&out->fb, width, height, &err), "%s", err.message);
+    sr_framebuffer_clear(&out->fb, 0x123456);
+    sr_draw_desc desc = { .mesh = m, .shade = shade, .cull = cull, .front = front, .threads = threads,
+                          .study = study };
+    glm_mat4_identity(desc.world);
+    glm_mat4_identity(desc.view);
+    glm_mat4_identity(desc.projection);
+    out->stats = (sr_stats){ 0 };
+    cr_assert(sr_draw(&out->fb, &desc, &out->stats, &err), "%s", err.message);
+}
+
+static void assert_same(const drawn *want, const drawn *got, const char *what)
+{
+    size_t n = (size_t)want->fb.width * want->fb.height;
+    cr_assert_eq(memcmp(want->fb.color, got->fb.color, n * sizeof *want->fb.color), 0, "color differs: %s", what);
+    cr_assert_eq(memcmp(want->fb.depth, got->fb.depth, n * sizeof *want->fb.depth), 0, "depth differs: %s", what);
+    cr_assert_eq(memcmp(&want->stats, &got->stats, sizeof want->stats), 0, "counts differ: %s", what);
+}
+
+static const sr_simd simds[] = { SR_SIMD_SCALAR, SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX512 };
+static const sr_draw_path paths[] = { SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_ROWS };
+
+/* Every path, thread count and SIMD level with the lanes draws what one
+ * thread draws without them. */
+static void assert_lanes_draw_alike(const sr_mesh *m, int width, int height, sr_shade shade, sr_cull cull,
+                                    sr_front front)
+{
+    sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
+    drawn want;
+    draw_dense(m, width, height, shade, cull, front, &reference, 1, &want);
+    cr_assert_gt(want.stats.fragments, 0, "the mesh drew nothing: the comparison would prove nothing");
+    static const int threads[] = { 1, 2, 3 };
+    for (size_t s = 0; s < sizeof simds / sizeof *simds; s++)
+        for (size_t p = 0; p < sizeof paths / sizeof *paths; p++)
+            for (size_t t = 0; t < sizeof threads / sizeof *threads; t++) {
+                sr_draw_study lanes = { .path = paths[p], .simd = simds[s], .chunk_slots = t == 2 ? 5 : 0 };
+                drawn got;
+                draw_dense(m, width, height, shade, cull, front, &lanes, threads[t], &got);
+                char what[96];
+                snprintf(what, sizeof what, "simd %d, path %d, %d threads, cull %d, front %d", (int)simds[s],
+                         (int)paths[p], threads[t], (int)cull, (int)front);
+                assert_same(&want, &got, what);
+                sr_framebuffer_destroy(&got.fb);
+            }
+    sr_framebuffer_destroy(&want.fb);
+}
+
+Test(subpixel, dense_random_meshes_draw_alike_with_and_without_the_lanes, .timeout = 120)
+{
+    test_rng rng = { 3535 };
+    for (int round = 0; round < 2; round++) {
+        sr_mesh m;
+        int width = round ? 64 : 48, height = round ? 48 : 40;
+        dense_mesh(&m, &rng, width, height);
+        for (size_t c = 0; c < 3; c++)
+            assert_lanes_draw_alike(&m, width, height, c == 1 ? SR_SHADE_DEPTH : SR_SHADE_ID, culls[c],
+                                    round ? SR_FRONT_CCW : SR_FRONT_CW);
+        sr_mesh_free(&m);
+    }
+}
+
+/* The tests' dense torus seen small, lit, where the tiny queue takes the
+ * triangles the lanes leave. */
+Test(subpixel, dense_torus_draws_alike_with_and_without_the_lanes, .timeout = 120)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
+    sr_camera cam = sr_camera_default();
+    glm_vec3_copy((vec3){ 0, 1.1f, -1.9f }, cam.eye);
+    for (int lit = 0; lit < 2; lit++) {
+        sr_draw_desc desc = { .mesh = &torus, .shade = lit ? SR_SHADE_LAMBERT : SR_SHADE_ID,
+                              .cull = lit ? SR_CULL_BACK : SR_CULL_NONE };
+        sr_camera_view(&cam, desc.view);
+        sr_camera_projection(&cam, 96.0f / 64.0f, desc.projection);
+        glm_mat4_identity(desc.world);
+        drawn want;
+        sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
+        desc.study = &reference;
+        cr_assert(sr_framebuffer_create(&want.fb, 96, 64, &err), "%s", err.message);
+        sr_framebuffer_clear(&want.fb, 0);
+        want.stats = (sr_stats){ 0 };
+        cr_assert(sr_draw(&want.fb, &desc, &want.stats, &err), "%s", err.message);
+        for (size_t p = 0; p < sizeof paths / sizeof *paths; p++)
+            for (int threads = 1; threads <= 2; threads++) {
+                sr_draw_study lanes = { .path = paths[p] };
+                desc.study = &lanes;
+                desc.threads = threads;
+                drawn got;
+                cr_assert(sr_framebuffer_create(&got.fb, 96, 64, &err), "%s", err.message);
+                sr_framebuffer_clear(&got.fb, 0);
+                got.stats = (sr_stats){ 0 };
+                cr_assert(sr_draw(&got.fb, &desc, &got.stats, &err), "%s", err.message);
+                assert_same(&want, &got, lit ? "lit torus" : "torus ids");
+                sr_framebuffer_destroy(&got.fb);
+            }
+        sr_framebuffer_destroy(&want.fb);
+    }
+    sr_mesh_free(&torus);
+}
