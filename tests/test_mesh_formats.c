@@ -131,22 +131,25 @@ Test(mesh_formats, a_broken_file_is_one_error_line_without_assimps_log, .init = 
     }
 }
 
-/* The engine's parts differ only by their materials' base colour, which
- * becomes the vertex colour: gray metal, blue caps, and more. */
-Test(mesh_formats, material_base_colours_become_vertex_colours)
+/* The engine's parts differ only by their materials' base colour: each
+ * part names its own material, gray metal, blue caps, and more. */
+Test(mesh_formats, each_part_names_its_materials_base_colour)
 {
     sr_mesh m = load(MODELS "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
-    cr_assert_not_null(m.colors);
-    vec3 seen[16];
+    cr_assert_null(m.colors, "no vertex colours in the file: the colours are the materials'");
+    cr_assert_geq(m.material_count, 3u);
+    const float *seen[16];
     int distinct = 0;
     bool blue = false;
-    for (uint32_t v = 0; v < m.vertex_count && distinct < 16; v++) {
+    for (uint32_t p = 0; p < m.part_count && distinct < 16; p++) {
+        cr_assert_lt(m.parts[p].material, m.material_count);
+        const float *c = m.materials[m.parts[p].material].base_color;
         bool known = false;
         for (int i = 0; i < distinct && !known; i++)
-            known = glm_vec3_eqv(seen[i], m.colors[v]);
+            known = memcmp(seen[i], c, 3 * sizeof *c) == 0;
         if (!known)
-            glm_vec3_copy(m.colors[v], seen[distinct++]);
-        blue |= m.colors[v][2] > 0.5f && m.colors[v][0] < 0.2f;
+            seen[distinct++] = c;
+        blue |= c[2] > 0.5f && c[0] < 0.2f;
     }
     cr_expect_geq(distinct, 3, "%d distinct colours", distinct);
     cr_expect(blue, "the blue caps keep their colour");
@@ -185,7 +188,13 @@ Test(mesh_formats, an_embedded_texture_is_the_image_the_gltf_names)
     cr_assert(sr_mesh_load(&gltf, NULL, MODELS "glTF2/BoxTextured-glTF/BoxTextured.gltf", &err), "%s", err.message);
     cr_assert_not_null(inside.texels, "the .glb's texture is decoded");
     cr_assert_null(glb.texture_path);
+    /* One part, its material the box's (Assimp adds a default one after it). */
+    sr_material *in_glb = &glb.materials[glb.parts[0].material], *in_gltf = &gltf.materials[gltf.parts[0].material];
+    cr_assert_eq(in_glb->texture, &inside, "its material draws the decoded texture");
+    cr_assert_not_null(in_gltf->texture_path, "the .gltf's names it beside");
+    cr_assert_str_eq(in_gltf->texture_path, gltf.texture_path);
     cr_assert(sr_texture_load(&beside, gltf.texture_path, &err), "%s", err.message);
+    in_gltf->texture = &beside;
     cr_assert_eq(inside.width, beside.width);
     cr_assert_eq(inside.height, beside.height);
     cr_assert_eq(memcmp(inside.texels, beside.texels, sizeof(uint32_t) * (size_t)beside.width * beside.height), 0);
@@ -208,4 +217,39 @@ Test(mesh_formats, an_embedded_texture_is_the_image_the_gltf_names)
     sr_texture_free(&beside);
     sr_mesh_free(&glb);
     sr_mesh_free(&gltf);
+}
+
+/* glTF's materials as the file means them: ClearCoatTest's colour factors
+ * (linear, as glTF stores them), its BLEND material with an alpha texture
+ * beside the file, each texture file decoded with its alpha; the milk
+ * truck's windows keep their own untextured material beside the body's
+ * texture. */
+Test(mesh_formats, gltf_materials_keep_their_factors_alpha_modes_and_textures)
+{
+    sr_mesh coat = load(MODELS "glTF2/ClearCoat-glTF/ClearCoatTest.gltf");
+    bool red = false, blend = false;
+    for (uint32_t i = 0; i < coat.material_count; i++) {
+        const sr_material *m = &coat.materials[i];
+        red |= m->base_color[0] == 0.5f && m->base_color[1] < 0.05f;
+        if (m->alpha_mode == SR_ALPHA_BLEND && m->texture_path) {
+            blend = strstr(m->texture_path, "PartialCoating_Alpha.png") != NULL;
+            sr_texture t;
+            sr_error err;
+            cr_assert(sr_texture_load(&t, m->texture_path, &err), "%s", err.message);
+            cr_expect(t.alpha, "the alpha texture keeps its alpha");
+            sr_texture_free(&t);
+        }
+    }
+    cr_expect(red, "a red factor");
+    cr_expect(blend, "the BLEND material and its texture");
+    sr_mesh_free(&coat);
+    sr_mesh truck = load(MODELS "glTF/CesiumMilkTruck/CesiumMilkTruck.gltf");
+    bool textured = false, plain = false;
+    for (uint32_t p = 0; p < truck.part_count; p++) {
+        const sr_material *m = &truck.materials[truck.parts[p].material];
+        textured |= m->texture_path != NULL;
+        plain |= m->texture_path == NULL && m->texture == NULL;
+    }
+    cr_expect(textured && plain, "the body textured, the windows not");
+    sr_mesh_free(&truck);
 }

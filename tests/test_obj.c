@@ -491,6 +491,91 @@ Test(obj, without_usemtl_there_is_no_texture)
     sr_mesh_free(&m);
 }
 
+/* ---- parts and materials ---- */
+
+/* Runs of faces of one o/g group and one usemtl are parts; each library
+ * material a face uses is one mesh material, in order of first use (a
+ * texture over white, else Kd), and faces without one share the default. */
+Test(obj, groups_and_materials_make_parts)
+{
+    write_text("a.mtl", "newmtl red\nKd 1 0 0\n"
+                        "newmtl gray\nKd 0.5\n"
+                        "newmtl wood\nKd 0.2 0.2 0.2\nmap_Kd wood.png\n"
+                        "newmtl unused\nKd 0 1 0\n");
+    sr_mesh m = load_ok("mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                        "f 1 2 3\n"                      /* part 0: the default material */
+                        "usemtl wood\nf 1 2 3 4\n"       /* part 1: two triangles */
+                        "usemtl red\nf 1 2 3\nf 2 4 3\n" /* part 2 */
+                        "g top\nf 1 2 3\n"               /* part 3: a new group, still red */
+                        "usemtl nowhere\nf 1 2 3\n"      /* part 4: the default again */
+                        "usemtl red\no thing\nusemtl gray\nf 1 2 3\n");
+    cr_assert_eq(m.part_count, 6);
+    const sr_mesh_part want[6] = { { 0, 1, 0 }, { 1, 2, 1 }, { 3, 2, 2 }, { 5, 1, 2 }, { 6, 1, 0 }, { 7, 1, 3 } };
+    for (int i = 0; i < 6; i++)
+        cr_expect(m.parts[i].first_triangle == want[i].first_triangle &&
+                      m.parts[i].triangle_count == want[i].triangle_count && m.parts[i].material == want[i].material,
+                  "part %d: %u +%u material %u", i, m.parts[i].first_triangle, m.parts[i].triangle_count,
+                  m.parts[i].material);
+    cr_assert_eq(m.material_count, 4);
+    const float gray = 0.8f;
+    const float colors[4][4] = { { gray, gray, gray, 1 }, { 1, 1, 1, 1 }, { 1, 0, 0, 1 }, { 0.5f, 0.5f, 0.5f, 1 } };
+    for (int i = 0; i < 4; i++) {
+        cr_expect_arr_eq(m.materials[i].base_color, colors[i], sizeof colors[i], "material %d", i);
+        cr_expect_eq(m.materials[i].alpha_mode, SR_ALPHA_OPAQUE);
+        cr_expect_null(m.materials[i].texture);
+    }
+    cr_expect_str_eq(m.materials[1].texture_path, tmp_path("wood.png"), "as written, found or not");
+    cr_expect_null(m.materials[0].texture_path);
+    cr_expect_null(m.materials[2].texture_path);
+    sr_mesh_free(&m);
+}
+
+/* Groups alone make parts (instance masks) but no materials: the mesh
+ * draws as a mesh without parts does. A file of plain faces has neither. */
+Test(obj, groups_without_materials_are_parts_only)
+{
+    sr_mesh m = load_ok("v 0 0 0\nv 1 0 0\nv 0 1 0\no a\nf 1 2 3\nf 1 2 3\ng b\nf 1 2 3\n");
+    cr_assert_eq(m.part_count, 2);
+    cr_expect_eq(m.parts[1].first_triangle, 2);
+    cr_expect_eq(m.material_count, 0);
+    cr_expect_null(m.materials);
+    sr_mesh_free(&m);
+    m = load_ok("v 0 0 0\nv 1 0 0\nv 0 1 0\ng only\nf 1 2 3\nf 1 2 3\n");
+    cr_expect_eq(m.part_count, 0);
+    cr_expect_null(m.parts);
+    sr_mesh_free(&m);
+}
+
+/* Over vertex colours the default material is white: the colours show as
+ * they are. */
+Test(obj, the_default_material_is_white_over_vertex_colours)
+{
+    write_text("a.mtl", "newmtl red\nKd 1 0 0\n");
+    sr_mesh m = load_ok("mtllib a.mtl\nv 0 0 0 0.5 0.5 0.5\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl red\nf 1 2 3\n");
+    cr_assert_eq(m.material_count, 2);
+    cr_expect_arr_eq(m.materials[0].base_color, ((float[4]){ 1, 1, 1, 1 }), 4 * sizeof(float), "the default");
+    sr_mesh_free(&m);
+}
+
+/* An OBJ naming a.mtl, whose text fails at `line` with the message `what`. */
+static void assert_mtl_fails(const char *mtl, int line, const char *what)
+{
+    write_text("a.mtl", mtl);
+    write_text(OBJ_NAME, "mtllib a.mtl\n");
+    sr_mesh m;
+    sr_error e = { "" };
+    cr_assert_not(sr_obj_load(&m, tmp_path(OBJ_NAME), &e));
+    char want[1100];
+    snprintf(want, sizeof want, "%s:%d: %s", tmp_path("a.mtl"), line, what);
+    cr_assert_str_eq(e.message, want);
+    assert_zeroed(&m);
+}
+
+Test(obj, a_malformed_kd_is_an_error_and_spectral_kd_is_read_past)
+{
+    assert_mtl_fails("newmtl m\nKd spectral x.rfl 1\nKd 1 2\n", 3, "'Kd' needs r g b or one gray, got 2 numbers");
+}
+
 /* ---- errors ---- */
 
 Test(obj, missing_file_is_an_error)
@@ -716,15 +801,7 @@ Test(obj, unknown_material_is_a_warning_and_the_default_material)
 
 Test(obj, error_in_mtl_names_the_mtl_file_and_line)
 {
-    write_text("a.mtl", "# materials\nmap_Kd t.png\n");
-    write_text(OBJ_NAME, "mtllib a.mtl\n");
-    sr_mesh m;
-    sr_error e = { "" };
-    cr_assert_not(sr_obj_load(&m, tmp_path(OBJ_NAME), &e));
-    char prefix[1100];
-    snprintf(prefix, sizeof prefix, "%s:2: 'map_Kd' before any 'newmtl'", tmp_path("a.mtl"));
-    cr_assert_str_eq(e.message, prefix);
-    assert_zeroed(&m);
+    assert_mtl_fails("# materials\nmap_Kd t.png\n", 2, "'map_Kd' before any 'newmtl'");
 }
 
 Test(obj, late_error_leaves_no_half_mesh)

@@ -286,3 +286,63 @@ Test(scene_files, a_mirrored_node_keeps_its_faces_outward)
     sr_texture_free(&depth[0]);
     sr_texture_free(&depth[1]);
 }
+
+/* Two usemtl runs, each drawn with its own material in one draw: a Kd
+ * colour left, a texture right (before materials, the first map_Kd lay
+ * over the whole mesh); `info` lists both parts. */
+Test(scene_files, each_material_of_an_obj_draws_its_own_part)
+{
+    uint32_t blue[4] = { 0x0000FF, 0x0000FF, 0x0000FF, 0x0000FF };
+    char path[600], args[1024], out[600];
+    sr_error err;
+    snprintf(path, sizeof path, "%s/blue.png", temp_dir);
+    cr_assert(sr_image_write_png(path, blue, 2, 2, &err), "%s", err.message);
+    write_text(temp_dir, "m.mtl", "newmtl red\nKd 1 0 0\nnewmtl cloth\nKd 0.5 0.5 0.5\nmap_Kd blue.png\n");
+    write_text(temp_dir, "m.obj", "mtllib m.mtl\nv -2 -1 0\nv 0 -1 0\nv 0 1 0\nv -2 1 0\nv 2 -1 0\nv 2 1 0\n"
+                                  "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                  "usemtl red\nf 1/1 2/2 3/3 4/4\nusemtl cloth\nf 2/1 5/2 6/3 3/4\n");
+    snprintf(out, sizeof out, "%s/two.png", temp_dir);
+    snprintf(args, sizeof args, "render %s/m.obj --size 64x32 --shade texture --cull none --quiet --out %s", temp_dir,
+             out);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_assert_eq(r.err[0], '\0', "no warning expected: %s", r.err);
+    sr_texture image;
+    cr_assert(sr_texture_load(&image, out, &err), "%s", err.message);
+    /* The texture is drawn as it is: its map_Kd over white, not Kd. */
+    uint32_t left = image.texels[16 * 64 + 24], right = image.texels[16 * 64 + 40];
+    sr_texture_free(&image);
+    cr_expect(left == 0xFF0000u && right == 0x0000FFu, "left %06x, right %06x", left, right);
+    cJSON *o = info_json("m.obj");
+    const cJSON *parts = cJSON_GetObjectItem(o, "parts");
+    cr_assert_eq(cJSON_GetArraySize(parts), 2);
+    cr_expect_str_eq(json_string(cJSON_GetArrayItem(parts, 0), "material"), "red");
+    cr_expect_str_eq(json_string(cJSON_GetArrayItem(parts, 1), "material"), "cloth");
+    cJSON_Delete(o);
+}
+
+/* A thousand materials naming one missing texture: one warning, as the
+ * file is looked for once, and each part drawn in its colour. */
+Test(scene_files, a_thousand_materials_sharing_a_missing_texture_warn_once)
+{
+    enum { MATERIALS = 1000 };
+    static char mtl[MATERIALS * 48], obj[MATERIALS * 32 + 256];
+    size_t m = 0, o = (size_t)snprintf(obj, sizeof obj, "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\n");
+    for (int i = 0; i < MATERIALS; i++) {
+        m += (size_t)snprintf(mtl + m, sizeof mtl - m, "newmtl m%d\nKd 1 0 0\nmap_Kd gone.png\n", i);
+        o += (size_t)snprintf(obj + o, sizeof obj - o, "usemtl m%d\nf 1 2 3\n", i);
+    }
+    write_text(temp_dir, "m.mtl", mtl);
+    write_text(temp_dir, "m.obj", obj);
+    char args[1024];
+    snprintf(args, sizeof args, "render %s/m.obj --size 16x16 --cull none --quiet --out %s/o.png", temp_dir,
+             temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    /* Only warnings counted: a slow build (the sanitizers') adds the
+     * loader's progress lines. */
+    const char *first = strstr(r.err, "softrast: warning: ");
+    cr_assert_not_null(first, "%s", r.err);
+    cr_expect_null(strstr(first + 1, "softrast: warning: "), "more than one warning: %s", r.err);
+    cr_expect_not_null(strstr(first, "gone.png"), "%s", r.err);
+}

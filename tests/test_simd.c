@@ -150,12 +150,12 @@ Test(simd, every_mode_and_varying_layout_has_a_kernel)
         for (int albedo = 0; albedo < 3; albedo++) {
             sr_mesh m = mesh;
             m.colors = albedo == 2 ? NULL : m.colors;
-            sr_varying_layout l = sr_vertex_layout((sr_shade)mode, &m, albedo == 0);
+            sr_shade_context l = { .layout = sr_vertex_layout((sr_shade)mode, &m, albedo == 0) };
             for (int k = 0; k < 4; k++) {
                 bool greater = k & 1, ids = k & 2;
                 cr_assert_not_null(sr_span_kernel_sse2((sr_shade)mode, greater, ids, &l),
                                    "no 4-lane kernel for mode %d, albedo case %d (%d varyings), ids %d", mode,
-                                   albedo, l.count, ids);
+                                   albedo, l.layout.count, ids);
                 cr_assert(sr_raster_simd_resolve(SR_SIMD_AVX2) != SR_SIMD_AVX2 ||
                               sr_span_kernel_avx2((sr_shade)mode, greater, ids, &l),
                           "no AVX2 kernel for mode %d, albedo case %d, ids %d", mode, albedo, ids);
@@ -500,7 +500,8 @@ Test(simd, consecutive_draws_shade_their_own_tiny_triangles)
 static void draw_tiny_twice(sr_simd simd, sr_framebuffer *fb)
 {
     sr_shade_context c = { .layout = { .count = 3, .normal = 0, .color = -1, .uv = -1 },
-                           .light_dir = { 0.0f, 0.6f, 0.8f }, .simd = simd };
+                           .light_dir = { 0.0f, 0.6f, 0.8f }, .simd = simd, .albedo = { 0.8f, 0.8f, 0.8f },
+                           .tint = { 1.0f, 1.0f, 1.0f } };
     const float inv_w[3] = { 1.0f, 0.75f, 0.5f };
     sr_screen_vertex tri[3];
     for (int k = 0; k < 3; k++) {
@@ -756,4 +757,87 @@ Test(simd, kernel_calls_are_the_last_draws_alone)
     sr_workspace_destroy(ws);
     sr_framebuffer_destroy(&fb);
     sr_mesh_free(&soup);
+}
+
+/* A mesh with materials (materials.c): every loop, path and thread count
+ * shades each part with its own material, bit for bit as the scalar loop
+ * does: an untextured colour, a texture untinted and tinted, MASK on a
+ * texture with alpha (the bilinear filter lerping alpha; nearest reading
+ * it), BLEND drawn as MASK, and a material hidden by its alpha, on large
+ * triangles (the span kernels) and narrow ones (the tiny queue, and the
+ * tiny loop for MASK). */
+#define MATERIAL_PARTS 6
+static void materials_set(sr_mesh *mesh, sr_material materials[MATERIAL_PARTS], sr_mesh_part parts[MATERIAL_PARTS],
+                          const sr_texture *tex)
+{
+    const sr_material table[MATERIAL_PARTS] = {
+        { .base_color = { 0.9f, 0.3f, 0.1f, 1.0f } },
+        { .base_color = { 1.0f, 1.0f, 1.0f, 1.0f }, .texture = tex },
+        { .base_color = { 0.5f, 1.0f, 0.25f, 1.0f }, .texture = tex },
+        { .base_color = { 1.0f, 0.7f, 1.0f, 0.9f }, .texture = tex, .alpha_mode = SR_ALPHA_MASK, .alpha_cutoff = 0.4f },
+        { .base_color = { 0.2f, 0.9f, 0.6f, 1.0f }, .texture = tex, .alpha_mode = SR_ALPHA_BLEND },
+        { .base_color = { 0.3f, 0.3f, 0.9f, 0.1f }, .alpha_mode = SR_ALPHA_MASK, .alpha_cutoff = 0.5f },
+    };
+    uint32_t slots = sr_mesh_triangle_slots(mesh), per = slots / MATERIAL_PARTS;
+    for (uint32_t p = 0; p < MATERIAL_PARTS; p++) {
+        materials[p] = table[p];
+        /* the parts in another order than the materials, the last taking the rest */
+        parts[p] = (sr_mesh_part){ p * per, p + 1 < MATERIAL_PARTS ? per : slots - p * per, (p * 5 + 1) % MATERIAL_PARTS };
+    }
+    mesh->materials = materials;
+    mesh->material_count = MATERIAL_PARTS;
+    mesh->parts = parts;
+    mesh->part_count = MATERIAL_PARTS;
+}
+
+Test(simd, each_part_keeps_its_material_in_every_loop)
+{
+    /* alpha from 0 to 255 over the texels, across MASK's floors */
+    static const uint32_t texels[12] = { 0x00FF0000, 0x2000FF00, 0x400000FF, 0x60FFFFFF, 0x80000000, 0x9F808080,
+                                         0xA0123456, 0xB0ABCDEF, 0xC0FEDCBA, 0xE0010203, 0xF07F7F7F, 0xFF80FF00 };
+    sr_texture tex = { .width = 4, .height = 3, .texels = (uint32_t *)texels, .alpha = true };
+    sr_material materials[MATERIAL_PARTS];
+    sr_mesh_part parts[MATERIAL_PARTS];
+    sr_mesh wide, narrow;
+    soup_make(&wide, SOUP_TRIANGLES, true, 0.0);
+    soup_make(&narrow, NARROW_SOUP_TRIANGLES, false, 0.15);
+    sr_mesh *meshes[] = { &wide, &narrow };
+    for (size_t m = 0; m < 2; m++) {
+        sr_mesh mesh = *meshes[m];
+        mesh.colors = NULL; /* vertex colours only where no material has a texture (below) */
+        materials_set(&mesh, materials, parts, &tex);
+        static const sr_shade shades[] = { SR_SHADE_LAMBERT, SR_SHADE_TEXTURE };
+        for (size_t s = 0; s < 2; s++)
+            for (int filter = 0; filter < 2; filter++)
+                for (int reversed = 0; reversed < 2; reversed++) {
+                    sr_draw_desc desc = { .mesh = &mesh, .shade = shades[s], .filter = (sr_filter)filter,
+                                          .cull = SR_CULL_NONE };
+                    look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);
+                    char what[80];
+                    snprintf(what, sizeof what, "materials, %s triangles, mode %d filter %d%s",
+                             m ? "narrow" : "wide", shades[s], filter, reversed ? " reversed" : "");
+                    sr_framebuffer scalar, rows;
+                    sr_stats scalar_stats, rows_stats;
+                    draw_scalar(&desc, reversed, &scalar, &scalar_stats, what);
+                    cr_assert_gt(scalar_stats.fragments, (uint64_t)FB_SIDE * FB_SIDE / 8, "%s: too little drawn",
+                                 what);
+                    assert_vector_loops_match(&desc, reversed, &scalar, &scalar_stats, what);
+                    scene_fb_make(&rows, FB_SIDE, FB_SIDE);
+                    rows.reversed_z = reversed;
+                    sr_framebuffer_clear(&rows, 0x123456);
+                    scene_draw_on_loop(&rows, &desc, SR_SIMD_AUTO, TILED_THREADS, SR_PATH_ROWS, &rows_stats);
+                    assert_same_as(&scalar, &scalar_stats, &rows, &rows_stats, what, "row bands");
+                    sr_framebuffer_destroy(&rows);
+                    sr_framebuffer_destroy(&scalar);
+                }
+        /* Vertex colours times each material's colour, where no material has a texture. */
+        sr_mesh colored = *meshes[m];
+        materials_set(&colored, materials, parts, NULL);
+        sr_draw_desc desc = { .mesh = &colored, .shade = SR_SHADE_LAMBERT, .cull = SR_CULL_NONE };
+        look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, false);
+        assert_vector_loops_match_scalar(&desc, false, m ? "narrow, vertex colours by material" :
+                                                           "wide, vertex colours by material");
+    }
+    sr_mesh_free(&narrow);
+    sr_mesh_free(&wide);
 }

@@ -69,8 +69,9 @@ Test(texture, load_returns_written_texels_top_row_first)
     sr_texture_free(&tex);
 }
 
-/* An RGBA file keeps its colour channels unblended; alpha is dropped. */
-Test(texture, load_drops_alpha_keeping_rgb)
+/* An RGBA file keeps its colour channels unblended, and its alpha in the
+ * top byte, flagged; an RGB file's top byte is 0. */
+Test(texture, load_keeps_alpha_in_the_top_byte_and_rgb_unblended)
 {
     char path[512];
     SDL_Surface *s = SDL_CreateRGBSurfaceWithFormat(0, 2, 1, 32, SDL_PIXELFORMAT_RGBA32);
@@ -82,7 +83,14 @@ Test(texture, load_drops_alpha_keeping_rgb)
     sr_texture tex;
     sr_error err = { "" };
     cr_assert(sr_texture_load(&tex, path, &err), "%s", err.message);
-    cr_expect_eq(tex.texels[0], 0x123456u, "%#08x", tex.texels[0]);
+    cr_expect(tex.alpha);
+    cr_expect_eq(tex.texels[0], 0x00123456u, "%#08x", tex.texels[0]);
+    cr_expect_eq(tex.texels[1], 0x80ABCDEFu, "%#08x", tex.texels[1]);
+    sr_texture_free(&tex);
+    uint32_t rgb[2] = { 0x123456, 0xABCDEF };
+    cr_assert(sr_image_write_png(path, rgb, 2, 1, &err), "%s", err.message);
+    cr_assert(sr_texture_load(&tex, path, &err), "%s", err.message);
+    cr_expect_not(tex.alpha);
     cr_expect_eq(tex.texels[1], 0xABCDEFu, "%#08x", tex.texels[1]);
     sr_texture_free(&tex);
 }

@@ -33,19 +33,25 @@
  * and given smooth normals where it has none; it is right-handed y-up like
  * OBJ and flipped the same way (z negated, winding reversed). Triangle ids
  * count the meshes in file order, then their faces in order, and
- * mesh->parts gives each mesh's run of ids (OBJ files have none). Points, lines,
- * skinning, animation, lights and cameras are ignored. The first base-colour
- * or diffuse texture a drawn mesh uses is decoded into *texture when the
- * file embeds it (.glb, FBX; texture may be NULL to skip it, and is left
- * empty otherwise), else named by mesh->texture_path for sr_texture_load (found as
- * for an OBJ's map_Kd, below). A mesh that a mirroring node transform
- * places (negative determinant) has its winding reversed, so its outward
- * faces stay front faces. A file over SR_MAX_MESH_VERTICES vertices or
- * SR_MAX_MESH_TRIANGLES triangles is refused before anything is allocated
- * for it. Errors: false with "FILE: reason" (Assimp's reason for its
- * formats); the mesh is left zeroed. */
+ * mesh->parts gives each mesh's run of ids and its material. The file's
+ * materials are mesh->materials (at least one for an Assimp format): the
+ * colour factor (glTF's baseColorFactor, else the diffuse colour), glTF's
+ * alphaMode and alphaCutoff, and the base-colour or diffuse texture. A
+ * texture the file embeds (.glb, FBX) is decoded into *texture (the first
+ * one a drawn mesh uses; texture may be NULL to skip it, and is left empty
+ * otherwise) and its materials point at *texture (keep it where it is
+ * while the mesh is drawn); one beside the file is the material's
+ * texture_path for sr_texture_load (found as for an OBJ's map_Kd, below),
+ * and mesh->texture_path names the first of them. Points, lines, skinning,
+ * animation, lights and cameras are ignored. A mesh that a mirroring node
+ * transform places (negative determinant) has its winding reversed, so its
+ * outward faces stay front faces. A file over SR_MAX_MESH_VERTICES vertices,
+ * SR_MAX_MESH_TRIANGLES triangles or SR_MAX_MESH_MATERIALS materials is
+ * refused before anything is allocated for it. Errors: false with "FILE:
+ * reason" (Assimp's reason for its formats); the mesh is left zeroed. */
 #define SR_MAX_MESH_VERTICES (1u << 28)
 #define SR_MAX_MESH_TRIANGLES (1u << 28)
+#define SR_MAX_MESH_MATERIALS (1u << 16)
 SR_API bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, sr_error *err);
 
 /* ---- Wavefront OBJ ---------------------------------------------------------
@@ -54,8 +60,15 @@ SR_API bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, s
  * an optional w ignored), `vn`, `f` in the forms v, v/vt, v//vn and v/vt/vn
  * (mixed freely) with positive or negative (relative) indices, polygons,
  * comments (whole-line and trailing), blank lines and LF, CRLF or CR line ends;
- * `mtllib` + `usemtl` give the texture path from the material's `map_Kd`.
- * Other statements (o, g, s, l, p, …) are ignored. OBJ is right-handed: the
+ * `mtllib` + `usemtl` give the materials (`Kd`, `map_Kd`), and `o` / `g`
+ * start groups. Runs of faces of one group and one material are the
+ * mesh's parts, each naming its material in mesh->materials (each library
+ * material a face uses, in order of first use: its `map_Kd` as
+ * texture_path over a white base colour, else its `Kd`; faces without
+ * one share a default, gray 0.8, white over vertex colours). Without a
+ * library material there are no materials (groups still make parts), and
+ * a single run is no part (part_count 0). Other statements (s, l, p, …)
+ * are ignored. OBJ is right-handed: the
  * loader negates z (of positions and normals) and reverses each face's
  * winding, so outward faces are front faces (clockwise on screen) in
  * softrast's left-handed convention. A face c0 … c(n-1) becomes triangles
@@ -103,7 +116,9 @@ SR_API bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err);
 #define SR_MAX_TEXTURE_TEXELS (1ul << 26)
 
 /* A PNG (read by libpng) or any other image SDL2_image reads (JPEG, TGA,
- * BMP, …), as 0x00RRGGBB texels, row 0 at the top; false for a missing
+ * BMP, …), as 0x00RRGGBB texels, row 0 at the top; an image with an alpha
+ * channel as 0xAARRGGBB with tex->alpha set (colours unblended), for MASK
+ * materials; false for a missing
  * file or one that is not a regular file, anything that is not a readable
  * image, a side over
  * SR_MAX_TEXTURE_SIDE or more than SR_MAX_TEXTURE_TEXELS texels. Free with

@@ -67,10 +67,60 @@ typedef enum sr_topology {
 } sr_topology;
 
 /* A run of triangle slots that came from one part of a file: a loader's
- * mesh of a multi-mesh scene (softrast/files.h), in the file's order. */
+ * mesh of a multi-mesh scene (softrast/files.h), in the file's order. With
+ * materials (sr_mesh.materials), a part's triangles are drawn with its
+ * material; parts then follow each other (first_triangle increasing, no
+ * overlap), and a triangle in no part takes material 0. */
 typedef struct sr_mesh_part {
     uint32_t first_triangle, triangle_count;
+    uint32_t material; /* an index of sr_mesh.materials; ignored without materials */
 } sr_mesh_part;
+
+/* ---- textures ---------------------------------------------------------- */
+
+/* Sides up to this keep every texel index below 2^28 (the SIMD kernels'
+ * 32-bit lanes); loaders refuse larger images and a draw a larger texture. */
+#define SR_MAX_TEXTURE_SIDE 16384
+
+/* Texels 0x00RRGGBB, row 0 at the top of the image; wrap = repeat, uv (0, 0)
+ * is the bottom-left. With `alpha`, texels are 0xAARRGGBB and the top byte
+ * is the texel's alpha (255 opaque), which a MASK material tests; without,
+ * every texel is opaque and the top byte is never read. Colours are shaded
+ * from the low 24 bits either way. Fill one with memory of your own, or load
+ * one (softrast/files.h). */
+typedef struct sr_texture {
+    int width, height;
+    uint32_t *texels; /* width * height, row-major, top row first */
+    bool alpha;       /* the top byte of each texel is its alpha */
+} sr_texture;
+
+/* ---- materials --------------------------------------------------------- */
+
+/* How a material's alpha (the base colour factor's times its texture's)
+ * draws. MASK discards a fragment whose alpha is below alpha_cutoff: no
+ * depth and no colour is written there, so a cut-out (a leaf, a fence) is a
+ * hole in every buffer. BLEND is drawn as MASK with a cutoff of 0.5 (no
+ * blending yet). */
+typedef enum sr_alpha_mode { SR_ALPHA_OPAQUE = 0, SR_ALPHA_MASK, SR_ALPHA_BLEND } sr_alpha_mode;
+
+/* What lambert and texture shading draw a part with (glTF's metallic-
+ * roughness base colour, without the metal and the roughness). The albedo
+ * is base_color's RGB times the texel at the uv (with a texture, on a mesh
+ * with uvs) or times the vertex colour (without a texture, on a mesh with
+ * colours and no textured material); else base_color's RGB alone. Colours
+ * are drawn as given (no sRGB decoding yet). A texture needs the mesh's uvs: without
+ * them it is ignored, as lambert ignores desc's texture. Other modes (id,
+ * normal, color, depth) draw every triangle and ignore materials. */
+typedef struct sr_material {
+    float base_color[4];       /* RGBA, 0..1 */
+    const sr_texture *texture; /* optional (NULL) */
+    sr_alpha_mode alpha_mode;
+    float alpha_cutoff;        /* MASK: alpha below it is discarded (glTF's default is 0.5) */
+    /* A loader's: where the texture is, for sr_texture_load; or NULL. A
+     * material with a path and no texture draws desc's texture, so code
+     * that loads mesh->texture_path into desc->texture draws as before. */
+    char *texture_path;
+} sr_material;
 
 /* An indexed triangle mesh in plain arrays, positions in softrast's
  * left-handed world. A triangle with a repeated index is degenerate and
@@ -109,6 +159,12 @@ typedef struct sr_mesh {
                            in softrast's left-handed world); sr_pinhole poses undo it */
     uint32_t part_count; /* a loader's: the file's meshes as runs of triangle ids; 0 for one */
     sr_mesh_part *parts;
+    /* Optional: the parts' materials, each part drawn with its own in one
+     * draw (lambert and texture shading). 0: every triangle drawn as
+     * always, with desc's texture. sr_mesh_free frees the array and the
+     * texture paths, not the textures. */
+    uint32_t material_count;
+    sr_material *materials;
 } sr_mesh;
 
 /* Allocates zeroed arrays for the attributes asked for. False on overflow or
@@ -139,20 +195,6 @@ SR_API bool sr_mesh_compute_normals(sr_mesh *mesh, sr_error *err);
 /* Number of triangle slots the topology defines (ids run over these); 0
  * for the point and line topologies. */
 SR_API uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh);
-
-/* ---- textures ---------------------------------------------------------- */
-
-/* Sides up to this keep every texel index below 2^28 (the SIMD kernels'
- * 32-bit lanes); loaders refuse larger images and a draw a larger texture. */
-#define SR_MAX_TEXTURE_SIDE 16384
-
-/* Texels 0x00RRGGBB, row 0 at the top of the image; wrap = repeat, uv (0, 0)
- * is the bottom-left. Fill one with memory of your own, or load one
- * (softrast/files.h). */
-typedef struct sr_texture {
-    int width, height;
-    uint32_t *texels; /* width * height, row-major, top row first */
-} sr_texture;
 
 /* ---- the framebuffer --------------------------------------------------- */
 
@@ -345,7 +387,8 @@ typedef struct sr_draw_desc {
     sr_cull cull;
     sr_front front;
     sr_filter filter;
-    const sr_texture *texture; /* required by texture shading; lambert uses it when given */
+    const sr_texture *texture; /* required by texture shading; lambert uses it when given (a mesh
+                                  with materials uses theirs instead) */
     vec3 light_dir;            /* toward the light, world space */
     int threads;               /* threads in all, the caller's included; 0 or 1: one */
     sr_workspace *workspace;   /* optional */

@@ -1,6 +1,6 @@
 """What a render costs from Python beyond the library's own work (a
 benchmark, not a test): 640 x 480, the 121k-triangle glTF engine of Debian's
-assimp-testmodels, depth and face ids, one thread.
+assimp-testmodels, depth and face ids (and colour with depth), one thread.
 
     make build/pinhole_time test-python && /usr/bin/python3 python/benchmarks/overhead.py [ROUNDS]
 
@@ -12,13 +12,15 @@ assimp-testmodels, depth and face ids, one thread.
    calls in the library's sources (sr_draw, sr_pinhole_resolve,
    sr_pinhole_fit_clip, ...), and the rest (argument checks, arrays, the
    dict, the GIL released and taken back) is Python's overhead, given as a
-   share of the draw's.
+   share of the draw's. A render of colour (lambert) and depth is counted
+   the same way, whole.
 2. Time (ms, medians of N, the best of ROUNDS rounds that alternate the two
    so a busy spell on a shared machine hits both): build/pinhole_time (the
    public C API: the id draw, then sr_pinhole_resolve of depth and face
    ids) against render(); render() of nothing in view, what a call costs
    with next to no drawing (arguments, two new 640 x 480 arrays written
-   whole, the dict); and render() with colour too (a lambert draw more).
+   whole, the dict); and render() with colour too (the same one draw,
+   lambert shaded).
 """
 import json
 import os
@@ -53,22 +55,23 @@ def look_pose(eye, target, up=(0, -1, 0)):
 
 
 POSE = look_pose([300, 250, -500], [0, 0, 0])
+IDS, COLOUR = ("depth", "face_ids"), ("color", "depth")
 
 
-def render_frames(frames):
+def render_frames(frames, outputs):
     """What the instruction count runs: frames renders after the load."""
     mesh = softrast.Mesh.load(ENGINE)
     r = softrast.Renderer(W, H, threads=1)
     for _ in range(frames):
-        r.render(mesh, fx=FX, fy=FY, cx=CX, cy=CY, pose=POSE, outputs=("depth", "face_ids"))
+        r.render(mesh, fx=FX, fy=FY, cx=CX, cy=CY, pose=POSE, outputs=outputs)
 
 
-def instructions(frames, tmp):
+def instructions(frames, outputs, tmp):
     """render()'s inclusive instructions (the binding's render_call), and
     those of its callees in the library's sources, by name."""
-    out = os.path.join(tmp, f"callgrind.{frames}")
+    out = os.path.join(tmp, f"callgrind.{frames}.{len(outputs)}")
     subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", sys.executable, __file__,
-                    "--frames", str(frames)], check=True, capture_output=True)
+                    "--frames", str(frames), *outputs], check=True, capture_output=True)
     text = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--tree=calling", "--threshold=100", out],
                           check=True, capture_output=True, text=True).stdout
     block = re.search(r"^\s*([\d,]+) \([^)]*\)\s+\*\s+\S+:render_call \[.*?\n\n", text, re.M | re.S)
@@ -106,13 +109,15 @@ def main():
     print(f"{mesh.triangle_count} triangles, {W}x{H}, depth and face ids, 1 thread", flush=True)
 
     with tempfile.TemporaryDirectory() as tmp:
-        (call1, lib1), (call3, lib3) = instructions(1, tmp), instructions(3, tmp)
+        (call1, lib1), (call3, lib3) = instructions(1, IDS, tmp), instructions(3, IDS, tmp)
+        (colour1, _), (colour3, _) = instructions(1, COLOUR, tmp), instructions(3, COLOUR, tmp)
     each = {name: (lib3[name] - lib1.get(name, 0)) / 2 for name in lib3}
     call, library, draw = (call3 - call1) / 2, sum(each.values()), each["sr_draw"]
     overhead = call - library
     print(f"  instructions a frame (callgrind): render() {call / 1e6:.3f} M; the library {library / 1e6:.3f} M "
           f"({', '.join(f'{name} {n / 1e6:.3f} M' for name, n in sorted(each.items(), key=lambda x: -x[1]) if n)})")
     print(f"  Python's overhead: {overhead / 1e3:.1f} k instructions, {100 * overhead / draw:.3f} % of the draw's")
+    print(f"  render() of colour and depth: {(colour3 - colour1) / 2e6:.3f} M instructions a frame")
 
     r = softrast.Renderer(W, H, threads=1)
     camera = dict(fx=FX, fy=FY, cx=CX, cy=CY, pose=POSE)
@@ -133,7 +138,7 @@ def main():
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--frames":
-        render_frames(int(sys.argv[2]))
+    if len(sys.argv) >= 4 and sys.argv[1] == "--frames":
+        render_frames(int(sys.argv[2]), tuple(sys.argv[3:]))
     else:
         main()

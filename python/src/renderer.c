@@ -1,9 +1,10 @@
-/* softrast.Renderer: framebuffers and a workspace reused from call to
- * call, and the pinhole renders over them. Each render is the command
- * line's: an SR_SHADE_ID draw into a reversed-z framebuffer with the
- * matrices of sr_pinhole_matrices (and for colour a shaded draw with the
- * same matrices), then sr_pinhole_resolve into new numpy arrays, with the
- * GIL released around all of it. */
+/* softrast.Renderer: a framebuffer with an ids plane and a workspace
+ * reused from call to call, and the pinhole renders over them. Each render
+ * is the command line's: one draw into the reversed-z framebuffer with the
+ * matrices of sr_pinhole_matrices, shaded as the colour output asks (else
+ * SR_SHADE_ID), writing colour, depth and ids at once, then
+ * sr_pinhole_resolve of the ids on the renderer's threads into new numpy
+ * arrays, with the GIL released around all of it. */
 #include <math.h>
 #include <string.h>
 #include <unistd.h>
@@ -23,8 +24,7 @@ static const char *const SHADE_NAMES[SR_SHADE_COUNT] = { "lambert", "id", "color
 
 typedef struct sr_py_renderer {
     PyObject_HEAD
-    sr_framebuffer fb;     /* the id view: reversed z, triangle id + 1 per pixel */
-    sr_framebuffer shaded; /* the colour view, made at the first call that asks for colour */
+    sr_framebuffer fb; /* reversed z, with the ids plane the resolve reads */
     sr_workspace *workspace;
     int threads;
     pid_t pid;  /* the process whose threads the workspace holds (a forked child has none of them) */
@@ -47,7 +47,6 @@ static void renderer_release(sr_py_renderer *self)
         sr_workspace_destroy(self->workspace); /* in a forked child its threads are not there to end */
     self->workspace = NULL;
     sr_framebuffer_destroy(&self->fb);
-    sr_framebuffer_destroy(&self->shaded);
 }
 
 static void renderer_dealloc(sr_py_renderer *self)
@@ -74,6 +73,11 @@ static int renderer_init(sr_py_renderer *self, PyObject *args, PyObject *kwargs)
     sr_error err;
     if (!sr_framebuffer_create(&fb, width, height, &err)) {
         sr_py_raise(PyExc_ValueError, &err);
+        return -1;
+    }
+    if (!sr_framebuffer_create_ids(&fb, &err)) {
+        sr_framebuffer_destroy(&fb);
+        sr_py_raise(PyExc_MemoryError, &err);
         return -1;
     }
     sr_workspace *workspace = sr_workspace_create();
@@ -262,50 +266,104 @@ static void cross(const double a[3], const double b[3], double out[3])
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-/* The world-to-camera pose, a new (4, 4) array, of a camera at eye
- * looking at target with up toward the top of the image, in the poses'
- * frame (OpenCV's axes: x = forward x up to the right, y down, z forward).
- * In a right-handed frame the image is not mirrored: a look-at from +z
- * with up +y shows +x on the right. */
-static PyObject *look_at_pose(PyObject *eye_obj, PyObject *target_obj, PyObject *up_obj)
+/* The world-to-camera pose w2c of a camera at eye looking at target with
+ * up toward the top of the image, in the poses' frame (OpenCV's axes: x =
+ * forward x up to the right, y down, z forward). In a right-handed frame
+ * the image is not mirrored: a look-at from +z with up +y shows +x on the
+ * right. NULL, or what is wrong with the three. */
+static const char *look_at_w2c(const double eye[3], const double target[3], const double up[3], double w2c[4][4])
 {
-    double eye[3], target[3], up[3] = { 0.0, 1.0, 0.0 }, x[3], y[3], z[3];
-    if (eye_obj == Py_None || target_obj == Py_None) {
-        PyErr_SetString(PyExc_ValueError, "the look-at camera needs eye and target (and up, default (0, 1, 0))");
-        return NULL;
-    }
-    if (!parse_vector(eye_obj, "eye", eye) || !parse_vector(target_obj, "target", target) ||
-        (up_obj != Py_None && !parse_vector(up_obj, "up", up)))
-        return NULL;
+    double x[3], y[3], z[3];
     for (int k = 0; k < 3; k++)
         z[k] = target[k] - eye[k];
     double forward = norm(z), upward = norm(up);
-    if (!(forward > 0.0) || !isfinite(forward)) {
-        PyErr_SetString(PyExc_ValueError, "eye and target: the same point (or too far apart), no view direction");
-        return NULL;
-    }
+    if (!(forward > 0.0) || !isfinite(forward))
+        return "eye and target: the same point (or too far apart), no view direction";
     for (int k = 0; k < 3; k++)
         z[k] /= forward;
     cross(z, up, x);
     double side = norm(x);
-    if (!(side > 1e-6 * upward)) {
-        PyErr_SetString(PyExc_ValueError, "up: zero or along the view direction (target - eye)");
-        return NULL;
-    }
+    if (!(side > 1e-6 * upward))
+        return "up: zero or along the view direction (target - eye)";
     for (int k = 0; k < 3; k++)
         x[k] /= side;
     cross(z, x, y);
-    npy_intp dims[2] = { 4, 4 };
-    PyArrayObject *a = (PyArrayObject *)PyArray_ZEROS(2, dims, NPY_FLOAT64, 0);
-    if (!a)
-        return NULL;
-    double(*w2c)[4] = PyArray_DATA(a);
     const double *rows[3] = { x, y, z };
+    memset(w2c, 0, 4 * sizeof *w2c);
     for (int r = 0; r < 3; r++) {
         memcpy(w2c[r], rows[r], 3 * sizeof(double));
         w2c[r][3] = -(rows[r][0] * eye[0] + rows[r][1] * eye[1] + rows[r][2] * eye[2]);
     }
     w2c[3][3] = 1.0;
+    return NULL;
+}
+
+/* A look-at argument: one point (3,), or for render_many one a frame
+ * (N, 3) (*rows N) or one for all (3,) (*rows 1); every entry finite. */
+static PyArrayObject *parse_points(PyObject *obj, const char *name, bool many, npy_intp *rows)
+{
+    PyArrayObject *any = many ? (PyArrayObject *)PyArray_FromAny(obj, NULL, 0, 0, 0, NULL) : NULL;
+    bool stacked = any && PyArray_NDIM(any) == 2;
+    Py_XDECREF(any);
+    PyErr_Clear(); /* sr_py_array says what is wrong */
+    const char *wanted = many ? "(N, 3) or (3,)" : "(3,)";
+    PyArrayObject *a = stacked ? sr_py_array(obj, name, NPY_FLOAT64, 2, (npy_intp[]){ -1, 3 }, wanted)
+                               : sr_py_array(obj, name, NPY_FLOAT64, 1, (npy_intp[]){ 3 }, wanted);
+    if (!a)
+        return NULL;
+    *rows = stacked ? PyArray_DIM(a, 0) : 1;
+    const double *v = PyArray_DATA(a);
+    for (npy_intp i = 0; i < 3 * *rows; i++)
+        if (!isfinite(v[i])) {
+            PyErr_Format(PyExc_ValueError, "%s: every entry must be finite", name);
+            Py_DECREF(a);
+            return NULL;
+        }
+    return a;
+}
+
+/* The world-to-camera poses of the look-at camera, a new (4, 4) array, or
+ * (N, 4, 4) for render_many: N is the rows of whichever of eye, target
+ * and up give one a frame; the others are the same for every frame. */
+static PyObject *look_at_poses(PyObject *eye_obj, PyObject *target_obj, PyObject *up_obj, bool many)
+{
+    static const char *const names[3] = { "eye", "target", "up" };
+    static const double default_up[3] = { 0.0, 1.0, 0.0 };
+    if (eye_obj == Py_None || target_obj == Py_None) {
+        PyErr_SetString(PyExc_ValueError, "the look-at camera needs eye and target (and up, default (0, 1, 0))");
+        return NULL;
+    }
+    PyObject *objs[3] = { eye_obj, target_obj, up_obj };
+    PyArrayObject *points[3] = { NULL, NULL, NULL };
+    npy_intp rows[3] = { 1, 1, 1 }, frames = 1;
+    bool ok = true;
+    for (int k = 0; ok && k < 3; k++) {
+        ok = objs[k] == Py_None || (points[k] = parse_points(objs[k], names[k], many, &rows[k])) != NULL;
+        if (ok && rows[k] != 1 && frames != 1 && rows[k] != frames) {
+            PyErr_Format(PyExc_ValueError, "%s: %zd rows where another of eye, target and up has %zd", names[k],
+                         rows[k], frames);
+            ok = false;
+        }
+        frames = rows[k] != 1 ? rows[k] : frames;
+    }
+    npy_intp dims[3] = { frames, 4, 4 };
+    PyArrayObject *a = ok ? (PyArrayObject *)PyArray_SimpleNew(many ? 3 : 2, many ? dims : dims + 1, NPY_FLOAT64)
+                          : NULL;
+    double(*w2c)[4][4] = a ? PyArray_DATA(a) : NULL;
+    for (npy_intp i = 0; a && i < frames; i++) {
+        const double *p[3];
+        for (int k = 0; k < 3; k++)
+            p[k] = !points[k] ? default_up : (const double *)PyArray_DATA(points[k]) + (rows[k] == 1 ? 0 : 3 * i);
+        const char *wrong = look_at_w2c(p[0], p[1], p[2], w2c[i]);
+        if (wrong && many)
+            PyErr_Format(PyExc_ValueError, "frame %zd: %s", i, wrong);
+        else if (wrong)
+            PyErr_SetString(PyExc_ValueError, wrong);
+        if (wrong)
+            Py_CLEAR(a);
+    }
+    for (int k = 0; k < 3; k++)
+        Py_XDECREF(points[k]);
     return (PyObject *)a;
 }
 
@@ -323,7 +381,8 @@ static double (*parse_poses(PyObject *w2c, PyObject *c2w, bool many, const sr_pi
     PyObject *given = inverse ? c2w : w2c;
     PyArrayObject *a = NULL;
     if (given == Py_None && many) {
-        PyErr_SetString(PyExc_ValueError, "render_many needs poses (N, 4, 4), world-to-camera, or poses_c2w");
+        PyErr_SetString(PyExc_ValueError, "render_many needs poses (N, 4, 4), world-to-camera, poses_c2w, "
+                                          "or eye and target");
         return NULL;
     }
     if (given != Py_None) {
@@ -365,41 +424,33 @@ static double (*parse_poses(PyObject *w2c, PyObject *c2w, bool many, const sr_pi
     return poses;
 }
 
-/* Whether the colour output needs a shaded draw of its own: the id and
- * depth views are the id draw's colour and depth. */
-static bool shades(const job *j)
+/* The draw's shading: the colour output's, else SR_SHADE_ID (the
+ * cheapest; the ids plane is written in every mode). */
+static sr_shade draw_shade(const job *j)
 {
-    return j->wanted[OUT_COLOR] && j->shade != SR_SHADE_ID && j->shade != SR_SHADE_DEPTH;
+    return j->wanted[OUT_COLOR] ? j->shade : SR_SHADE_ID;
 }
 
-/* The views a frame's outputs come from: the id view in self->fb and, when
- * shades(j), the colour in self->shaded, a second draw with the same
- * matrices (the same triangle wins every pixel). When sr_framebuffer gains
- * an id plane (issue 34) this is the one place that becomes one draw. */
-static bool draw_views(sr_py_renderer *self, const sr_mesh *mesh, const sr_texture *texture, sr_pinhole *cam,
-                       const job *j, sr_stats *stats, sr_error *err)
+/* The one draw a frame's outputs come from: colour, depth and ids into
+ * self->fb (the ids plane is what sr_pinhole_resolve reads). */
+static bool draw_view(sr_py_renderer *self, const sr_mesh *mesh, const sr_texture *texture, sr_pinhole *cam,
+                      const job *j, sr_stats *stats, sr_error *err)
 {
     sr_pinhole_fit_clip(cam, mesh);
-    sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .threads = self->threads,
-                          .workspace = self->workspace, .clear = true };
-    sr_pinhole_matrices(cam, mesh, &self->fb, &desc);
-    if (!sr_draw(&self->fb, &desc, stats, err))
-        return false;
-    if (!shades(j))
-        return true;
-    desc.shade = j->shade;
-    desc.texture = texture->texels ? texture : NULL;
+    sr_draw_desc desc = { .mesh = mesh, .shade = draw_shade(j), .cull = SR_CULL_NONE, .threads = self->threads,
+                          .workspace = self->workspace, .clear = true,
+                          .texture = j->wanted[OUT_COLOR] && texture->texels ? texture : NULL };
     glm_vec3_copy((float *)j->light, desc.light_dir);
-    self->shaded.reversed_z = self->fb.reversed_z;
-    return sr_draw(&self->shaded, &desc, NULL, err);
+    sr_pinhole_matrices(cam, mesh, &self->fb, &desc);
+    return sr_draw(&self->fb, &desc, stats, err);
 }
 
-/* The colour output, (H, W, 3) uint8, from the view the shading wrote. */
+/* The colour output, (H, W, 3) uint8, from the draw's colour. */
 static void write_color(sr_py_renderer *self, sr_shade shade, uint8_t *rgb)
 {
-    const uint32_t *packed = shade == SR_SHADE_ID ? self->fb.color : self->shaded.color;
     if (shade == SR_SHADE_DEPTH) /* as --shade depth: the written range from white (near) to dark gray */
-        sr_framebuffer_depth_to_gray(&self->fb, self->shaded.color);
+        sr_framebuffer_depth_to_gray(&self->fb, self->fb.color);
+    const uint32_t *packed = self->fb.color;
     for (size_t i = 0; i < (size_t)self->fb.width * (size_t)self->fb.height; i++)
         for (int k = 0; k < 3; k++)
             rgb[3 * i + k] = (uint8_t)(packed[i] >> (16 - 8 * k));
@@ -412,12 +463,12 @@ static void map_parts(uint32_t *ids, size_t count, const uint32_t *part_map)
         ids[i] = ids[i] ? part_map[ids[i] - 1] : 0;
 }
 
-/* One frame: clip planes fitted where 0, the views drawn, the outputs
- * resolved from them. Runs without the GIL. */
+/* One frame: clip planes fitted where 0, the view drawn, the outputs
+ * resolved from its ids. Runs without the GIL. */
 static bool render_one(sr_py_renderer *self, const sr_py_mesh *pm, const sr_mesh *mesh, sr_pinhole *cam,
                        const job *j, const sr_pinhole_outputs *out, uint8_t *color, sr_stats *stats, sr_error *err)
 {
-    if (!draw_views(self, mesh, &pm->texture, cam, j, stats, err) ||
+    if (!draw_view(self, mesh, &pm->texture, cam, j, stats, err) ||
         !sr_pinhole_resolve(cam, mesh, &self->fb, out, err))
         return false;
     if (color)
@@ -435,10 +486,9 @@ static PyObject *stats_dict(const sr_stats *s)
                          (unsigned long long)s->drawn, "fragments", (unsigned long long)s->fragments);
 }
 
-/* Claims the renderer for one call (refusing a second thread's), makes
- * the workspace anew in a forked child and the colour view when first
- * wanted. */
-static bool claim(sr_py_renderer *self, const job *j)
+/* Claims the renderer for one call (refusing a second thread's), making
+ * the workspace anew in a forked child. */
+static bool claim(sr_py_renderer *self)
 {
     if (self->pid != getpid()) {
         sr_workspace *workspace = sr_workspace_create(); /* the parent's is left: its threads are not here */
@@ -459,13 +509,6 @@ static bool claim(sr_py_renderer *self, const job *j)
                                             "use one Renderer per thread");
         return false;
     }
-    sr_error err;
-    if (shades(j) || (j->wanted[OUT_COLOR] && j->shade == SR_SHADE_DEPTH)) { /* depth's gray is made there */
-        if (!self->shaded.color && !sr_framebuffer_create(&self->shaded, self->fb.width, self->fb.height, &err)) {
-            sr_py_raise(PyExc_MemoryError, &err);
-            return false;
-        }
-    }
     self->busy = true;
     return true;
 }
@@ -479,7 +522,7 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
         PyErr_SetString(PyExc_ValueError, "the mesh is empty (Mesh.__init__ was not called)");
         return NULL;
     }
-    bool lit = shades(j) && (j->shade == SR_SHADE_LAMBERT || j->shade == SR_SHADE_NORMAL);
+    bool lit = draw_shade(j) == SR_SHADE_LAMBERT || draw_shade(j) == SR_SHADE_NORMAL;
     if (((j->wanted[OUT_NORMALS] && j->interpolated) || lit) && !mesh->mesh.normals &&
         !sr_mesh_compute_normals(&mesh->mesh, &err)) /* with the GIL held: no render reads it now */
         return sr_py_raise(PyExc_ValueError, &err);
@@ -497,7 +540,7 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
         int type = k == OUT_COLOR ? NPY_UINT8 : k == OUT_FACE_IDS || k == OUT_PART_IDS ? NPY_UINT32 : NPY_FLOAT32;
         ok = (arrays[k] = (PyArrayObject *)PyArray_SimpleNew(nd, many ? dims : dims + 1, type)) != NULL;
     }
-    ok = ok && claim(self, j);
+    ok = ok && claim(self);
     if (ok) {
         mesh->renders++;
         sr_mesh m = mesh->mesh; /* a copy: Mesh's normals may be filled in meanwhile */
@@ -510,7 +553,8 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
                                        .face_ids = FRAME(OUT_FACE_IDS, uint32_t, 1),
                                        .part_ids = FRAME(OUT_PART_IDS, uint32_t, 1),
                                        .normals = FRAME(OUT_NORMALS, float, 3),
-                                       .interpolated_normals = j->interpolated, .invalid = j->invalid };
+                                       .interpolated_normals = j->interpolated, .invalid = j->invalid,
+                                       .threads = self->threads };
             uint8_t *color = FRAME(OUT_COLOR, uint8_t, 3);
 #undef FRAME
             Py_BEGIN_ALLOW_THREADS
@@ -553,17 +597,18 @@ static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwa
 {
     static char *single[] = { "mesh", CAMERA_KEYWORDS, "pose", "pose_c2w", "eye", "target", "up", OUTPUT_KEYWORDS,
                               NULL };
-    static char *stacked[] = { "mesh", "poses", CAMERA_KEYWORDS, "poses_c2w", OUTPUT_KEYWORDS, NULL };
+    static char *stacked[] = { "mesh", "poses", CAMERA_KEYWORDS, "poses_c2w", "eye", "target", "up", OUTPUT_KEYWORDS,
+                               NULL };
     sr_py_mesh *mesh;
     PyObject *K = Py_None, *numbers[4] = { Py_None, Py_None, Py_None, Py_None }, *fov = Py_None;
     PyObject *w2c = Py_None, *c2w = Py_None, *eye = Py_None, *target = Py_None, *up = Py_None;
     PyObject *outputs = NULL, *normals = NULL, *shade = NULL, *light = Py_None;
     double near = 0.0, far = 0.0;
     float invalid = 0.0f;
-    int parsed = many ? PyArg_ParseTupleAndKeywords(args, kwargs, "O!|O$OOOOOOOddOOfOO:render_many", stacked,
+    int parsed = many ? PyArg_ParseTupleAndKeywords(args, kwargs, "O!|O$OOOOOOOOOOddOOfOO:render_many", stacked,
                                                     &sr_py_mesh_type, &mesh, &w2c, &K, &numbers[0], &numbers[1],
-                                                    &numbers[2], &numbers[3], &fov, &c2w, &near, &far, &outputs,
-                                                    &normals, &invalid, &shade, &light)
+                                                    &numbers[2], &numbers[3], &fov, &c2w, &eye, &target, &up, &near,
+                                                    &far, &outputs, &normals, &invalid, &shade, &light)
                       : PyArg_ParseTupleAndKeywords(args, kwargs, "O!|$OOOOOOOOOOOddOOfOO:render", single,
                                                     &sr_py_mesh_type, &mesh, &K, &numbers[0], &numbers[1],
                                                     &numbers[2], &numbers[3], &fov, &w2c, &c2w, &eye, &target, &up,
@@ -584,7 +629,7 @@ static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwa
               parse_shading(shade, light, &j) && parse_intrinsics(self, K, numbers, fov, look_at, &j.cam);
     Py_XDECREF(depth_only);
     Py_XDECREF(geometric);
-    PyObject *looking = ok && look_at ? look_at_pose(eye, target, up) : NULL;
+    PyObject *looking = ok && look_at ? look_at_poses(eye, target, up, many) : NULL;
     npy_intp frames = 0;
     double(*poses)[4][4] = ok && (looking || !look_at) ? parse_poses(looking ? looking : w2c, c2w, many, &j.cam,
                                                                      &frames)
@@ -638,10 +683,11 @@ static PyMethodDef renderer_methods[] = {
       "       invalid=0.0, shade='lambert', light=None) -> dict\n\n"
       "One pinhole view of mesh (OpenCV's convention; pose world-to-camera, identity if not given, or\n"
       "the look-at camera eye, target, up). Returns new arrays for the outputs asked for among 'color',\n"
-      "'depth', 'range', 'face_ids', 'part_ids', 'normals', and 'stats' (the draw's counts)." },
+      "'depth', 'range', 'face_ids', 'part_ids', 'normals', and 'stats' (the one draw's counts)." },
     { "render_many", (PyCFunction)(void (*)(void))renderer_render_many, METH_VARARGS | METH_KEYWORDS,
-      "render_many(mesh, poses, *, K=None, ..., poses_c2w=None, ...) -> dict\n\n"
-      "render() for each of N poses (N, 4, 4): the outputs stacked (N, H, W[, 3]), 'stats' a list." },
+      "render_many(mesh, poses, *, K=None, ..., poses_c2w=None, eye=None, target=None, up=None, ...) -> dict\n\n"
+      "render() for each of N poses (N, 4, 4), or of N look-at cameras (eye, target, up each (N, 3),\n"
+      "or (3,) for all): the outputs stacked (N, H, W[, 3]), 'stats' a list." },
     { NULL },
 };
 

@@ -152,3 +152,33 @@ def test_a_renderer_made_again_at_another_size_draws_colour_at_that_size():
     again = r.render(mesh, fx=20, cx=23.5, cy=15.5, outputs=("color",), shade="color")["color"]
     assert first.shape == (32, 48, 3) and again.shape == (16, 24, 3)
     assert np.array_equal(again, first[:16, :24])  # the same camera, its top-left corner
+
+
+@pytest.mark.parametrize("shade", SHADES)
+def test_colour_and_depth_come_from_one_draw(root, tmp_path, shade):
+    """A render of colour (in any shading) and every other output counts
+    one draw's triangles and fragments: the same counts as depth alone."""
+    obj, pose = torus(root)
+    if shade == "color":
+        obj, *_ = coloured_obj(tmp_path)
+        pose = look_pose([0.3, 0.2, -3.0], [0, 0, 0])
+    mesh = softrast.Mesh.load(obj)
+    r = softrast.Renderer(W, H, threads=2)
+    everything = r.render(mesh, **intrinsics(), pose=pose, shade=shade,
+                          outputs=("color", "depth", "range", "face_ids", "part_ids", "normals"))
+    depth = r.render(mesh, **intrinsics(), pose=pose, outputs="depth")
+    s = everything["stats"]
+    assert s == depth["stats"] and mesh.triangle_count // 2 < s["triangles"] <= mesh.triangle_count
+    assert s["fragments"] >= (everything["face_ids"] > 0).sum() > 500
+    assert np.array_equal(everything["depth"], depth["depth"])
+
+
+def test_every_thread_count_gives_the_same_outputs(root):
+    obj, pose = torus(root)
+    mesh = softrast.Mesh.load(obj)
+    outputs = ("color", "depth", "range", "face_ids", "part_ids", "normals")
+    one = softrast.Renderer(W, H, threads=1).render(mesh, **intrinsics(), pose=pose, outputs=outputs)
+    for threads in (2, 3, 7):
+        many = softrast.Renderer(W, H, threads=threads).render(mesh, **intrinsics(), pose=pose, outputs=outputs)
+        for name in outputs:
+            assert np.array_equal(one[name], many[name]), (threads, name)

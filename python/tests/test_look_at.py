@@ -101,3 +101,38 @@ def test_a_bad_look_at_camera_is_refused_with_one_line(kw, message):
     mesh, _ = markers([0, 0, 5], [0, 0, 0], [0, 1, 0])
     with pytest.raises(ValueError, match=message):
         softrast.Renderer(16, 16).render(mesh, **kw)
+
+
+def test_render_many_of_look_at_cameras_is_render_of_each(root):
+    mesh = softrast.Mesh.load(os.path.join(root, "assets", "torus.obj"))
+    eyes = np.array([[1.3, 2.0, 2.4], [0.5, -2.5, 2.0], [-2.0, 0.3, 1.5]])
+    targets = np.array([[0.1, 0.05, -0.2], [0.0, 0.0, 0.0], [0.2, -0.1, 0.1]])
+    ups = np.array([[0, 1, 0], [1, 0, 0], [0, 0.6, 0.8]])
+    kw = dict(fov=50, outputs=("color", "depth", "face_ids", "normals"))
+    r = softrast.Renderer(48, 36)
+    for target, up in ((targets[0], None), (targets, None), (targets[1], ups), (targets, ups)):
+        many = r.render_many(mesh, eye=eyes, target=target, up=up, **kw)
+        assert many["depth"].shape == (3, 36, 48)
+        for i, eye in enumerate(eyes):
+            one = r.render(mesh, eye=eye, target=target if target.ndim == 1 else target[i],
+                           up=None if up is None else up[i], **kw)
+            for name in kw["outputs"]:
+                assert np.array_equal(many[name][i], one[name]), (i, name)
+            assert many["stats"][i] == one["stats"] and (one["face_ids"] > 0).sum() > 200
+        assert not np.array_equal(many["depth"][0], many["depth"][1])
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(eye=np.ones((3, 3)), target=np.zeros((2, 3))), "target: 2 rows where another of eye, target and up has 3"),
+    (dict(eye=[[0, 0, 5], [1, 2, 3]], target=(1, 2, 3)), "frame 1: eye and target: the same point"),
+    (dict(eye=[[0, 0, 5], [0, 0, -5]], target=(0, 0, 0), up=[[0, 1, 0], [0, 0, 1]]),
+     "frame 1: up: zero or along the view direction"),
+    (dict(eye=np.ones((3, 2)), target=(0, 0, 0)), r"eye: shape \(3, 2\) where \(N, 3\) or \(3,\)"),
+    (dict(eye=[[0, 0, 5], [0, np.inf, 5]], target=(0, 0, 0)), "eye: every entry must be finite"),
+    (dict(eye=[[0, 0, 5]], target=(0, 0, 0), poses=np.eye(4)[None]), "a pose and the look-at camera"),
+    (dict(target=(0, 0, 0)), "the look-at camera needs eye and target"),
+])
+def test_render_many_refuses_a_bad_look_at_camera_with_one_line(kw, message):
+    mesh, _ = markers([0, 0, 5], [0, 0, 0], [0, 1, 0])
+    with pytest.raises(ValueError, match=message):
+        softrast.Renderer(16, 16).render_many(mesh, **kw)

@@ -191,3 +191,20 @@ def test_resident_memory_stays_flat_over_10000_renders():
     renders(9000)
     after_10000 = resident_bytes()
     assert after_10000 - after_1000 < 8 << 20, (after_1000, after_10000)
+
+
+@pytest.mark.skipif(SANITISED, reason="memory is measured on the optimised build only")
+def test_colour_takes_no_second_framebuffer():
+    """A shaded colour comes from the draw that gives depth and the ids: a
+    renderer that has drawn colour in ids holds nothing more once it shades
+    it (a second 3072 x 3072 view, colour and depth, would be 72 MiB)."""
+    mesh = softrast.Mesh([[-1, -1, 3], [1, -1, 3], [0, 1, 3]], [[0, 1, 2]])
+    kw = dict(fx=1500, outputs=("color", "depth"), shade="lambert")
+    softrast.Renderer(3072, 3072, threads=1).render(mesh, **kw)  # the arrays' memory, made and freed once
+    r = softrast.Renderer(3072, 3072, threads=1)
+    r.render(mesh, fx=1500, outputs=("color", "depth"), shade="id")
+    before = resident_bytes()
+    out = r.render(mesh, **kw)
+    assert (out["depth"] > 0).sum() > 1000 and out["color"].any()
+    del out
+    assert resident_bytes() - before < 24 << 20, (before, resident_bytes())

@@ -29,6 +29,8 @@ typedef struct sr_scene {
     sr_load_report report; /* what the loader found besides the mesh */
     mat4 upright;          /* the world turn that shows the file's up axis as +y (upright.h) */
     sr_texture texture;
+    sr_texture *material_textures; /* the mesh's materials' textures, each file once */
+    uint32_t material_texture_count;
     sr_framebuffer fb;
     sr_workspace *workspace; /* reused by every draw of the scene */
 } sr_scene;
@@ -50,7 +52,9 @@ int sr_scene_default_threads(void);
 bool sr_scene_setup_parse(sr_scene_setup *s, const sr_option *own, const char *const *skip, const char *usage,
                           int argc, char **argv, bool *help, sr_error *err);
 
-/* Loads the mesh, then the texture and normals: all of them when `everything`
+/* Loads the mesh, then the texture (or its materials' textures, each file
+ * once; --texture instead drops the materials and draws the whole mesh
+ * with it) and normals: all of them when `everything`
  * (the viewer switches modes), else only what s->shade reads. Prints the
  * loader's warnings, one line each. Turns the scene upright (--up-axis, else
  * the file's up axis). Creates the framebuffer at s->size. */

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "draw_state.h"
+#include "materials.h"
 #include "pipeline/02_assemble.h"
 #include "pipeline/04_clip/clip.h"
 #include "pipeline/01_vertex.h"
@@ -71,7 +72,11 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
         return sr_error_set(err, "this shading mode needs vertex normals and the mesh has none");
     if (l->color >= 0 && !d->mesh->colors)
         return sr_error_set(err, "color shading needs vertex colors and the mesh has none");
-    if (l->uv >= 0 && (!d->mesh->uvs || !d->texture || !d->texture->texels))
+    bool materials = d->mesh->material_count > 0;
+    if (materials && !sr_materials_check(d->mesh, err))
+        return false;
+    bool material_textures = materials && sr_assemble_triangles(d->mesh); /* draw_layout */
+    if (l->uv >= 0 && (!d->mesh->uvs || (!material_textures && (!d->texture || !d->texture->texels))))
         return sr_error_set(err, "texture shading needs texture coordinates and a texture");
     if (d->texture && d->texture->texels &&
         (d->texture->width < 1 || d->texture->height < 1 || d->texture->width > SR_MAX_TEXTURE_SIDE ||
@@ -89,7 +94,9 @@ static void shade_context_make(const sr_draw_desc *d, sr_simd simd, const sr_var
         glm_vec3_copy((float *)d->light_dir, light);
     glm_vec3_normalize(light);
     *c = (sr_shade_context){ .layout = *l, .texture = d->texture, .filter = d->filter,
-                             .simd = sr_raster_simd_resolve(simd) };
+                             .simd = sr_raster_simd_resolve(simd),
+                             .albedo = { SR_LAMBERT_GRAY, SR_LAMBERT_GRAY, SR_LAMBERT_GRAY },
+                             .tint = { 1.0f, 1.0f, 1.0f } };
     glm_vec3_copy(light, c->light_dir);
 }
 
@@ -443,6 +450,21 @@ static int thread_count(const sr_draw_desc *d, const sr_draw_study *s)
     return d->threads < SR_MAX_THREADS ? d->threads : SR_MAX_THREADS;
 }
 
+/* The varyings the mode reads: a mesh with materials is textured where
+ * one of them has a texture (and the mesh uvs); texture shading of one
+ * whose materials have none draws their colours, from no varyings. Points
+ * and lines are drawn without the materials (sr_materials_make). */
+static sr_varying_layout draw_layout(sr_shade mode, const sr_draw_desc *d)
+{
+    const sr_mesh *mesh = d->mesh;
+    if (mesh->material_count == 0 || !sr_assemble_triangles(mesh))
+        return sr_vertex_layout(mode, mesh, d->texture && d->texture->texels);
+    bool textured = mesh->materials && sr_materials_textured(mesh, d->texture) && mesh->uvs;
+    if (mode == SR_SHADE_TEXTURE && !textured)
+        return (sr_varying_layout){ .color = -1, .uv = -1, .normal = -1 };
+    return sr_vertex_layout(mode, mesh, textured);
+}
+
 bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err)
 {
     if (!desc)
@@ -452,7 +474,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     sr_shade mode = study.count_hits ? SR_RASTER_COUNT_HITS : desc->shade;
     sr_varying_layout layout = { .color = -1, .uv = -1, .normal = -1 };
     if (desc->mesh)
-        layout = sr_vertex_layout(mode, desc->mesh, desc->texture && desc->texture->texels);
+        layout = draw_layout(mode, desc);
     if (!check_inputs(fb, desc, &study, &layout, err))
         return false;
     sr_workspace *ws = desc->workspace ? desc->workspace : sr_workspace_create();
@@ -474,7 +496,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     st.subpixel_lanes = subpixel_lanes(&st);
     st.subpixel = subpixel_rules(&st);
     sr_stats scratch = { 0 };
-    bool ok = draw_with(&st, stats ? stats : &scratch, err);
+    bool ok = sr_materials_make(&st, err) && draw_with(&st, stats ? stats : &scratch, err);
     if (!desc->workspace)
         sr_workspace_destroy(ws);
     if (study.times)

@@ -144,6 +144,7 @@ struct sr_workspace {
     sr_array row_bands;    /* unsigned char: the band of rows of each vertex inside, when st->band_rows */
     sr_array band_slots;   /* sr_band_slot: the row-band path's kept slots, each chunk's from its first slot on */
     sr_array chunk_kept;   /* uint32_t: how many slots each chunk of the verdicts kept in band_slots */
+    sr_array material_shades; /* sr_shade_context: a mesh's materials' (materials.c) */
     sr_band_costs band_costs; /* of the row-band path's last draw */
     sr_thread_work threads[SR_MAX_THREADS];
 };

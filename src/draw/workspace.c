@@ -42,6 +42,7 @@ void sr_workspace_destroy(sr_workspace *ws)
     sr_array_free(&ws->chunk_kept);
     sr_array_free(&ws->screen);
     sr_array_free(&ws->tile_order);
+    sr_array_free(&ws->material_shades);
     for (int t = 0; t < SR_MAX_THREADS; t++)
         thread_work_free(&ws->threads[t]);
     free(ws);

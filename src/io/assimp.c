@@ -7,8 +7,10 @@
  * right-handed y-up like OBJ's, so the same flip applies: z negated (of
  * positions and normals) and each triangle (a, b, c) written as (a, c, b).
  * Meshes follow in Assimp's mesh order, faces in face order: triangle ids
- * count them so. Points and lines are left out. A material's colour factor
- * is multiplied into the vertex colours (white where a mesh has none). Positions are gathered in
+ * count them so. Points and lines are left out. Each of the scene's
+ * materials becomes a mesh material (its colour factor, its base-colour or
+ * diffuse texture, glTF's alpha mode and cutoff), and each mesh a part
+ * naming its own. Positions are gathered in
  * double and stored relative to a far mesh's centre, as OBJ's are. A
  * texture embedded in the file (.glb, FBX) is decoded here; one beside it
  * is named by texture_path, found by texture_find.h's rules. A mesh that
@@ -19,6 +21,7 @@
  * child process (isolated_load.h): Assimp is not ours to make crash- and
  * hang-free.
  */
+#include <assimp/GltfMaterial.h>
 #include <assimp/cimport.h>
 #include <assimp/material.h>
 #include <assimp/metadata.h>
@@ -76,21 +79,13 @@ static bool is_triangle(const struct aiFace *f)
 }
 
 /* The material's colour factor (glTF's base colour, else the diffuse
- * colour), white when it has none: it multiplies the vertex colours. */
-static struct aiColor4D material_color(const struct aiScene *sc, const struct aiMesh *m)
+ * colour), white when it has none. */
+static struct aiColor4D material_color(const struct aiMaterial *mat)
 {
     struct aiColor4D c = { 1.0f, 1.0f, 1.0f, 1.0f };
-    if (m->mMaterialIndex < sc->mNumMaterials) {
-        const struct aiMaterial *mat = sc->mMaterials[m->mMaterialIndex];
-        if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) != aiReturn_SUCCESS)
-            aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c);
-    }
+    if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) != aiReturn_SUCCESS)
+        aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c);
     return c;
-}
-
-static bool is_white(struct aiColor4D c)
-{
-    return c.r == 1.0f && c.g == 1.0f && c.b == 1.0f;
 }
 
 /* What the scene needs, counted before anything is allocated for it. */
@@ -123,7 +118,7 @@ static bool count_scene(const struct aiScene *sc, const char *path, scene_counts
         n->parts += n->indices > before;
         n->normals |= m->mNormals != NULL;
         n->uvs |= m->mTextureCoords[0] != NULL;
-        n->colors |= m->mColors[0] != NULL || !is_white(material_color(sc, m));
+        n->colors |= m->mColors[0] != NULL;
     }
     if (n->vertices > SR_MAX_MESH_VERTICES || n->indices / 3 > SR_MAX_MESH_TRIANGLES)
         return sr_error_set(err, "%s: %llu vertices and %llu triangles exceed the limits (%u, %u)", path,
@@ -132,20 +127,26 @@ static bool count_scene(const struct aiScene *sc, const char *path, scene_counts
     return true;
 }
 
-/* The first base-colour (glTF) or diffuse texture of a material that a
- * drawn mesh uses; false when none has one. */
-static bool first_texture(const struct aiScene *sc, struct aiString *name)
+/* A material's base-colour (glTF) or diffuse texture; false when it has
+ * none. */
+static bool material_texture(const struct aiMaterial *mat, struct aiString *name)
 {
     static const enum aiTextureType kinds[] = { aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE };
-    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
-        if (!is_triangles(sc->mMeshes[i]) || sc->mMeshes[i]->mMaterialIndex >= sc->mNumMaterials)
-            continue;
-        const struct aiMaterial *mat = sc->mMaterials[sc->mMeshes[i]->mMaterialIndex];
-        for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++)
-            if (aiGetMaterialTexture(mat, kinds[k], 0, name, NULL, NULL, NULL, NULL, NULL, NULL) == aiReturn_SUCCESS &&
-                name->length > 0)
-                return true;
-    }
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++)
+        if (aiGetMaterialTexture(mat, kinds[k], 0, name, NULL, NULL, NULL, NULL, NULL, NULL) == aiReturn_SUCCESS &&
+            name->length > 0)
+            return true;
+    return false;
+}
+
+/* The first texture of a material that a drawn mesh uses; false when none
+ * has one. */
+static bool first_texture(const struct aiScene *sc, struct aiString *name)
+{
+    for (unsigned i = 0; i < sc->mNumMeshes; i++)
+        if (is_triangles(sc->mMeshes[i]) && sc->mMeshes[i]->mMaterialIndex < sc->mNumMaterials &&
+            material_texture(sc->mMaterials[sc->mMeshes[i]->mMaterialIndex], name))
+            return true;
     return false;
 }
 
@@ -206,6 +207,68 @@ static bool find_texture(const struct aiScene *sc, const char *path, sr_mesh *me
     return mesh->texture_path || sr_error_set(err, "%s: out of memory", path);
 }
 
+/* glTF's alpha mode and cutoff (0.5 when not given); other formats' are
+ * opaque. */
+static void material_alpha(const struct aiMaterial *mat, sr_material *out)
+{
+    struct aiString mode;
+    out->alpha_cutoff = 0.5f;
+    if (aiGetMaterialString(mat, AI_MATKEY_GLTF_ALPHAMODE, &mode) != aiReturn_SUCCESS)
+        return;
+    out->alpha_mode = strcmp(mode.data, "MASK") == 0    ? SR_ALPHA_MASK
+                      : strcmp(mode.data, "BLEND") == 0 ? SR_ALPHA_BLEND
+                                                        : SR_ALPHA_OPAQUE;
+    float cutoff;
+    if (aiGetMaterialFloat(mat, AI_MATKEY_GLTF_ALPHACUTOFF, &cutoff) == aiReturn_SUCCESS && isfinite(cutoff))
+        out->alpha_cutoff = cutoff;
+}
+
+/* The scene's materials, in Assimp's order: a texture embedded in the file
+ * is the one decoded into tex (the first any drawn mesh uses: another
+ * embedded one is left out, its material drawn in its colour), one beside
+ * it a path found by texture_find.h's rules, else named as written (for
+ * the warning). A scene without materials gets one, white. */
+static bool build_materials(const struct aiScene *sc, const char *path, sr_mesh *mesh, sr_texture *tex,
+                            sr_error *err)
+{
+    uint32_t n = sc->mNumMaterials ? sc->mNumMaterials : 1;
+    if (n > SR_MAX_MESH_MATERIALS)
+        return sr_error_set(err, "%s: %u materials, more than %u", path, n, SR_MAX_MESH_MATERIALS);
+    mesh->materials = calloc(n, sizeof *mesh->materials);
+    if (!mesh->materials)
+        return sr_error_set(err, "%s: out of memory", path);
+    mesh->material_count = n;
+    struct aiString first;
+    const struct aiTexture *decoded = tex && tex->texels && first_texture(sc, &first) ? embedded_texture(sc, first.data)
+                                                                                       : NULL;
+    for (uint32_t i = 0; i < n; i++) {
+        sr_material *m = &mesh->materials[i];
+        *m = (sr_material){ .base_color = { 1.0f, 1.0f, 1.0f, 1.0f }, .alpha_cutoff = 0.5f };
+        if (i >= sc->mNumMaterials)
+            continue;
+        const struct aiMaterial *mat = sc->mMaterials[i];
+        struct aiColor4D c = material_color(mat);
+        const float rgba[4] = { c.r, c.g, c.b, c.a };
+        for (int k = 0; k < 4; k++)
+            m->base_color[k] = isfinite(rgba[k]) ? rgba[k] : 1.0f;
+        material_alpha(mat, m);
+        struct aiString name;
+        if (!material_texture(mat, &name))
+            continue;
+        const struct aiTexture *inside = embedded_texture(sc, name.data);
+        if (inside || name.data[0] == '*') {
+            m->texture = inside && inside == decoded ? tex : NULL;
+            continue;
+        }
+        m->texture_path = sr_texture_find(path, name.data);
+        if (!m->texture_path)
+            m->texture_path = sr_obj_path_beside(path, name.data);
+        if (!m->texture_path)
+            return sr_error_set(err, "%s: out of memory", path);
+    }
+    return true;
+}
+
 static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double origin[3])
 {
     uint32_t v = 0, x = 0, part = 0;
@@ -213,7 +276,6 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
         const struct aiMesh *m = sc->mMeshes[i];
         if (!is_kept(sc, m))
             continue;
-        const struct aiColor4D factor = material_color(sc, m);
         for (unsigned j = 0; j < m->mNumVertices; j++, v++) {
             const struct aiVector3D p = m->mVertices[j];
             const double world[3] = { p.x, p.y, -(double)p.z };
@@ -225,7 +287,7 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
                 glm_vec2_copy((vec2){ m->mTextureCoords[0][j].x, m->mTextureCoords[0][j].y }, mesh->uvs[v]);
             if (mesh->colors) {
                 const struct aiColor4D c = m->mColors[0] ? m->mColors[0][j] : (struct aiColor4D){ 1, 1, 1, 1 };
-                glm_vec3_copy((vec3){ c.r * factor.r, c.g * factor.g, c.b * factor.b }, mesh->colors[v]);
+                glm_vec3_copy((vec3){ c.r, c.g, c.b }, mesh->colors[v]);
             }
         }
         uint32_t first = x / 3;
@@ -239,7 +301,8 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
             mesh->indices[x++] = base + c[1];
         }
         if (x / 3 > first)
-            mesh->parts[part++] = (sr_mesh_part){ first, x / 3 - first };
+            mesh->parts[part++] = (sr_mesh_part){ first, x / 3 - first,
+                                                  m->mMaterialIndex < sc->mNumMaterials ? m->mMaterialIndex : 0 };
     }
 }
 
@@ -307,7 +370,8 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
         sc = aiApplyPostProcessing(sc, IMPORT_STEPS); /* the steps aiImportFile would run, in its order */
     if (!sc)
         return import_error(path, err);
-    bool ok = build_mesh(sc, path, mesh, err) && find_texture(sc, path, mesh, texture, err);
+    bool ok = build_mesh(sc, path, mesh, err) && find_texture(sc, path, mesh, texture, err) &&
+              build_materials(sc, path, mesh, texture, err);
     if (ok && report) {
         report->mirrored_meshes = mirrored;
         ok = sr_assimp_report(sc, path, report) || sr_error_set(err, "%s: out of memory", path);

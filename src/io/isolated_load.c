@@ -5,7 +5,7 @@
  * crash is a signal the parent reads and reports, and a loop ends at the
  * child's CPU-time limit (SIGXCPU), a read that blocks (a glTF naming a FIFO
  * as its buffer) at its alarm (SIGALRM). The child writes a header, then the
- * mesh's arrays or the error message; the parent checks the counts against
+ * mesh's arrays and materials or the error message; the parent checks the counts against
  * the documented limits before it allocates, so a lying child cannot make
  * it allocate more than those allow.
  */
@@ -27,8 +27,22 @@ typedef struct wire_header {
     uint32_t texture_width, texture_height; /* 0: no texture */
     uint32_t text_len; /* the texture path (ok) or the message (not ok), without its NUL */
     uint32_t has_report; /* a report follows the arrays */
+    uint32_t material_count; /* wire_materials follow the arrays, each with its texture path */
     double origin[3];
 } wire_header;
+
+/* A material on the wire: its texture is the embedded one (the loader's
+ * texture), a path of path_len bytes after it, or none. */
+typedef struct wire_material {
+    float base_color[4];
+    uint32_t alpha_mode;
+    float alpha_cutoff;
+    uint32_t embedded;
+    uint32_t path_len;
+} wire_material;
+
+/* A texture path longer than this is refused (no file system has one). */
+#define WIRE_PATH_MAX 65536
 
 /* The loader the child runs: one of the two kinds. */
 typedef struct child_loader {
@@ -96,6 +110,50 @@ static bool send_report(int fd, const sr_load_report *r)
            write_all(fd, r->textures, r->texture_count * sizeof *r->textures);
 }
 
+static bool send_materials(int fd, const sr_mesh *m, const sr_texture *t)
+{
+    for (uint32_t i = 0; i < m->material_count; i++) {
+        const sr_material *s = &m->materials[i];
+        wire_material w = { .alpha_mode = (uint32_t)s->alpha_mode, .alpha_cutoff = s->alpha_cutoff,
+                            .embedded = s->texture == t && t->texels,
+                            .path_len = s->texture_path ? (uint32_t)strlen(s->texture_path) : 0 };
+        memcpy(w.base_color, s->base_color, sizeof w.base_color);
+        if (!write_all(fd, &w, sizeof w) || !write_all(fd, s->texture_path, w.path_len))
+            return false;
+    }
+    return true;
+}
+
+/* The child's materials, checked as the draw would check them (the alpha
+ * mode; a part naming one past the table), into mesh; the embedded texture
+ * is `texture`. */
+static bool receive_materials(int fd, uint32_t count, sr_mesh *mesh, sr_texture *texture)
+{
+    mesh->materials = calloc(count ? count : 1, sizeof *mesh->materials);
+    if (!mesh->materials)
+        return false;
+    mesh->material_count = count;
+    for (uint32_t i = 0; i < count; i++) {
+        sr_material *m = &mesh->materials[i];
+        wire_material w;
+        if (!read_all(fd, &w, sizeof w) || w.alpha_mode > SR_ALPHA_BLEND || w.path_len > WIRE_PATH_MAX)
+            return false;
+        *m = (sr_material){ .alpha_mode = (sr_alpha_mode)w.alpha_mode, .alpha_cutoff = w.alpha_cutoff,
+                            .texture = w.embedded && texture->texels ? texture : NULL };
+        memcpy(m->base_color, w.base_color, sizeof m->base_color);
+        if (w.path_len > 0) {
+            m->texture_path = malloc((size_t)w.path_len + 1);
+            if (!m->texture_path || !read_all(fd, m->texture_path, w.path_len))
+                return false;
+            m->texture_path[w.path_len] = '\0';
+        }
+    }
+    for (uint32_t i = 0; i < mesh->part_count; i++)
+        if (count > 0 && mesh->parts[i].material >= count)
+            return false;
+    return true;
+}
+
 static void terminate(char *text)
 {
     text[SR_REPORT_TEXT - 1] = '\0';
@@ -160,6 +218,7 @@ static void child_run(int fd, const char *path, child_loader load, unsigned seco
         h.has_uvs = m.uvs != NULL;
         h.has_colors = m.colors != NULL;
         h.part_count = m.parts ? m.part_count : 0;
+        h.material_count = m.materials ? m.material_count : 0;
         h.texture_width = t.texels ? (uint32_t)t.width : 0;
         h.texture_height = t.texels ? (uint32_t)t.height : 0;
         memcpy(h.origin, m.origin, sizeof h.origin);
@@ -168,6 +227,8 @@ static void child_run(int fd, const char *path, child_loader load, unsigned seco
     wire_array arrays[WIRE_ARRAYS];
     for (int i = 0, n = ok ? wire_arrays(&m, &t, arrays) : 0; sent && i < n; i++)
         sent = write_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
+    if (sent && ok)
+        sent = send_materials(fd, &m, &t);
     if (sent && h.has_report)
         sent = send_report(fd, &report);
     _exit(sent ? 0 : 1); /* no atexit handlers of the parent's libraries in the child */
@@ -184,6 +245,7 @@ static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, sr_texture
 {
     if (h->vertex_count > SR_MAX_MESH_VERTICES || h->index_count / 3 > SR_MAX_MESH_TRIANGLES ||
         h->index_count % 3 != 0 || h->part_count > h->index_count / 3 || h->text_len > SR_ERROR_MAX * 8 ||
+        h->material_count > SR_MAX_MESH_MATERIALS ||
         !texture_fits(h->texture_width, h->texture_height))
         return sr_error_set(err, "%s: the importer sent a mesh past the limits", path);
     if (!sr_mesh_alloc(mesh, h->vertex_count, h->index_count, h->has_normals, h->has_uvs, h->has_colors, err))
@@ -216,6 +278,8 @@ static bool receive_mesh(int fd, const wire_header *h, sr_mesh *mesh, sr_texture
         ok = read_all(fd, *arrays[i].data, arrays[i].elem * arrays[i].count);
     if (!ok)
         return sr_error_set(err, "%s: the importer stopped while sending the mesh", path);
+    if (h->material_count > 0 && !receive_materials(fd, h->material_count, mesh, texture))
+        return sr_error_set(err, "%s: the importer sent materials past the limits", path);
     sr_load_report unwanted = { 0 };
     if (h->has_report && !receive_report(fd, report ? report : &unwanted))
         return sr_error_set(err, "%s: the importer sent a report past the limits", path);

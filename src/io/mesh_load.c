@@ -39,8 +39,12 @@ bool sr_mesh_load_report(sr_mesh *mesh, sr_texture *texture, const char *path, s
     bool ok = regular_file(path, err) &&
               sr_assimp_load_report(mesh, embedded, path, SR_IMPORT_SECONDS, report, err);
     mesh->z_negated = ok; /* as OBJ's: Assimp's formats are right-handed too */
-    if (!texture)
+    if (!texture) { /* skipped: its materials draw their colour */
+        for (uint32_t i = 0; i < mesh->material_count; i++)
+            if (mesh->materials[i].texture == &unwanted)
+                mesh->materials[i].texture = NULL;
         sr_texture_free(&unwanted);
+    }
     return ok;
 }
 

@@ -18,12 +18,12 @@ static bool parse_newmtl(sr_array *lib, sr_line_reader *in, char *cursor, sr_err
     if (!*name)
         return sr_line_fail(in, err, "'newmtl' needs a material name");
     char *copy = strdup(name);
-    sr_material *m = copy ? sr_array_push(lib, sizeof *m) : NULL;
+    sr_mtl_material *m = copy ? sr_array_push(lib, sizeof *m) : NULL;
     if (!m) {
         free(copy);
         return out_of_memory(in, err);
     }
-    *m = (sr_material){ .name = copy };
+    *m = (sr_mtl_material){ .name = copy, .mesh_material = -1 };
     return true;
 }
 
@@ -48,7 +48,7 @@ static bool parse_map_kd(sr_array *lib, sr_line_reader *in, char *cursor, sr_err
     const char *file = map_file_name(sr_obj_rest(cursor));
     if (!*file || file[0] == '-')
         return sr_line_fail(in, err, "'map_Kd' needs a file name");
-    sr_material *m = (sr_material *)lib->data + lib->count - 1;
+    sr_mtl_material *m = (sr_mtl_material *)lib->data + lib->count - 1;
     char *path = sr_obj_path_beside(in->path, file), *written = strdup(file), *library = strdup(in->path);
     if (!path || !written || !library) {
         free(path);
@@ -59,7 +59,31 @@ static bool parse_map_kd(sr_array *lib, sr_line_reader *in, char *cursor, sr_err
     free(m->map_kd); /* a repeated map_Kd overrides, as in other readers */
     free(m->map_kd_written);
     free(m->library);
-    *m = (sr_material){ .name = m->name, .map_kd = path, .map_kd_written = written, .library = library };
+    m->map_kd = path;
+    m->map_kd_written = written;
+    m->library = library;
+    return true;
+}
+
+/* `Kd r g b`, or `Kd r` for a gray; the spectral and CIE XYZ forms
+ * (`Kd spectral …`, `Kd xyz …`) are read past. */
+static bool parse_kd(sr_array *lib, sr_line_reader *in, char *cursor, sr_error *err)
+{
+    if (lib->count == 0)
+        return sr_line_fail(in, err, "'Kd' before any 'newmtl'");
+    const char *rest = cursor + strspn(cursor, " \t");
+    if (*rest >= 'a' && *rest <= 'z')
+        return true;
+    double d[3];
+    int n = sr_obj_parse_numbers(in, cursor, d, 3, err);
+    if (n < 0)
+        return false;
+    if (n != 1 && n != 3)
+        return sr_line_fail(in, err, "'Kd' needs r g b or one gray, got %d numbers", n);
+    sr_mtl_material *m = (sr_mtl_material *)lib->data + lib->count - 1;
+    for (int k = 0; k < 3; k++)
+        m->kd[k] = (float)d[n == 3 ? k : 0];
+    m->has_kd = true;
     return true;
 }
 
@@ -75,6 +99,8 @@ static bool parse_mtl_statement(sr_array *lib, sr_line_reader *in, char *line,
     /* Some exporters write "map_kd"; the keyword means the same. */
     if (strcasecmp(keyword, "map_Kd") == 0)
         return parse_map_kd(lib, in, cursor, err);
+    if (strcmp(keyword, "Kd") == 0)
+        return parse_kd(lib, in, cursor, err);
     return true;
 }
 
@@ -165,14 +191,14 @@ bool sr_mtl_load(sr_mtl_libs *libs, const sr_line_reader *obj, char *names, sr_e
 
 ptrdiff_t sr_mtl_find(const sr_mtl_libs *libs, const char *name)
 {
-    const sr_material *m = libs->materials.data;
+    const sr_mtl_material *m = libs->materials.data;
     for (size_t i = 0; i < libs->materials.count; i++)
         if (strcmp(m[i].name, name) == 0)
             return (ptrdiff_t)i;
     return -1;
 }
 
-void sr_mtl_find_texture(sr_material *m)
+void sr_mtl_find_texture(sr_mtl_material *m)
 {
     if (!m->map_kd || m->map_kd_searched)
         return;
@@ -187,7 +213,7 @@ void sr_mtl_find_texture(sr_material *m)
 
 void sr_mtl_free(sr_mtl_libs *libs)
 {
-    sr_material *m = libs->materials.data;
+    sr_mtl_material *m = libs->materials.data;
     for (size_t i = 0; i < libs->materials.count; i++) {
         free(m[i].name);
         free(m[i].map_kd);

@@ -1,17 +1,18 @@
 /* src/io/mtl.h — private to src/io: the part of a Wavefront material library
- * (.mtl) that softrast uses, each material's name and diffuse texture
- * (`map_Kd`). Everything else in the file (Ka, Kd, Ns, illum, other maps) is
- * read past.
+ * (.mtl) that softrast uses, each material's name, diffuse colour (`Kd`)
+ * and diffuse texture (`map_Kd`). Everything else in the file (Ka, Ns,
+ * illum, d, other maps) is read past.
  */
 #ifndef SOFTRAST_IO_MTL_H
 #define SOFTRAST_IO_MTL_H
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "obj_parse.h"
 
-typedef struct sr_material {
+typedef struct sr_mtl_material {
     char *name;
     char *map_kd;         /* the name resolved against the .mtl's folder, or once
                              searched (sr_mtl_find_texture) the file found; NULL if none */
@@ -19,11 +20,14 @@ typedef struct sr_material {
     char *library;        /* the .mtl's path, where the search starts */
     bool map_kd_searched; /* sr_mtl_find_texture looked for it */
     bool map_kd_found;    /* map_kd is a file that exists */
-} sr_material;
+    float kd[3];          /* the diffuse colour, when has_kd */
+    bool has_kd;
+    int64_t mesh_material; /* the loaded mesh's material made of it, or -1 before a face uses it */
+} sr_mtl_material;
 
 /* The materials of every library an OBJ names, and which files those were. */
 typedef struct sr_mtl_libs {
-    sr_array materials; /* sr_material */
+    sr_array materials; /* sr_mtl_material */
     sr_array files;     /* sr_mtl_file_id of each library read */
 } sr_mtl_libs;
 
@@ -47,7 +51,7 @@ ptrdiff_t sr_mtl_find(const sr_mtl_libs *libs, const char *name);
 /* Looks for m's texture by texture_find.h's rules, once: only the
  * materials a mesh uses are searched for, so a library of thousands
  * whose textures are missing costs no folder scans. */
-void sr_mtl_find_texture(sr_material *m);
+void sr_mtl_find_texture(sr_mtl_material *m);
 
 void sr_mtl_free(sr_mtl_libs *libs);
 

@@ -47,6 +47,16 @@ typedef struct obj_reader {
     const char *texture; /* first map_Kd used by a face; owned by materials */
     sr_load_report *report; /* NULL: nobody asked */
     ptrdiff_t run_material; /* the material of the report's last part */
+    /* The mesh's parts: runs of faces of one `o`/`g` group and one
+     * material; and its materials, each library material that a face
+     * uses once, in order of first use, and the default one (a face
+     * without a material, or of a name no library has). */
+    sr_array parts;         /* sr_mesh_part */
+    sr_array used;          /* ptrdiff_t: the library material of each mesh material, -1 the default */
+    uint32_t group;         /* `o` and `g` statements so far */
+    uint32_t part_group;    /* the last part's */
+    int64_t default_material; /* the default's mesh material, or -1 */
+    bool any_material;      /* some face uses a library's material */
 } obj_reader;
 
 static bool out_of_memory(const obj_reader *o)
@@ -288,9 +298,9 @@ static bool emit_triangle(obj_reader *o, uint32_t a, uint32_t b, uint32_t c)
 /* The report's parts are the runs of faces drawn with one material (an
  * OBJ has no meshes of its own); each material's texture is listed once. */
 /* The material faces use now, its texture looked for; NULL for none. */
-static const sr_material *current_material(obj_reader *o)
+static const sr_mtl_material *current_material(obj_reader *o)
 {
-    sr_material *m = o->material >= 0 ? (sr_material *)o->materials.materials.data + o->material : NULL;
+    sr_mtl_material *m = o->material >= 0 ? (sr_mtl_material *)o->materials.materials.data + o->material : NULL;
     if (m)
         sr_mtl_find_texture(m);
     return m;
@@ -306,13 +316,51 @@ static bool report_face(obj_reader *o, size_t first_index)
         r->parts[r->part_count - 1].triangle_count += added;
         return true;
     }
-    const sr_material *m = current_material(o);
+    const sr_mtl_material *m = current_material(o);
     int32_t texture = -1;
     if (m && m->map_kd)
         texture = sr_report_add_texture(r, m->map_kd_written, m->map_kd_found ? m->map_kd : NULL,
                                     m->map_kd_found ? SR_TEXTURE_FOUND : SR_TEXTURE_MISSING);
     o->run_material = o->material;
     return sr_report_add_part(r, first, added, m ? m->name : "", texture) || out_of_memory(o);
+}
+
+/* The mesh material of the current library material (-1: the default),
+ * made on first use; -1 when out of memory. */
+static int64_t mesh_material(obj_reader *o)
+{
+    sr_mtl_material *m = o->material >= 0 ? (sr_mtl_material *)o->materials.materials.data + o->material : NULL;
+    int64_t *index = m ? &m->mesh_material : &o->default_material;
+    if (*index >= 0)
+        return *index;
+    ptrdiff_t *slot = sr_array_push(&o->used, sizeof *slot);
+    if (!slot)
+        return -1;
+    *slot = o->material;
+    *index = (int64_t)o->used.count - 1;
+    o->any_material |= m != NULL;
+    return *index;
+}
+
+/* The face's triangles (from first_index on) join the last part, or begin
+ * a part when the group or the material changed. */
+static bool add_to_part(obj_reader *o, size_t first_index)
+{
+    uint32_t first = (uint32_t)(first_index / 3), added = (uint32_t)((o->indices.count - first_index) / 3);
+    int64_t material = mesh_material(o);
+    if (material < 0)
+        return out_of_memory(o);
+    sr_mesh_part *last = o->parts.count ? (sr_mesh_part *)o->parts.data + o->parts.count - 1 : NULL;
+    if (last && last->material == (uint32_t)material && o->part_group == o->group) {
+        last->triangle_count += added;
+        return true;
+    }
+    sr_mesh_part *p = sr_array_push(&o->parts, sizeof *p);
+    if (!p)
+        return out_of_memory(o);
+    *p = (sr_mesh_part){ first, added, (uint32_t)material };
+    o->part_group = o->group;
+    return true;
 }
 
 static bool parse_face(obj_reader *o, char *cursor)
@@ -333,7 +381,7 @@ static bool parse_face(obj_reader *o, char *cursor)
         return sr_line_fail(&o->in, o->err, "a face needs at least 3 vertices, got %zu", n);
     if (!o->texture && o->material >= 0)
         o->texture = current_material(o)->map_kd;
-    return report_face(o, first_index);
+    return add_to_part(o, first_index) && report_face(o, first_index);
 }
 
 /* ---- materials ---- */
@@ -380,11 +428,15 @@ static bool parse_statement(obj_reader *o, char *line)
         return parse_mtllib(o, cursor);
     if (strcmp(keyword, "usemtl") == 0)
         return parse_usemtl(o, cursor);
+    if (strcmp(keyword, "o") == 0 || strcmp(keyword, "g") == 0) {
+        o->group++;
+        return true;
+    }
     if (o->report && strcmp(keyword, "l") == 0)
         o->report->lines++;
     if (o->report && strcmp(keyword, "p") == 0)
         o->report->points++;
-    return true; /* o, g, s, l, p, vp, curves, …: nothing softrast draws */
+    return true; /* s, l, p, vp, curves, …: nothing softrast draws */
 }
 
 static bool read_statements(obj_reader *o)
@@ -450,6 +502,49 @@ static void write_vertex(const obj_reader *o, sr_mesh *mesh, uint32_t i)
     }
 }
 
+/* A used library material as the draw takes it: its texture (found as
+ * map_Kd's rules say, else named as written, for the warning) over white,
+ * as it drew before materials, or else its Kd; the default material is
+ * SR_LAMBERT_GRAY's gray, white over vertex colours (which it then shows
+ * as they are). */
+static bool make_material(const obj_reader *o, ptrdiff_t library, bool colors, sr_material *out)
+{
+    const sr_mtl_material *m = library >= 0 ? (const sr_mtl_material *)o->materials.materials.data + library : NULL;
+    float gray = colors ? 1.0f : 0.8f;
+    *out = (sr_material){ .base_color = { gray, gray, gray, 1.0f } };
+    if (m && m->map_kd) {
+        out->base_color[0] = out->base_color[1] = out->base_color[2] = 1.0f;
+        return (out->texture_path = strdup(m->map_kd)) != NULL;
+    }
+    if (m && m->has_kd)
+        for (int k = 0; k < 3; k++)
+            out->base_color[k] = m->kd[k];
+    return true;
+}
+
+/* Parts and materials, when there is more than one part or a face uses a
+ * library's material: a file of plain faces keeps a mesh of one part and
+ * no materials, drawn as always. */
+static bool build_parts(obj_reader *o, sr_mesh *mesh)
+{
+    if (o->parts.count < 2 && !o->any_material)
+        return true;
+    mesh->part_count = (uint32_t)o->parts.count;
+    mesh->parts = o->parts.data;
+    o->parts = (sr_array){ 0 };
+    if (!o->any_material)
+        return true;
+    mesh->materials = calloc(o->used.count, sizeof *mesh->materials);
+    if (!mesh->materials)
+        return false;
+    mesh->material_count = (uint32_t)o->used.count;
+    const ptrdiff_t *used = o->used.data;
+    for (size_t i = 0; i < o->used.count; i++)
+        if (!make_material(o, used[i], mesh->colors != NULL, &mesh->materials[i]))
+            return false;
+    return true;
+}
+
 static bool build_mesh(obj_reader *o, sr_mesh *mesh)
 {
     uint32_t count = (uint32_t)o->corners.count;
@@ -458,7 +553,7 @@ static bool build_mesh(obj_reader *o, sr_mesh *mesh)
     choose_origin(o, mesh);
     for (uint32_t i = 0; i < count; i++)
         write_vertex(o, mesh, i); /* sr_mesh_alloc zeroed what a corner lacks */
-    if (o->texture && !(mesh->texture_path = strdup(o->texture))) {
+    if ((o->texture && !(mesh->texture_path = strdup(o->texture))) || !build_parts(o, mesh)) {
         sr_mesh_free(mesh);
         return sr_error_set(o->err, "%s: out of memory", o->in.path);
     }
@@ -479,6 +574,8 @@ static void obj_reader_free(obj_reader *o)
     sr_array_free(&o->normals);
     sr_array_free(&o->corners);
     sr_array_free(&o->indices);
+    sr_array_free(&o->parts);
+    sr_array_free(&o->used);
     free(o->map);
     sr_mtl_free(&o->materials);
 }
@@ -486,7 +583,7 @@ static void obj_reader_free(obj_reader *o)
 bool sr_obj_load_report(sr_mesh *mesh, const char *path, sr_load_report *report, sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
-    obj_reader o = { .err = err, .material = -1, .report = report, .run_material = -2 };
+    obj_reader o = { .err = err, .material = -1, .report = report, .run_material = -2, .default_material = -1 };
     if (report)
         sr_report_obj_format(report);
     if (!sr_line_reader_open(&o.in, path))

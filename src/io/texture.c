@@ -51,7 +51,9 @@ static png_uint_32 texel_format(void)
  * (so the size is checked before anything is allocated) and reports every
  * error through png.message: nothing on stderr, which SDL_image's libpng
  * use would print to. 16-bit files without gamma information are taken as
- * sRGB, as SDL_image took them. Alpha is dropped, not blended. Closes f. */
+ * sRGB, as SDL_image took them. Alpha (of a file that has it) is kept in
+ * the top byte, unblended (the colours are as stored), for MASK materials.
+ * Closes f. */
 static bool load_png(sr_texture *tex, FILE *f, const char *path, sr_error *err)
 {
     png_image png = { .version = PNG_IMAGE_VERSION, .flags = PNG_IMAGE_FLAG_16BIT_sRGB };
@@ -62,6 +64,7 @@ static bool load_png(sr_texture *tex, FILE *f, const char *path, sr_error *err)
     if (ok && !(tex->texels = malloc(count * sizeof *tex->texels)))
         ok = sr_error_set(err, "%s: out of memory for a %ux%u texture", path, (unsigned)png.width,
                           (unsigned)png.height);
+    bool alpha = (png.format & PNG_FORMAT_FLAG_ALPHA) != 0;
     png.format = texel_format();
     if (ok && !png_image_finish_read(&png, NULL, tex->texels, 0, NULL))
         ok = sr_error_set(err, "%s: not a readable image: %s", path, png.message);
@@ -69,10 +72,11 @@ static bool load_png(sr_texture *tex, FILE *f, const char *path, sr_error *err)
     fclose(f);
     if (!ok)
         return false;
-    for (size_t i = 0; i < count; i++)
+    for (size_t i = 0; !alpha && i < count; i++)
         tex->texels[i] &= RGB_MASK;
     tex->width = (int)png.width;
     tex->height = (int)png.height;
+    tex->alpha = alpha;
     return true;
 }
 
@@ -92,16 +96,17 @@ static SDL_Surface *load_surface(FILE *f, const char *path, sr_error *err)
     return s;
 }
 
-/* SDL_PIXELFORMAT_RGB888 is a packed 32-bit 0xXXRRGGBB word in host order, so
- * each pixel reads directly as a texel; rows are pitch bytes apart. Alpha, if
- * the file had any, is dropped (the conversion copies, it does not blend). */
-static void copy_texels(uint32_t *dst, const SDL_Surface *s)
+/* SDL_PIXELFORMAT_RGB888 (ARGB8888 for an image with alpha) is a packed
+ * 32-bit 0xXXRRGGBB (0xAARRGGBB) word in host order, so each pixel reads
+ * directly as a texel; rows are pitch bytes apart. The conversion copies,
+ * it does not blend. */
+static void copy_texels(uint32_t *dst, const SDL_Surface *s, bool alpha)
 {
     for (int y = 0; y < s->h; y++) {
         const uint8_t *row = (const uint8_t *)s->pixels + (size_t)y * (size_t)s->pitch;
         uint32_t *out = dst + (size_t)y * (size_t)s->w;
         memcpy(out, row, (size_t)s->w * sizeof *out);
-        for (int x = 0; x < s->w; x++)
+        for (int x = 0; !alpha && x < s->w; x++)
             out[x] &= RGB_MASK;
     }
 }
@@ -111,7 +116,8 @@ static bool texels_from_surface(sr_texture *tex, SDL_Surface *loaded, const char
 {
     if (!size_allowed(path, (unsigned long)loaded->w, (unsigned long)loaded->h, err))
         return false;
-    SDL_Surface *rgb = SDL_ConvertSurfaceFormat(loaded, SDL_PIXELFORMAT_RGB888, 0);
+    bool alpha = SDL_ISPIXELFORMAT_ALPHA(loaded->format->format) || loaded->format->Amask != 0;
+    SDL_Surface *rgb = SDL_ConvertSurfaceFormat(loaded, alpha ? SDL_PIXELFORMAT_ARGB8888 : SDL_PIXELFORMAT_RGB888, 0);
     if (!rgb)
         return sr_error_set(err, "%s: cannot convert the image to RGB: %s", path, SDL_GetError());
     tex->texels = malloc((size_t)rgb->w * (size_t)rgb->h * sizeof *tex->texels);
@@ -119,7 +125,8 @@ static bool texels_from_surface(sr_texture *tex, SDL_Surface *loaded, const char
         SDL_FreeSurface(rgb);
         return sr_error_set(err, "%s: out of memory for a %dx%d texture", path, rgb->w, rgb->h);
     }
-    copy_texels(tex->texels, rgb);
+    copy_texels(tex->texels, rgb, alpha);
+    tex->alpha = alpha;
     tex->width = rgb->w;
     tex->height = rgb->h;
     SDL_FreeSurface(rgb);

@@ -20,13 +20,43 @@
 #define SR_LAMBERT_AMBIENT 0.2f
 #define SR_LAMBERT_GRAY 0.8f
 
+/* The shading of a draw, or of one material of a mesh with materials
+ * (draw/materials.c makes one context per material, each with the draw's
+ * layout, light, filter and loop, and picks a triangle's by its part). A
+ * material's albedo and alpha are folded here into what the loops test
+ * per pixel: a texture or not (layout.uv), a colour factor or not
+ * (tinted), an alpha floor or not (alpha_min). */
 typedef struct sr_shade_context {
-    sr_varying_layout layout;
+    sr_varying_layout layout; /* a material without a texture has uv -1, one with has color -1 */
     const sr_texture *texture;
     sr_filter filter;
     float light_dir[3]; /* unit vector toward the light, world space */
     sr_simd simd;       /* which per-pixel loop runs the shading */
+    float albedo[3];    /* without texture or vertex colours: SR_LAMBERT_GRAY, or a material's colour */
+    float tint[3];      /* times each texel and vertex colour: 1, 1, 1 but for a material's */
+    bool tinted;        /* tint is not 1, 1, 1 */
+    /* MASK on a texture with alpha: a fragment whose texel alpha (0..255,
+     * filtered) is below it is discarded; 0: none is. */
+    uint32_t alpha_min;
+    bool hidden;        /* MASK whose alpha is below the cutoff everywhere: nothing is drawn */
+    /* The draw's base context only: a mesh's per-material contexts
+     * (material_count of them, 0: none) and its parts, by which a
+     * triangle's is found (sr_shade_context_of). */
+    const struct sr_shade_context *materials;
+    uint32_t material_count;
+    const sr_mesh_part *parts;
+    uint32_t part_count;
 } sr_shade_context;
+
+/* The context that shades triangle `id`: its part's material's (10_shade.c;
+ * material 0 for a triangle in no part), or c itself for a draw without
+ * materials. */
+const sr_shade_context *sr_shade_material_of(const sr_shade_context *c, uint32_t id);
+
+static inline const sr_shade_context *sr_shade_context_of(const sr_shade_context *c, uint32_t id)
+{
+    return c->material_count ? sr_shade_material_of(c, id) : c;
+}
 
 /* 0..1 to 0..255, clamped; NaN gives 0. */
 static inline uint32_t sr_shade_channel(float c)
@@ -71,9 +101,15 @@ static inline void sr_shade_unpack(uint32_t t, float rgb[3])
     rgb[2] = (float)(t & 0xFF) * SR_SHADE_CHANNEL_SCALE;
 }
 
+/* A texel as stored, its alpha in the top byte where the texture has one. */
+static inline uint32_t sr_shade_texel_raw(const sr_texture *tex, int x, int y)
+{
+    return tex->texels[(size_t)y * (size_t)tex->width + (size_t)x];
+}
+
 static inline uint32_t sr_shade_texel(const sr_texture *tex, int x, int y)
 {
-    return tex->texels[(size_t)y * (size_t)tex->width + (size_t)x] & 0xFFFFFFu;
+    return sr_shade_texel_raw(tex, x, y) & 0xFFFFFFu;
 }
 
 /* The texel a wrapped coordinate in [0, 1) falls in; a texel's lower edge
@@ -153,6 +189,35 @@ static inline void sr_shade_sample(const sr_texture *tex, sr_filter filter, floa
     sr_shade_unpack(sr_shade_sample_packed(tex, filter, u, v), rgb);
 }
 
+/* The filtered alpha (0..255) at (u, v) of a texture with alpha: the top
+ * bytes lerped as sr_shade_lerp_texels lerps a channel, in the same
+ * order, as the SIMD kernels lerp it beside green (span_kernel.h,
+ * split_lanes). */
+static inline uint32_t sr_shade_lerp_alpha(uint32_t a, uint32_t b, uint32_t w)
+{
+    return ((a >> 24) * (SR_SHADE_WEIGHT_ONE - w) + (b >> 24) * w + SR_SHADE_WEIGHT_ONE / 2) >> SR_SHADE_WEIGHT_BITS;
+}
+
+static inline uint32_t sr_shade_sample_alpha(const sr_texture *tex, sr_filter filter, float u, float v)
+{
+    float fu = sr_shade_wrap_unit(u), fv = sr_shade_wrap_unit(v);
+    if (filter == SR_FILTER_NEAREST)
+        return sr_shade_texel_raw(tex, sr_shade_texel_index(fu, tex->width),
+                                  tex->height - 1 - sr_shade_texel_index(fv, tex->height)) >> 24;
+    int x0, x1, y0, y1;
+    uint32_t wx = sr_shade_bilinear_pair(fu, tex->width, &x0, &x1);
+    uint32_t wy = sr_shade_bilinear_pair(1.0f - fv, tex->height, &y0, &y1);
+    uint32_t top = sr_shade_lerp_alpha(sr_shade_texel_raw(tex, x0, y0), sr_shade_texel_raw(tex, x1, y0), wx);
+    uint32_t bottom = sr_shade_lerp_alpha(sr_shade_texel_raw(tex, x0, y1), sr_shade_texel_raw(tex, x1, y1), wx);
+    return sr_shade_lerp_alpha(top << 24, bottom << 24, wy);
+}
+
+/* Whether a fragment at these varyings survives its material's MASK. */
+static inline bool sr_shade_alpha_passes(const sr_shade_context *c, const float *var)
+{
+    return sr_shade_sample_alpha(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]) >= c->alpha_min;
+}
+
 static inline float sr_shade_lambert_intensity(const sr_shade_context *c, const float *n)
 {
     float len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
@@ -162,11 +227,15 @@ static inline float sr_shade_lambert_intensity(const sr_shade_context *c, const 
     return SR_LAMBERT_AMBIENT + (1.0f - SR_LAMBERT_AMBIENT) * (d > 0.0f ? d : 0.0f);
 }
 
-/* The albedo without a texture: the vertex colors, else gray. */
+/* The albedo without a texture: the vertex colors (times a material's
+ * tint), else the context's albedo. */
 static inline void sr_shade_albedo(const sr_shade_context *c, const float *var, float rgb[3])
 {
-    for (int i = 0; i < 3; i++)
-        rgb[i] = c->layout.color >= 0 ? var[c->layout.color + i] : SR_LAMBERT_GRAY;
+    for (int i = 0; i < 3; i++) {
+        rgb[i] = c->layout.color >= 0 ? var[c->layout.color + i] : c->albedo[i];
+        if (c->layout.color >= 0 && c->tinted)
+            rgb[i] *= c->tint[i];
+    }
 }
 
 /* A packed texel lit by intensity k: k in 8.8 fixed point (rounded to
@@ -189,12 +258,33 @@ static inline uint32_t sr_shade_lit_texel(uint32_t t, float k)
     return out;
 }
 
-/* A lambert fragment lit by intensity k: its texel or albedo times k. */
+/* k in 8.8 fixed point as sr_shade_lit_texel makes it. */
+static inline uint32_t sr_shade_lit_fixed(float k)
+{
+    uint32_t k_fixed = (uint32_t)(k * (float)SR_SHADE_LIT_ONE + 0.5f);
+    return k_fixed < SR_SHADE_LIT_ONE ? k_fixed : SR_SHADE_LIT_ONE;
+}
+
+/* A texel lit by k times a tint per channel: sr_shade_lit_texel with each
+ * channel's k·tint (the same value where the tint is 1). */
+static inline uint32_t sr_shade_lit_texel_tinted(uint32_t t, float k, const float tint[3])
+{
+    uint32_t out = 0;
+    for (int c = 0; c < 3; c++) {
+        int shift = 16 - 8 * c;
+        out |= ((((t >> shift) & 0xFF) * sr_shade_lit_fixed(k * tint[c]) + SR_SHADE_LIT_ONE / 2) >> SR_SHADE_LIT_BITS)
+               << shift;
+    }
+    return out;
+}
+
+/* A fragment's albedo lit by intensity k (1 for unlit texture shading):
+ * its texel or albedo times k. */
 static SR_ALWAYS_INLINE uint32_t sr_shade_lit(const sr_shade_context *c, const float *var, float k)
 {
     if (c->layout.uv >= 0) {
         uint32_t texel = sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]);
-        return sr_shade_lit_texel(texel, k);
+        return c->tinted ? sr_shade_lit_texel_tinted(texel, k, c->tint) : sr_shade_lit_texel(texel, k);
     }
     float rgb[3];
     sr_shade_albedo(c, var, rgb);
@@ -215,6 +305,8 @@ static SR_ALWAYS_INLINE uint32_t sr_shade_fragment(sr_shade mode, const sr_shade
         return sr_shade_pack(0.5f + 0.5f * n[0], 0.5f + 0.5f * n[1], 0.5f + 0.5f * n[2]);
     }
     case SR_SHADE_TEXTURE:
+        if (c->layout.uv < 0 || c->tinted) /* a material's: its colour, or its tinted texture */
+            return sr_shade_lit(c, var, 1.0f);
         return sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]);
     case SR_SHADE_LAMBERT:
         return sr_shade_lit(c, var, sr_shade_lambert_intensity(c, var + c->layout.normal));

@@ -43,6 +43,9 @@ void sr_mesh_free(sr_mesh *mesh)
     free(mesh->indices);
     free(mesh->texture_path);
     free(mesh->parts);
+    for (uint32_t i = 0; mesh->materials && i < mesh->material_count; i++)
+        free(mesh->materials[i].texture_path);
+    free(mesh->materials);
     *mesh = (sr_mesh){ 0 };
 }
 

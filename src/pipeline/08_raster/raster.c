@@ -178,13 +178,17 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool
     float z = sr_depth_at(s, z_row, k);
     if (!sr_depth_passes(z, fb->depth[at], greater))
         return 0;
+    float var[SR_MAX_VARYINGS];
+    if (mode_reads_varyings(mode)) {
+        varyings_at(s, interp, (float)e1 * s->inv_area2, (float)e2 * s->inv_area2, var);
+        /* A MASK material's fragment under its alpha floor writes nothing. */
+        if (shade->alpha_min && !sr_shade_alpha_passes(shade, var))
+            return 0;
+    }
     fb->depth[at] = z;
     if (with_ids)
         fb->ids[at] = id + 1u;
     if (mode != SR_SHADE_DEPTH) {
-        float var[SR_MAX_VARYINGS];
-        if (mode_reads_varyings(mode))
-            varyings_at(s, interp, (float)e1 * s->inv_area2, (float)e2 * s->inv_area2, var);
         fb->color[at] = mode == SR_SHADE_LAMBERT && sr_interp_flat_normal(interp)
                             ? sr_shade_lit(shade, var, s->lambert)
                             : sr_shade_fragment(mode, shade, var, id);
@@ -601,6 +605,9 @@ static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_r
      * before any setup. */
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return 0;
+    shade = sr_shade_context_of(shade, triangle_id);
+    if (shade->hidden)
+        return 0;
     if (fetch_rows && !box_is_tiny(box)) {
         /* In the body: gcc drops a call of a function of prefetches. */
         int rows = box.y1 - box.y0 < FETCHED_ROWS ? box.y1 - box.y0 : FETCHED_ROWS;
@@ -650,5 +657,10 @@ void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
 uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,
                               uint32_t triangle_id, bool *simd)
 {
+    shade = sr_shade_context_of(shade, triangle_id);
+    if (shade->hidden) {
+        *simd = false;
+        return 0;
+    }
     return setup_draw(fb, s, mode, shade, triangle_id, simd);
 }

@@ -9,7 +9,7 @@
 /* The best loop this build and this CPU have. */
 static sr_simd simd_probe(void)
 {
-    static const sr_varying_layout none = { .count = 0, .color = -1, .uv = -1, .normal = -1 };
+    static const sr_shade_context none = { .layout = { .count = 0, .color = -1, .uv = -1, .normal = -1 } };
     bool avx512 = sr_span_kernel_avx512(SR_SHADE_ID, false, false, &none) != NULL;
     bool avx2 = sr_span_kernel_avx2(SR_SHADE_ID, false, false, &none) != NULL;
 #if defined(__x86_64__) || defined(__i386__)
@@ -58,13 +58,12 @@ const char *sr_simd_name(sr_simd simd)
 sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater, bool with_ids,
                                   int width)
 {
-    const sr_varying_layout *l = &shade->layout;
     switch (sr_raster_simd_resolve(shade->simd)) {
     case SR_SIMD_AVX512:
-        return width >= SR_AVX512_MIN_WIDTH ? sr_span_kernel_avx512(mode, greater, with_ids, l)
-                                            : sr_span_kernel_avx2(mode, greater, with_ids, l);
-    case SR_SIMD_AVX2: return sr_span_kernel_avx2(mode, greater, with_ids, l);
-    case SR_SIMD_SSE2: return sr_span_kernel_sse2(mode, greater, with_ids, l);
+        return width >= SR_AVX512_MIN_WIDTH ? sr_span_kernel_avx512(mode, greater, with_ids, shade)
+                                            : sr_span_kernel_avx2(mode, greater, with_ids, shade);
+    case SR_SIMD_AVX2: return sr_span_kernel_avx2(mode, greater, with_ids, shade);
+    case SR_SIMD_SSE2: return sr_span_kernel_sse2(mode, greater, with_ids, shade);
     default:           return NULL;
     }
 }
@@ -73,8 +72,8 @@ sr_tiny_shader sr_tiny_shader_for(const sr_shade_context *shade, sr_shade mode)
 {
     switch (sr_raster_simd_resolve(shade->simd)) {
     case SR_SIMD_AVX512: /* the AVX2 shader: see SR_AVX512_MIN_WIDTH */
-    case SR_SIMD_AVX2: return sr_tiny_shader_avx2(mode, &shade->layout);
-    case SR_SIMD_SSE2: return sr_tiny_shader_sse2(mode, &shade->layout);
+    case SR_SIMD_AVX2: return sr_tiny_shader_avx2(mode, shade);
+    case SR_SIMD_SSE2: return sr_tiny_shader_sse2(mode, shade);
     default:           return NULL;
     }
 }

@@ -20,9 +20,9 @@
 #else
 SR_SPAN_KERNEL_ABSENT(sr_span_kernel_avx2)
 
-sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_varying_layout *layout)
+sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_shade_context *c)
 {
-    (void)mode, (void)layout;
+    (void)mode, (void)c;
     return NULL;
 }
 #endif

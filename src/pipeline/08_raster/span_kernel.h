@@ -146,7 +146,29 @@ static inline __attribute__((always_inline)) vf depth_lanes(const sr_tri_setup *
 /* The kernels know their varyings' layout at compile time, so the varyings
  * stay in registers: the vertex stage puts the normal first, then the
  * albedo's uv or color (01_vertex.c); a mode with one input has it at 0. */
-typedef enum albedo { ALBEDO_NONE, ALBEDO_GRAY, ALBEDO_COLOR, ALBEDO_TEXTURE } albedo;
+/* A material's tint (sr_shade_context.tinted) and alpha test (alpha_min,
+ * which implies a texture) are kernels of their own, so a draw without
+ * them pays for neither: a MASKED kernel is tinted too (a tint of 1 gives
+ * the untinted values). */
+typedef enum albedo {
+    ALBEDO_NONE,
+    ALBEDO_GRAY, /* the context's albedo: gray, or a material's colour */
+    ALBEDO_COLOR,
+    ALBEDO_TEXTURE,
+    ALBEDO_COLOR_TINTED,
+    ALBEDO_TEXTURE_TINTED,
+    ALBEDO_TEXTURE_MASKED
+} albedo;
+
+static inline __attribute__((always_inline)) bool albedo_textured(albedo a)
+{
+    return a == ALBEDO_TEXTURE || a == ALBEDO_TEXTURE_TINTED || a == ALBEDO_TEXTURE_MASKED;
+}
+
+static inline __attribute__((always_inline)) bool albedo_tinted(albedo a)
+{
+    return a == ALBEDO_COLOR_TINTED || a == ALBEDO_TEXTURE_TINTED || a == ALBEDO_TEXTURE_MASKED;
+}
 #define SECOND_VARYING 3 /* after the normal */
 
 static inline __attribute__((always_inline)) int varying_count(sr_shade mode, albedo a)
@@ -155,7 +177,7 @@ static inline __attribute__((always_inline)) int varying_count(sr_shade mode, al
     case SR_SHADE_COLOR:
     case SR_SHADE_NORMAL:  return 3;
     case SR_SHADE_TEXTURE: return 2;
-    case SR_SHADE_LAMBERT: return a == ALBEDO_COLOR ? 6 : a == ALBEDO_TEXTURE ? 5 : 3;
+    case SR_SHADE_LAMBERT: return a == ALBEDO_COLOR || a == ALBEDO_COLOR_TINTED ? 6 : albedo_textured(a) ? 5 : 3;
     default:               return 0;
     }
 }
@@ -168,9 +190,21 @@ typedef struct triangle_lanes {
     vi color;   /* when color_per_triangle */
     /* c->texture, when given, copied: the compiler must assume that a
      * store of a pixel may change what c points to, so it would load the
-     * texture's size again for every group of pixels. */
+     * texture's size again for every group of pixels. The same for the
+     * albedo and the tint. */
     sr_texture texture;
+    float albedo[3], tint[3];
 } triangle_lanes;
+
+static inline __attribute__((always_inline)) void triangle_lanes_init(triangle_lanes *t, const sr_shade_context *c)
+{
+    if (c->texture)
+        t->texture = *c->texture;
+    for (int i = 0; i < 3; i++) {
+        t->albedo[i] = c->albedo[i];
+        t->tint[i] = c->tint[i];
+    }
+}
 
 /* Gray lambert with a flat normal is one color over the whole triangle. */
 static inline __attribute__((always_inline)) bool color_per_triangle(sr_shade mode, albedo a, sr_interp interp)
@@ -286,7 +320,7 @@ static inline __attribute__((always_inline)) vi sample_nearest_lanes(const sr_te
 {
     vi x = texel_index_lanes(fu, tex->width);
     vi y = (tex->height - 1) - texel_index_lanes(fv, tex->height);
-    return gather_texels(tex, texel_row_lanes(y, tex->width) + x) & 0xFFFFFF;
+    return gather_texels(tex, texel_row_lanes(y, tex->width) + x); /* the top byte as stored */
 }
 
 /* sr_shade_bilinear_pair per lane. A side of a power of two wraps by a
@@ -410,25 +444,54 @@ static inline __attribute__((always_inline)) vf lambert_lanes(const sr_shade_con
     return select_f(len2 > zero, lit, zero + SR_LAMBERT_AMBIENT);
 }
 
-/* sr_shade_lit_texel per lane, on a split texel: each 16-bit half (red and
- * blue; green and the top byte, dropped at the end) times k in 8.8 fixed
- * point, rounded: a channel times k stays below 2^16. */
-static inline __attribute__((always_inline)) vi lit_texel_lanes(split_texels t, vf k)
+/* sr_shade_lit_fixed per lane. */
+static inline __attribute__((always_inline)) vi lit_fixed_lanes(vf k)
 {
     vi k_fixed = __builtin_convertvector(k * (float)SR_SHADE_LIT_ONE + 0.5f, vi);
-    vu16 k2 = weight_halves(select_i(k_fixed < (int)SR_SHADE_LIT_ONE, k_fixed, (vi){ 0 } + (int)SR_SHADE_LIT_ONE));
+    return select_i(k_fixed < (int)SR_SHADE_LIT_ONE, k_fixed, (vi){ 0 } + (int)SR_SHADE_LIT_ONE);
+}
+
+/* sr_shade_lit_texel per lane, on a split texel: each 16-bit half (red and
+ * blue; green and the top byte, dropped at the end) times its k in 8.8
+ * fixed point (k_rb: blue's in the low half, red's in the high), rounded:
+ * a channel times k stays below 2^16. */
+static inline __attribute__((always_inline)) vi lit_split_lanes(split_texels t, vu16 k_rb, vu16 k_g)
+{
     const uint16_t half = SR_SHADE_LIT_ONE / 2;
-    vu16 rb = (t.rb * k2 + half) >> SR_SHADE_LIT_BITS, g = (t.g * k2 + half) >> SR_SHADE_LIT_BITS;
+    vu16 rb = (t.rb * k_rb + half) >> SR_SHADE_LIT_BITS, g = (t.g * k_g + half) >> SR_SHADE_LIT_BITS;
     return ((vi)rb | (vi)g << 8) & 0xFFFFFF;
 }
 
-/* sr_shade_albedo per lane: vertex colors or gray. */
-static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(albedo a, const vf *var)
+static inline __attribute__((always_inline)) vi lit_texel_lanes(split_texels t, vf k)
+{
+    vu16 k2 = weight_halves(lit_fixed_lanes(k));
+    return lit_split_lanes(t, k2, k2);
+}
+
+/* sr_shade_lit_texel_tinted per lane: each channel's k·tint. */
+static inline __attribute__((always_inline)) vi lit_texel_tinted_lanes(split_texels t, vf k, const float tint[3])
+{
+    vi k_r = lit_fixed_lanes(k * tint[0]), k_b = lit_fixed_lanes(k * tint[2]);
+    return lit_split_lanes(t, (vu16)(k_b | k_r << 16), weight_halves(lit_fixed_lanes(k * tint[1])));
+}
+
+/* sr_shade_albedo per lane: vertex colors (times the tint), or the
+ * context's albedo. */
+static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(albedo a, const triangle_lanes *t, const vf *var)
 {
     rgb_lanes o;
     for (int i = 0; i < 3; i++)
-        o.c[i] = a == ALBEDO_COLOR ? var[SECOND_VARYING + i] : (vf){ 0 } + SR_LAMBERT_GRAY;
+        o.c[i] = a == ALBEDO_COLOR          ? var[SECOND_VARYING + i]
+                 : a == ALBEDO_COLOR_TINTED ? var[SECOND_VARYING + i] * t->tint[i]
+                                            : (vf){ 0 } + t->albedo[i];
     return o;
+}
+
+/* A texture's lit albedo, tinted where the kernel is. */
+static inline __attribute__((always_inline)) vi lit_albedo_lanes(albedo a, const triangle_lanes *t, split_texels texel,
+                                                                 vf k)
+{
+    return albedo_tinted(a) ? lit_texel_tinted_lanes(texel, k, t->tint) : lit_texel_lanes(texel, k);
 }
 
 /* sr_shade_fragment per lane. */
@@ -448,14 +511,41 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
         return sample_lanes(t, c, var[0], var[1]);
     case SR_SHADE_LAMBERT: {
         vf k = sr_interp_flat_normal(interp) ? t->lambert : lambert_lanes(c, var);
-        if (a == ALBEDO_TEXTURE)
-            return lit_texel_lanes(sample_split_lanes(t, c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
-        rgb_lanes base = albedo_lanes(a, var);
+        if (albedo_textured(a))
+            return lit_albedo_lanes(a, t, sample_split_lanes(t, c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
+        rgb_lanes base = albedo_lanes(a, t, var);
         return pack_lanes(k * base.c[0], k * base.c[1], k * base.c[2]);
     }
     default:
         return zero;
     }
+}
+
+/* A MASK material's group: the lanes that pass the depth test sample the
+ * texture once, for its alpha (which the bilinear filter lerps in the
+ * high half of the green lanes, split_lanes) and its colour; those whose
+ * alpha is below alpha_min are dropped before anything is stored, as the
+ * scalar loop drops them (sr_shade_alpha_passes). */
+static inline __attribute__((always_inline)) uint64_t
+fill_group_masked(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, float *depth,
+                  uint32_t *ids, uint32_t *color, albedo a, sr_interp interp, bool with_ids, uint32_t id, int n,
+                  vi pass, vf z, const edge_lanes e[3])
+{
+    lanes p;
+    p.l1 = edge_to_float(e[1]) * s->inv_area2;
+    p.l2 = edge_to_float(e[2]) * s->inv_area2;
+    varyings_lanes(s, t, interp, varying_count(SR_SHADE_LAMBERT, a), &p);
+    split_texels texel = sample_split_lanes(t, c, p.var[SECOND_VARYING], p.var[SECOND_VARYING + 1]);
+    pass &= ((vi)texel.g >> 16) >= (int32_t)c->alpha_min;
+    unsigned passed = lane_bits(pass);
+    if (!passed)
+        return 0;
+    store_where(depth, pass, (vi)z, n);
+    if (with_ids)
+        store_where(ids, pass, (vi){ 0 } + (int32_t)(id + 1u), n);
+    vf k = sr_interp_flat_normal(interp) ? t->lambert : lambert_lanes(c, p.var);
+    store_where(color, pass, lit_albedo_lanes(a, t, texel, k), n);
+    return (uint64_t)__builtin_popcount(passed);
 }
 
 /* Depth test, depth write, id write (with_ids) and shading of up to
@@ -472,6 +562,8 @@ fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_contex
     unsigned passed = lane_bits(pass);
     if (!passed)
         return 0;
+    if (a == ALBEDO_TEXTURE_MASKED)
+        return fill_group_masked(s, t, c, depth, ids, color, a, interp, with_ids, id, n, pass, z, e);
     store_where(depth, pass, (vi)z, n);
     if (with_ids)
         store_where(ids, pass, (vi){ 0 } + (int32_t)(id + 1u), n);
@@ -546,8 +638,7 @@ span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, 
           sr_interp interp, bool greater, bool with_ids, uint32_t id)
 {
     triangle_lanes t = { .w = (vf){ 0 } + s->w, .lambert = (vf){ 0 } + s->lambert };
-    if (c->texture)
-        t.texture = *c->texture;
+    triangle_lanes_init(&t, c);
     if (color_per_triangle(mode, a, interp))
         t.color = shade_lanes(mode, a, interp, &t, c, (vf[SR_MAX_VARYINGS]){ { 0 } }, id);
     uint64_t fragments = 0;
@@ -595,11 +686,16 @@ typedef sr_span_kernel kernel_set[2][2];
     X(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)                                                       \
     X(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)                                                     \
     X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, span_lambert_texture)                                                 \
+    X(SR_SHADE_LAMBERT, ALBEDO_COLOR_TINTED, span_lambert_color_tinted)                                       \
+    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE_TINTED, span_lambert_texture_tinted)                                   \
     X(SR_SHADE_COLOR, ALBEDO_NONE, span_color)                                                                \
     X(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)                                                              \
     X(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
 
 WITH_VARYINGS(SPAN_KERNELS)
+/* No tiny queue shader: the queue writes depths before it shades, so a
+ * MASK material's tiny triangles take the scalar tiny loop. */
+SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_TEXTURE_MASKED, span_lambert_texture_masked)
 SPAN_KERNELS(SR_SHADE_ID, ALBEDO_NONE, span_id)
 SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, span_depth)
 
@@ -609,39 +705,60 @@ static bool layout_is(const sr_varying_layout *l, int count, int color, int uv, 
     return l->count == count && l->color == color && l->uv == uv && l->normal == normal;
 }
 
-static albedo lambert_albedo(const sr_varying_layout *l)
+/* The albedo of a lambert context: its layout (a material without a
+ * texture keeps the draw's count of varyings with uv -1, so the gray
+ * kernel, which reads the normal alone, takes every count) and its tint
+ * and alpha test. */
+static albedo lambert_albedo(const sr_shade_context *c)
 {
+    const sr_varying_layout *l = &c->layout;
     if (layout_is(l, 5, -1, SECOND_VARYING, 0))
-        return ALBEDO_TEXTURE;
+        return c->alpha_min ? ALBEDO_TEXTURE_MASKED : c->tinted ? ALBEDO_TEXTURE_TINTED : ALBEDO_TEXTURE;
+    if (c->alpha_min)
+        return ALBEDO_NONE;
     if (layout_is(l, 6, SECOND_VARYING, -1, 0))
-        return ALBEDO_COLOR;
-    return layout_is(l, 3, -1, -1, 0) ? ALBEDO_GRAY : ALBEDO_NONE;
+        return c->tinted ? ALBEDO_COLOR_TINTED : ALBEDO_COLOR;
+    bool gray = l->normal == 0 && l->uv < 0 && l->color < 0;
+    return gray && (l->count == 3 || l->count == 5 || l->count == 6) ? ALBEDO_GRAY : ALBEDO_NONE;
 }
 
-static const kernel_set *kernel_set_of(sr_shade mode, const sr_varying_layout *l)
+/* Only the draw's own context (no material's) in the modes without an
+ * albedo; texture shading's kernel takes a material's texture untinted. */
+static bool plain(const sr_shade_context *c)
 {
-    static const kernel_set lambert[] = { [ALBEDO_GRAY] = KERNEL_SET(span_lambert_gray),
-                                          [ALBEDO_COLOR] = KERNEL_SET(span_lambert_color),
-                                          [ALBEDO_TEXTURE] = KERNEL_SET(span_lambert_texture) };
+    return !c->tinted && !c->alpha_min;
+}
+
+static const kernel_set *kernel_set_of(sr_shade mode, const sr_shade_context *c)
+{
+    static const kernel_set lambert[] = {
+        [ALBEDO_GRAY] = KERNEL_SET(span_lambert_gray),
+        [ALBEDO_COLOR] = KERNEL_SET(span_lambert_color),
+        [ALBEDO_TEXTURE] = KERNEL_SET(span_lambert_texture),
+        [ALBEDO_COLOR_TINTED] = KERNEL_SET(span_lambert_color_tinted),
+        [ALBEDO_TEXTURE_TINTED] = KERNEL_SET(span_lambert_texture_tinted),
+        [ALBEDO_TEXTURE_MASKED] = KERNEL_SET(span_lambert_texture_masked),
+    };
     static const kernel_set id = KERNEL_SET(span_id), depth = KERNEL_SET(span_depth), color = KERNEL_SET(span_color),
                             normal = KERNEL_SET(span_normal), texture = KERNEL_SET(span_texture);
+    const sr_varying_layout *l = &c->layout;
     switch (mode) {
     case SR_SHADE_LAMBERT: {
-        albedo a = lambert_albedo(l);
+        albedo a = lambert_albedo(c);
         return a == ALBEDO_NONE ? NULL : &lambert[a];
     }
     case SR_SHADE_ID:      return &id;
     case SR_SHADE_DEPTH:   return &depth;
     case SR_SHADE_COLOR:   return layout_is(l, 3, 0, -1, -1) ? &color : NULL;
     case SR_SHADE_NORMAL:  return layout_is(l, 3, -1, -1, 0) ? &normal : NULL;
-    case SR_SHADE_TEXTURE: return layout_is(l, 2, -1, 0, -1) ? &texture : NULL;
+    case SR_SHADE_TEXTURE: return layout_is(l, 2, -1, 0, -1) && plain(c) ? &texture : NULL;
     default:               return NULL;
     }
 }
 
-sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater, bool with_ids, const sr_varying_layout *layout)
+sr_span_kernel SPAN_KERNEL_GETTER(sr_shade mode, bool greater, bool with_ids, const sr_shade_context *c)
 {
-    const kernel_set *set = kernel_set_of(mode, layout);
+    const kernel_set *set = kernel_set_of(mode, c);
     return set ? (*set)[with_ids][greater] : NULL;
 }
 
@@ -677,8 +794,7 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
                                                                    sr_framebuffer *fb, sr_shade mode, albedo a)
 {
     triangle_lanes t = { .w = { 0 } };
-    if (c->texture)
-        t.texture = *c->texture;
+    triangle_lanes_init(&t, c);
     for (int g = 0; g < q->pixels; g += SPAN_LANES) {
         int base = q->triangle[g];
         vi offset;
@@ -711,15 +827,18 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
 
 WITH_VARYINGS(TINY_SHADER)
 
-sr_tiny_shader SPAN_TINY_GETTER(sr_shade mode, const sr_varying_layout *layout)
+sr_tiny_shader SPAN_TINY_GETTER(sr_shade mode, const sr_shade_context *c)
 {
     static const sr_tiny_shader lambert[] = { [ALBEDO_GRAY] = span_lambert_gray_tiny,
                                               [ALBEDO_COLOR] = span_lambert_color_tiny,
-                                              [ALBEDO_TEXTURE] = span_lambert_texture_tiny };
-    if (!kernel_set_of(mode, layout)) /* the layouts the kernels were compiled for */
+                                              [ALBEDO_TEXTURE] = span_lambert_texture_tiny,
+                                              [ALBEDO_COLOR_TINTED] = span_lambert_color_tinted_tiny,
+                                              [ALBEDO_TEXTURE_TINTED] = span_lambert_texture_tinted_tiny,
+                                              [ALBEDO_TEXTURE_MASKED] = NULL };
+    if (!kernel_set_of(mode, c)) /* the layouts the kernels were compiled for */
         return NULL;
     switch (mode) {
-    case SR_SHADE_LAMBERT: return lambert[lambert_albedo(layout)];
+    case SR_SHADE_LAMBERT: return lambert[lambert_albedo(c)];
     case SR_SHADE_COLOR:   return span_color_tiny;
     case SR_SHADE_NORMAL:  return span_normal_tiny;
     case SR_SHADE_TEXTURE: return span_texture_tiny;

@@ -1,0 +1,125 @@
+/* A mesh's materials as shading contexts (10_shade.h): one per material,
+ * made once per draw, and the one each triangle is drawn with, found from
+ * its part.
+ *
+ * A material becomes what the per-pixel loops test: its colour as the
+ * albedo where it has no texture (else as a tint of the texels, and of the
+ * vertex colours), and its alpha as an integer floor on the texel alpha
+ * (alpha_min), so every loop discards the same fragments with one integer
+ * compare; a constant alpha below the cutoff hides the material whole.
+ * The rasterizer finds a triangle's (10_shade.c). */
+#include <math.h>
+
+#include "draw_state.h"
+#include "materials.h"
+#include "core/error.h"
+#include "pipeline/02_assemble.h"
+
+/* BLEND, until blending is drawn: MASK at this cutoff. */
+#define BLEND_AS_MASK_CUTOFF 0.5f
+
+bool sr_materials_check(const sr_mesh *mesh, sr_error *err)
+{
+    if (mesh->material_count == 0)
+        return true;
+    if (!mesh->materials)
+        return sr_error_set(err, "mesh has %u materials and no material array", mesh->material_count);
+    for (uint32_t i = 0; i < mesh->material_count; i++) {
+        const sr_material *m = &mesh->materials[i];
+        if ((unsigned)m->alpha_mode > SR_ALPHA_BLEND)
+            return sr_error_set(err, "material %u has an unknown alpha mode %d", i, (int)m->alpha_mode);
+        for (int c = 0; c < 4; c++)
+            if (!isfinite(m->base_color[c]))
+                return sr_error_set(err, "material %u has a base colour that is not finite", i);
+        if (!isfinite(m->alpha_cutoff))
+            return sr_error_set(err, "material %u has an alpha cutoff that is not finite", i);
+        const sr_texture *t = m->texture;
+        if (t && t->texels && (t->width < 1 || t->height < 1 || t->width > SR_MAX_TEXTURE_SIDE ||
+                               t->height > SR_MAX_TEXTURE_SIDE))
+            return sr_error_set(err, "material %u's texture of size %dx%d cannot be sampled (each side 1..%d)", i,
+                                t->width, t->height, SR_MAX_TEXTURE_SIDE);
+    }
+    uint32_t end = 0;
+    for (uint32_t i = 0; i < mesh->part_count; i++) {
+        const sr_mesh_part *p = &mesh->parts[i];
+        if (p->material >= mesh->material_count)
+            return sr_error_set(err, "part %u names material %u of %u", i, p->material, mesh->material_count);
+        if (p->first_triangle < end || p->triangle_count > UINT32_MAX - p->first_triangle)
+            return sr_error_set(err, "part %u overlaps the part before it or runs past 2^32 triangles", i);
+        end = p->first_triangle + p->triangle_count;
+    }
+    return true;
+}
+
+/* The material's texture: its own, or for one that names a file but was
+ * given none, the desc's (a caller that loads the mesh's texture_path for
+ * desc->texture, as before materials, draws as it did). */
+static const sr_texture *texture_of(const sr_material *m, const sr_texture *desc_texture)
+{
+    const sr_texture *t = m->texture ? m->texture : m->texture_path ? desc_texture : NULL;
+    return t && t->texels ? t : NULL;
+}
+
+bool sr_materials_textured(const sr_mesh *mesh, const sr_texture *desc_texture)
+{
+    for (uint32_t i = 0; i < mesh->material_count; i++)
+        if (texture_of(&mesh->materials[i], desc_texture))
+            return true;
+    return false;
+}
+
+/* The smallest texel alpha a (0..255) whose alpha a/255 · factor reaches
+ * the cutoff, 256 where none does; in float, in this order, once per draw. */
+static uint32_t alpha_floor(float factor, float cutoff)
+{
+    uint32_t a = 0;
+    while (a < 256 && !((float)a * SR_SHADE_CHANNEL_SCALE * factor >= cutoff))
+        a++;
+    return a;
+}
+
+static void material_context(const sr_shade_context *base, const sr_material *m, const sr_texture *desc_texture,
+                             sr_shade_context *c)
+{
+    *c = *base;
+    c->materials = NULL;
+    c->material_count = 0;
+    c->parts = NULL;
+    c->part_count = 0;
+    const sr_texture *t = base->layout.uv >= 0 ? texture_of(m, desc_texture) : NULL;
+    bool texture = t != NULL;
+    c->texture = t;
+    if (!texture)
+        c->layout.uv = -1;
+    for (int i = 0; i < 3; i++) {
+        c->albedo[i] = m->base_color[i];
+        c->tint[i] = m->base_color[i];
+        c->tinted = c->tinted || m->base_color[i] != 1.0f;
+    }
+    if (m->alpha_mode == SR_ALPHA_OPAQUE)
+        return;
+    float cutoff = m->alpha_mode == SR_ALPHA_BLEND ? BLEND_AS_MASK_CUTOFF : m->alpha_cutoff;
+    uint32_t floor = texture && t->alpha ? alpha_floor(m->base_color[3], cutoff)
+                                                  : (m->base_color[3] >= cutoff ? 0 : 256);
+    c->hidden = floor > 255;
+    c->alpha_min = c->hidden ? 0 : floor;
+}
+
+bool sr_materials_make(sr_draw_state *st, sr_error *err)
+{
+    const sr_mesh *mesh = st->desc->mesh;
+    if (mesh->material_count == 0 || (st->mode != SR_SHADE_LAMBERT && st->mode != SR_SHADE_TEXTURE) ||
+        !sr_assemble_triangles(mesh))
+        return true;
+    sr_array *a = &st->ws->material_shades;
+    if (!sr_array_reserve(a, mesh->material_count, sizeof(sr_shade_context)))
+        return sr_error_set(err, "out of memory for %u materials", mesh->material_count);
+    sr_shade_context *contexts = a->data;
+    for (uint32_t i = 0; i < mesh->material_count; i++)
+        material_context(&st->shade, &mesh->materials[i], st->desc->texture, &contexts[i]);
+    st->shade.materials = contexts;
+    st->shade.material_count = mesh->material_count;
+    st->shade.parts = mesh->parts;
+    st->shade.part_count = mesh->part_count;
+    return true;
+}
