@@ -163,7 +163,8 @@ test-python: build/softrast $(PUBLIC_LIBS)
 # Criterion runs each test in a child whose leak report does not fail the
 # test, so the sanitiser log itself is checked too (tools/check-san-log.py:
 # a leak inside libcriterion alone, the runner's own, is named, not failed,
-# and the exit status LSan gives the runner for it is then the suite's).
+# and the failing status the sanitiser gives the runner for it is then
+# the suite's own when its summary shows every test passed).
 test-san: build/san/softrast build/san/softrast-tests
 	@ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 SOFTRAST_BIN=build/san/softrast \
 		./build/san/softrast-tests --jobs 2 2> build/san/test.log; status=$$?; cat build/san/test.log; \
