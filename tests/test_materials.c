@@ -158,20 +158,29 @@ Test(materials, a_texture_is_tinted_by_the_base_colour)
     quads_free(&mesh);
 }
 
+/* A cut-out: a 2x1 texture whose left texel has alpha 0 on a quad at
+ * depth 0.25, in front of a blue wall at 0.75 drawn after it. */
+static uint32_t cutout_texels[2] = { 0x00FF0000, 0xFF00FF00 };
+
+static void cutout_make(sr_mesh *mesh, sr_mesh_part parts[2], sr_material materials[2], sr_texture *tex)
+{
+    *tex = (sr_texture){ .width = 2, .height = 1, .texels = cutout_texels, .alpha = true };
+    materials[0] = (sr_material){ .base_color = { 1, 1, 1, 1 }, .texture = tex, .alpha_mode = SR_ALPHA_MASK,
+                                  .alpha_cutoff = 0.5f };
+    materials[1] = (sr_material){ .base_color = { 0, 0, 1, 1 } };
+    quads_with(mesh, (const quad[2]){ { 0, 32, 0.25f, 0 }, { 0, 32, 0.75f, 1 } }, 2, parts, materials, 2);
+}
+
 /* A cut-out: a 2x1 texture whose left texel has alpha 0, in front of a
  * blue wall drawn after it. The hole writes no depth, so the wall shows
  * through it at its own depth; the opaque half hides the wall. */
 Test(materials, mask_cuts_holes_that_show_what_is_behind)
 {
-    static uint32_t texels[2] = { 0x00FF0000, 0xFF00FF00 };
-    sr_texture tex = { .width = 2, .height = 1, .texels = texels, .alpha = true };
+    sr_texture tex;
     sr_mesh mesh;
     sr_mesh_part parts[2];
-    sr_material materials[2] = {
-        { .base_color = { 1, 1, 1, 1 }, .texture = &tex, .alpha_mode = SR_ALPHA_MASK, .alpha_cutoff = 0.5f },
-        { .base_color = { 0, 0, 1, 1 } },
-    };
-    quads_with(&mesh, (const quad[2]){ { 0, 32, 0.25f, 0 }, { 0, 32, 0.75f, 1 } }, 2, parts, materials, 2);
+    sr_material materials[2];
+    cutout_make(&mesh, parts, materials, &tex);
     sr_framebuffer fb;
     scene_fb_make(&fb, W, H);
     sr_stats stats = draw_everywhere(&fb, &mesh, SR_SHADE_TEXTURE, SR_FILTER_NEAREST);
@@ -302,15 +311,11 @@ Test(materials, a_named_texture_not_given_is_the_descs)
  * whose depth it holds, on every loop, path and thread count. */
 Test(materials, the_ids_plane_keeps_the_mask_holes)
 {
-    static uint32_t texels[2] = { 0x00FF0000, 0xFF00FF00 };
-    sr_texture tex = { .width = 2, .height = 1, .texels = texels, .alpha = true };
+    sr_texture tex;
     sr_mesh mesh;
     sr_mesh_part parts[2];
-    sr_material materials[2] = {
-        { .base_color = { 1, 1, 1, 1 }, .texture = &tex, .alpha_mode = SR_ALPHA_MASK, .alpha_cutoff = 0.5f },
-        { .base_color = { 0, 0, 1, 1 } },
-    };
-    quads_with(&mesh, (const quad[2]){ { 0, 32, 0.25f, 0 }, { 0, 32, 0.75f, 1 } }, 2, parts, materials, 2);
+    sr_material materials[2];
+    cutout_make(&mesh, parts, materials, &tex);
     sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_LAMBERT, .filter = SR_FILTER_NEAREST,
                           .cull = SR_CULL_NONE };
     scene_pixel_ortho(&desc, W, H);
