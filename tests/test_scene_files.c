@@ -175,19 +175,26 @@ static void write_red_png(const char *name)
 static const char QUAD_OBJ[] = "mtllib m.mtl\nusemtl skin\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
                                "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
 
-/* The texture's colour at the centre of a texture-shaded render. */
-static uint32_t centre_texel(const char *obj)
+/* Renders name (in temp_dir) at w x h with the extra options into image,
+ * asserting it draws without a warning. */
+static void render_image(const char *name, int w, int h, const char *extra, sr_texture *image)
 {
     char args[1024], out[600];
-    snprintf(out, sizeof out, "%s/tex.png", temp_dir);
-    snprintf(args, sizeof args, "render %s/%s --size 16x16 --shade texture --cull none --quiet --out %s", temp_dir,
-             obj, out);
+    snprintf(out, sizeof out, "%s/image.png", temp_dir);
+    snprintf(args, sizeof args, "render %s/%s --size %dx%d --cull none --quiet --out %s %s", temp_dir, name, w, h,
+             out, extra);
     run_result r = run_softrast(temp_dir, args);
     cr_assert_eq(r.status, 0, "%s", r.err);
     cr_assert_eq(r.err[0], '\0', "no warning expected: %s", r.err);
-    sr_texture image;
     sr_error err;
-    cr_assert(sr_texture_load(&image, out, &err), "%s", err.message);
+    cr_assert(sr_texture_load(image, out, &err), "%s", err.message);
+}
+
+/* The texture's colour at the centre of a texture-shaded render. */
+static uint32_t centre_texel(const char *obj)
+{
+    sr_texture image;
+    render_image(obj, 16, 16, "--shade texture", &image);
     uint32_t c = image.texels[8 * 16 + 8];
     sr_texture_free(&image);
     return c;
@@ -345,4 +352,128 @@ Test(scene_files, a_thousand_materials_sharing_a_missing_texture_warn_once)
     cr_assert_not_null(first, "%s", r.err);
     cr_expect_null(strstr(first + 1, "softrast: warning: "), "more than one warning: %s", r.err);
     cr_expect_not_null(strstr(first, "gone.png"), "%s", r.err);
+}
+
+/* ---- glTF and AMF materials ---- */
+
+/* Two quads facing +z, side by side (x -2..0 and 0..2, y -1..1), each a
+ * primitive of its own with uvs 0..1, in two.bin beside two.gltf; their
+ * materials are the JSON array `materials` (the left quad's first), which
+ * may use texture 0, red.png. */
+static void write_two_quads(const char *materials)
+{
+    write_red_png("red.png");
+    struct {
+        float pos[8][3], uv[8][2];
+        uint16_t idx[6];
+    } bin = { { { -2, -1, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { -2, 1, 0 }, { 0, -1, 0 }, { 2, -1, 0 }, { 2, 1, 0 }, { 0, 1, 0 } },
+              { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 }, { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } },
+              { 0, 1, 2, 0, 2, 3 } };
+    char path[600], gltf[4096];
+    snprintf(path, sizeof path, "%s/two.bin", temp_dir);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(fwrite(&bin, sizeof bin, 1, f), 1u);
+    fclose(f);
+    snprintf(gltf, sizeof gltf,
+             "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":2},\"indices\":4,"
+             "\"material\":0},{\"attributes\":{\"POSITION\":1,\"TEXCOORD_0\":3},\"indices\":4,\"material\":1}]}],"
+             "\"materials\":%s,\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"red.png\"}],\"buffers\":[{\"byteLength\":%zu,\"uri\":\"two.bin\"}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":96},{\"buffer\":0,\"byteOffset\":96,"
+             "\"byteLength\":64},{\"buffer\":0,\"byteOffset\":160,\"byteLength\":12}],\"accessors\":["
+             "{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\",\"min\":[-2,-1,0],\"max\":[0,1,0]},"
+             "{\"bufferView\":0,\"byteOffset\":48,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\",\"min\":[0,-1,0],"
+             "\"max\":[2,1,0]},{\"bufferView\":1,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"},"
+             "{\"bufferView\":1,\"byteOffset\":32,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"},"
+             "{\"bufferView\":2,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}]}",
+             materials, sizeof bin);
+    write_text(temp_dir, "two.gltf", gltf);
+}
+
+/* The colours at the middle of the left and right quads of two.gltf,
+ * texture-shaded, are these. */
+static void expect_left_and_right(uint32_t left, uint32_t right)
+{
+    sr_texture image;
+    render_image("two.gltf", 64, 32, "--shade texture", &image);
+    uint32_t l = image.texels[16 * 64 + 22] & 0xFFFFFFu, r = image.texels[16 * 64 + 42] & 0xFFFFFFu;
+    sr_texture_free(&image);
+    cr_expect(l == left && r == right, "left %06x, right %06x", l, r);
+}
+
+Test(scene_files, each_material_of_a_gltf_draws_its_own_quad)
+{
+    write_two_quads("[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,1,1]}},"
+                    "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}]");
+    expect_left_and_right(0x0000FFu, 0xFF0000u);
+    cJSON *o = info_json("two.gltf");
+    const cJSON *parts = cJSON_GetObjectItem(o, "parts");
+    cr_assert_eq(cJSON_GetArraySize(parts), 2);
+    cr_expect(cJSON_IsNull(cJSON_GetObjectItem(cJSON_GetArrayItem(parts, 0), "texture")));
+    cr_expect_eq(cJSON_GetObjectItem(cJSON_GetArrayItem(parts, 1), "texture")->valueint, 0);
+    cJSON_Delete(o);
+}
+
+/* ClearCoatTest.gltf's labels: a black base colour and an emissive
+ * texture. Lambert has no emission: the texture is drawn in its place
+ * (before, the labels were black on black); a black material without one
+ * stays black. */
+Test(scene_files, a_material_shown_by_emission_draws_its_emissive_texture)
+{
+    write_two_quads("[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]}},"
+                    "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},\"emissiveFactor\":[1,1,1],"
+                    "\"emissiveTexture\":{\"index\":0}}]");
+    expect_left_and_right(0x000000u, 0xFF0000u);
+    cJSON *o = info_json("two.gltf");
+    const cJSON *t = cJSON_GetArrayItem(cJSON_GetObjectItem(o, "textures"), 0);
+    cr_assert_str_eq(json_string(t, "name"), "red.png");
+    cr_assert_str_eq(json_string(t, "status"), "found");
+    cJSON_Delete(o);
+}
+
+/* An AMF triangle in the build plate (z = 0, facing +z: up), of vertex
+ * colours when `color` is given (an <r><g><b> body), else of none. */
+static void write_amf(const char *color)
+{
+    char text[2048], vertex_color[160] = "";
+    if (color)
+        snprintf(vertex_color, sizeof vertex_color, "<color>%s</color>", color);
+    snprintf(text, sizeof text,
+             "<?xml version=\"1.0\"?>\n<amf><object id=\"1\"><mesh><vertices>"
+             "<vertex>%s<coordinates><x>-1</x><y>-1</y><z>0</z></coordinates></vertex>"
+             "<vertex>%s<coordinates><x>1</x><y>-1</y><z>0</z></coordinates></vertex>"
+             "<vertex>%s<coordinates><x>0</x><y>1</y><z>0</z></coordinates></vertex></vertices><volume>"
+             "<triangle><v1>0</v1><v2>1</v2><v3>2</v3></triangle></volume></mesh></object></amf>\n",
+             vertex_color, vertex_color, vertex_color);
+    write_text(temp_dir, "t.amf", text);
+}
+
+/* The lambert colour at the middle of the triangle, seen from above: its
+ * normal is softrast's +y, n.l = 0.8, so the intensity is 0.2 + 0.8 * 0.8. */
+static void lit_from_above(const char *name, int rgb[3])
+{
+    sr_texture image;
+    render_image(name, 32, 32, "--eye 0,4,-1 --target 0,0,0", &image);
+    uint32_t c = image.texels[16 * 32 + 16];
+    sr_texture_free(&image);
+    for (int k = 0; k < 3; k++)
+        rgb[k] = (int)(c >> (16 - 8 * k) & 0xFFu);
+}
+
+/* Assimp gives an AMF mesh of no colours a set of transparent black ones,
+ * and every AMF mesh its default material's gray 0.6: the file's colours
+ * are drawn as given, a file of none in softrast's default gray 0.8. */
+Test(scene_files, an_amf_draws_its_colours_as_given_and_none_in_gray)
+{
+    const double lit = (0.2 + 0.8 * 0.8) * 255.0;
+    int rgb[3];
+    write_amf("<r>1</r><g>0.5</g><b>0</b>");
+    lit_from_above("t.amf", rgb);
+    cr_expect(abs(rgb[0] - (int)lit) <= 2 && abs(rgb[1] - (int)(lit / 2)) <= 2 && rgb[2] == 0, "%d %d %d", rgb[0],
+              rgb[1], rgb[2]);
+    write_amf(NULL);
+    lit_from_above("t.amf", rgb);
+    cr_expect(abs(rgb[0] - (int)(0.8 * lit)) <= 2 && rgb[1] == rgb[0] && rgb[2] == rgb[0], "%d %d %d", rgb[0], rgb[1],
+              rgb[2]);
 }

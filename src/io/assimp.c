@@ -73,17 +73,43 @@ static bool is_kept(const struct aiScene *sc, const struct aiMesh *m)
     return is_triangles(m) || (m->mNumVertices > 0 && is_point_cloud(sc));
 }
 
+/* A mesh's vertex colours, unless every one is transparent black: Assimp's
+ * AMF importer gives a mesh of no colours such a set, which would draw it
+ * black. */
+static bool has_colors(const struct aiMesh *m)
+{
+    for (unsigned j = 0; m->mColors[0] && j < m->mNumVertices; j++) {
+        const struct aiColor4D c = m->mColors[0][j];
+        if (c.r != 0.0f || c.g != 0.0f || c.b != 0.0f || c.a != 0.0f)
+            return true;
+    }
+    return false;
+}
+
 static bool is_triangle(const struct aiFace *f)
 {
     return f->mNumIndices == 3;
 }
 
-/* The material's colour factor (glTF's base colour, else the diffuse
- * colour), white when it has none. */
-static struct aiColor4D material_color(const struct aiMaterial *mat)
+/* The material's colour factor: glTF's base colour, else the diffuse
+ * colour, white when it has none; its emissive colour when it is drawn by
+ * its emissive texture. Assimp's own material for a file that names none
+ * (STL, PLY, OFF, AMF) is softrast's default instead, OBJ's: gray 0.8,
+ * white over vertex colours (its gray 0.6 is Assimp's, not the file's, and
+ * would darken the colours). */
+static struct aiColor4D material_color(const struct aiMaterial *mat, bool emissive, bool colors)
 {
     struct aiColor4D c = { 1.0f, 1.0f, 1.0f, 1.0f };
-    if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) != aiReturn_SUCCESS)
+    struct aiString name;
+    if (aiGetMaterialString(mat, AI_MATKEY_NAME, &name) == aiReturn_SUCCESS &&
+        strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0) {
+        float gray = colors ? 1.0f : 0.8f;
+        return (struct aiColor4D){ gray, gray, gray, 1.0f };
+    }
+    if (emissive) {
+        aiGetMaterialColor(mat, AI_MATKEY_COLOR_EMISSIVE, &c);
+        c.a = 1.0f;
+    } else if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) != aiReturn_SUCCESS)
         aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c);
     return c;
 }
@@ -118,7 +144,7 @@ static bool count_scene(const struct aiScene *sc, const char *path, scene_counts
         n->parts += n->indices > before;
         n->normals |= m->mNormals != NULL;
         n->uvs |= m->mTextureCoords[0] != NULL;
-        n->colors |= m->mColors[0] != NULL;
+        n->colors |= has_colors(m);
     }
     if (n->vertices > SR_MAX_MESH_VERTICES || n->indices / 3 > SR_MAX_MESH_TRIANGLES)
         return sr_error_set(err, "%s: %llu vertices and %llu triangles exceed the limits (%u, %u)", path,
@@ -127,25 +153,14 @@ static bool count_scene(const struct aiScene *sc, const char *path, scene_counts
     return true;
 }
 
-/* A material's base-colour (glTF) or diffuse texture; false when it has
- * none. */
-static bool material_texture(const struct aiMaterial *mat, struct aiString *name)
-{
-    static const enum aiTextureType kinds[] = { aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE };
-    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++)
-        if (aiGetMaterialTexture(mat, kinds[k], 0, name, NULL, NULL, NULL, NULL, NULL, NULL) == aiReturn_SUCCESS &&
-            name->length > 0)
-            return true;
-    return false;
-}
-
 /* The first texture of a material that a drawn mesh uses; false when none
  * has one. */
 static bool first_texture(const struct aiScene *sc, struct aiString *name)
 {
+    bool emissive;
     for (unsigned i = 0; i < sc->mNumMeshes; i++)
         if (is_triangles(sc->mMeshes[i]) && sc->mMeshes[i]->mMaterialIndex < sc->mNumMaterials &&
-            material_texture(sc->mMaterials[sc->mMeshes[i]->mMaterialIndex], name))
+            sr_assimp_material_texture(sc->mMaterials[sc->mMeshes[i]->mMaterialIndex], name, &emissive))
             return true;
     return false;
 }
@@ -227,7 +242,10 @@ static void material_alpha(const struct aiMaterial *mat, sr_material *out)
  * is the one decoded into tex (the first any drawn mesh uses: another
  * embedded one is left out, its material drawn in its colour), one beside
  * it a path found by texture_find.h's rules, else named as written (for
- * the warning). A scene without materials gets one, white. */
+ * the warning). A scene without materials gets one, white. A material
+ * that shows by emission alone (glTF's labels: a black base colour and an
+ * emissive texture) draws that texture times its emissive colour: lambert
+ * has no emission, and it would be black. */
 static bool build_materials(const struct aiScene *sc, const char *path, sr_mesh *mesh, sr_texture *tex,
                             sr_error *err)
 {
@@ -247,13 +265,14 @@ static bool build_materials(const struct aiScene *sc, const char *path, sr_mesh 
         if (i >= sc->mNumMaterials)
             continue;
         const struct aiMaterial *mat = sc->mMaterials[i];
-        struct aiColor4D c = material_color(mat);
+        struct aiString name;
+        bool emissive, textured = sr_assimp_material_texture(mat, &name, &emissive);
+        struct aiColor4D c = material_color(mat, emissive, mesh->colors != NULL);
         const float rgba[4] = { c.r, c.g, c.b, c.a };
         for (int k = 0; k < 4; k++)
             m->base_color[k] = isfinite(rgba[k]) ? rgba[k] : 1.0f;
         material_alpha(mat, m);
-        struct aiString name;
-        if (!material_texture(mat, &name))
+        if (!textured)
             continue;
         const struct aiTexture *inside = embedded_texture(sc, name.data);
         if (inside || name.data[0] == '*') {
@@ -276,6 +295,7 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
         const struct aiMesh *m = sc->mMeshes[i];
         if (!is_kept(sc, m))
             continue;
+        const bool colored = has_colors(m);
         for (unsigned j = 0; j < m->mNumVertices; j++, v++) {
             const struct aiVector3D p = m->mVertices[j];
             const double world[3] = { p.x, p.y, -(double)p.z };
@@ -286,7 +306,7 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
             if (mesh->uvs && m->mTextureCoords[0])
                 glm_vec2_copy((vec2){ m->mTextureCoords[0][j].x, m->mTextureCoords[0][j].y }, mesh->uvs[v]);
             if (mesh->colors) {
-                const struct aiColor4D c = m->mColors[0] ? m->mColors[0][j] : (struct aiColor4D){ 1, 1, 1, 1 };
+                const struct aiColor4D c = colored ? m->mColors[0][j] : (struct aiColor4D){ 1, 1, 1, 1 };
                 glm_vec3_copy((vec3){ c.r, c.g, c.b }, mesh->colors[v]);
             }
         }

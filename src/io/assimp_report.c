@@ -193,26 +193,46 @@ static void report_axes(const struct aiScene *sc, const char *path, sr_load_repo
 
 /* ---- parts, textures, what is left out ---- */
 
+/* The colour factor a material has: glTF's base colour, else the diffuse
+ * colour; false when it gives neither. */
+static bool material_factor(const struct aiMaterial *mat, struct aiColor4D *c)
+{
+    return aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, c) == aiReturn_SUCCESS ||
+           aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, c) == aiReturn_SUCCESS;
+}
+
+static bool texture_of_kind(const struct aiMaterial *mat, enum aiTextureType kind, struct aiString *name)
+{
+    return aiGetMaterialTexture(mat, kind, 0, name, NULL, NULL, NULL, NULL, NULL, NULL) == aiReturn_SUCCESS &&
+           name->length > 0;
+}
+
+bool sr_assimp_material_texture(const struct aiMaterial *mat, struct aiString *name, bool *emissive)
+{
+    *emissive = false;
+    if (texture_of_kind(mat, aiTextureType_BASE_COLOR, name) || texture_of_kind(mat, aiTextureType_DIFFUSE, name))
+        return true;
+    struct aiColor4D c;
+    bool black = material_factor(mat, &c) && c.r == 0.0f && c.g == 0.0f && c.b == 0.0f;
+    return *emissive = black && texture_of_kind(mat, aiTextureType_EMISSIVE, name);
+}
+
 static int32_t part_texture(const struct aiScene *sc, const struct aiMaterial *mat, const char *path,
                             sr_load_report *r)
 {
-    static const enum aiTextureType kinds[] = { aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE };
     struct aiString name;
-    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
-        if (aiGetMaterialTexture(mat, kinds[k], 0, &name, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS ||
-            name.length == 0)
-            continue;
-        bool embedded = name.data[0] == '*';
-        for (unsigned i = 0; !embedded && i < sc->mNumTextures; i++)
-            embedded = strcmp(sc->mTextures[i]->mFilename.data, name.data) == 0;
-        if (embedded)
-            return sr_report_add_texture(r, name.data, NULL, SR_TEXTURE_EMBEDDED);
-        char *found = sr_texture_find(path, name.data);
-        int32_t t = sr_report_add_texture(r, name.data, found, found ? SR_TEXTURE_FOUND : SR_TEXTURE_MISSING);
-        free(found);
-        return t;
-    }
-    return -1;
+    bool emissive;
+    if (!sr_assimp_material_texture(mat, &name, &emissive))
+        return -1;
+    bool embedded = name.data[0] == '*';
+    for (unsigned i = 0; !embedded && i < sc->mNumTextures; i++)
+        embedded = strcmp(sc->mTextures[i]->mFilename.data, name.data) == 0;
+    if (embedded)
+        return sr_report_add_texture(r, name.data, NULL, SR_TEXTURE_EMBEDDED);
+    char *found = sr_texture_find(path, name.data);
+    int32_t t = sr_report_add_texture(r, name.data, found, found ? SR_TEXTURE_FOUND : SR_TEXTURE_MISSING);
+    free(found);
+    return t;
 }
 
 bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_load_report *r)

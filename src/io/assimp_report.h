@@ -16,6 +16,12 @@
  * may be NULL). Returns the meshes reversed. */
 uint32_t sr_assimp_unmirror(const struct aiScene *sc, sr_load_report *report);
 
+/* The texture a material draws: its base-colour (glTF), else diffuse
+ * texture; a material that shows by emission alone (a black base colour,
+ * no such texture: glTF's labels) draws its emissive texture, and
+ * *emissive is set. False when it draws none. */
+bool sr_assimp_material_texture(const struct aiMaterial *mat, struct aiString *name, bool *emissive);
+
 /* The flattened scene's report; false when out of memory. */
 bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_load_report *report);
 
