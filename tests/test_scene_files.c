@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "io/texture_find.h"
 #include "run_helpers.h"
 #include "softrast_private.h"
 #include "temp_dir.h"
@@ -226,6 +227,38 @@ Test(scene_files, a_windows_path_is_found_by_base_name_in_textures)
     cr_assert_eq(mkdir(dir, 0700), 0);
     write_red_png("Textures/skin.png");
     cr_assert_eq(centre_texel("m.obj"), 0xFF0000u);
+}
+
+/* earthCylindrical.DAE names "..\\LWO\\…\\EarthCylindric.jpg" where
+ * earthCylindric.jpg lies: the folder a path names is searched in any
+ * case too, before the model's own. */
+Test(scene_files, a_texture_in_the_folder_it_names_is_found_in_any_case)
+{
+    char dir[600], model[640];
+    snprintf(dir, sizeof dir, "%s/maps", temp_dir);
+    cr_assert_eq(mkdir(dir, 0700), 0);
+    write_red_png("maps/earth.jpg");
+    write_red_png("Earth.png"); /* beside the model: found only by base name, after */
+    snprintf(model, sizeof model, "%s/m.dae", temp_dir);
+    char *found = sr_texture_find(model, "maps\\Earth.jpg");
+    cr_assert_not_null(found);
+    cr_expect_not_null(strstr(found, "/maps/earth.jpg"), "%s", found);
+    free(found);
+}
+
+/* Assimp names an MD2 skin the file does not name "$texture_dummy.bmp";
+ * viewers find sydney.md2's skin as sydney.bmp beside it. */
+Test(scene_files, an_unnamed_md2_skin_is_the_models_stem)
+{
+    char model[640];
+    write_red_png("Sydney.BMP");
+    snprintf(model, sizeof model, "%s/sydney.md2", temp_dir);
+    char *found = sr_texture_find(model, "$texture_dummy.bmp");
+    cr_assert_not_null(found);
+    cr_expect_not_null(strstr(found, "/Sydney.BMP"), "%s", found);
+    free(found);
+    snprintf(model, sizeof model, "%s/faerie.md2", temp_dir);
+    cr_expect_null(sr_texture_find(model, "$texture_dummy.bmp"), "no faerie.* lies beside it");
 }
 
 Test(scene_files, a_missing_texture_is_one_warning_and_drawn_untextured)

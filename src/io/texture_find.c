@@ -9,6 +9,9 @@
 #include "obj_parse.h"
 #include "texture_find.h"
 
+/* The name Assimp's MD2 importer gives a skin the file does not name. */
+#define ASSIMP_UNNAMED_TEXTURE "$texture_dummy.bmp"
+
 /* The endings tried for a base name, in order of preference. */
 static const char *const IMAGE_ENDINGS[] = { "png", "jpg", "jpeg", "tga", "bmp" };
 #define ENDING_COUNT (sizeof IMAGE_ENDINGS / sizeof *IMAGE_ENDINGS)
@@ -103,25 +106,19 @@ static char *textures_folder(const char *dir)
     return found;
 }
 
-char *sr_texture_find(const char *base_file, const char *written)
+/* The folder of a path ("" for none, "/" for the root), malloc'd. */
+static char *folder_of(const char *path)
 {
-    char *as_written = sr_obj_path_beside(base_file, written);
-    if (!as_written || is_regular(as_written))
-        return as_written;
-    free(as_written);
-    const char *base = base_name(written);
-    if (!*base || strcmp(base, ".") == 0 || strcmp(base, "..") == 0)
-        return NULL;
-    const char *slash = strrchr(base_file, '/');
-    char *dir = slash ? strndup(base_file, (size_t)(slash - base_file)) : strdup("");
+    const char *slash = strrchr(path, '/');
+    return !slash ? strdup("") : slash == path ? strdup("/") : strndup(path, (size_t)(slash - path));
+}
+
+/* Steps 2 and 3: base beside base_file, else in its textures folder. */
+static char *search_beside(const char *base_file, const char *base)
+{
+    char *dir = folder_of(base_file);
     if (!dir)
         return NULL;
-    if (slash && !*dir) { /* a file in "/" */
-        free(dir);
-        dir = strdup("/");
-        if (!dir)
-            return NULL;
-    }
     char *found = search_folder(dir, base);
     if (!found) {
         char *textures = textures_folder(dir);
@@ -130,4 +127,38 @@ char *sr_texture_find(const char *base_file, const char *written)
     }
     free(dir);
     return found;
+}
+
+/* The model's own file name without its ending ("sydney" of
+ * "models/sydney.md2"), malloc'd. */
+static char *model_stem(const char *base_file)
+{
+    const char *base = base_name(base_file), *dot = strrchr(base, '.');
+    return dot && dot != base ? strndup(base, (size_t)(dot - base)) : strdup(base);
+}
+
+char *sr_texture_find(const char *base_file, const char *written)
+{
+    char *as_written = sr_obj_path_beside(base_file, written);
+    if (!as_written || is_regular(as_written))
+        return as_written;
+    const char *base = base_name(written);
+    if (!*base || strcmp(base, ".") == 0 || strcmp(base, "..") == 0) {
+        free(as_written);
+        return NULL;
+    }
+    char *found = NULL;
+    if (base != written) { /* 1b: in the folder it names, any case */
+        char *named = folder_of(as_written);
+        found = named && *named ? search_folder(named, base) : NULL;
+        free(named);
+    }
+    free(as_written);
+    if (!found && strcmp(base, ASSIMP_UNNAMED_TEXTURE) == 0) {
+        char *stem = model_stem(base_file);
+        found = stem && *stem ? search_beside(base_file, stem) : NULL;
+        free(stem);
+        return found;
+    }
+    return found ? found : search_beside(base_file, base);
 }
