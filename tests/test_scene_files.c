@@ -510,3 +510,30 @@ Test(scene_files, an_amf_draws_its_colours_as_given_and_none_in_gray)
     cr_expect(abs(rgb[0] - (int)(0.8 * lit)) <= 2 && rgb[1] == rgb[0] && rgb[2] == rgb[0], "%d %d %d", rgb[0], rgb[1],
               rgb[2]);
 }
+
+/* A triangle whose one morph target lifts its apex by 2, at a default
+ * weight of 0.5 (the glTF mesh's "weights"): drawn with the apex at
+ * 1 + 0.5 * 2; `info` says what was posed. */
+Test(scene_files, morph_targets_are_drawn_at_their_default_weights)
+{
+    const float bin[2][3][3] = { { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } }, { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 2, 0 } } };
+    char path[600];
+    snprintf(path, sizeof path, "%s/m.bin", temp_dir);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(fwrite(bin, sizeof bin, 1, f), 1u);
+    fclose(f);
+    write_text(temp_dir, "m.gltf",
+               "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+               "\"meshes\":[{\"weights\":[0.5],\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+               "\"targets\":[{\"POSITION\":1}]}]}],\"buffers\":[{\"byteLength\":72,\"uri\":\"m.bin\"}],"
+               "\"bufferViews\":[{\"buffer\":0,\"byteLength\":72}],\"accessors\":["
+               "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]},"
+               "{\"bufferView\":0,\"byteOffset\":36,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+               "\"min\":[0,0,0],\"max\":[0,2,0]}]}");
+    cJSON *o = info_json("m.gltf");
+    const cJSON *max = cJSON_GetObjectItem(cJSON_GetObjectItem(o, "bounds_file"), "max");
+    cr_expect_eq(cJSON_GetArrayItem(max, 1)->valuedouble, 2.0);
+    cr_expect_eq(cJSON_GetObjectItem(o, "morphed_meshes")->valueint, 1);
+    cJSON_Delete(o);
+}

@@ -103,6 +103,7 @@ static void json_report(cJSON *o, const sr_load_report *r)
     cJSON_AddNumberToObject(left, "cameras", r->cameras);
     cJSON_AddNumberToObject(left, "lights", r->lights);
     cJSON_AddNumberToObject(o, "skinned_meshes", r->skinned_meshes);
+    cJSON_AddNumberToObject(o, "morphed_meshes", r->morphed_meshes);
     cJSON_AddNumberToObject(o, "mirrored_meshes", r->mirrored_meshes);
     cJSON *warnings = cJSON_AddArrayToObject(o, "warnings");
     for (uint32_t i = 0; i < r->warning_count && i < SR_REPORT_MAX_WARNINGS; i++)
@@ -205,6 +206,8 @@ static void print_text(const info_job *job, const sr_mesh *m, const sr_load_repo
            (unsigned long long)r->points, (unsigned long long)r->lines, r->animations, r->cameras, r->lights);
     if (r->skinned_meshes)
         printf("; %u skinned meshes drawn in their bind pose", r->skinned_meshes);
+    if (r->morphed_meshes)
+        printf("; %u meshes with morph targets at their default weights", r->morphed_meshes);
     if (r->mirrored_meshes)
         printf("; %u mirrored meshes turned outward", r->mirrored_meshes);
     printf("\n");

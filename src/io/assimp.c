@@ -17,7 +17,9 @@
  * a mirroring node transform places (its determinant negative) has its
  * winding reversed before Assimp flattens the scene, which Assimp does not
  * do: its outward faces stay front faces (glTF requires it; a DirectX .x
- * file exported from Blender mirrors its root frame). The import runs in a
+ * file exported from Blender mirrors its root frame). Morph targets are
+ * applied at their default weights and skinned meshes kept in their bind
+ * pose before flattening (assimp_report.h). The import runs in a
  * child process (isolated_load.h): Assimp is not ours to make crash- and
  * hang-free.
  */
@@ -386,6 +388,7 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
     if (!sc)
         return import_error(path, err);
     uint32_t mirrored = sr_assimp_unmirror(sc, report);
+    sr_assimp_pose pose = sr_assimp_static_pose(sc);
     if (!is_point_cloud(sc))
         sc = aiApplyPostProcessing(sc, IMPORT_STEPS); /* the steps aiImportFile would run, in its order */
     if (!sc)
@@ -394,7 +397,7 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
               build_materials(sc, path, mesh, texture, err);
     if (ok && report) {
         report->mirrored_meshes = mirrored;
-        ok = sr_assimp_report(sc, path, report) || sr_error_set(err, "%s: out of memory", path);
+        ok = sr_assimp_report(sc, path, pose, report) || sr_error_set(err, "%s: out of memory", path);
     }
     aiReleaseImport(sc);
     if (!ok)

@@ -3,6 +3,7 @@
 #include <assimp/importerdesc.h>
 #include <assimp/material.h>
 #include <assimp/metadata.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -67,6 +68,50 @@ uint32_t sr_assimp_unmirror(const struct aiScene *sc, sr_load_report *report)
                        both);
     free(placed);
     return reversed;
+}
+
+/* ---- the static pose ---- */
+
+static void add_scaled(struct aiVector3D *sum, float w, struct aiVector3D target, struct aiVector3D base)
+{
+    sum->x += w * (target.x - base.x);
+    sum->y += w * (target.y - base.y);
+    sum->z += w * (target.z - base.z);
+}
+
+/* One mesh's morph targets at their weights; false when it has none. */
+static bool apply_morphs(struct aiMesh *m)
+{
+    bool any = false;
+    for (unsigned j = 0; j < m->mNumVertices; j++) {
+        struct aiVector3D dp = { 0, 0, 0 }, dn = { 0, 0, 0 };
+        for (unsigned a = 0; a < m->mNumAnimMeshes; a++) {
+            const struct aiAnimMesh *t = m->mAnimMeshes[a];
+            if (!t || t->mNumVertices != m->mNumVertices || !isfinite(t->mWeight) || t->mWeight == 0.0f)
+                continue;
+            if (t->mVertices)
+                add_scaled(&dp, t->mWeight, t->mVertices[j], m->mVertices[j]);
+            if (t->mNormals && m->mNormals)
+                add_scaled(&dn, t->mWeight, t->mNormals[j], m->mNormals[j]);
+        }
+        add_scaled(&m->mVertices[j], 1.0f, dp, (struct aiVector3D){ 0, 0, 0 });
+        if (m->mNormals)
+            add_scaled(&m->mNormals[j], 1.0f, dn, (struct aiVector3D){ 0, 0, 0 });
+    }
+    for (unsigned a = 0; a < m->mNumAnimMeshes; a++)
+        any |= m->mAnimMeshes[a] != NULL;
+    return any;
+}
+
+sr_assimp_pose sr_assimp_static_pose(const struct aiScene *sc)
+{
+    sr_assimp_pose pose = { .animations = sc->mNumAnimations };
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        struct aiMesh *m = sc->mMeshes[i]; /* the child's own copy of the scene, ours to change */
+        pose.skinned += m->mNumBones > 0;
+        pose.morphed += apply_morphs(m);
+    }
+    return pose;
 }
 
 /* ---- metadata ---- */
@@ -235,7 +280,7 @@ static int32_t part_texture(const struct aiScene *sc, const struct aiMaterial *m
     return t;
 }
 
-bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_load_report *r)
+bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_assimp_pose pose, sr_load_report *r)
 {
     uint32_t mirrored = r->mirrored_meshes, warnings = r->warning_count;
     char kept[SR_REPORT_MAX_WARNINGS][SR_REPORT_TEXT];
@@ -245,7 +290,9 @@ bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_load_report
     r->mirrored_meshes = mirrored;
     r->warning_count = warnings;
     memcpy(r->warnings, kept, sizeof kept);
-    r->animations = sc->mNumAnimations;
+    r->animations = pose.animations; /* flattening drops them: counted before */
+    r->skinned_meshes = pose.skinned;
+    r->morphed_meshes = pose.morphed;
     r->cameras = sc->mNumCameras;
     r->lights = sc->mNumLights;
     uint32_t first = 0;
@@ -263,7 +310,6 @@ bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_load_report
             count += m->mFaces[f].mNumIndices == 3;
         if (count == 0)
             continue;
-        r->skinned_meshes += m->mNumBones > 0;
         const struct aiMaterial *mat = m->mMaterialIndex < sc->mNumMaterials ? sc->mMaterials[m->mMaterialIndex] : NULL;
         struct aiString name = { 0 };
         if (mat)

@@ -16,13 +16,28 @@
  * may be NULL). Returns the meshes reversed. */
 uint32_t sr_assimp_unmirror(const struct aiScene *sc, sr_load_report *report);
 
+/* What flattening the scene drops, counted before it: animations, and
+ * meshes skinned or with morph targets. */
+typedef struct sr_assimp_pose {
+    uint32_t animations, skinned, morphed;
+} sr_assimp_pose;
+
+/* Before the scene is flattened: poses it statically and counts what that
+ * leaves out. Morph targets are applied at their default weights (glTF's
+ * mesh.weights; Assimp stores each target whole, so a vertex moves by
+ * weight x (target - base)), to positions and normals; skinned meshes stay
+ * in their bind pose, the vertices as stored (no animation, so no time
+ * whose pose would be the file's more than another's). */
+sr_assimp_pose sr_assimp_static_pose(const struct aiScene *sc);
+
 /* The texture a material draws: its base-colour (glTF), else diffuse
  * texture; a material that shows by emission alone (a black base colour,
  * no such texture: glTF's labels) draws its emissive texture, and
  * *emissive is set. False when it draws none. */
 bool sr_assimp_material_texture(const struct aiMaterial *mat, struct aiString *name, bool *emissive);
 
-/* The flattened scene's report; false when out of memory. */
-bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_load_report *report);
+/* The flattened scene's report, with pose (counted before flattening);
+ * false when out of memory. */
+bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_assimp_pose pose, sr_load_report *report);
 
 #endif

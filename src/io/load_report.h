@@ -55,6 +55,7 @@ typedef struct sr_load_report {
     char units_why[SR_REPORT_TEXT];
     uint64_t points, lines;        /* primitives left out */
     uint32_t animations, cameras, lights, skinned_meshes, mirrored_meshes;
+    uint32_t morphed_meshes;       /* drawn with their morph targets at the default weights */
     uint32_t part_count, parts_unlisted, texture_count, warning_count;
     sr_report_part *parts;          /* part_count */
     sr_report_texture *textures;    /* texture_count */
