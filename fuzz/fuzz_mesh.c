@@ -19,7 +19,8 @@
 #include "io/mesh_loaders.h"
 #include "softrast_private.h"
 
-#include "fuzz_common.h" /* fail(), CHECK() */
+#include "fuzz_common.h"    /* fail(), CHECK() */
+#include "fuzz_materials.h" /* check_materials() */
 
 #define SECONDS 2u
 #define DRAW_SIDE 16
@@ -77,6 +78,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     sr_error err = { "" };
     if (sr_assimp_load(&mesh, &texture, path, SECONDS, &err)) {
         check_mesh(&mesh);
+        check_materials(&mesh);
         check_drawable(&mesh);
         CHECK(!texture.texels || (texture.width >= 1 && texture.height >= 1 && texture.width <= SR_MAX_TEXTURE_SIDE &&
                                   texture.height <= SR_MAX_TEXTURE_SIDE),

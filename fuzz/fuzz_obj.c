@@ -31,7 +31,8 @@
 
 #include "softrast_private.h"
 
-#include "fuzz_common.h" /* fail(), CHECK() */
+#include "fuzz_common.h"    /* fail(), CHECK() */
+#include "fuzz_materials.h" /* check_materials() */
 
 #define MTL_SEPARATOR "\n#mtl\n"
 #define MTL_NAME "m.mtl"
@@ -261,6 +262,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     sr_error err = { .message = "" };
     if (sr_obj_load(&mesh, obj_path, &err)) {
         check_mesh(&mesh, has_usemtl);
+        check_materials(&mesh);
         check_drawable(&mesh);
         sr_error ignored;
         sr_mesh_compute_normals(&mesh, &ignored); /* for the sanitizers: no claim on the result */

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "case_format.h"
 #include "io/texture_find.h"
 #include "run_helpers.h"
 #include "softrast_private.h"
@@ -536,4 +537,33 @@ Test(scene_files, morph_targets_are_drawn_at_their_default_weights)
     cr_expect_eq(cJSON_GetArrayItem(max, 1)->valuedouble, 2.0);
     cr_expect_eq(cJSON_GetObjectItem(o, "morphed_meshes")->valueint, 1);
     cJSON_Delete(o);
+}
+
+/* The glTF reproducers of fuzz/regressions/mesh (byte 0 picks the format,
+ * the rest is the file): a material index out of range, a texture that is
+ * a directory, a path through "..", a thousand materials sharing one
+ * embedded texture. Each draws with at most one warning line, or fails
+ * with one error line. */
+Test(scene_files, hostile_material_and_texture_paths_are_one_line)
+{
+    static const char *const names[] = { "gltf_material_index_out_of_range", "gltf_texture_is_a_directory",
+                                         "gltf_texture_path_dotdot", "gltf_thousand_materials_one_texture" };
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+        char relative[200], path[CASE_PATH_MAX];
+        snprintf(relative, sizeof relative, "fuzz/regressions/mesh/%s", names[i]);
+        case_root_path(relative, path);
+        FILE *f = fopen(path, "rb");
+        cr_assert_not_null(f, "%s", path);
+        static char text[1 << 18];
+        size_t n = fread(text, 1, sizeof text - 1, f);
+        fclose(f);
+        text[n] = '\0';
+        write_text(temp_dir, "h.gltf", text + 1);
+        char args[1024];
+        snprintf(args, sizeof args, "render %s/h.gltf --size 16x16 --quiet --out %s/h.png", temp_dir, temp_dir);
+        run_result r = run_softrast(temp_dir, args);
+        cr_expect(r.status == 0 || r.status == 1, "%s: status %d", names[i], r.status);
+        cr_expect_leq(count_lines(r.err), 1, "%s: %s", names[i], r.err);
+        cr_expect(r.status == 0 || strncmp(r.err, "softrast: error: ", 17) == 0, "%s: %s", names[i], r.err);
+    }
 }
