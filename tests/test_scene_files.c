@@ -567,3 +567,23 @@ Test(scene_files, hostile_material_and_texture_paths_are_one_line)
         cr_expect(r.status == 0 || strncmp(r.err, "softrast: error: ", 17) == 0, "%s: %s", names[i], r.err);
     }
 }
+
+/* AMF states its unit on its root element; Assimp does not report it. */
+Test(scene_files, an_amf_unit_is_read)
+{
+    write_amf(NULL);
+    cJSON *o = info_json("t.amf");
+    cr_expect_eq(cJSON_GetObjectItem(o, "metres_per_unit")->valuedouble, 0.001); /* AMF's default */
+    cr_expect_str_eq(json_string(o, "units_found"), "guessed");
+    cJSON_Delete(o);
+    write_text(temp_dir, "i.amf",
+               "<?xml version=\"1.0\"?>\n<amf unit=\"inch\" version=\"1.1\"><object id=\"1\"><mesh><vertices>"
+               "<vertex><coordinates><x>0</x><y>0</y><z>0</z></coordinates></vertex>"
+               "<vertex><coordinates><x>1</x><y>0</y><z>0</z></coordinates></vertex>"
+               "<vertex><coordinates><x>0</x><y>1</y><z>0</z></coordinates></vertex></vertices><volume>"
+               "<triangle><v1>0</v1><v2>1</v2><v3>2</v3></triangle></volume></mesh></object></amf>\n");
+    o = info_json("i.amf");
+    cr_expect_eq(cJSON_GetObjectItem(o, "metres_per_unit")->valuedouble, 0.0254);
+    cr_expect_str_eq(json_string(o, "units_found"), "read");
+    cJSON_Delete(o);
+}
