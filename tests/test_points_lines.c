@@ -611,6 +611,75 @@ Test(lines, points_and_lines_are_the_same_on_every_thread_count_and_path)
     }
 }
 
+/* The soup as a cloud whose slots index consecutive vertices (the
+ * blocks of points_lines.c's fast path), and its twin with every vertex
+ * stored twice and indexed at 2k, which no block can take: the same
+ * points in the same order. Some lie outside a plane, on the eye, or
+ * carry a NaN colour, some lie on an earlier one (the depth test keeps
+ * the first), and the block size does not divide n. */
+static void cloud_and_twin(sr_mesh *cloud, sr_mesh *twin, uint32_t n, test_rng *r)
+{
+    sr_error err = { "" };
+    cr_assert(sr_mesh_alloc(cloud, n, n, true, false, true, &err), "%s", err.message);
+    cr_assert(sr_mesh_alloc(twin, 2 * n, n, true, false, true, &err), "%s", err.message);
+    for (uint32_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++) {
+            cloud->positions[i][c] = (float)rng_uniform(r, -1.5, 1.5);
+            cloud->colors[i][c] = (float)rng_unit(r);
+            cloud->normals[i][c] = (float)rng_uniform(r, -1, 1);
+        }
+        if (i % 997 == 5)
+            cloud->colors[i][1] = NAN;
+        if (i % 1009 == 7)
+            glm_vec3_copy((vec3){ 0.5f, 0.3f, -2.5f }, cloud->positions[i]); /* the eye */
+        if (i % 7 == 3 && i >= n / 2) /* on an earlier point, in another thread's run: the first drawn stays */
+            glm_vec3_copy(cloud->positions[i - n / 2], cloud->positions[i]);
+        cloud->indices[i] = i;
+        for (uint32_t k = 2 * i; k <= 2 * i + 1; k++) {
+            glm_vec3_copy(cloud->positions[i], twin->positions[k]);
+            glm_vec3_copy(cloud->colors[i], twin->colors[k]);
+            glm_vec3_copy(cloud->normals[i], twin->normals[k]);
+        }
+        twin->indices[i] = 2 * i;
+    }
+    cloud->topology = twin->topology = SR_POINT_LIST;
+}
+
+Test(points, one_pixel_points_in_blocks_match_the_point_by_point_loop_on_every_thread_count)
+{
+    test_rng r = { 36 };
+    sr_mesh cloud, twin;
+    cloud_and_twin(&cloud, &twin, 20011, &r);
+    const sr_shade shades[] = { SR_SHADE_COLOR, SR_SHADE_LAMBERT, SR_SHADE_DEPTH };
+    sr_framebuffer want, got;
+    scene_fb_make(&want, 97, 61);
+    scene_fb_make(&got, 97, 61);
+    for (int k = 0; k < 3; k++) {
+        sr_camera cam = scene_camera(0.5f, 0.3f, -2.5f, 0, 0, 0, 70.0f, 0.1f, 10.0f);
+        sr_draw_desc desc = { .mesh = &twin, .shade = shades[k], .depth_bias = k == 1 ? 1e-3f : 0.0f };
+        scene_camera_desc(&desc, &cam, 97, 61);
+        sr_stats s1, s2;
+        sr_framebuffer_clear(&want, 0);
+        scene_draw_on_loop(&want, &desc, SR_SIMD_AUTO, 1, SR_PATH_DIRECT, &s1);
+        cr_assert_gt(s1.fragments, 2000);
+        cr_assert(shades[k] == SR_SHADE_DEPTH || s1.nonfinite > 0, "the NaN colours are read");
+        cr_assert_gt(s1.rejected, s1.nonfinite);
+        desc.mesh = &cloud;
+        for (int threads = 1; threads <= 16; threads++) {
+            sr_framebuffer_clear(&got, 0);
+            scene_draw_on_loop(&got, &desc, SR_SIMD_AUTO, threads, SR_PATH_BY_COST, &s2);
+            cr_assert(memcmp(want.color, got.color, sizeof(uint32_t) * 97 * 61) == 0 &&
+                          memcmp(want.depth, got.depth, sizeof(float) * 97 * 61) == 0 &&
+                          memcmp(&s1, &s2, sizeof s1) == 0,
+                      "shade %d, %d threads", (int)shades[k], threads);
+        }
+    }
+    sr_framebuffer_destroy(&want);
+    sr_framebuffer_destroy(&got);
+    sr_mesh_free(&cloud);
+    sr_mesh_free(&twin);
+}
+
 Test(lines, a_line_over_its_triangle_needs_the_depth_bias_and_a_hidden_one_stays_hidden)
 {
     sr_framebuffer fb, alone;
