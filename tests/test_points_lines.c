@@ -786,3 +786,215 @@ Test(lines, bad_point_and_line_fields_are_refused)
     sr_mesh_free(&m);
     sr_framebuffer_destroy(&fb);
 }
+
+/* ---- dEQP-GLES3.functional.clipping.line.*, under Direct3D's rules ---- */
+
+enum { REF_NO, REF_YES, REF_EITHER }; /* a reference pixel; either: its centre on a diamond's side */
+
+/* The part of the clip-space segment a -> b inside −w <= x, y <= w and
+ * Direct3D's 0 <= z <= w, in double (Liang–Barsky); false if none. */
+static bool ref_visible(const float a[4], const float b[4], double out[2][4])
+{
+    double t0 = 0.0, t1 = 1.0;
+    for (int plane = 0; plane < 6; plane++) {
+        int axis = plane / 2;
+        double sign = plane % 2 ? -1.0 : 1.0, w_weight = axis == 2 && plane == 4 ? 0.0 : 1.0;
+        double da = w_weight * a[3] + sign * a[axis], db = w_weight * b[3] + sign * b[axis];
+        if (da < 0 && db < 0)
+            return false;
+        if (da < 0)
+            t0 = fmax(t0, da / (da - db));
+        else if (db < 0)
+            t1 = fmin(t1, da / (da - db));
+    }
+    if (t0 > t1)
+        return false;
+    for (int c = 0; c < 4; c++) {
+        out[0][c] = a[c] + t0 * ((double)b[c] - a[c]);
+        out[1][c] = a[c] + t1 * ((double)b[c] - a[c]);
+    }
+    return true;
+}
+
+/* The reference picture of one line `width` pixels wide on a w × h canvas:
+ * its visible part snapped to 1/256 pixel, then the diamond-exit oracle,
+ * each pixel repeated across the minor axis. */
+static void ref_line(const float a[4], const float b[4], int width, int w, int h, unsigned char *ref)
+{
+    double vis[2][4];
+    if (!ref_visible(a, b, vis) || !(vis[0][3] > 0.0 && vis[1][3] > 0.0))
+        return;
+    int64_t e[2][2];
+    for (int k = 0; k < 2; k++) {
+        e[k][0] = llround((vis[k][0] / vis[k][3] + 1.0) * w / 2.0 * ONE);
+        e[k][1] = llround((1.0 - vis[k][1] / vis[k][3]) * h / 2.0 * ONE);
+    }
+    bool y_major = llabs(e[1][1] - e[0][1]) > llabs(e[1][0] - e[0][0]);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int64_t c[2] = { x * ONE + ONE / 2, y * ONE + ONE / 2 };
+            bool open = segment_meets_diamond(e[0], e[1], c, ONE / 2, true);
+            bool closed = segment_meets_diamond(e[0], e[1], c, ONE / 2, false);
+            int state = open != closed || point_on_diamond(e[1], c, ONE / 2)
+                            ? REF_EITHER
+                            : open && !point_in_open_diamond(e[1], c, ONE / 2);
+            if (state == REF_NO)
+                continue;
+            for (int k = -(width - 1) / 2; k <= width / 2; k++) {
+                int px = y_major ? x + k : x, py = y_major ? y : y + k;
+                if (px >= 0 && py >= 0 && px < w && py < h && ref[py * w + px] != REF_YES)
+                    ref[py * w + px] = (unsigned char)state;
+            }
+        }
+}
+
+/* dEQP's compareBlackNonBlackImages: a pixel drawn in one picture and not
+ * the other is a deviation when, within `radius`, each picture has a
+ * pixel in the other's state (or it lies within radius of the border),
+ * else faulty. Returns the faulty pixels; *deviating gets the others. */
+static int deqp_compare(const sr_framebuffer *fb, const unsigned char *ref, int radius, int *deviating)
+{
+    int w = fb->width, h = fb->height, faulty = 0;
+    *deviating = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int want = ref[y * w + x];
+            bool drawn = fb->color[y * w + x] != 0;
+            if (want == REF_EITHER || drawn == (want == REF_YES))
+                continue;
+            bool found_ref = false, found_test = false;
+            if (x < radius || y < radius || x + radius >= w || y + radius >= h)
+                found_ref = found_test = true;
+            for (int ky = y - radius; ky <= y + radius && !(found_ref && found_test); ky++)
+                for (int kx = x - radius; kx <= x + radius; kx++) {
+                    if (kx < 0 || ky < 0 || kx >= w || ky >= h)
+                        continue;
+                    found_ref = found_ref || (fb->color[ky * w + kx] != 0) == (want == REF_YES);
+                    found_test = found_test || ref[ky * w + kx] == (drawn ? REF_YES : REF_NO) ||
+                                 ref[ky * w + kx] == REF_EITHER;
+                }
+            if (found_ref && found_test)
+                (*deviating)++;
+            else
+                faulty++;
+        }
+    return faulty;
+}
+
+/* Draws dEQP's clip-space lines (pairs) `width` wide on a size × size
+ * canvas (200: VIEWPORT_WHOLE; 100: the centre and corner viewports, which
+ * are a 100 × 100 viewport) and holds the picture to the reference by
+ * dEQP's comparison; returns the pixels drawn. */
+static size_t deqp_lines(const float (*c)[4], uint32_t n, int width, int size, int radius, const char *name)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, size, size);
+    sr_mesh m;
+    clip_lines(&m, c, n, SR_LINE_LIST);
+    draw_clip_space(&fb, &m, (float)width);
+    unsigned char *ref = calloc((size_t)size * size, 1);
+    cr_assert_not_null(ref);
+    for (uint32_t k = 0; k + 1 < n; k += 2)
+        ref_line(c[k], c[k + 1], width, size, size, ref);
+    int deviating, faulty = deqp_compare(&fb, ref, radius, &deviating);
+    cr_assert_eq(faulty, 0, "%s at %d px: %d faulty pixels, %d deviating", name, size, faulty, deviating);
+    cr_assert_leq(deviating, (int)n * width, "%s at %d px: %d deviating pixels", name, size, deviating);
+    size_t drawn = (size_t)size * size - scene_count_color(&fb, 0);
+    free(ref);
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+    return drawn;
+}
+
+/* line_clip, wide_line_clip and their viewport variants: lines from the
+ * centre out, from outside in, and outside to outside. The last two lie a
+ * pixel outside the view, where GL's wide lines leave fragments; Direct3D
+ * cuts a line at the view's sides whatever its width, so softrast draws
+ * none of them (docs/conventions.md, "Points and lines"). */
+Test(lines, deqp_line_clip_cases_match_the_reference_but_for_wide_lines_outside_the_view)
+{
+    const float over = 1.0f + 2.0f / 200.0f;
+    const float c[][4] = {
+        { 0, 0, 0, 1 }, { 0, 1.5f, 0, 1 },      { 0, 0, 0, 1 }, { -1.5f, 1, 0, 1 },   { 0, 0, 0, 1 }, { -1.5f, 0, 0, 1 },
+        { 0, 0, 0, 1 }, { 0.2f, 0.4f, 1.5f, 1 }, { 0, 0, 0, 1 }, { -2, -1, 0, 1 },   { 0, 0, 0, 1 }, { 1, 0.1f, 0, 0.6f },
+        { 1.5f, 0, 0, 1 }, { 0.8f, -0.2f, 0, 1 }, { 0, -1.5f, 0, 1 }, { 0.9f, -0.7f, 0, 1 },
+        { 0, -1.3f, 0, 1 }, { 1.3f, 0, 0, 1 },
+        { -0.8f, -over, 0, 1 }, { 0, -over, 0, 1 }, { -over - 1, 0, 0, 1 }, { 0, -over - 1, 0, 1 },
+    };
+    for (int size = 200; size >= 100; size -= 100)
+        for (int width = 1; width <= 5; width += 4) {
+            size_t all = deqp_lines(c, 22, width, size, 1, width == 1 ? "line_clip" : "wide_line_clip");
+            size_t inside = deqp_lines(c, 18, width, size, 1, "line_clip without the lines outside");
+            cr_assert_gt(all, (size_t)size, "the lines are drawn");
+            cr_assert_eq(all, inside, "the lines outside the view leave no fragment, whatever their width");
+        }
+}
+
+/* line_z_clip and wide_line_z_clip and their viewport variants: past far
+ * as in GL; past near cut at z = 0 instead of GL's z = −w (the test above
+ * of the same lines counts that). long_line_clip and long_wide_line_clip
+ * (kernel radius 2 in dEQP): lines across a million units of z, of which
+ * Direct3D's depth range keeps the half from z = 0. */
+Test(lines, deqp_line_z_and_long_line_cases_match_the_reference_in_direct3d_depth)
+{
+    const float depth[][4] = {
+        { 0, 0, 0, 1 }, { 1.3f, 1, 2, 1 },     { 0, 0, 0, 1 }, { 1.3f, -1, 2, 1 }, { 0, 0, 0, 1 }, { -1, -1.1f, -2, 1 },
+        { 0, 0, 0, 1 }, { -1, 1.1f, -2, 1 },   { 0, 0, 0, 1 }, { 1, 0.1f, 2, 0.6f },
+    };
+    const float longs[][4] = {
+        { -41000, -40000, -1000000, 1 }, { 41000, 40000, 1000000, 1 },
+        { 41000, -40000, 1000000, 1 },   { -41000, 40000, -1000000, 1 },
+        { 0.5f, -40000, 100000, 1 },     { 0.5f, 40000, -100000, 1 },
+        { -0.5f, 40000, 100000, 1 },     { -0.5f, -40000, -100000, 1 },
+    };
+    for (int size = 200; size >= 100; size -= 100)
+        for (int width = 1; width <= 5; width += 4)
+            cr_assert_gt(deqp_lines(depth, 10, width, size, 1, "line_z_clip"), (size_t)size / 2);
+    for (int width = 1; width <= 5; width += 4)
+        cr_assert_gt(deqp_lines(longs, 8, width, 200, 2, "long_line_clip"), 80u * (size_t)width, "40 px on each of x = ±0.5");
+}
+
+/* line_attrib_clip: red at the centre to yellow or light blue past far
+ * (z = 2w) or near (z = −2w); dEQP wants each drawn pixel within 20/255
+ * of the reference's colour. Past far, the colour at a pixel is the
+ * original segment's at the pixel centre's projection; past near,
+ * Direct3D keeps only the centre point, no pixel. */
+Test(lines, deqp_line_attrib_clip_colours_match_the_unclipped_segment)
+{
+    const float c[][4] = { { 0, 0, 0, 1 }, { 1.3f, 1, 2, 1 }, { 0, 0, 0, 1 }, { 1.3f, -1, 2, 1 },
+                           { 0, 0, 0, 1 }, { -1, -1, -2, 1 }, { 0, 0, 0, 1 }, { -1, 1, -2, 1 } };
+    const float colors[][3] = { { 1, 0, 0 }, { 1, 1, 0 }, { 1, 0, 0 }, { 0.3f, 0.3f, 1 },
+                                { 1, 0, 0 }, { 1, 1, 0 }, { 1, 0, 0 }, { 0.3f, 0.3f, 1 } };
+    sr_framebuffer fb;
+    scene_fb_make(&fb, 200, 200);
+    sr_mesh m;
+    clip_lines(&m, c, 8, SR_LINE_LIST);
+    m.colors = malloc(8 * sizeof *m.colors);
+    cr_assert_not_null(m.colors);
+    memcpy(m.colors, colors, sizeof colors);
+    sr_framebuffer_clear(&fb, 0);
+    draw_desc(&fb, &(sr_draw_desc){ .mesh = &m, .shade = SR_SHADE_COLOR });
+    int checked = 0;
+    for (int y = 0; y < 200; y++)
+        for (int x = 0; x < 200; x++) {
+            uint32_t got = at(&fb, x, y);
+            if (!got)
+                continue;
+            /* Which line: the upper one (y < 100) is line 0, the lower line 1. */
+            int line = y < 100 ? 0 : 1;
+            double ax = 100.0, ay = 100.0, bx = (1.3 + 1.0) * 100.0, by = (1.0 - (line ? -1.0 : 1.0)) * 100.0;
+            double t = ((x + 0.5 - ax) * (bx - ax) + (y + 0.5 - ay) * (by - ay)) /
+                       ((bx - ax) * (bx - ax) + (by - ay) * (by - ay));
+            t = t < 0 ? 0 : t;
+            for (int ch = 0; ch < 3; ch++) {
+                double want = colors[2 * line][ch] + t * (colors[2 * line + 1][ch] - colors[2 * line][ch]);
+                int got_ch = (int)((got >> (16 - 8 * ch)) & 0xFF);
+                cr_assert_leq(abs(got_ch - (int)lround(want * 255.0)), 20, "pixel (%d, %d) channel %d: %d, want %.1f",
+                              x, y, ch, got_ch, want * 255.0);
+            }
+            checked++;
+        }
+    cr_assert_eq(checked, 130, "65 pixels on each line past far, none past near");
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
