@@ -881,21 +881,46 @@ static int deqp_compare(const sr_framebuffer *fb, const unsigned char *ref, int 
     return faulty;
 }
 
-/* Draws dEQP's clip-space lines (pairs) `width` wide on a size × size
- * canvas (200: VIEWPORT_WHOLE; 100: the centre and corner viewports, which
- * are a 100 × 100 viewport) and holds the picture to the reference by
- * dEQP's comparison; returns the pixels drawn. */
-static size_t deqp_lines(const float (*c)[4], uint32_t n, int width, int size, int radius, const char *name)
+/* The reference picture of one point `size` pixels wide on a w × h canvas:
+ * kept inside 0 <= z <= w (Direct3D; GL keeps −w <= z), its square's
+ * pixel centres, those within a subpixel of its sides either way (the
+ * snap may move them). */
+static void ref_point(const float c[4], int size, int w, int h, unsigned char *ref)
+{
+    if (!(c[3] > 0.0f) || c[2] < 0.0f || c[2] > c[3])
+        return;
+    double px = ((double)c[0] / c[3] + 1.0) * w / 2.0, py = (1.0 - (double)c[1] / c[3]) * h / 2.0, half = size / 2.0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double dx = x + 0.5 - px, dy = y + 0.5 - py, slack = 1.0 / ONE;
+            bool in = dx >= -half && dx < half && dy >= -half && dy < half;
+            bool near_side = fabs(fabs(dx) - half) <= slack || fabs(fabs(dy) - half) <= slack;
+            if (near_side && ref[y * w + x] != REF_YES)
+                ref[y * w + x] = REF_EITHER;
+            else if (in)
+                ref[y * w + x] = REF_YES;
+        }
+}
+
+/* Draws dEQP's clip-space points, or lines (pairs), `width` wide on a
+ * size × size canvas (200: VIEWPORT_WHOLE; 100: the centre and corner
+ * viewports, which are a 100 × 100 viewport) and holds the picture to the
+ * reference by dEQP's comparison; returns the pixels drawn. */
+static size_t deqp_case(const float (*c)[4], uint32_t n, sr_topology topology, int width, int size, int radius,
+                        const char *name)
 {
     sr_framebuffer fb;
     scene_fb_make(&fb, size, size);
     sr_mesh m;
-    clip_lines(&m, c, n, SR_LINE_LIST);
+    clip_lines(&m, c, n, topology);
     draw_clip_space(&fb, &m, (float)width);
     unsigned char *ref = calloc((size_t)size * size, 1);
     cr_assert_not_null(ref);
-    for (uint32_t k = 0; k + 1 < n; k += 2)
-        ref_line(c[k], c[k + 1], width, size, size, ref);
+    for (uint32_t k = 0; k < n; k++)
+        if (topology == SR_POINT_LIST)
+            ref_point(c[k], width, size, size, ref);
+        else if (k % 2 == 0 && k + 1 < n)
+            ref_line(c[k], c[k + 1], width, size, size, ref);
     int deviating, faulty = deqp_compare(&fb, ref, radius, &deviating);
     cr_assert_eq(faulty, 0, "%s at %d px: %d faulty pixels, %d deviating", name, size, faulty, deviating);
     cr_assert_leq(deviating, (int)n * width, "%s at %d px: %d deviating pixels", name, size, deviating);
@@ -904,6 +929,11 @@ static size_t deqp_lines(const float (*c)[4], uint32_t n, int width, int size, i
     sr_mesh_free(&m);
     sr_framebuffer_destroy(&fb);
     return drawn;
+}
+
+static size_t deqp_lines(const float (*c)[4], uint32_t n, int width, int size, int radius, const char *name)
+{
+    return deqp_case(c, n, SR_LINE_LIST, width, size, radius, name);
 }
 
 /* line_clip, wide_line_clip and their viewport variants: lines from the
@@ -999,49 +1029,6 @@ Test(lines, deqp_line_attrib_clip_colours_match_the_unclipped_segment)
     sr_framebuffer_destroy(&fb);
 }
 
-/* The reference picture of one point `size` pixels wide on a w × h canvas:
- * kept inside 0 <= z <= w (Direct3D; GL keeps −w <= z), its square's
- * pixel centres, those within a subpixel of its sides either way (the
- * snap may move them). */
-static void ref_point(const float c[4], int size, int w, int h, unsigned char *ref)
-{
-    if (!(c[3] > 0.0f) || c[2] < 0.0f || c[2] > c[3])
-        return;
-    double px = ((double)c[0] / c[3] + 1.0) * w / 2.0, py = (1.0 - (double)c[1] / c[3]) * h / 2.0, half = size / 2.0;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) {
-            double dx = x + 0.5 - px, dy = y + 0.5 - py, slack = 1.0 / ONE;
-            bool in = dx >= -half && dx < half && dy >= -half && dy < half;
-            bool near_side = fabs(fabs(dx) - half) <= slack || fabs(fabs(dy) - half) <= slack;
-            if (near_side && ref[y * w + x] != REF_YES)
-                ref[y * w + x] = REF_EITHER;
-            else if (in)
-                ref[y * w + x] = REF_YES;
-        }
-}
-
-/* dEQP's points on a size × size canvas, `width` pixels wide, held to the
- * reference by dEQP's comparison; returns the pixels drawn. */
-static size_t deqp_points(const float (*c)[4], uint32_t n, int width, int size, const char *name)
-{
-    sr_framebuffer fb;
-    scene_fb_make(&fb, size, size);
-    sr_mesh m;
-    clip_lines(&m, c, n, SR_POINT_LIST);
-    draw_clip_space(&fb, &m, (float)width);
-    unsigned char *ref = calloc((size_t)size * size, 1);
-    cr_assert_not_null(ref);
-    for (uint32_t k = 0; k < n; k++)
-        ref_point(c[k], width, size, size, ref);
-    int deviating, faulty = deqp_compare(&fb, ref, 1, &deviating);
-    cr_assert_eq(faulty, 0, "%s at %d px: %d faulty pixels, %d deviating", name, size, faulty, deviating);
-    size_t drawn = (size_t)size * size - scene_count_color(&fb, 0);
-    free(ref);
-    sr_mesh_free(&m);
-    sr_framebuffer_destroy(&fb);
-    return drawn;
-}
-
 /* point_z_clip, point_clip, wide_point_z_clip, wide_point_clip and their
  * viewport variants (a 100 × 100 canvas), every point of dEQP's lists:
  * dEQP's verdicts but for the points at −w <= z < 0, which Direct3D's
@@ -1064,8 +1051,10 @@ Test(points, deqp_point_clip_cases_match_the_reference_in_direct3d_depth)
     };
     for (int size = 200; size >= 100; size -= 100)
         for (int width = 1; width <= 5; width += 4) {
-            size_t in_view = deqp_points(viewport, 23, width, size, width == 1 ? "point_clip" : "wide_point_clip");
-            size_t in_depth = deqp_points(depth, 9, width, size, width == 1 ? "point_z_clip" : "wide_point_z_clip");
+            size_t in_view = deqp_case(viewport, 23, SR_POINT_LIST, width, size, 1,
+                                       width == 1 ? "point_clip" : "wide_point_clip");
+            size_t in_depth = deqp_case(depth, 9, SR_POINT_LIST, width, size, 1,
+                                        width == 1 ? "point_z_clip" : "wide_point_z_clip");
             cr_assert_geq(in_view, (size_t)(9 * width * width) - 2 * (size_t)width, "%d px, %d wide", size, width);
             cr_assert_geq(in_depth, (size_t)(3 * width * width) - 2 * (size_t)width, "%d px, %d wide", size, width);
         }
