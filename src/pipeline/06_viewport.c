@@ -1,4 +1,8 @@
 #include <math.h>
+#include <stddef.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "pipeline/04_clip/clip_corner.h"
 #include "06_viewport.h"
@@ -85,11 +89,11 @@ static inline bool map_double(const double c[4], bool checked, const screen_scal
     return true;
 }
 
-/* sr_viewport_map, with the unsnapped point and z from clip_d (the clip
- * position in double) when given and of use: the snapped point stays the
- * float position's. */
-static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool checked, int varyings,
-                              const sr_viewport *vp, sr_screen_vertex *out)
+/* The float half of a mapping: the snapped point, 1/w and the varyings
+ * divided by w, all from the float position; its unsnapped point and z to
+ * sx, sy, z. False where the vertex is refused (sr_viewport_map). */
+static inline bool map_float(const sr_vertex_out *v, int varyings, const sr_viewport *vp, const screen_scale *scale,
+                             sr_screen_vertex *out, double *sx, double *sy, double *z)
 {
     double w = v->v[SR_W];
     if (!(w > 0.0) || !isfinite(w))
@@ -97,23 +101,12 @@ static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool
     double inv_w, b_over_w;
     divide_by_w(w, vp->depth.b, &inv_w, &b_over_w);
     double x = v->v[SR_X] * inv_w, y = v->v[SR_Y] * inv_w;
-    double z = depth_ndc(v->v[SR_Z], inv_w, b_over_w, vp);
-    if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(z, 0.0))
+    *z = depth_ndc(v->v[SR_Z], inv_w, b_over_w, vp);
+    if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(*z, 0.0))
         return false;
-    screen_scale scale = screen_scale_of(vp);
-    double sx, sy;
-    screen_point(x, y, &scale, &sx, &sy);
-    out->x = round_to_integer(sx);
-    out->y = round_to_integer(sy);
-    double sx_d, sy_d, z_d;
-    if (clip_d && map_double(clip_d, checked, &scale, vp, &sx_d, &sy_d, &z_d)) {
-        sx = sx_d;
-        sy = sy_d;
-        z = z_d;
-    }
-    out->x_off = (float)(sx - (double)out->x); /* the difference exact, then 24 bits of it */
-    out->y_off = (float)(sy - (double)out->y);
-    out->z = (float)z;
+    screen_point(x, y, scale, sx, sy);
+    out->x = round_to_integer(*sx);
+    out->y = round_to_integer(*sy);
     out->inv_w = (float)inv_w;
     bool finite = isfinite(out->inv_w); /* 1/w overflows float for w < 2^-128 */
     for (int i = 0; i < varyings; i++) {
@@ -121,6 +114,35 @@ static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool
         finite = finite && isfinite(out->var_w[i]);
     }
     return finite;
+}
+
+/* The rest: the offsets of the unsnapped point (sx, sy) from the snapped
+ * one, and z. */
+static inline void place(double sx, double sy, double z, sr_screen_vertex *out)
+{
+    out->x_off = (float)(sx - (double)out->x); /* the difference exact, then 24 bits of it */
+    out->y_off = (float)(sy - (double)out->y);
+    out->z = (float)z;
+}
+
+/* sr_viewport_map, with the unsnapped point and z from clip_d (the clip
+ * position in double) when given and of use: the snapped point stays the
+ * float position's. */
+static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool checked, int varyings,
+                              const sr_viewport *vp, sr_screen_vertex *out)
+{
+    screen_scale scale = screen_scale_of(vp);
+    double sx, sy, z;
+    if (!map_float(v, varyings, vp, &scale, out, &sx, &sy, &z))
+        return false;
+    double sx_d, sy_d, z_d;
+    if (clip_d && map_double(clip_d, checked, &scale, vp, &sx_d, &sy_d, &z_d)) {
+        sx = sx_d;
+        sy = sy_d;
+        z = z_d;
+    }
+    place(sx, sy, z, out);
+    return true;
 }
 
 bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp, sr_screen_vertex *out)
@@ -132,6 +154,116 @@ bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyi
                        sr_screen_vertex *out)
 {
     return map_vertex(v, clip_d, false, varyings, vp, out);
+}
+
+#if defined(__SSE2__)
+/* Lanes where a <= v <= b (never for a NaN). */
+static inline __m128d within(__m128d v, double a, double b)
+{
+    return _mm_and_pd(_mm_cmpge_pd(v, _mm_set1_pd(a)), _mm_cmple_pd(v, _mm_set1_pd(b)));
+}
+
+/* Lanes whose magnitude is below infinity: finite, not NaN. */
+static inline __m128d finite_pd(__m128d v)
+{
+    __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX));
+    return _mm_cmplt_pd(_mm_and_pd(v, magnitude), _mm_set1_pd(INFINITY));
+}
+
+/* round_to_integer in two lanes of |v| < 2^51: v + 1.5·2^52 has an
+ * exponent of 52, so its bits less those of 1.5·2^52 are the integer. */
+static inline __m128i round_to_integers(__m128d v)
+{
+    const __m128d no_fraction = _mm_set1_pd(6755399441055744.0);
+    return _mm_sub_epi64(_mm_castpd_si128(_mm_add_pd(v, no_fraction)), _mm_castpd_si128(no_fraction));
+}
+
+/* map_float of v[0] and v[1] into out[0] and out[1] where inside[k], as
+ * two lanes of double: the same operations on the same values, so the same
+ * bits. Returns the lanes refused (bit k for v[k]). */
+static unsigned map_float_two(const sr_vertex_out *v, int varyings, const sr_viewport *vp, const screen_scale *s,
+                              sr_screen_vertex *const out[2], const bool inside[2])
+{
+    __m128 p0 = _mm_loadu_ps(v[0].v), p1 = _mm_loadu_ps(v[1].v);
+    __m128d xy0 = _mm_cvtps_pd(p0), xy1 = _mm_cvtps_pd(p1);
+    __m128d zw0 = _mm_cvtps_pd(_mm_movehl_ps(p0, p0)), zw1 = _mm_cvtps_pd(_mm_movehl_ps(p1, p1));
+    __m128d x = _mm_unpacklo_pd(xy0, xy1), y = _mm_unpackhi_pd(xy0, xy1);
+    __m128d z = _mm_unpacklo_pd(zw0, zw1), w = _mm_unpackhi_pd(zw0, zw1);
+    __m128d ok = _mm_and_pd(_mm_cmpgt_pd(w, _mm_setzero_pd()), finite_pd(w));
+    __m128d inv_w = _mm_div_pd(_mm_set1_pd(1.0), w), b_over_w = _mm_div_pd(_mm_set1_pd(vp->depth.b), w);
+    x = _mm_mul_pd(x, inv_w);
+    y = _mm_mul_pd(y, inv_w);
+    z = vp->depth.on ? _mm_add_pd(_mm_set1_pd(vp->depth.a), b_over_w) : _mm_mul_pd(z, inv_w);
+    ok = _mm_and_pd(ok, within(x, -1.0 - SR_NDC_SLACK, 1.0 + SR_NDC_SLACK));
+    ok = _mm_and_pd(ok, within(y, -1.0 - SR_NDC_SLACK, 1.0 + SR_NDC_SLACK));
+    ok = _mm_and_pd(ok, within(z, 0.0 - SR_NDC_SLACK, 1.0 + SR_NDC_SLACK));
+    __m128d guard = _mm_set1_pd(s->guard), one = _mm_set1_pd(1.0);
+    __m128d sx = _mm_mul_pd(_mm_add_pd(_mm_mul_pd(guard, x), one), _mm_set1_pd(s->x_units));
+    __m128d sy = _mm_mul_pd(_mm_sub_pd(one, _mm_mul_pd(guard, y)), _mm_set1_pd(s->y_units));
+    __m128i xi = round_to_integers(sx), yi = round_to_integers(sy);
+    __m128i at[2] = { _mm_unpacklo_epi64(xi, yi), _mm_unpackhi_epi64(xi, yi) };
+    __m128 inv_w_f = _mm_cvtpd_ps(inv_w);
+    __m128 finite = _mm_cmplt_ps(_mm_and_ps(inv_w_f, _mm_castsi128_ps(_mm_set1_epi32(INT32_MAX))),
+                                 _mm_set1_ps(INFINITY));
+    float inv_w_lane[4];
+    _mm_storeu_ps(inv_w_lane, inv_w_f);
+    for (int i = 0; i < varyings; i++) {
+        __m128d var = _mm_set_pd(v[1].v[SR_VARYINGS_AT + i], v[0].v[SR_VARYINGS_AT + i]);
+        __m128 var_w = _mm_cvtpd_ps(_mm_mul_pd(var, inv_w));
+        finite = _mm_and_ps(finite, _mm_cmplt_ps(_mm_and_ps(var_w, _mm_castsi128_ps(_mm_set1_epi32(INT32_MAX))),
+                                                 _mm_set1_ps(INFINITY)));
+        float lane[4];
+        _mm_storeu_ps(lane, var_w);
+        for (int k = 0; k < 2; k++)
+            if (inside[k])
+                out[k]->var_w[i] = lane[k];
+    }
+    for (int k = 0; k < 2; k++)
+        if (inside[k]) {
+            _mm_storeu_si128((__m128i *)&out[k]->x, at[k]);
+            out[k]->inv_w = inv_w_lane[k];
+        }
+    unsigned mapped = (unsigned)_mm_movemask_pd(ok) & (unsigned)_mm_movemask_ps(finite);
+    return ~mapped & ((unsigned)inside[0] | (unsigned)inside[1] << 1);
+}
+#endif
+
+void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport *vp,
+                                 unsigned char *codes, void *out, size_t stride)
+{
+    _Static_assert(offsetof(sr_screen_vertex, y) == offsetof(sr_screen_vertex, x) + sizeof(int64_t),
+                   "the snapped point is stored as one pair");
+    screen_scale scale = screen_scale_of(vp);
+    uint32_t k = 0;
+#if defined(__SSE2__)
+    for (; n - k >= 2; k += 2) {
+        bool inside[2] = { codes[k] == 0, codes[k + 1] == 0 };
+        if (!inside[0] && !inside[1])
+            continue;
+        sr_screen_vertex *const pair[2] = { (sr_screen_vertex *)((char *)out + k * stride),
+                                            (sr_screen_vertex *)((char *)out + (k + 1) * stride) };
+        unsigned refused = map_float_two(&v[k], varyings, vp, &scale, pair, inside);
+        for (int j = 0; j < 2; j++)
+            if (refused >> j & 1)
+                codes[k + (uint32_t)j] = SR_OUT_NONFINITE;
+    }
+#endif
+    for (; k < n; k++) {
+        double sx, sy, z;
+        if (codes[k] == 0 &&
+            !map_float(&v[k], varyings, vp, &scale, (sr_screen_vertex *)((char *)out + k * stride), &sx, &sy, &z))
+            codes[k] = SR_OUT_NONFINITE;
+    }
+}
+
+void sr_viewport_map_double_n(const double (*clip_d)[4], sr_screen_vertex *const *out, int n, const sr_viewport *vp)
+{
+    screen_scale scale = screen_scale_of(vp);
+    for (int k = 0; k < n; k++) {
+        double sx, sy, z;
+        map_double(clip_d[k], false, &scale, vp, &sx, &sy, &z);
+        place(sx, sy, z, out[k]);
+    }
 }
 
 bool sr_viewport_map_checked_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
