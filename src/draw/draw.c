@@ -168,6 +168,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
     const sr_varying_layout *layout = &st->shade.layout;
     unsigned char *outcodes = st->ws->outcodes.data, *bands = st->ws->row_bands.data;
     atomic_uchar *double_mapped = st->ws->double_mapped.data;
+    bool double_later = st->double_later; /* a local: the loop's byte stores may alias *st */
     for (uint32_t block = first; block < end; block += VERTEX_BLOCK) {
         _Alignas(16) sr_vertex_out verts[VERTEX_BLOCK];
         uint32_t n = end - block < VERTEX_BLOCK ? end - block : VERTEX_BLOCK;
@@ -180,9 +181,9 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
         }
         /* Most vertices of a dense mesh at a small size are of triangles
          * the sub-pixel lanes drop, which read only the snapped point. */
-        if (st->double_later) {
-            sr_viewport_map_float_block(verts, n, layout->count, &st->vp, codes, sr_screen_at(st, block),
-                                        st->screen_stride);
+        if (double_later) {
+            sr_viewport_map_float_block(verts, n, layout->count, &st->vp, st->shade.simd >= SR_SIMD_AVX2, codes,
+                                        sr_screen_at(st, block), st->screen_stride);
             for (uint32_t j = 0; j < n; j++)
                 atomic_init(&double_mapped[block + j], 0);
         }
@@ -196,7 +197,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
                 if (!block_finite && !sr_vertex_varyings_finite(mesh, &ph->xf, layout, i))
                     code = SR_OUT_NONFINITE;
             }
-            if (code == 0 && !st->double_later && !map_inside(ph, &verts[j], i, sr_screen_at(st, i)))
+            if (code == 0 && !double_later && !map_inside(ph, &verts[j], i, sr_screen_at(st, i)))
                 code = SR_OUT_NONFINITE;
             outcodes[i] = (unsigned char)code;
             *outcodes_and &= code;

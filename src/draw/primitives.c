@@ -174,8 +174,11 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
  * phase mapped their float half (st->double_later). No thread of this
  * phase reads a member the double half writes: the lanes and the row
  * bands read the snapped points, and the triangles are drawn in a later
- * phase, or by the one thread that mapped them. */
-static void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept, int count)
+ * phase, or by the one thread that mapped them. Out of line: its arrays
+ * on the stack made every batch's verdicts of a draw without it pay for
+ * them. */
+static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept,
+                                                         int count)
 {
     atomic_uchar *mapped = st->ws->double_mapped.data;
     uint32_t taken[3 * SR_VERDICT_BATCH];

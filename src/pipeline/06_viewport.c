@@ -1,11 +1,9 @@
 #include <math.h>
 #include <stddef.h>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "pipeline/04_clip/clip_corner.h"
 #include "06_viewport.h"
+#include "06_viewport_lanes.h"
 
 static bool within_slack(double ndc, double lo)
 {
@@ -92,8 +90,9 @@ static inline bool map_double(const double c[4], bool checked, const screen_scal
 /* The float half of a mapping: the snapped point, 1/w and the varyings
  * divided by w, all from the float position; its unsnapped point and z to
  * sx, sy, z. False where the vertex is refused (sr_viewport_map). */
-static inline bool map_float(const sr_vertex_out *v, int varyings, const sr_viewport *vp, const screen_scale *scale,
-                             sr_screen_vertex *out, double *sx, double *sy, double *z)
+static SR_ALWAYS_INLINE bool map_float(const sr_vertex_out *v, int varyings, const sr_viewport *vp,
+                                       const screen_scale *scale, sr_screen_vertex *out, double *sx, double *sy,
+                                       double *z)
 {
     double w = v->v[SR_W];
     if (!(w > 0.0) || !isfinite(w))
@@ -118,7 +117,7 @@ static inline bool map_float(const sr_vertex_out *v, int varyings, const sr_view
 
 /* The rest: the offsets of the unsnapped point (sx, sy) from the snapped
  * one, and z. */
-static inline void place(double sx, double sy, double z, sr_screen_vertex *out)
+static SR_ALWAYS_INLINE void place(double sx, double sy, double z, sr_screen_vertex *out)
 {
     out->x_off = (float)(sx - (double)out->x); /* the difference exact, then 24 bits of it */
     out->y_off = (float)(sy - (double)out->y);
@@ -128,8 +127,8 @@ static inline void place(double sx, double sy, double z, sr_screen_vertex *out)
 /* sr_viewport_map, with the unsnapped point and z from clip_d (the clip
  * position in double) when given and of use: the snapped point stays the
  * float position's. */
-static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool checked, int varyings,
-                              const sr_viewport *vp, sr_screen_vertex *out)
+static SR_ALWAYS_INLINE bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool checked,
+                                        int varyings, const sr_viewport *vp, sr_screen_vertex *out)
 {
     screen_scale scale = screen_scale_of(vp);
     double sx, sy, z;
@@ -156,98 +155,16 @@ bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyi
     return map_vertex(v, clip_d, false, varyings, vp, out);
 }
 
-#if defined(__SSE2__)
-/* Lanes where a <= v <= b (never for a NaN). */
-static inline __m128d within(__m128d v, double a, double b)
-{
-    return _mm_and_pd(_mm_cmpge_pd(v, _mm_set1_pd(a)), _mm_cmple_pd(v, _mm_set1_pd(b)));
-}
-
-/* Lanes whose magnitude is below infinity: finite, not NaN. */
-static inline __m128d finite_pd(__m128d v)
-{
-    __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX));
-    return _mm_cmplt_pd(_mm_and_pd(v, magnitude), _mm_set1_pd(INFINITY));
-}
-
-/* round_to_integer in two lanes of |v| < 2^51: v + 1.5·2^52 has an
- * exponent of 52, so its bits less those of 1.5·2^52 are the integer. */
-static inline __m128i round_to_integers(__m128d v)
-{
-    const __m128d no_fraction = _mm_set1_pd(6755399441055744.0);
-    return _mm_sub_epi64(_mm_castpd_si128(_mm_add_pd(v, no_fraction)), _mm_castpd_si128(no_fraction));
-}
-
-/* map_float of v[0] and v[1] into out[0] and out[1] where inside[k], as
- * two lanes of double: the same operations on the same values, so the same
- * bits. Returns the lanes refused (bit k for v[k]). */
-static unsigned map_float_two(const sr_vertex_out *v, int varyings, const sr_viewport *vp, const screen_scale *s,
-                              sr_screen_vertex *const out[2], const bool inside[2])
-{
-    __m128 p0 = _mm_loadu_ps(v[0].v), p1 = _mm_loadu_ps(v[1].v);
-    __m128d xy0 = _mm_cvtps_pd(p0), xy1 = _mm_cvtps_pd(p1);
-    __m128d zw0 = _mm_cvtps_pd(_mm_movehl_ps(p0, p0)), zw1 = _mm_cvtps_pd(_mm_movehl_ps(p1, p1));
-    __m128d x = _mm_unpacklo_pd(xy0, xy1), y = _mm_unpackhi_pd(xy0, xy1);
-    __m128d z = _mm_unpacklo_pd(zw0, zw1), w = _mm_unpackhi_pd(zw0, zw1);
-    __m128d ok = _mm_and_pd(_mm_cmpgt_pd(w, _mm_setzero_pd()), finite_pd(w));
-    __m128d inv_w = _mm_div_pd(_mm_set1_pd(1.0), w), b_over_w = _mm_div_pd(_mm_set1_pd(vp->depth.b), w);
-    x = _mm_mul_pd(x, inv_w);
-    y = _mm_mul_pd(y, inv_w);
-    z = vp->depth.on ? _mm_add_pd(_mm_set1_pd(vp->depth.a), b_over_w) : _mm_mul_pd(z, inv_w);
-    ok = _mm_and_pd(ok, within(x, -1.0 - SR_NDC_SLACK, 1.0 + SR_NDC_SLACK));
-    ok = _mm_and_pd(ok, within(y, -1.0 - SR_NDC_SLACK, 1.0 + SR_NDC_SLACK));
-    ok = _mm_and_pd(ok, within(z, 0.0 - SR_NDC_SLACK, 1.0 + SR_NDC_SLACK));
-    __m128d guard = _mm_set1_pd(s->guard), one = _mm_set1_pd(1.0);
-    __m128d sx = _mm_mul_pd(_mm_add_pd(_mm_mul_pd(guard, x), one), _mm_set1_pd(s->x_units));
-    __m128d sy = _mm_mul_pd(_mm_sub_pd(one, _mm_mul_pd(guard, y)), _mm_set1_pd(s->y_units));
-    __m128i xi = round_to_integers(sx), yi = round_to_integers(sy);
-    __m128i at[2] = { _mm_unpacklo_epi64(xi, yi), _mm_unpackhi_epi64(xi, yi) };
-    __m128 inv_w_f = _mm_cvtpd_ps(inv_w);
-    __m128 finite = _mm_cmplt_ps(_mm_and_ps(inv_w_f, _mm_castsi128_ps(_mm_set1_epi32(INT32_MAX))),
-                                 _mm_set1_ps(INFINITY));
-    float inv_w_lane[4];
-    _mm_storeu_ps(inv_w_lane, inv_w_f);
-    for (int i = 0; i < varyings; i++) {
-        __m128d var = _mm_set_pd(v[1].v[SR_VARYINGS_AT + i], v[0].v[SR_VARYINGS_AT + i]);
-        __m128 var_w = _mm_cvtpd_ps(_mm_mul_pd(var, inv_w));
-        finite = _mm_and_ps(finite, _mm_cmplt_ps(_mm_and_ps(var_w, _mm_castsi128_ps(_mm_set1_epi32(INT32_MAX))),
-                                                 _mm_set1_ps(INFINITY)));
-        float lane[4];
-        _mm_storeu_ps(lane, var_w);
-        for (int k = 0; k < 2; k++)
-            if (inside[k])
-                out[k]->var_w[i] = lane[k];
-    }
-    for (int k = 0; k < 2; k++)
-        if (inside[k]) {
-            _mm_storeu_si128((__m128i *)&out[k]->x, at[k]);
-            out[k]->inv_w = inv_w_lane[k];
-        }
-    unsigned mapped = (unsigned)_mm_movemask_pd(ok) & (unsigned)_mm_movemask_ps(finite);
-    return ~mapped & ((unsigned)inside[0] | (unsigned)inside[1] << 1);
-}
-#endif
-
-void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport *vp,
+void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport *vp, bool avx2,
                                  unsigned char *codes, void *out, size_t stride)
 {
-    _Static_assert(offsetof(sr_screen_vertex, y) == offsetof(sr_screen_vertex, x) + sizeof(int64_t),
-                   "the snapped point is stored as one pair");
     screen_scale scale = screen_scale_of(vp);
-    uint32_t k = 0;
-#if defined(__SSE2__)
-    for (; n - k >= 2; k += 2) {
-        bool inside[2] = { codes[k] == 0, codes[k + 1] == 0 };
-        if (!inside[0] && !inside[1])
-            continue;
-        sr_screen_vertex *const pair[2] = { (sr_screen_vertex *)((char *)out + k * stride),
-                                            (sr_screen_vertex *)((char *)out + (k + 1) * stride) };
-        unsigned refused = map_float_two(&v[k], varyings, vp, &scale, pair, inside);
-        for (int j = 0; j < 2; j++)
-            if (refused >> j & 1)
-                codes[k + (uint32_t)j] = SR_OUT_NONFINITE;
-    }
-#endif
+    sr_viewport_lanes r = { .guard = scale.guard, .x_units = scale.x_units, .y_units = scale.y_units,
+                            .a = vp->depth.a, .b = vp->depth.b, .depth_on = vp->depth.on,
+                            /* within_slack's bounds */
+                            .xy_lo = -1.0 - SR_NDC_SLACK, .z_lo = 0.0 - SR_NDC_SLACK, .hi = 1.0 + SR_NDC_SLACK };
+    uint32_t k = avx2 ? sr_viewport_float_lanes_avx2(v, n, varyings, &r, codes, out, stride)
+                      : sr_viewport_float_lanes_sse2(v, n, varyings, &r, codes, out, stride);
     for (; k < n; k++) {
         double sx, sy, z;
         if (codes[k] == 0 &&
