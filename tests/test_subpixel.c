@@ -167,13 +167,16 @@ Test(subpixel, lanes_at_the_edges_of_the_rules)
 
 /* A dense mesh in clip space over a small framebuffer: vertices on a
  * jittered grid of about a pixel, some on pixel centres, a few past the
- * planes (clipped) and one NaN; triangles of neighbouring vertices in
- * random winding, and a few long ones across the view. */
-static void dense_mesh(sr_mesh *m, test_rng *rng, int width, int height)
+ * planes (clipped), one NaN and, inside every plane, one whose w is below
+ * 2^-128 (1/w overflows float: refused by the mapping); triangles of
+ * neighbouring vertices in random winding, and a few long ones across the
+ * view. With colors, random ones, one NaN and one that overflows float once
+ * divided by its vertex's w: both refused by the mapping. */
+static void dense_mesh(sr_mesh *m, test_rng *rng, int width, int height, bool colors)
 {
     const uint32_t side = 72, tris = 2 * (side - 1) * (side - 1) + 20;
     sr_error err;
-    cr_assert(sr_mesh_alloc(m, side * side, 3 * tris, false, false, false, &err), "%s", err.message);
+    cr_assert(sr_mesh_alloc(m, side * side, 3 * tris, false, false, colors, &err), "%s", err.message);
     m->clip_positions = calloc(m->vertex_count, sizeof *m->clip_positions);
     cr_assert_not_null(m->clip_positions);
     for (uint32_t j = 0; j < side; j++)
@@ -188,6 +191,17 @@ static void dense_mesh(sr_mesh *m, test_rng *rng, int width, int height)
             p[0] = x, p[1] = y, p[2] = (float)rng_uniform(rng, 0.05, 0.95), p[3] = 1.0f;
         }
     m->clip_positions[side * side / 2][0] = NAN;
+    memcpy(m->clip_positions[side * side / 3], (float[4]){ 0.0f, 0.0f, 0.0f, 0x1p-130f }, sizeof(float[4]));
+    float *big = m->clip_positions[side * side / 4]; /* inside, w = 1/4 */
+    for (int k = 0; k < 4; k++)
+        big[k] *= 0.25f;
+    if (colors) {
+        for (uint32_t i = 0; i < m->vertex_count; i++)
+            for (int k = 0; k < 3; k++)
+                m->colors[i][k] = (float)rng_uniform(rng, 0.0, 1.0);
+        m->colors[side * side / 5][1] = NAN;
+        m->colors[side * side / 4][2] = 1e38f; /* 4e38 once divided by w */
+    }
     uint32_t *idx = m->indices, n = 0;
     for (uint32_t j = 0; j + 1 < side; j++)
         for (uint32_t i = 0; i + 1 < side; i++) {
@@ -236,8 +250,8 @@ static const sr_simd simds[] = { SR_SIMD_SCALAR, SR_SIMD_SSE2, SR_SIMD_AVX2, SR_
 static const sr_draw_path paths[] = { SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_ROWS };
 
 /* Every path, thread count and SIMD level with the lanes draws what one
- * thread draws without them. */
-static void assert_lanes_draw_alike(const sr_mesh *m, int width, int height, sr_shade shade, sr_cull cull,
+ * thread draws without them; returns what that drew. */
+static sr_stats assert_lanes_draw_alike(const sr_mesh *m, int width, int height, sr_shade shade, sr_cull cull,
                                     sr_front front)
 {
     sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
@@ -258,6 +272,7 @@ static void assert_lanes_draw_alike(const sr_mesh *m, int width, int height, sr_
                 sr_framebuffer_destroy(&got.fb);
             }
     sr_framebuffer_destroy(&want.fb);
+    return want.stats;
 }
 
 Test(subpixel, dense_random_meshes_draw_alike_with_and_without_the_lanes, .timeout = 120)
@@ -266,10 +281,20 @@ Test(subpixel, dense_random_meshes_draw_alike_with_and_without_the_lanes, .timeo
     for (int round = 0; round < 2; round++) {
         sr_mesh m;
         int width = round ? 64 : 48, height = round ? 48 : 40;
-        dense_mesh(&m, &rng, width, height);
-        for (size_t c = 0; c < 3; c++)
-            assert_lanes_draw_alike(&m, width, height, c == 1 ? SR_SHADE_DEPTH : SR_SHADE_ID, culls[c],
-                                    round ? SR_FRONT_CCW : SR_FRONT_CW);
+        dense_mesh(&m, &rng, width, height, round == 1);
+        sr_stats ids = { 0 };
+        for (size_t c = 0; c < 3; c++) {
+            sr_stats got = assert_lanes_draw_alike(&m, width, height, c == 1 ? SR_SHADE_DEPTH : SR_SHADE_ID,
+                                                     culls[c], round ? SR_FRONT_CCW : SR_FRONT_CW);
+            if (c == 0)
+                ids = got;
+        }
+        /* The NaN and the vertex whose 1/w overflows, on the grid's edge: three triangles each refused. */
+        cr_assert_geq(ids.nonfinite, 6, "%llu", (unsigned long long)ids.nonfinite);
+        if (round == 1) { /* three varyings through the mapping's lanes, two of them refused */
+            sr_stats lit = assert_lanes_draw_alike(&m, width, height, SR_SHADE_COLOR, SR_CULL_NONE, SR_FRONT_CCW);
+            cr_assert_gt(lit.nonfinite, ids.nonfinite, "the refused colors refused no triangle");
+        }
         sr_mesh_free(&m);
     }
 }

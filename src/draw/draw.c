@@ -157,13 +157,18 @@ static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, 
  * whose varyings divided by w are then not finite, and which fails as well
  * where the divide does (w below 2^-128): the triangles that use such a
  * vertex are dropped and counted. For the row-band path, each vertex
- * inside gets its band of rows. */
+ * inside gets its band of rows. With st->double_later a vertex inside gets
+ * only the float half of its mapping here (06_viewport.h), which decides
+ * its refusal: the verdicts map the double half of the vertices of the
+ * triangles they keep (primitives.c). */
 static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, unsigned *outcodes_and)
 {
     const sr_draw_state *st = ph->st;
     const sr_mesh *mesh = st->desc->mesh;
     const sr_varying_layout *layout = &st->shade.layout;
     unsigned char *outcodes = st->ws->outcodes.data, *bands = st->ws->row_bands.data;
+    atomic_uchar *double_mapped = st->ws->double_mapped.data;
+    bool double_later = st->double_later; /* a local: the loop's byte stores may alias *st */
     for (uint32_t block = first; block < end; block += VERTEX_BLOCK) {
         _Alignas(16) sr_vertex_out verts[VERTEX_BLOCK];
         uint32_t n = end - block < VERTEX_BLOCK ? end - block : VERTEX_BLOCK;
@@ -173,6 +178,14 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
             sr_vertex_run(mesh, &ph->xf, layout, block, n, verts);
         } else {
             sr_vertex_run_inside(mesh, &ph->xf, layout, &st->vp.depth, block, n, verts, codes);
+        }
+        /* Most vertices of a dense mesh at a small size are of triangles
+         * the sub-pixel lanes drop, which read only the snapped point. */
+        if (double_later) {
+            sr_viewport_map_float_block(verts, n, layout->count, &st->vp, st->shade.simd >= SR_SIMD_AVX2, codes,
+                                        sr_screen_at(st, block), st->screen_stride);
+            for (uint32_t j = 0; j < n; j++)
+                atomic_init(&double_mapped[block + j], 0);
         }
         int block_finite = -1; /* not yet known */
         for (uint32_t j = 0; j < n; j++) {
@@ -184,8 +197,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
                 if (!block_finite && !sr_vertex_varyings_finite(mesh, &ph->xf, layout, i))
                     code = SR_OUT_NONFINITE;
             }
-            sr_screen_vertex *screen = sr_screen_at(st, i);
-            if (code == 0 && !map_inside(ph, &verts[j], i, screen))
+            if (code == 0 && !double_later && !map_inside(ph, &verts[j], i, sr_screen_at(st, i)))
                 code = SR_OUT_NONFINITE;
             outcodes[i] = (unsigned char)code;
             *outcodes_and &= code;
@@ -239,6 +251,7 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
     sr_workspace *ws = st->ws;
     if (!sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
         (st->band_rows && !sr_array_reserve(&ws->row_bands, n, sizeof(unsigned char))) ||
+        (st->double_later && !sr_array_reserve(&ws->double_mapped, n, sizeof(atomic_uchar))) ||
         n > SIZE_MAX / st->screen_stride || !sr_array_reserve(&ws->screen, n * st->screen_stride, 1))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
     sr_draw_times *times = st->study.times;
@@ -301,30 +314,26 @@ static bool direct_only(const sr_draw_state *st)
     return st->study.observer || st->slots > SR_BIN_STORED;
 }
 
-/* Before the vertex phase: whether it notes the bands of rows of the
- * row-band path (row_bands.c), the estimate's choice for pixel-sized triangle
- * slots on several threads. */
-static bool rows_wanted(const sr_draw_state *st)
-{
-    if (direct_only(st))
-        return false;
-    if (st->study.path != SR_PATH_BY_COST)
-        return st->study.path == SR_PATH_ROWS;
-    return st->threads > 1 && pixel_sized_slots(st);
-}
-
-/* After the vertex phase: the study's path, or the cost estimate's. */
-static sr_draw_path path_of(const sr_draw_state *st)
+/* Before the vertex phase: the study's path, or the cost estimate's. The
+ * row bands want the vertex phase to note each vertex's band of rows. */
+static sr_draw_path planned_path(const sr_draw_state *st)
 {
     if (direct_only(st))
         return SR_PATH_DIRECT;
     if (st->study.path != SR_PATH_BY_COST)
         return st->study.path;
-    if (all_outside_one_plane(st))
-        return SR_PATH_DIRECT;
     if (st->threads > 1)
-        return st->band_rows ? SR_PATH_ROWS : SR_PATH_TILES;
+        return pixel_sized_slots(st) ? SR_PATH_ROWS : SR_PATH_TILES;
     return pixel_count(st) >= TILES_MIN_PIXELS && !pixel_sized_slots(st) ? SR_PATH_TILES : SR_PATH_DIRECT;
+}
+
+/* After it: the planned path, or the direct one where the estimate finds
+ * every vertex outside one plane. */
+static sr_draw_path path_of(const sr_draw_state *st, sr_draw_path planned)
+{
+    if (!direct_only(st) && st->study.path == SR_PATH_BY_COST && all_outside_one_plane(st))
+        return SR_PATH_DIRECT;
+    return planned;
 }
 
 /* The sub-pixel lanes (pipeline/08_raster/subpixel.h) pay where most
@@ -402,13 +411,17 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         return index_error(st, err);
     if (!worth_threads(st))
         st->threads = 1;
-    st->band_rows = rows_wanted(st) ? sr_band_rows(st->fb->height) : 0;
+    sr_draw_path planned = planned_path(st);
+    st->band_rows = planned == SR_PATH_ROWS ? sr_band_rows(st->fb->height) : 0;
+    /* The tiles set a triangle up in the phase that keeps it, while another
+     * thread may be mapping its vertices' double half: they map all. */
+    st->double_later = st->subpixel_lanes && planned != SR_PATH_TILES;
     if (draws) {
         ph.inside = box == SR_BOX_INSIDE;
         if (!run_vertex_phase(st, &ph, err))
             return false;
     }
-    sr_draw_path path = draws ? path_of(st) : SR_PATH_DIRECT;
+    sr_draw_path path = draws ? path_of(st, planned) : SR_PATH_DIRECT;
     if (st->study.times)
         st->study.times->path = path;
     bool direct = path == SR_PATH_DIRECT;

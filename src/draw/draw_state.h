@@ -144,6 +144,7 @@ struct sr_workspace {
     sr_array screen;   /* screen vertices, sr_draw_state.screen_stride bytes apart, valid where the outcode is 0 */
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
     sr_array row_bands;    /* unsigned char: the band of rows of each vertex inside, when st->band_rows */
+    sr_array double_mapped; /* atomic_uchar: whether a vertex inside has its double half, when st->double_later */
     sr_array band_slots;   /* sr_band_slot: the row-band path's kept slots, each chunk's from its first slot on */
     sr_array chunk_kept;   /* uint32_t: how many slots each chunk of the verdicts kept in band_slots */
     sr_array material_shades; /* sr_shade_context: a mesh's materials' (materials.c) */
@@ -169,6 +170,8 @@ typedef struct sr_draw_state {
     int tile_rows, tiles; /* the binned path's tiles: strips of whole rows */
     int band_rows;        /* > 0: the vertex phase notes each inside vertex's band of this many rows */
     bool subpixel_lanes;  /* the sub-pixel lanes drop the triangles that draw nothing (primitives.c) */
+    bool double_later;    /* the vertex phase maps the float half of the vertices inside, the verdicts
+                             the double half of those of the triangles they keep (primitives.c) */
     sr_subpixel_rules subpixel;
 } sr_draw_state;
 

@@ -169,11 +169,52 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
     return n;
 }
 
+/* The double half of the vertices of the triangles inside every plane of
+ * kept[0 .. count), each vertex by the first thread to take it: the vertex
+ * phase mapped their float half (st->double_later). No thread of this
+ * phase reads a member the double half writes: the lanes and the row
+ * bands read the snapped points, and the triangles are drawn in a later
+ * phase, or by the one thread that mapped them. Out of line: its arrays
+ * on the stack made every batch's verdicts of a draw without it pay for
+ * them. */
+static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept,
+                                                         int count)
+{
+    atomic_uchar *mapped = st->ws->double_mapped.data;
+    uint32_t taken[3 * SR_VERDICT_BATCH];
+    int n = 0;
+    for (int j = 0; j < count; j++) {
+        if (kept[j].planes)
+            continue;
+        for (int c = 0; c < 3; c++) {
+            uint32_t i = kept[j].idx[c];
+            if (!atomic_load_explicit(&mapped[i], memory_order_relaxed) &&
+                !atomic_exchange_explicit(&mapped[i], 1, memory_order_relaxed))
+                taken[n++] = i;
+        }
+    }
+    /* The mesh and the matrix in locals: read through pointers, they were
+     * loaded again for every vertex. */
+    const sr_mesh mesh = *st->desc->mesh;
+    const sr_vertex_transform xf = *st->xf;
+    double clip_d[3 * SR_VERDICT_BATCH][4];
+    sr_screen_vertex *out[3 * SR_VERDICT_BATCH];
+    for (int k = 0; k < n; k++) {
+        sr_vertex_mesh_clip_d(&mesh, taken[k], &xf, clip_d[k]);
+        out[k] = sr_screen_at(st, taken[k]);
+    }
+    sr_viewport_map_double_n((const double(*)[4])clip_d, out, n, &st->vp);
+}
+
 int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end, sr_stats *stats,
                      sr_kept_slot *kept)
 {
     int count = take_verdicts(st, first, end, last_end, stats, kept);
-    return st->subpixel_lanes ? drop_subpixel(st, kept, count, stats) : count;
+    if (st->subpixel_lanes)
+        count = drop_subpixel(st, kept, count, stats);
+    if (st->double_later)
+        map_double_halves(st, kept, count);
+    return count;
 }
 
 /* A batch's verdicts, then its kept slots drawn. The verdicts' counts stay

@@ -1,7 +1,9 @@
 #include <math.h>
+#include <stddef.h>
 
 #include "pipeline/04_clip/clip_corner.h"
 #include "06_viewport.h"
+#include "06_viewport_lanes.h"
 
 static bool within_slack(double ndc, double lo)
 {
@@ -85,11 +87,12 @@ static inline bool map_double(const double c[4], bool checked, const screen_scal
     return true;
 }
 
-/* sr_viewport_map, with the unsnapped point and z from clip_d (the clip
- * position in double) when given and of use: the snapped point stays the
- * float position's. */
-static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool checked, int varyings,
-                              const sr_viewport *vp, sr_screen_vertex *out)
+/* The float half of a mapping: the snapped point, 1/w and the varyings
+ * divided by w, all from the float position; its unsnapped point and z to
+ * sx, sy, z. False where the vertex is refused (sr_viewport_map). */
+static SR_ALWAYS_INLINE bool map_float(const sr_vertex_out *v, int varyings, const sr_viewport *vp,
+                                       const screen_scale *scale, sr_screen_vertex *out, double *sx, double *sy,
+                                       double *z)
 {
     double w = v->v[SR_W];
     if (!(w > 0.0) || !isfinite(w))
@@ -97,23 +100,12 @@ static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool
     double inv_w, b_over_w;
     divide_by_w(w, vp->depth.b, &inv_w, &b_over_w);
     double x = v->v[SR_X] * inv_w, y = v->v[SR_Y] * inv_w;
-    double z = depth_ndc(v->v[SR_Z], inv_w, b_over_w, vp);
-    if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(z, 0.0))
+    *z = depth_ndc(v->v[SR_Z], inv_w, b_over_w, vp);
+    if (!within_slack(x, -1.0) || !within_slack(y, -1.0) || !within_slack(*z, 0.0))
         return false;
-    screen_scale scale = screen_scale_of(vp);
-    double sx, sy;
-    screen_point(x, y, &scale, &sx, &sy);
-    out->x = round_to_integer(sx);
-    out->y = round_to_integer(sy);
-    double sx_d, sy_d, z_d;
-    if (clip_d && map_double(clip_d, checked, &scale, vp, &sx_d, &sy_d, &z_d)) {
-        sx = sx_d;
-        sy = sy_d;
-        z = z_d;
-    }
-    out->x_off = (float)(sx - (double)out->x); /* the difference exact, then 24 bits of it */
-    out->y_off = (float)(sy - (double)out->y);
-    out->z = (float)z;
+    screen_point(x, y, scale, sx, sy);
+    out->x = round_to_integer(*sx);
+    out->y = round_to_integer(*sy);
     out->inv_w = (float)inv_w;
     bool finite = isfinite(out->inv_w); /* 1/w overflows float for w < 2^-128 */
     for (int i = 0; i < varyings; i++) {
@@ -121,6 +113,35 @@ static inline bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool
         finite = finite && isfinite(out->var_w[i]);
     }
     return finite;
+}
+
+/* The rest: the offsets of the unsnapped point (sx, sy) from the snapped
+ * one, and z. */
+static SR_ALWAYS_INLINE void place(double sx, double sy, double z, sr_screen_vertex *out)
+{
+    out->x_off = (float)(sx - (double)out->x); /* the difference exact, then 24 bits of it */
+    out->y_off = (float)(sy - (double)out->y);
+    out->z = (float)z;
+}
+
+/* sr_viewport_map, with the unsnapped point and z from clip_d (the clip
+ * position in double) when given and of use: the snapped point stays the
+ * float position's. */
+static SR_ALWAYS_INLINE bool map_vertex(const sr_vertex_out *v, const double *clip_d, bool checked,
+                                        int varyings, const sr_viewport *vp, sr_screen_vertex *out)
+{
+    screen_scale scale = screen_scale_of(vp);
+    double sx, sy, z;
+    if (!map_float(v, varyings, vp, &scale, out, &sx, &sy, &z))
+        return false;
+    double sx_d, sy_d, z_d;
+    if (clip_d && map_double(clip_d, checked, &scale, vp, &sx_d, &sy_d, &z_d)) {
+        sx = sx_d;
+        sy = sy_d;
+        z = z_d;
+    }
+    place(sx, sy, z, out);
+    return true;
 }
 
 bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp, sr_screen_vertex *out)
@@ -132,6 +153,34 @@ bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyi
                        sr_screen_vertex *out)
 {
     return map_vertex(v, clip_d, false, varyings, vp, out);
+}
+
+void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport *vp, bool avx2,
+                                 unsigned char *codes, void *out, size_t stride)
+{
+    screen_scale scale = screen_scale_of(vp);
+    sr_viewport_lanes r = { .guard = scale.guard, .x_units = scale.x_units, .y_units = scale.y_units,
+                            .a = vp->depth.a, .b = vp->depth.b, .depth_on = vp->depth.on,
+                            /* within_slack's bounds */
+                            .xy_lo = -1.0 - SR_NDC_SLACK, .z_lo = 0.0 - SR_NDC_SLACK, .hi = 1.0 + SR_NDC_SLACK };
+    uint32_t k = avx2 ? sr_viewport_float_lanes_avx2(v, n, varyings, &r, codes, out, stride)
+                      : sr_viewport_float_lanes_sse2(v, n, varyings, &r, codes, out, stride);
+    for (; k < n; k++) {
+        double sx, sy, z;
+        if (codes[k] == 0 &&
+            !map_float(&v[k], varyings, vp, &scale, (sr_screen_vertex *)((char *)out + k * stride), &sx, &sy, &z))
+            codes[k] = SR_OUT_NONFINITE;
+    }
+}
+
+void sr_viewport_map_double_n(const double (*clip_d)[4], sr_screen_vertex *const *out, int n, const sr_viewport *vp)
+{
+    screen_scale scale = screen_scale_of(vp);
+    for (int k = 0; k < n; k++) {
+        double sx, sy, z;
+        map_double(clip_d[k], false, &scale, vp, &sx, &sy, &z);
+        place(sx, sy, z, out[k]);
+    }
 }
 
 bool sr_viewport_map_checked_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,

@@ -14,6 +14,8 @@
 #define SOFTRAST_PIPELINE_VIEWPORT_H
 
 #include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
 
 #include "stages.h"
 
@@ -44,6 +46,23 @@ bool sr_viewport_map(const sr_vertex_out *v, int varyings, const sr_viewport *vp
  * for the clipper's copy of the same vertex. */
 bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyings, const sr_viewport *vp,
                        sr_screen_vertex *out);
+
+/* sr_viewport_map_d in two halves, for a draw that needs the second only
+ * for some of its vertices (those of the triangles the sub-pixel lanes
+ * keep, primitives.c). The float half, of each v[k] (k < n) whose codes[k]
+ * is 0, into the screen vertex k·stride bytes into out: the snapped point,
+ * 1/w and the varyings divided by w (x, y, inv_w, var_w), from the float
+ * position; codes[k] becomes SR_OUT_NONFINITE exactly where
+ * sr_viewport_map_d would refuse v[k]. Two vertices at a time in SSE2
+ * lanes of double, four in AVX2 ones with avx2 (06_viewport_lanes.h), the
+ * scalar map's operations in each. The double half,
+ * of n mesh vertices whose float half is in *out[k]: x_off, y_off and z
+ * from their clip positions in double. Neither writes a member the other
+ * writes, so one thread may read a vertex's snapped point while another
+ * maps its double half. */
+void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport *vp, bool avx2,
+                                 unsigned char *codes, void *out, size_t stride);
+void sr_viewport_map_double_n(const double (*clip_d)[4], sr_screen_vertex *const *out, int n, const sr_viewport *vp);
 
 /* sr_viewport_map_d for a clip position in double that may not be of use
  * (a cut's point from its lines, which may barely meet): where it is not
