@@ -24,7 +24,8 @@ FUZZ_MAX_LEN_mesh := 20000
 
 FUZZ_PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 FUZZ_PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
-FUZZ_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -g -O1 -fsanitize=address,undefined \
+FUZZ_SANITIZE = address,undefined
+FUZZ_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -g -O1 -fsanitize=$(FUZZ_SANITIZE) \
               -fno-sanitize-recover=all -fno-omit-frame-pointer -Iinclude -Isrc $(FUZZ_PKG_CFLAGS) -MMD -MP
 FUZZ_WARN   = -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-missing-field-initializers
 
