@@ -217,3 +217,61 @@ Test(srgb, an_unknown_colour_space_is_refused)
     sr_framebuffer_destroy(&fb);
     sr_mesh_free(&mesh);
 }
+
+/* ---- the command line ---- */
+
+#include "run_helpers.h"
+#include "softrast/files.h"
+#include "temp_dir.h"
+
+TestSuite(srgb_cli, .init = temp_dir_make, .fini = temp_dir_remove);
+
+/* The colour at the centre of `render ARGS --size 16x16 --cull none --out`. */
+static uint32_t centre_of(const char *args)
+{
+    char cmd[1024], out[600];
+    snprintf(cmd, sizeof cmd, "render %s --size 16x16 --cull none --quiet --out %s", args,
+             temp_path(out, sizeof out, "c.png"));
+    run_result r = run_softrast(temp_dir, cmd);
+    cr_assert_eq(r.status, 0, "%s: %s", cmd, r.err);
+    sr_texture image;
+    sr_error err;
+    cr_assert(sr_texture_load(&image, out, &err), "%s", err.message);
+    uint32_t c = image.texels[8 * 16 + 8] & 0xFFFFFF;
+    sr_texture_free(&image);
+    return c;
+}
+
+/* An MTL Kd of 0.5 is linear: 188 by default (srgb), 128 raw. A PLY's
+ * grey 128 is a display value: decoded as the file is loaded, encoded
+ * back, 128 under both (not decoded, it would be 188). */
+Test(srgb_cli, kd_is_linear_and_ply_colours_are_display_values)
+{
+    write_text(temp_dir, "q.mtl", "newmtl half\nKd 0.5 0.5 0.5\n");
+    write_text(temp_dir, "q.obj", "mtllib q.mtl\nusemtl half\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+    write_text(temp_dir, "q.ply",
+               "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+               "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
+               "property list uchar int vertex_indices\nend_header\n"
+               "-1 -1 0 128 128 128\n1 -1 0 128 128 128\n1 1 0 128 128 128\n-1 1 0 128 128 128\n4 0 1 2 3\n");
+    char args[700];
+    snprintf(args, sizeof args, "%s/q.obj --shade texture", temp_dir);
+    cr_expect_eq(centre_of(args), 0xBCBCBCu);
+    snprintf(args, sizeof args, "%s/q.obj --shade texture --color-space raw", temp_dir);
+    cr_expect_eq(centre_of(args), 0x808080u);
+    snprintf(args, sizeof args, "%s/q.ply --shade color", temp_dir);
+    cr_expect_eq(centre_of(args), 0x808080u);
+    snprintf(args, sizeof args, "%s/q.ply --shade color --color-space raw", temp_dir);
+    cr_expect_eq(centre_of(args), 0x808080u);
+}
+
+Test(srgb_cli, an_unknown_colour_space_is_one_error_line)
+{
+    write_text(temp_dir, "t.obj", "v -1 0.2 0\nv 1 0.2 0\nv 0 1 0\nf 1 2 3\n");
+    char args[700];
+    snprintf(args, sizeof args, "render %s/t.obj --color-space linear", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_neq(r.status, 0);
+    cr_assert_eq(count_lines(r.err), 1, "%s", r.err);
+    cr_assert_not_null(strstr(r.err, "raw|srgb"), "%s", r.err);
+}
