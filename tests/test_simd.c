@@ -210,14 +210,17 @@ Test(simd, random_triangles_match_the_scalar_loop_in_every_mode)
         { SR_SHADE_TEXTURE, SR_FILTER_BILINEAR, &tiny }, { SR_SHADE_TEXTURE, SR_FILTER_NEAREST, &tiny },
     };
     for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {
-        for (int reversed = 0; reversed < 2; reversed++) {
+        /* raw both depth conventions, sRGB one (the depth test is the same code) */
+        for (int run = 0; run < 3; run++) {
+            bool reversed = run == 1, srgb = run == 2;
             sr_draw_desc desc = { .mesh = &soup, .shade = modes[m].shade, .filter = modes[m].filter,
-                                  .texture = modes[m].texture, .cull = SR_CULL_NONE };
+                                  .texture = modes[m].texture, .cull = SR_CULL_NONE,
+                                  .color_space = srgb ? SR_COLOR_SRGB : SR_COLOR_RAW };
             look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);
-            char what[64];
-            snprintf(what, sizeof what, "mode %d filter %d texture %dx%d%s", modes[m].shade, modes[m].filter,
+            char what[80];
+            snprintf(what, sizeof what, "mode %d filter %d texture %dx%d%s%s", modes[m].shade, modes[m].filter,
                      modes[m].texture ? modes[m].texture->width : 0, modes[m].texture ? modes[m].texture->height : 0,
-                     reversed ? " reversed" : "");
+                     reversed ? " reversed" : "", srgb ? " srgb" : "");
             assert_vector_loops_match_scalar(&desc, reversed, what);
         }
     }
@@ -809,13 +812,15 @@ Test(simd, each_part_keeps_its_material_in_every_loop)
         static const sr_shade shades[] = { SR_SHADE_LAMBERT, SR_SHADE_TEXTURE };
         for (size_t s = 0; s < 2; s++)
             for (int filter = 0; filter < 2; filter++)
-                for (int reversed = 0; reversed < 2; reversed++) {
+                for (int run = 0; run < 3; run++) { /* raw both depth conventions, sRGB one */
+                    bool reversed = run == 1, srgb = run == 2;
                     sr_draw_desc desc = { .mesh = &mesh, .shade = shades[s], .filter = (sr_filter)filter,
-                                          .cull = SR_CULL_NONE };
+                                          .cull = SR_CULL_NONE, .color_space = srgb ? SR_COLOR_SRGB : SR_COLOR_RAW };
                     look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);
-                    char what[80];
-                    snprintf(what, sizeof what, "materials, %s triangles, mode %d filter %d%s",
-                             m ? "narrow" : "wide", shades[s], filter, reversed ? " reversed" : "");
+                    char what[96];
+                    snprintf(what, sizeof what, "materials, %s triangles, mode %d filter %d%s%s",
+                             m ? "narrow" : "wide", shades[s], filter, reversed ? " reversed" : "",
+                             srgb ? " srgb" : "");
                     sr_framebuffer scalar, rows;
                     sr_stats scalar_stats, rows_stats;
                     draw_scalar(&desc, reversed, &scalar, &scalar_stats, what);
@@ -833,10 +838,13 @@ Test(simd, each_part_keeps_its_material_in_every_loop)
         /* Vertex colours times each material's colour, where no material has a texture. */
         sr_mesh colored = *meshes[m];
         materials_set(&colored, materials, parts, NULL);
-        sr_draw_desc desc = { .mesh = &colored, .shade = SR_SHADE_LAMBERT, .cull = SR_CULL_NONE };
-        look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, false);
-        assert_vector_loops_match_scalar(&desc, false, m ? "narrow, vertex colours by material" :
-                                                           "wide, vertex colours by material");
+        for (int srgb = 0; srgb < 2; srgb++) {
+            sr_draw_desc desc = { .mesh = &colored, .shade = SR_SHADE_LAMBERT, .cull = SR_CULL_NONE,
+                                  .color_space = srgb ? SR_COLOR_SRGB : SR_COLOR_RAW };
+            look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, false);
+            assert_vector_loops_match_scalar(&desc, false, m ? "narrow, vertex colours by material" :
+                                                               "wide, vertex colours by material");
+        }
     }
     sr_mesh_free(&narrow);
     sr_mesh_free(&wide);

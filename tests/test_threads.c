@@ -149,6 +149,27 @@ Test(threads, dense_torus_lambert_matches_one_thread)
     sr_mesh_free(&torus);
 }
 
+/* Under sRGB (its own kernels and tiny queue shaders): the torus in gray,
+ * the room in its texture. */
+Test(threads, srgb_lambert_matches_one_thread)
+{
+    sr_mesh torus, room;
+    sr_texture tex;
+    sr_error err;
+    torus_make(&torus);
+    sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_LAMBERT, .color_space = SR_COLOR_SRGB };
+    look_at_torus(&desc, 301.0f / 173.0f, false);
+    assert_same_for_all_thread_counts(&desc, 301, 173, false);
+    sr_mesh_free(&torus);
+    cr_assert(sr_obj_load(&room, "assets/room.obj", &err), "%s", err.message);
+    cr_assert(sr_texture_load(&tex, "assets/room.png", &err), "%s", err.message);
+    desc = (sr_draw_desc){ .mesh = &room, .shade = SR_SHADE_LAMBERT, .texture = &tex, .color_space = SR_COLOR_SRGB };
+    look(&desc, (vec3){ -8, 3, -8 }, (vec3){ 4, 1.5f, 6 }, 75.0f, 392.0f / 258.0f);
+    assert_same_for_all_thread_counts(&desc, 392, 258, false);
+    sr_texture_free(&tex);
+    sr_mesh_free(&room);
+}
+
 /* The cost estimate's own choice on a mesh of pixel-sized triangles, wholly
  * in view and from inside it (most vertices outside a plane): the row
  * bands. Either way what the one-thread direct path draws, with the clear

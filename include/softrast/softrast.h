@@ -107,8 +107,9 @@ typedef enum sr_alpha_mode { SR_ALPHA_OPAQUE = 0, SR_ALPHA_MASK, SR_ALPHA_BLEND 
  * roughness base colour, without the metal and the roughness). The albedo
  * is base_color's RGB times the texel at the uv (with a texture, on a mesh
  * with uvs) or times the vertex colour (without a texture, on a mesh with
- * colours and no textured material); else base_color's RGB alone. Colours
- * are drawn as given (no sRGB decoding yet). A texture needs the mesh's uvs: without
+ * colours and no textured material); else base_color's RGB alone. Under
+ * SR_COLOR_SRGB the texture is sRGB and base_color linear, as in glTF; the
+ * alpha is never encoded. A texture needs the mesh's uvs: without
  * them it is ignored, as lambert ignores desc's texture. Other modes (id,
  * normal, color, depth) draw every triangle and ignore materials. */
 typedef struct sr_material {
@@ -147,7 +148,7 @@ typedef struct sr_mesh {
     vec4 *clip_positions;
     vec3 *normals; /* optional (NULL) */
     vec2 *uvs;     /* optional; v = 0 is the bottom row of the texture */
-    vec3 *colors;  /* optional; linear 0..1 RGB */
+    vec3 *colors;  /* optional; 0..1 RGB, linear under SR_COLOR_SRGB */
     uint32_t index_count;
     uint32_t *indices;
     sr_topology topology;
@@ -328,6 +329,16 @@ typedef enum sr_cull { SR_CULL_BACK = 0, SR_CULL_FRONT, SR_CULL_NONE } sr_cull;
 typedef enum sr_front { SR_FRONT_CW = 0, SR_FRONT_CCW } sr_front;
 typedef enum sr_filter { SR_FILTER_BILINEAR = 0, SR_FILTER_NEAREST } sr_filter;
 
+/* What a draw's colours mean (docs/conventions.md, "Colour space"). RAW
+ * draws them as stored: a texel or colour of 0.5 is lit as 0.5 and written
+ * as 128. SRGB takes textures as sRGB-encoded (as image files are), vertex
+ * colours and material colours as linear (as glTF says), lights in linear
+ * light and writes sRGB, as viewers that manage colour (Blender, the glTF
+ * sample viewer) show a file; the command line draws so. Lambert, texture
+ * and color shading change with it; id, normal, depth and the ids plane
+ * never do. */
+typedef enum sr_color_space { SR_COLOR_RAW = 0, SR_COLOR_SRGB } sr_color_space;
+
 /* Toward the light: from above, a little left and in front of a camera at -z. */
 #define SR_DEFAULT_LIGHT { -0.35f, 0.8f, -0.5f }
 
@@ -374,8 +385,9 @@ SR_API void sr_workspace_destroy(sr_workspace *ws);
 typedef struct sr_draw_study sr_draw_study;
 
 /* Every zero field is a default: an all-zero matrix is the identity, shade 0
- * is lambert, cull 0 is back, front 0 is clockwise, filter 0 is bilinear, a
- * zero light direction is SR_DEFAULT_LIGHT, threads 0 is one. */
+ * is lambert, cull 0 is back, front 0 is clockwise, filter 0 is bilinear,
+ * color_space 0 is raw, a zero light direction is SR_DEFAULT_LIGHT, threads
+ * 0 is one. */
 typedef struct sr_draw_desc {
     const sr_mesh *mesh;
     mat4 world, view, projection;
@@ -387,6 +399,7 @@ typedef struct sr_draw_desc {
     sr_cull cull;
     sr_front front;
     sr_filter filter;
+    sr_color_space color_space;
     const sr_texture *texture; /* required by texture shading; lambert uses it when given (a mesh
                                   with materials uses theirs instead) */
     vec3 light_dir;            /* toward the light, world space */

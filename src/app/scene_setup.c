@@ -1,6 +1,8 @@
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include "load_progress.h"
@@ -11,6 +13,7 @@ const char *const SR_SHADE_NAMES[] = { "lambert", "id", "color", "normal", "text
 const char *const SR_CULL_NAMES[] = { "back", "front", "none", NULL };
 static const char *const FRONT_NAMES[] = { "cw", "ccw", NULL };
 static const char *const FILTER_NAMES[] = { "bilinear", "nearest", NULL };
+static const char *const COLOR_SPACE_NAMES[] = { "raw", "srgb", NULL }; /* sr_color_space */
 
 int sr_scene_default_threads(void)
 {
@@ -21,14 +24,14 @@ int sr_scene_default_threads(void)
 void sr_scene_setup_defaults(sr_scene_setup *s)
 {
     *s = (sr_scene_setup){ .size = { 1280, 720 }, .camera = sr_camera_default(), .threads = sr_scene_default_threads(),
-                          .up_axis = -1 };
+                          .up_axis = -1, .color_space = SR_COLOR_SRGB };
     for (int k = 0; k < 3; k++) {
         s->eye[k] = s->camera.eye[k];
         s->target[k] = s->camera.target[k];
     }
 }
 
-#define SCENE_OPTION_COUNT 18
+#define SCENE_OPTION_COUNT 19
 
 static void scene_options(sr_scene_setup *s, sr_option *table)
 {
@@ -49,6 +52,7 @@ static void scene_options(sr_scene_setup *s, sr_option *table)
         { "--texture", SR_OPT_STRING, &s->texture_path, "FILE.png", "texture (default: the mesh's map_Kd, if any)" },
         { "--reversed-z", SR_OPT_FLAG, &s->camera.reversed_z, NULL, "reversed depth: near maps to 1, far to 0, test GREATER, clear 0", .seen = &s->look_at_set },
         { "--filter", SR_OPT_CHOICE, &s->filter, "bilinear|nearest", "texture filter (default bilinear)", .choices = FILTER_NAMES },
+        { "--color-space", SR_OPT_CHOICE, &s->color_space, "raw|srgb", "srgb: textures decoded to linear light, lit, encoded for the image; raw: colours lit as stored (default srgb)", .choices = COLOR_SPACE_NAMES },
         { "--threads", SR_OPT_INT, &s->threads, "N", "threads in all, the calling one included (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--simd", SR_OPT_CHOICE, &s->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
     };
@@ -175,6 +179,29 @@ static void drop_materials(sr_mesh *mesh)
     mesh->material_count = 0;
 }
 
+/* An sRGB display value 0..1 in linear light (IEC 61966-2-1). */
+static float srgb_to_linear(float c)
+{
+    double v = c;
+    return (float)(v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4));
+}
+
+/* Under --color-space srgb the draw takes vertex colours as linear, as
+ * glTF's COLOR_0 is; every other format stores display values (a PLY
+ * scan's bytes, MeshLab's OBJ `v x y z r g b`), which Blender 4's PLY
+ * importer and three.js's PLY and OBJ loaders decode from sRGB: so does
+ * this, once, as the file is loaded (docs/conventions.md, "Colour space"). */
+static void decode_display_colours(const sr_scene_setup *s, sr_mesh *mesh)
+{
+    const char *dot = strrchr(s->mesh_path, '.');
+    bool gltf = dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
+    if (s->color_space != SR_COLOR_SRGB || gltf || !mesh->colors)
+        return;
+    for (uint32_t i = 0; i < mesh->vertex_count; i++)
+        for (int k = 0; k < 3; k++)
+            mesh->colors[i][k] = srgb_to_linear(mesh->colors[i][k]);
+}
+
 bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err)
 {
     *scene = (sr_scene){ 0 };
@@ -182,6 +209,7 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
                                  err))
         return false;
     sr_scene_print_warnings(&scene->report);
+    decode_display_colours(s, &scene->mesh);
     sr_axis up = s->up_axis >= 0 ? (sr_axis)s->up_axis : (sr_axis)scene->report.up;
     sr_upright_matrix(up, scene->mesh.z_negated, scene->upright);
     bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);
@@ -293,7 +321,7 @@ bool sr_scene_desc(const sr_scene_setup *s, const sr_scene *scene, sr_draw_desc 
     float aspect = (float)scene->fb.width / (float)scene->fb.height;
     *desc = (sr_draw_desc){ .mesh = &scene->mesh, .shade = (sr_shade)s->shade, .cull = (sr_cull)s->cull,
                             .front = (sr_front)s->front, .filter = (sr_filter)s->filter,
-                            .texture = scene->texture.texels ? &scene->texture : NULL,
+                            .color_space = (sr_color_space)s->color_space, .texture = scene->texture.texels ? &scene->texture : NULL,
                             .threads = s->threads, .workspace = scene->workspace, .study = study };
     *study = (sr_draw_study){ .simd = (sr_simd)s->simd };
     mat4 turn;

@@ -19,6 +19,7 @@ typedef struct sr_scene_setup {
     float rotate_y;
     int up_axis; /* --up-axis: an sr_axis of the file's frame, or -1: what the file says */
     int shade, cull, front, filter, simd; /* sr_shade, sr_cull, sr_front, sr_filter, sr_simd */
+    int color_space;                      /* sr_color_space */
     const char *texture_path;
     int threads; /* threads in all for each draw */
 } sr_scene_setup;

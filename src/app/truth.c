@@ -19,7 +19,8 @@ static const char USAGE[] =
     "depth LESS, near and far planes). Perspective cameras only.";
 
 /* What the truth image does not depend on. */
-static const char *const IGNORED[] = { "--ortho", "--shade", "--texture", "--filter", "--threads", "--simd", NULL };
+static const char *const IGNORED[] = { "--ortho", "--shade", "--texture", "--filter", "--color-space", "--threads", "--simd",
+                                       NULL };
 
 static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
 {

@@ -57,8 +57,9 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
     if (!d->mesh)
         return sr_error_set(err, "draw without a mesh");
     if ((unsigned)d->shade >= SR_SHADE_COUNT || (unsigned)d->cull > SR_CULL_NONE ||
-        (unsigned)d->front > SR_FRONT_CCW || (unsigned)d->filter > SR_FILTER_NEAREST)
-        return sr_error_set(err, "draw with an unknown shading, culling, front or filter mode");
+        (unsigned)d->front > SR_FRONT_CCW || (unsigned)d->filter > SR_FILTER_NEAREST ||
+        (unsigned)d->color_space > SR_COLOR_SRGB)
+        return sr_error_set(err, "draw with an unknown shading, culling, front, filter mode or colour space");
     if (!check_accuracy_knobs(fb, study, err) || !sr_points_lines_check(d, err))
         return false;
     const double *o = d->mesh->origin;
@@ -94,7 +95,7 @@ static void shade_context_make(const sr_draw_desc *d, sr_simd simd, const sr_var
         glm_vec3_copy((float *)d->light_dir, light);
     glm_vec3_normalize(light);
     *c = (sr_shade_context){ .layout = *l, .texture = d->texture, .filter = d->filter,
-                             .simd = sr_raster_simd_resolve(simd),
+                             .simd = sr_raster_simd_resolve(simd), .srgb = d->color_space == SR_COLOR_SRGB,
                              .albedo = { SR_LAMBERT_GRAY, SR_LAMBERT_GRAY, SR_LAMBERT_GRAY },
                              .tint = { 1.0f, 1.0f, 1.0f } };
     glm_vec3_copy(light, c->light_dir);

@@ -15,6 +15,7 @@
 #include <stdint.h>
 
 #include "softrast/softrast.h"
+#include "srgb.h"
 #include "stages.h"
 
 #define SR_LAMBERT_AMBIENT 0.2f
@@ -32,6 +33,7 @@ typedef struct sr_shade_context {
     sr_filter filter;
     float light_dir[3]; /* unit vector toward the light, world space */
     sr_simd simd;       /* which per-pixel loop runs the shading */
+    bool srgb;          /* SR_COLOR_SRGB: texels decoded to linear, colours encoded to sRGB (srgb.h) */
     float albedo[3];    /* without texture or vertex colours: SR_LAMBERT_GRAY, or a material's colour */
     float tint[3];      /* times each texel and vertex colour: 1, 1, 1 but for a material's */
     bool tinted;        /* tint is not 1, 1, 1 */
@@ -68,6 +70,15 @@ static inline uint32_t sr_shade_channel(float c)
 static inline uint32_t sr_shade_pack(float r, float g, float b)
 {
     return sr_shade_channel(r) << 16 | sr_shade_channel(g) << 8 | sr_shade_channel(b);
+}
+
+/* A colour (not a normal) packed in the draw's colour space: linear
+ * channels encoded to sRGB under SR_COLOR_SRGB, else as sr_shade_pack. */
+static inline uint32_t sr_shade_pack_colour(const sr_shade_context *c, float r, float g, float b)
+{
+    if (!c->srgb)
+        return sr_shade_pack(r, g, b);
+    return sr_srgb_channel(r) << 16 | sr_srgb_channel(g) << 8 | sr_srgb_channel(b);
 }
 
 /* Texture sampling, inline for the per-pixel loops. */
@@ -278,17 +289,36 @@ static inline uint32_t sr_shade_lit_texel_tinted(uint32_t t, float k, const floa
     return out;
 }
 
+/* sr_shade_lit_texel_tinted in linear light (SR_COLOR_SRGB): each channel
+ * of the filtered texel decoded to SR_LINEAR_BITS, times its k·tint in 8.8
+ * fixed point (k alone untinted: sr_shade_lit_texel's k_fixed), rounded,
+ * and encoded. The SIMD kernels do the same operations per lane
+ * (span_kernel.h, lit_srgb_lanes). */
+static inline uint32_t sr_shade_lit_texel_srgb(uint32_t t, float k, const float *tint)
+{
+    uint32_t out = 0;
+    for (int c = 0; c < 3; c++) {
+        int shift = 16 - 8 * c;
+        uint32_t k_fixed = sr_shade_lit_fixed(tint ? k * tint[c] : k);
+        uint32_t linear = (sr_srgb_to_linear[(t >> shift) & 0xFF] * k_fixed + SR_SHADE_LIT_ONE / 2) >> SR_SHADE_LIT_BITS;
+        out |= sr_linear_to_srgb[linear] << shift;
+    }
+    return out;
+}
+
 /* A fragment's albedo lit by intensity k (1 for unlit texture shading):
- * its texel or albedo times k. */
+ * its texel or albedo times k, in the draw's colour space. */
 static SR_ALWAYS_INLINE uint32_t sr_shade_lit(const sr_shade_context *c, const float *var, float k)
 {
     if (c->layout.uv >= 0) {
         uint32_t texel = sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]);
+        if (c->srgb)
+            return sr_shade_lit_texel_srgb(texel, k, c->tinted ? c->tint : NULL);
         return c->tinted ? sr_shade_lit_texel_tinted(texel, k, c->tint) : sr_shade_lit_texel(texel, k);
     }
     float rgb[3];
     sr_shade_albedo(c, var, rgb);
-    return sr_shade_pack(k * rgb[0], k * rgb[1], k * rgb[2]);
+    return sr_shade_pack_colour(c, k * rgb[0], k * rgb[1], k * rgb[2]);
 }
 
 /* The color of one fragment; `var` holds the perspective-correct varyings. */
@@ -299,13 +329,16 @@ static SR_ALWAYS_INLINE uint32_t sr_shade_fragment(sr_shade mode, const sr_shade
     case SR_SHADE_ID:
         return triangle_id + 1u;
     case SR_SHADE_COLOR:
-        return sr_shade_pack(var[c->layout.color], var[c->layout.color + 1], var[c->layout.color + 2]);
+        return sr_shade_pack_colour(c, var[c->layout.color], var[c->layout.color + 1], var[c->layout.color + 2]);
     case SR_SHADE_NORMAL: {
         const float *n = var + c->layout.normal;
         return sr_shade_pack(0.5f + 0.5f * n[0], 0.5f + 0.5f * n[1], 0.5f + 0.5f * n[2]);
     }
     case SR_SHADE_TEXTURE:
-        if (c->layout.uv < 0 || c->tinted) /* a material's: its colour, or its tinted texture */
+        /* A material's colour, or its tinted texture; a texel alone is
+         * itself in either colour space (decoded, then encoded: every
+         * 8-bit value comes back, tests/test_srgb.c). */
+        if (c->layout.uv < 0 || c->tinted)
             return sr_shade_lit(c, var, 1.0f);
         return sr_shade_sample_packed(c->texture, c->filter, var[c->layout.uv], var[c->layout.uv + 1]);
     case SR_SHADE_LAMBERT:

@@ -250,6 +250,36 @@ static inline __attribute__((always_inline)) vi pack_lanes(vf r, vf g, vf b)
     return channel_lanes(r) << 16 | channel_lanes(g) << 8 | channel_lanes(b);
 }
 
+/* table[index] per lane: a gather where the instruction set has one. */
+static inline __attribute__((always_inline)) vi gather_table(const uint32_t *table, vi index)
+{
+#ifdef SPAN_GATHER
+    return SPAN_GATHER(table, index);
+#else
+    vi t;
+    for (int l = 0; l < SPAN_LANES; l++)
+        t[l] = (int32_t)table[index[l]];
+    return t;
+#endif
+}
+
+/* sr_srgb_channel per lane. */
+static inline __attribute__((always_inline)) vi srgb_channel_lanes(vf c)
+{
+    vf zero = { 0 };
+    vf one = zero + 1.0f;
+    vf clamped = select_f(c > zero, select_f(c < one, c, one), zero);
+    return gather_table(sr_linear_to_srgb, __builtin_convertvector(clamped * (float)SR_LINEAR_ONE + 0.5f, vi));
+}
+
+/* sr_shade_pack_colour per lane: encoded to sRGB where the kernel is. */
+static inline __attribute__((always_inline)) vi pack_colour_lanes(bool srgb, vf r, vf g, vf b)
+{
+    if (!srgb)
+        return pack_lanes(r, g, b);
+    return srgb_channel_lanes(r) << 16 | srgb_channel_lanes(g) << 8 | srgb_channel_lanes(b);
+}
+
 /* floor per lane, as a float: roundps where the instruction set has it,
  * else sr_shade_floor_int's truncate-then-step-down. Exact either way for
  * |x| < 2^31, so both agree with the scalar path. */
@@ -291,14 +321,7 @@ static inline __attribute__((always_inline)) vi texel_index_lanes(vf f, int n)
  * memory holds, so a reader masks it or ignores it. */
 static inline __attribute__((always_inline)) vi gather_texels(const sr_texture *tex, vi index)
 {
-#ifdef SPAN_GATHER
-    return SPAN_GATHER(tex->texels, index);
-#else
-    vi t;
-    for (int l = 0; l < SPAN_LANES; l++)
-        t[l] = (int32_t)tex->texels[index[l]];
-    return t;
-#endif
+    return gather_table(tex->texels, index);
 }
 
 typedef struct rgb_lanes {
@@ -475,6 +498,22 @@ static inline __attribute__((always_inline)) vi lit_texel_tinted_lanes(split_tex
     return lit_split_lanes(t, (vu16)(k_b | k_r << 16), weight_halves(lit_fixed_lanes(k * tint[1])));
 }
 
+/* sr_shade_lit_texel_srgb per lane, on a split texel: each channel (red
+ * in the high half of rb, blue in its low half, green in the low half of
+ * g) decoded, times its k in 8.8 fixed point, rounded and encoded. */
+static inline __attribute__((always_inline)) vi lit_srgb_lanes(split_texels t, vf k, const float tint[3], bool tinted)
+{
+    vi channel[3] = { ((vi)t.rb >> 16) & 0xFF, (vi)t.g & 0xFF, (vi)t.rb & 0xFF };
+    vi out = { 0 };
+    for (int c = 0; c < 3; c++) {
+        vi k_fixed = lit_fixed_lanes(tinted ? k * tint[c] : k);
+        vi linear = (gather_table(sr_srgb_to_linear, channel[c]) * k_fixed + (int)SR_SHADE_LIT_ONE / 2) >>
+                    SR_SHADE_LIT_BITS;
+        out |= gather_table(sr_linear_to_srgb, linear) << (16 - 8 * c);
+    }
+    return out;
+}
+
 /* sr_shade_albedo per lane: vertex colors (times the tint), or the
  * context's albedo. */
 static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(albedo a, const triangle_lanes *t, const vf *var)
@@ -487,15 +526,17 @@ static inline __attribute__((always_inline)) rgb_lanes albedo_lanes(albedo a, co
     return o;
 }
 
-/* A texture's lit albedo, tinted where the kernel is. */
-static inline __attribute__((always_inline)) vi lit_albedo_lanes(albedo a, const triangle_lanes *t, split_texels texel,
-                                                                 vf k)
+/* A texture's lit albedo, tinted and in sRGB where the kernel is. */
+static inline __attribute__((always_inline)) vi lit_albedo_lanes(albedo a, bool srgb, const triangle_lanes *t,
+                                                                 split_texels texel, vf k)
 {
+    if (srgb)
+        return lit_srgb_lanes(texel, k, t->tint, albedo_tinted(a));
     return albedo_tinted(a) ? lit_texel_tinted_lanes(texel, k, t->tint) : lit_texel_lanes(texel, k);
 }
 
-/* sr_shade_fragment per lane. */
-static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albedo a, sr_interp interp,
+/* sr_shade_fragment per lane; srgb: the context's (a constant of the kernel). */
+static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albedo a, bool srgb, sr_interp interp,
                                                             const triangle_lanes *t, const sr_shade_context *c,
                                                             const vf *var, uint32_t id)
 {
@@ -504,7 +545,7 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     case SR_SHADE_ID:
         return zero + (int32_t)(id + 1u);
     case SR_SHADE_COLOR:
-        return pack_lanes(var[0], var[1], var[2]);
+        return pack_colour_lanes(srgb, var[0], var[1], var[2]);
     case SR_SHADE_NORMAL:
         return pack_lanes(0.5f + 0.5f * var[0], 0.5f + 0.5f * var[1], 0.5f + 0.5f * var[2]);
     case SR_SHADE_TEXTURE:
@@ -512,9 +553,10 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
     case SR_SHADE_LAMBERT: {
         vf k = sr_interp_flat_normal(interp) ? t->lambert : lambert_lanes(c, var);
         if (albedo_textured(a))
-            return lit_albedo_lanes(a, t, sample_split_lanes(t, c, var[SECOND_VARYING], var[SECOND_VARYING + 1]), k);
+            return lit_albedo_lanes(a, srgb, t, sample_split_lanes(t, c, var[SECOND_VARYING], var[SECOND_VARYING + 1]),
+                                    k);
         rgb_lanes base = albedo_lanes(a, t, var);
-        return pack_lanes(k * base.c[0], k * base.c[1], k * base.c[2]);
+        return pack_colour_lanes(srgb, k * base.c[0], k * base.c[1], k * base.c[2]);
     }
     default:
         return zero;
@@ -528,8 +570,8 @@ static inline __attribute__((always_inline)) vi shade_lanes(sr_shade mode, albed
  * scalar loop drops them (sr_shade_alpha_passes). */
 static inline __attribute__((always_inline)) uint64_t
 fill_group_masked(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, float *depth,
-                  uint32_t *ids, uint32_t *color, albedo a, sr_interp interp, bool with_ids, uint32_t id, int n,
-                  vi pass, vf z, const edge_lanes e[3])
+                  uint32_t *ids, uint32_t *color, albedo a, bool srgb, sr_interp interp, bool with_ids, uint32_t id,
+                  int n, vi pass, vf z, const edge_lanes e[3])
 {
     lanes p;
     p.l1 = edge_to_float(e[1]) * s->inv_area2;
@@ -544,7 +586,7 @@ fill_group_masked(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade
     if (with_ids)
         store_where(ids, pass, (vi){ 0 } + (int32_t)(id + 1u), n);
     vf k = sr_interp_flat_normal(interp) ? t->lambert : lambert_lanes(c, p.var);
-    store_where(color, pass, lit_albedo_lanes(a, t, texel, k), n);
+    store_where(color, pass, lit_albedo_lanes(a, srgb, t, texel, k), n);
     return (uint64_t)__builtin_popcount(passed);
 }
 
@@ -553,8 +595,8 @@ fill_group_masked(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade
  * the row. */
 static inline __attribute__((always_inline)) uint64_t
 fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, float *depth, uint32_t *ids,
-           uint32_t *color, sr_shade mode, albedo a, sr_interp interp, bool greater, bool with_ids, uint32_t id, int n,
-           vi live, float z_row, vf k, const edge_lanes e[3])
+           uint32_t *color, sr_shade mode, albedo a, bool srgb, sr_interp interp, bool greater, bool with_ids,
+           uint32_t id, int n, vi live, float z_row, vf k, const edge_lanes e[3])
 {
     vf z = depth_lanes(s, z_row, k);
     vf stored = (vf)load_lanes(depth, n);
@@ -563,7 +605,7 @@ fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_contex
     if (!passed)
         return 0;
     if (a == ALBEDO_TEXTURE_MASKED)
-        return fill_group_masked(s, t, c, depth, ids, color, a, interp, with_ids, id, n, pass, z, e);
+        return fill_group_masked(s, t, c, depth, ids, color, a, srgb, interp, with_ids, id, n, pass, z, e);
     store_where(depth, pass, (vi)z, n);
     if (with_ids)
         store_where(ids, pass, (vi){ 0 } + (int32_t)(id + 1u), n);
@@ -574,7 +616,7 @@ fill_group(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_contex
         p.l1 = edge_to_float(e[1]) * s->inv_area2;
         p.l2 = edge_to_float(e[2]) * s->inv_area2;
         varyings_lanes(s, t, interp, varying_count(mode, a), &p);
-        store_where(color, pass, shade_lanes(mode, a, interp, t, c, p.var, id), n);
+        store_where(color, pass, shade_lanes(mode, a, srgb, interp, t, c, p.var, id), n);
     }
     return (uint64_t)__builtin_popcount(passed);
 }
@@ -597,7 +639,8 @@ static inline __attribute__((always_inline)) void prefetch_ahead(const float *de
 
 static inline __attribute__((always_inline)) uint64_t
 span_row(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context *c, sr_framebuffer *fb,
-         sr_shade mode, albedo a, sr_interp interp, bool greater, bool with_ids, uint32_t id, const sr_row_range *r)
+         sr_shade mode, albedo a, bool srgb, sr_interp interp, bool greater, bool with_ids, uint32_t id,
+         const sr_row_range *r)
 {
     vi lane = lanes_index();
     vf column = r->k + __builtin_convertvector(lane, vf); /* exact: small integers */
@@ -623,8 +666,8 @@ span_row(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context 
         int n = r->count - d < SPAN_LANES ? r->count - d : SPAN_LANES;
         uint32_t *ids_at = with_ids ? ids + d : NULL;
         prefetch_ahead(depth + d, ids_at, color + d, with_ids);
-        fragments += fill_group(s, t, c, depth + d, ids_at, color + d, mode, a, interp, greater, with_ids, id, n,
-                                lane < n, r->z, column, e);
+        fragments += fill_group(s, t, c, depth + d, ids_at, color + d, mode, a, srgb, interp, greater, with_ids, id,
+                                n, lane < n, r->z, column, e);
         for (int k = 1; k < 3; k++) {
             e[k].lo += step[k];
             e[k].hi += step[k];
@@ -634,19 +677,19 @@ span_row(const sr_tri_setup *s, const triangle_lanes *t, const sr_shade_context 
 }
 
 static inline __attribute__((always_inline)) uint64_t
-span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
+span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a, bool srgb,
           sr_interp interp, bool greater, bool with_ids, uint32_t id)
 {
     triangle_lanes t = { .w = (vf){ 0 } + s->w, .lambert = (vf){ 0 } + s->lambert };
     triangle_lanes_init(&t, c);
     if (color_per_triangle(mode, a, interp))
-        t.color = shade_lanes(mode, a, interp, &t, c, (vf[SR_MAX_VARYINGS]){ { 0 } }, id);
+        t.color = shade_lanes(mode, a, srgb, interp, &t, c, (vf[SR_MAX_VARYINGS]){ { 0 } }, id);
     uint64_t fragments = 0;
     for (int j = s->box.y0; j < s->box.y1; j++) {
         sr_row_range r;
         sr_row_make(s, fb, true, j, &r);
         if (r.count > 0)
-            fragments += span_row(s, &t, c, fb, mode, a, interp, greater, with_ids, id, &r);
+            fragments += span_row(s, &t, c, fb, mode, a, srgb, interp, greater, with_ids, id, &r);
     }
     return fragments;
 }
@@ -654,28 +697,30 @@ span_rows(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, 
 /* One loop per interp for the modes that read varyings. */
 static inline __attribute__((always_inline)) uint64_t
 span_triangle(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, sr_shade mode, albedo a,
-              bool greater, bool with_ids, uint32_t id)
+              bool srgb, bool greater, bool with_ids, uint32_t id)
 {
     if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_FLAT_NORMAL)
-        return span_rows(s, c, fb, mode, a, SR_INTERP_FLAT_NORMAL, greater, with_ids, id);
+        return span_rows(s, c, fb, mode, a, srgb, SR_INTERP_FLAT_NORMAL, greater, with_ids, id);
     if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_PERSPECTIVE_FLAT_NORMAL)
-        return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, greater, with_ids, id);
+        return span_rows(s, c, fb, mode, a, srgb, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, greater, with_ids, id);
     if (varying_count(mode, a) > 0 && !sr_interp_divides(s->interp))
-        return span_rows(s, c, fb, mode, a, SR_INTERP_AFFINE, greater, with_ids, id);
-    return span_rows(s, c, fb, mode, a, SR_INTERP_PERSPECTIVE, greater, with_ids, id);
+        return span_rows(s, c, fb, mode, a, srgb, SR_INTERP_AFFINE, greater, with_ids, id);
+    return span_rows(s, c, fb, mode, a, srgb, SR_INTERP_PERSPECTIVE, greater, with_ids, id);
 }
 
-#define SPAN_KERNEL(mode, a, greater, with_ids, name)                                                         \
+#define SPAN_KERNEL(mode, a, srgb, greater, with_ids, name)                                                   \
     static uint64_t name(const sr_tri_setup *s, const sr_shade_context *c, sr_framebuffer *fb, uint32_t id)  \
     {                                                                                                         \
-        return span_triangle(s, c, fb, mode, a, greater, with_ids, id);                                       \
+        return span_triangle(s, c, fb, mode, a, srgb, greater, with_ids, id);                                 \
     }
 
 /* A mode's kernels for each depth test, without and with an ids plane
- * (a constant, so a draw without one pays no test per pixel for it). */
-#define SPAN_KERNELS(mode, a, name)                                                                           \
-    SPAN_KERNEL(mode, a, false, false, name##_less) SPAN_KERNEL(mode, a, true, false, name##_greater)         \
-    SPAN_KERNEL(mode, a, false, true, name##_less_ids) SPAN_KERNEL(mode, a, true, true, name##_greater_ids)
+ * (a constant, so a draw without one pays no test per pixel for it), in
+ * one colour space (srgb: SR_COLOR_SRGB's, a constant too). */
+#define SPAN_KERNELS(mode, a, srgb, name)                                                                     \
+    SPAN_KERNEL(mode, a, srgb, false, false, name##_less) SPAN_KERNEL(mode, a, srgb, true, false, name##_greater) \
+    SPAN_KERNEL(mode, a, srgb, false, true, name##_less_ids)                                                  \
+    SPAN_KERNEL(mode, a, srgb, true, true, name##_greater_ids)
 /* [with ids][greater] */
 typedef sr_span_kernel kernel_set[2][2];
 #define KERNEL_SET(name) { { name##_less, name##_greater }, { name##_less_ids, name##_greater_ids } }
@@ -683,21 +728,28 @@ typedef sr_span_kernel kernel_set[2][2];
 /* The modes and layouts with varyings: each has span kernels and, where
  * the file builds them (SPAN_TINY_GETTER, below), a tiny queue shader. */
 #define WITH_VARYINGS(X)                                                                                      \
-    X(SR_SHADE_LAMBERT, ALBEDO_GRAY, span_lambert_gray)                                                       \
-    X(SR_SHADE_LAMBERT, ALBEDO_COLOR, span_lambert_color)                                                     \
-    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, span_lambert_texture)                                                 \
-    X(SR_SHADE_LAMBERT, ALBEDO_COLOR_TINTED, span_lambert_color_tinted)                                       \
-    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE_TINTED, span_lambert_texture_tinted)                                   \
-    X(SR_SHADE_COLOR, ALBEDO_NONE, span_color)                                                                \
-    X(SR_SHADE_NORMAL, ALBEDO_NONE, span_normal)                                                              \
-    X(SR_SHADE_TEXTURE, ALBEDO_NONE, span_texture)
+    X(SR_SHADE_LAMBERT, ALBEDO_GRAY, false, span_lambert_gray)                                                \
+    X(SR_SHADE_LAMBERT, ALBEDO_COLOR, false, span_lambert_color)                                              \
+    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, false, span_lambert_texture)                                          \
+    X(SR_SHADE_LAMBERT, ALBEDO_COLOR_TINTED, false, span_lambert_color_tinted)                                \
+    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE_TINTED, false, span_lambert_texture_tinted)                            \
+    X(SR_SHADE_COLOR, ALBEDO_NONE, false, span_color)                                                         \
+    X(SR_SHADE_NORMAL, ALBEDO_NONE, false, span_normal)                                                       \
+    X(SR_SHADE_TEXTURE, ALBEDO_NONE, false, span_texture)                                                     \
+    X(SR_SHADE_LAMBERT, ALBEDO_GRAY, true, span_lambert_gray_srgb)                                            \
+    X(SR_SHADE_LAMBERT, ALBEDO_COLOR, true, span_lambert_color_srgb)                                          \
+    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE, true, span_lambert_texture_srgb)                                      \
+    X(SR_SHADE_LAMBERT, ALBEDO_COLOR_TINTED, true, span_lambert_color_tinted_srgb)                            \
+    X(SR_SHADE_LAMBERT, ALBEDO_TEXTURE_TINTED, true, span_lambert_texture_tinted_srgb)                        \
+    X(SR_SHADE_COLOR, ALBEDO_NONE, true, span_color_srgb)
 
 WITH_VARYINGS(SPAN_KERNELS)
 /* No tiny queue shader: the queue writes depths before it shades, so a
  * MASK material's tiny triangles take the scalar tiny loop. */
-SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_TEXTURE_MASKED, span_lambert_texture_masked)
-SPAN_KERNELS(SR_SHADE_ID, ALBEDO_NONE, span_id)
-SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, span_depth)
+SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_TEXTURE_MASKED, false, span_lambert_texture_masked)
+SPAN_KERNELS(SR_SHADE_LAMBERT, ALBEDO_TEXTURE_MASKED, true, span_lambert_texture_masked_srgb)
+SPAN_KERNELS(SR_SHADE_ID, ALBEDO_NONE, false, span_id)
+SPAN_KERNELS(SR_SHADE_DEPTH, ALBEDO_NONE, false, span_depth)
 
 /* The layout each kernel was compiled for, as sr_vertex_layout makes it. */
 static bool layout_is(const sr_varying_layout *l, int count, int color, int uv, int normal)
@@ -729,27 +781,37 @@ static bool plain(const sr_shade_context *c)
     return !c->tinted && !c->alpha_min;
 }
 
+/* Lambert's and color's kernels come in both colour spaces ([srgb]);
+ * texture shading's draws a texel as it is in either (10_shade.h), and the
+ * other modes write no colour of a mesh's. */
 static const kernel_set *kernel_set_of(sr_shade mode, const sr_shade_context *c)
 {
-    static const kernel_set lambert[] = {
-        [ALBEDO_GRAY] = KERNEL_SET(span_lambert_gray),
-        [ALBEDO_COLOR] = KERNEL_SET(span_lambert_color),
-        [ALBEDO_TEXTURE] = KERNEL_SET(span_lambert_texture),
-        [ALBEDO_COLOR_TINTED] = KERNEL_SET(span_lambert_color_tinted),
-        [ALBEDO_TEXTURE_TINTED] = KERNEL_SET(span_lambert_texture_tinted),
-        [ALBEDO_TEXTURE_MASKED] = KERNEL_SET(span_lambert_texture_masked),
+    static const kernel_set lambert[2][ALBEDO_TEXTURE_MASKED + 1] = {
+        { [ALBEDO_GRAY] = KERNEL_SET(span_lambert_gray),
+          [ALBEDO_COLOR] = KERNEL_SET(span_lambert_color),
+          [ALBEDO_TEXTURE] = KERNEL_SET(span_lambert_texture),
+          [ALBEDO_COLOR_TINTED] = KERNEL_SET(span_lambert_color_tinted),
+          [ALBEDO_TEXTURE_TINTED] = KERNEL_SET(span_lambert_texture_tinted),
+          [ALBEDO_TEXTURE_MASKED] = KERNEL_SET(span_lambert_texture_masked) },
+        { [ALBEDO_GRAY] = KERNEL_SET(span_lambert_gray_srgb),
+          [ALBEDO_COLOR] = KERNEL_SET(span_lambert_color_srgb),
+          [ALBEDO_TEXTURE] = KERNEL_SET(span_lambert_texture_srgb),
+          [ALBEDO_COLOR_TINTED] = KERNEL_SET(span_lambert_color_tinted_srgb),
+          [ALBEDO_TEXTURE_TINTED] = KERNEL_SET(span_lambert_texture_tinted_srgb),
+          [ALBEDO_TEXTURE_MASKED] = KERNEL_SET(span_lambert_texture_masked_srgb) },
     };
-    static const kernel_set id = KERNEL_SET(span_id), depth = KERNEL_SET(span_depth), color = KERNEL_SET(span_color),
+    static const kernel_set id = KERNEL_SET(span_id), depth = KERNEL_SET(span_depth),
+                            color[2] = { KERNEL_SET(span_color), KERNEL_SET(span_color_srgb) },
                             normal = KERNEL_SET(span_normal), texture = KERNEL_SET(span_texture);
     const sr_varying_layout *l = &c->layout;
     switch (mode) {
     case SR_SHADE_LAMBERT: {
         albedo a = lambert_albedo(c);
-        return a == ALBEDO_NONE ? NULL : &lambert[a];
+        return a == ALBEDO_NONE ? NULL : &lambert[c->srgb][a];
     }
     case SR_SHADE_ID:      return &id;
     case SR_SHADE_DEPTH:   return &depth;
-    case SR_SHADE_COLOR:   return layout_is(l, 3, 0, -1, -1) ? &color : NULL;
+    case SR_SHADE_COLOR:   return layout_is(l, 3, 0, -1, -1) ? &color[c->srgb] : NULL;
     case SR_SHADE_NORMAL:  return layout_is(l, 3, -1, -1, 0) ? &normal : NULL;
     case SR_SHADE_TEXTURE: return layout_is(l, 2, -1, 0, -1) && plain(c) ? &texture : NULL;
     default:               return NULL;
@@ -791,7 +853,8 @@ static inline __attribute__((always_inline)) vf tiny_param(const sr_tiny_queue *
  * time: λ1 and λ2 as queued, 1/w and the varyings from each lane's
  * triangle in varyings_lanes's operations, then the mode's shading. */
 static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny_queue *q, const sr_shade_context *c,
-                                                                   sr_framebuffer *fb, sr_shade mode, albedo a)
+                                                                   sr_framebuffer *fb, sr_shade mode, albedo a,
+                                                                   bool srgb)
 {
     triangle_lanes t = { .w = { 0 } };
     triangle_lanes_init(&t, c);
@@ -812,34 +875,43 @@ static inline __attribute__((always_inline)) void tiny_queue_shade(const sr_tiny
                                    tiny_param(q, SR_TINY_DVAR1 + k, base, offset),
                                    tiny_param(q, SR_TINY_DVAR2 + k, base, offset), p) *
                        w;
-        vi colors = shade_lanes(mode, a, SR_INTERP_PERSPECTIVE, &t, c, p.var, 0);
+        vi colors = shade_lanes(mode, a, srgb, SR_INTERP_PERSPECTIVE, &t, c, p.var, 0);
         int live = q->pixels - g < SPAN_LANES ? q->pixels - g : SPAN_LANES;
         for (int l = 0; l < live; l++)
             fb->color[q->at[g + l]] = (uint32_t)colors[l];
     }
 }
 
-#define TINY_SHADER(mode, a, name)                                                                             \
+#define TINY_SHADER(mode, a, srgb, name)                                                                       \
     static void name##_tiny(const sr_tiny_queue *q, const sr_shade_context *c, sr_framebuffer *fb)            \
     {                                                                                                         \
-        tiny_queue_shade(q, c, fb, mode, a);                                                                  \
+        tiny_queue_shade(q, c, fb, mode, a, srgb);                                                            \
     }
 
 WITH_VARYINGS(TINY_SHADER)
 
 sr_tiny_shader SPAN_TINY_GETTER(sr_shade mode, const sr_shade_context *c)
 {
-    static const sr_tiny_shader lambert[] = { [ALBEDO_GRAY] = span_lambert_gray_tiny,
-                                              [ALBEDO_COLOR] = span_lambert_color_tiny,
-                                              [ALBEDO_TEXTURE] = span_lambert_texture_tiny,
-                                              [ALBEDO_COLOR_TINTED] = span_lambert_color_tinted_tiny,
-                                              [ALBEDO_TEXTURE_TINTED] = span_lambert_texture_tinted_tiny,
-                                              [ALBEDO_TEXTURE_MASKED] = NULL };
+    static const sr_tiny_shader lambert[2][ALBEDO_TEXTURE_MASKED + 1] = {
+        { [ALBEDO_GRAY] = span_lambert_gray_tiny,
+          [ALBEDO_COLOR] = span_lambert_color_tiny,
+          [ALBEDO_TEXTURE] = span_lambert_texture_tiny,
+          [ALBEDO_COLOR_TINTED] = span_lambert_color_tinted_tiny,
+          [ALBEDO_TEXTURE_TINTED] = span_lambert_texture_tinted_tiny,
+          [ALBEDO_TEXTURE_MASKED] = NULL },
+        { [ALBEDO_GRAY] = span_lambert_gray_srgb_tiny,
+          [ALBEDO_COLOR] = span_lambert_color_srgb_tiny,
+          [ALBEDO_TEXTURE] = span_lambert_texture_srgb_tiny,
+          [ALBEDO_COLOR_TINTED] = span_lambert_color_tinted_srgb_tiny,
+          [ALBEDO_TEXTURE_TINTED] = span_lambert_texture_tinted_srgb_tiny,
+          [ALBEDO_TEXTURE_MASKED] = NULL },
+    };
+    static const sr_tiny_shader color[2] = { span_color_tiny, span_color_srgb_tiny };
     if (!kernel_set_of(mode, c)) /* the layouts the kernels were compiled for */
         return NULL;
     switch (mode) {
-    case SR_SHADE_LAMBERT: return lambert[lambert_albedo(c)];
-    case SR_SHADE_COLOR:   return span_color_tiny;
+    case SR_SHADE_LAMBERT: return lambert[c->srgb][lambert_albedo(c)];
+    case SR_SHADE_COLOR:   return color[c->srgb];
     case SR_SHADE_NORMAL:  return span_normal_tiny;
     case SR_SHADE_TEXTURE: return span_texture_tiny;
     default:               return NULL; /* no varyings: nothing to defer */
