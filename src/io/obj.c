@@ -293,19 +293,23 @@ static bool emit_triangle(obj_reader *o, uint32_t a, uint32_t b, uint32_t c)
     return true;
 }
 
-/* Streams the fan: on reading corner k >= 2 the fan triangle (c0, c(k-1), ck)
- * is complete, and it is written reversed as (c0, ck, c(k-1)). */
-/* The report's parts are the runs of faces drawn with one material (an
- * OBJ has no meshes of its own); each material's texture is listed once. */
+/* The library material usemtl selected, NULL for none. */
+static sr_mtl_material *selected_material(obj_reader *o)
+{
+    return o->material >= 0 ? (sr_mtl_material *)o->materials.materials.data + o->material : NULL;
+}
+
 /* The material faces use now, its texture looked for; NULL for none. */
 static const sr_mtl_material *current_material(obj_reader *o)
 {
-    sr_mtl_material *m = o->material >= 0 ? (sr_mtl_material *)o->materials.materials.data + o->material : NULL;
+    sr_mtl_material *m = selected_material(o);
     if (m)
         sr_mtl_find_texture(m);
     return m;
 }
 
+/* The report's parts are the runs of faces drawn with one material (an
+ * OBJ has no meshes of its own); each material's texture is listed once. */
 static bool report_face(obj_reader *o, size_t first_index)
 {
     sr_load_report *r = o->report;
@@ -329,7 +333,7 @@ static bool report_face(obj_reader *o, size_t first_index)
  * made on first use; -1 when out of memory. */
 static int64_t mesh_material(obj_reader *o)
 {
-    sr_mtl_material *m = o->material >= 0 ? (sr_mtl_material *)o->materials.materials.data + o->material : NULL;
+    sr_mtl_material *m = selected_material(o);
     int64_t *index = m ? &m->mesh_material : &o->default_material;
     if (*index >= 0)
         return *index;
@@ -363,6 +367,8 @@ static bool add_to_part(obj_reader *o, size_t first_index)
     return true;
 }
 
+/* Streams the fan: on reading corner k >= 2 the fan triangle (c0, c(k-1), ck)
+ * is complete, and it is written reversed as (c0, ck, c(k-1)). */
 static bool parse_face(obj_reader *o, char *cursor)
 {
     uint32_t first = 0, prev = 0;

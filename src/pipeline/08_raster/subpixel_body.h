@@ -57,9 +57,9 @@ static SR_ALWAYS_INLINE ulanes minus(lanes a, lanes b)
 /* Bit i set where lane i of m is all ones. */
 static SR_ALWAYS_INLINE uint64_t lane_bits(lanes m)
 {
-#if defined(__AVX2__)
+#if defined(__AVX2__) && SUBPIXEL_LANES == 8
     return (uint64_t)_mm256_movemask_ps((__m256)m);
-#elif defined(__SSE2__)
+#elif defined(__SSE2__) && SUBPIXEL_LANES == 4
     return (uint64_t)_mm_movemask_ps((__m128)m);
 #else
     uint64_t bits = 0;
