@@ -7,16 +7,19 @@
 #include <assimp/scene.h>
 #include <stdint.h>
 
+#include "assimp_instances.h"
 #include "load_report.h"
 
-/* Before the scene is flattened: reverses the faces of every mesh that
- * mirroring node transforms alone place (their global determinant
- * negative), so flattening keeps its outward faces outward. A mesh placed
- * both mirrored and not is left as it is, with a warning in report (which
- * may be NULL). Returns the meshes reversed. */
-uint32_t sr_assimp_unmirror(const struct aiScene *sc, sr_load_report *report);
+/* Before the scene is post-processed: reverses the faces of every mesh
+ * that mirroring node transforms alone place (their global determinant
+ * negative), so its outward faces stay outward and its made normals point
+ * out. A mesh placed both mirrored and not is left as it is: assimp.c
+ * reverses its mirrored instances. Returns the meshes reversed. */
+uint32_t sr_assimp_unmirror(const struct aiScene *sc);
 
-/* The flattened scene's report; false when out of memory. */
-bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_load_report *report);
+/* The scene's report, a part for each instance in list; false when out of
+ * memory. */
+bool sr_assimp_report(const struct aiScene *sc, const sr_assimp_instances *list, const char *path,
+                      sr_load_report *report);
 
 #endif
