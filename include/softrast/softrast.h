@@ -496,7 +496,8 @@ typedef struct sr_pinhole_outputs {
  * (where the ray runs in that plane, the depth buffer's value gives the
  * point). The threads take equal bands of rows; every value is the same
  * for every thread count. False, with one line in err, for a mesh without
- * positions, or interpolated normals of a mesh without normals. */
+ * positions or of points or lines, or interpolated normals of a mesh
+ * without normals. */
 SR_API bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
                                const sr_pinhole_outputs *out, sr_error *err);
 

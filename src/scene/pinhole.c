@@ -467,6 +467,8 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
 {
     if (!mesh->positions)
         return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
+    if (mesh->topology != SR_TRIANGLE_LIST && mesh->topology != SR_TRIANGLE_STRIP)
+        return sr_error_set(err, "view depth meets rays with triangles: a draw of points or lines has none");
     if (out->normals && out->interpolated_normals && !mesh->normals)
         return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
     /* Each pixel's values are its own, whichever thread computes them: the

@@ -30,6 +30,8 @@ static uint64_t fragment(const sr_point_line_target *t, int x, int y, const sr_s
     if (!sr_depth_passes(zf, fb->depth[at], fb->reversed_z))
         return 0;
     fb->depth[at] = zf;
+    if (fb->ids)
+        fb->ids[at] = id + 1u;
     if (t->mode == SR_SHADE_DEPTH)
         return 1;
     float var[SR_MAX_VARYINGS];

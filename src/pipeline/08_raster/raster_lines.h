@@ -20,7 +20,8 @@
  * segment (the parameter t, clamped to [0, 1]): depth linear in t, the
  * varyings perspective-correct through 1/w; a point's fragments take the
  * point's. Every fragment is moved `depth_bias` nearer, then tested (LESS,
- * GREATER for reversed z) and written as a triangle's are. The loop is
+ * GREATER for reversed z) and written as a triangle's are, the id + 1
+ * into the framebuffer's ids plane where it has one. The loop is
  * scalar: one thread draws every point and line, in submission order.
  */
 #ifndef SOFTRAST_PIPELINE_RASTER_LINES_H
