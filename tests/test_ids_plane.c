@@ -164,19 +164,20 @@ Test(ids_plane, every_loop_path_and_thread_count_writes_the_id_draws_ids_on_a_de
     sr_mesh_free(&torus);
 }
 
-/* The torus's corners as points 2 pixels square, and its triangles' edges
- * as lines and a strip 2 pixels wide, overlapping each other everywhere:
+/* The torus's corners as points 1 and 2 pixels square, and its triangles'
+ * edges as lines and a strip 1 and 2 pixels wide, overlapping each other:
  * the ids plane holds the id + 1 of the point or line each pixel shows,
  * as an id draw's colour, and colour and depth are as without the plane. */
 Test(ids_plane, points_and_lines_write_the_id_draws_ids)
 {
     sr_mesh torus;
-    colored_torus(&torus, 40, 20);
+    colored_torus(&torus, 120, 60);
     static const sr_topology topologies[] = { SR_POINT_LIST, SR_LINE_LIST, SR_LINE_STRIP };
-    for (size_t t = 0; t < sizeof topologies / sizeof *topologies; t++)
+    for (size_t t = 0; t < 2 * sizeof topologies / sizeof *topologies; t++)
         for (int reversed = 0; reversed < 2; reversed++) {
-            torus.topology = topologies[t];
-            sr_draw_desc desc = { .mesh = &torus, .texture = texture_4x4(), .point_size = 2.0f, .line_width = 2.0f };
+            torus.topology = topologies[t / 2];
+            const float size = 1.0f + (float)(t % 2);
+            sr_draw_desc desc = { .mesh = &torus, .texture = texture_4x4(), .point_size = size, .line_width = size };
             look(&desc, (const float[6]){ 0, 1.1f, -1.9f, 0, 0, 0 }, 160.0f / 120.0f, reversed);
             assert_one_draw_is_two(&desc, ALL_MODES, ALL_MODE_COUNT, 160, 120, reversed);
         }

@@ -611,6 +611,75 @@ Test(lines, points_and_lines_are_the_same_on_every_thread_count_and_path)
     }
 }
 
+/* The soup as a cloud whose slots index consecutive vertices (the
+ * blocks of points_lines.c's fast path), and its twin with every vertex
+ * stored twice and indexed at 2k, which no block can take: the same
+ * points in the same order. Some lie outside a plane, on the eye, or
+ * carry a NaN colour, some lie on an earlier one (the depth test keeps
+ * the first), and the block size does not divide n. */
+static void cloud_and_twin(sr_mesh *cloud, sr_mesh *twin, uint32_t n, test_rng *r)
+{
+    sr_error err = { "" };
+    cr_assert(sr_mesh_alloc(cloud, n, n, true, false, true, &err), "%s", err.message);
+    cr_assert(sr_mesh_alloc(twin, 2 * n, n, true, false, true, &err), "%s", err.message);
+    for (uint32_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++) {
+            cloud->positions[i][c] = (float)rng_uniform(r, -1.5, 1.5);
+            cloud->colors[i][c] = (float)rng_unit(r);
+            cloud->normals[i][c] = (float)rng_uniform(r, -1, 1);
+        }
+        if (i % 997 == 5)
+            cloud->colors[i][1] = NAN;
+        if (i % 1009 == 7)
+            glm_vec3_copy((vec3){ 0.5f, 0.3f, -2.5f }, cloud->positions[i]); /* the eye */
+        if (i % 7 == 3 && i >= n / 2) /* on an earlier point, in another thread's run: the first drawn stays */
+            glm_vec3_copy(cloud->positions[i - n / 2], cloud->positions[i]);
+        cloud->indices[i] = i;
+        for (uint32_t k = 2 * i; k <= 2 * i + 1; k++) {
+            glm_vec3_copy(cloud->positions[i], twin->positions[k]);
+            glm_vec3_copy(cloud->colors[i], twin->colors[k]);
+            glm_vec3_copy(cloud->normals[i], twin->normals[k]);
+        }
+        twin->indices[i] = 2 * i;
+    }
+    cloud->topology = twin->topology = SR_POINT_LIST;
+}
+
+Test(points, one_pixel_points_in_blocks_match_the_point_by_point_loop_on_every_thread_count)
+{
+    test_rng r = { 36 };
+    sr_mesh cloud, twin;
+    cloud_and_twin(&cloud, &twin, 20011, &r);
+    const sr_shade shades[] = { SR_SHADE_COLOR, SR_SHADE_LAMBERT, SR_SHADE_DEPTH };
+    sr_framebuffer want, got;
+    scene_fb_make(&want, 97, 61);
+    scene_fb_make(&got, 97, 61);
+    for (int k = 0; k < 3; k++) {
+        sr_camera cam = scene_camera(0.5f, 0.3f, -2.5f, 0, 0, 0, 70.0f, 0.1f, 10.0f);
+        sr_draw_desc desc = { .mesh = &twin, .shade = shades[k], .depth_bias = k == 1 ? 1e-3f : 0.0f };
+        scene_camera_desc(&desc, &cam, 97, 61);
+        sr_stats s1, s2;
+        sr_framebuffer_clear(&want, 0);
+        scene_draw_on_loop(&want, &desc, SR_SIMD_AUTO, 1, SR_PATH_DIRECT, &s1);
+        cr_assert_gt(s1.fragments, 2000);
+        cr_assert(shades[k] == SR_SHADE_DEPTH || s1.nonfinite > 0, "the NaN colours are read");
+        cr_assert_gt(s1.rejected, s1.nonfinite);
+        desc.mesh = &cloud;
+        for (int threads = 1; threads <= 16; threads++) {
+            sr_framebuffer_clear(&got, 0);
+            scene_draw_on_loop(&got, &desc, SR_SIMD_AUTO, threads, SR_PATH_BY_COST, &s2);
+            cr_assert(memcmp(want.color, got.color, sizeof(uint32_t) * 97 * 61) == 0 &&
+                          memcmp(want.depth, got.depth, sizeof(float) * 97 * 61) == 0 &&
+                          memcmp(&s1, &s2, sizeof s1) == 0,
+                      "shade %d, %d threads", (int)shades[k], threads);
+        }
+    }
+    sr_framebuffer_destroy(&want);
+    sr_framebuffer_destroy(&got);
+    sr_mesh_free(&cloud);
+    sr_mesh_free(&twin);
+}
+
 Test(lines, a_line_over_its_triangle_needs_the_depth_bias_and_a_hidden_one_stays_hidden)
 {
     sr_framebuffer fb, alone;
@@ -716,4 +785,277 @@ Test(lines, bad_point_and_line_fields_are_refused)
     cr_assert_eq(scene_count_color(&fb, 0x123456), (size_t)W * H, "nothing drawn or cleared");
     sr_mesh_free(&m);
     sr_framebuffer_destroy(&fb);
+}
+
+/* ---- dEQP-GLES3.functional.clipping.line.*, under Direct3D's rules ---- */
+
+enum { REF_NO, REF_YES, REF_EITHER }; /* a reference pixel; either: its centre on a diamond's side */
+
+/* The part of the clip-space segment a -> b inside −w <= x, y <= w and
+ * Direct3D's 0 <= z <= w, in double (Liang–Barsky); false if none. */
+static bool ref_visible(const float a[4], const float b[4], double out[2][4])
+{
+    double t0 = 0.0, t1 = 1.0;
+    for (int plane = 0; plane < 6; plane++) {
+        int axis = plane / 2;
+        double sign = plane % 2 ? -1.0 : 1.0, w_weight = axis == 2 && plane == 4 ? 0.0 : 1.0;
+        double da = w_weight * a[3] + sign * a[axis], db = w_weight * b[3] + sign * b[axis];
+        if (da < 0 && db < 0)
+            return false;
+        if (da < 0)
+            t0 = fmax(t0, da / (da - db));
+        else if (db < 0)
+            t1 = fmin(t1, da / (da - db));
+    }
+    if (t0 > t1)
+        return false;
+    for (int c = 0; c < 4; c++) {
+        out[0][c] = a[c] + t0 * ((double)b[c] - a[c]);
+        out[1][c] = a[c] + t1 * ((double)b[c] - a[c]);
+    }
+    return true;
+}
+
+/* The reference picture of one line `width` pixels wide on a w × h canvas:
+ * its visible part snapped to 1/256 pixel, then the diamond-exit oracle,
+ * each pixel repeated across the minor axis. */
+static void ref_line(const float a[4], const float b[4], int width, int w, int h, unsigned char *ref)
+{
+    double vis[2][4];
+    if (!ref_visible(a, b, vis) || !(vis[0][3] > 0.0 && vis[1][3] > 0.0))
+        return;
+    int64_t e[2][2];
+    for (int k = 0; k < 2; k++) {
+        e[k][0] = llround((vis[k][0] / vis[k][3] + 1.0) * w / 2.0 * ONE);
+        e[k][1] = llround((1.0 - vis[k][1] / vis[k][3]) * h / 2.0 * ONE);
+    }
+    bool y_major = llabs(e[1][1] - e[0][1]) > llabs(e[1][0] - e[0][0]);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int64_t c[2] = { x * ONE + ONE / 2, y * ONE + ONE / 2 };
+            bool open = segment_meets_diamond(e[0], e[1], c, ONE / 2, true);
+            bool closed = segment_meets_diamond(e[0], e[1], c, ONE / 2, false);
+            int state = open != closed || point_on_diamond(e[1], c, ONE / 2)
+                            ? REF_EITHER
+                            : open && !point_in_open_diamond(e[1], c, ONE / 2);
+            if (state == REF_NO)
+                continue;
+            for (int k = -(width - 1) / 2; k <= width / 2; k++) {
+                int px = y_major ? x + k : x, py = y_major ? y : y + k;
+                if (px >= 0 && py >= 0 && px < w && py < h && ref[py * w + px] != REF_YES)
+                    ref[py * w + px] = (unsigned char)state;
+            }
+        }
+}
+
+/* dEQP's compareBlackNonBlackImages: a pixel drawn in one picture and not
+ * the other is a deviation when, within `radius`, each picture has a
+ * pixel in the other's state (or it lies within radius of the border),
+ * else faulty. Returns the faulty pixels; *deviating gets the others. */
+static int deqp_compare(const sr_framebuffer *fb, const unsigned char *ref, int radius, int *deviating)
+{
+    int w = fb->width, h = fb->height, faulty = 0;
+    *deviating = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            int want = ref[y * w + x];
+            bool drawn = fb->color[y * w + x] != 0;
+            if (want == REF_EITHER || drawn == (want == REF_YES))
+                continue;
+            bool found_ref = false, found_test = false;
+            if (x < radius || y < radius || x + radius >= w || y + radius >= h)
+                found_ref = found_test = true;
+            for (int ky = y - radius; ky <= y + radius && !(found_ref && found_test); ky++)
+                for (int kx = x - radius; kx <= x + radius; kx++) {
+                    if (kx < 0 || ky < 0 || kx >= w || ky >= h)
+                        continue;
+                    found_ref = found_ref || (fb->color[ky * w + kx] != 0) == (want == REF_YES);
+                    found_test = found_test || ref[ky * w + kx] == (drawn ? REF_YES : REF_NO) ||
+                                 ref[ky * w + kx] == REF_EITHER;
+                }
+            if (found_ref && found_test)
+                (*deviating)++;
+            else
+                faulty++;
+        }
+    return faulty;
+}
+
+/* The reference picture of one point `size` pixels wide on a w × h canvas:
+ * kept inside 0 <= z <= w (Direct3D; GL keeps −w <= z), its square's
+ * pixel centres, those within a subpixel of its sides either way (the
+ * snap may move them). */
+static void ref_point(const float c[4], int size, int w, int h, unsigned char *ref)
+{
+    if (!(c[3] > 0.0f) || c[2] < 0.0f || c[2] > c[3])
+        return;
+    double px = ((double)c[0] / c[3] + 1.0) * w / 2.0, py = (1.0 - (double)c[1] / c[3]) * h / 2.0, half = size / 2.0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double dx = x + 0.5 - px, dy = y + 0.5 - py, slack = 1.0 / ONE;
+            bool in = dx >= -half && dx < half && dy >= -half && dy < half;
+            bool near_side = fabs(fabs(dx) - half) <= slack || fabs(fabs(dy) - half) <= slack;
+            if (near_side && ref[y * w + x] != REF_YES)
+                ref[y * w + x] = REF_EITHER;
+            else if (in)
+                ref[y * w + x] = REF_YES;
+        }
+}
+
+/* Draws dEQP's clip-space points, or lines (pairs), `width` wide on a
+ * size × size canvas (200: VIEWPORT_WHOLE; 100: the centre and corner
+ * viewports, which are a 100 × 100 viewport) and holds the picture to the
+ * reference by dEQP's comparison; returns the pixels drawn. */
+static size_t deqp_case(const float (*c)[4], uint32_t n, sr_topology topology, int width, int size, int radius,
+                        const char *name)
+{
+    sr_framebuffer fb;
+    scene_fb_make(&fb, size, size);
+    sr_mesh m;
+    clip_lines(&m, c, n, topology);
+    draw_clip_space(&fb, &m, (float)width);
+    unsigned char *ref = calloc((size_t)size * size, 1);
+    cr_assert_not_null(ref);
+    for (uint32_t k = 0; k < n; k++)
+        if (topology == SR_POINT_LIST)
+            ref_point(c[k], width, size, size, ref);
+        else if (k % 2 == 0 && k + 1 < n)
+            ref_line(c[k], c[k + 1], width, size, size, ref);
+    int deviating, faulty = deqp_compare(&fb, ref, radius, &deviating);
+    cr_assert_eq(faulty, 0, "%s at %d px: %d faulty pixels, %d deviating", name, size, faulty, deviating);
+    cr_assert_leq(deviating, (int)n * width, "%s at %d px: %d deviating pixels", name, size, deviating);
+    size_t drawn = (size_t)size * size - scene_count_color(&fb, 0);
+    free(ref);
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+    return drawn;
+}
+
+static size_t deqp_lines(const float (*c)[4], uint32_t n, int width, int size, int radius, const char *name)
+{
+    return deqp_case(c, n, SR_LINE_LIST, width, size, radius, name);
+}
+
+/* line_clip, wide_line_clip and their viewport variants: lines from the
+ * centre out, from outside in, and outside to outside. The last two lie a
+ * pixel outside the view, where GL's wide lines leave fragments; Direct3D
+ * cuts a line at the view's sides whatever its width, so softrast draws
+ * none of them (docs/conventions.md, "Points and lines"). */
+Test(lines, deqp_line_clip_cases_match_the_reference_but_for_wide_lines_outside_the_view)
+{
+    const float over = 1.0f + 2.0f / 200.0f;
+    const float c[][4] = {
+        { 0, 0, 0, 1 }, { 0, 1.5f, 0, 1 },      { 0, 0, 0, 1 }, { -1.5f, 1, 0, 1 },   { 0, 0, 0, 1 }, { -1.5f, 0, 0, 1 },
+        { 0, 0, 0, 1 }, { 0.2f, 0.4f, 1.5f, 1 }, { 0, 0, 0, 1 }, { -2, -1, 0, 1 },   { 0, 0, 0, 1 }, { 1, 0.1f, 0, 0.6f },
+        { 1.5f, 0, 0, 1 }, { 0.8f, -0.2f, 0, 1 }, { 0, -1.5f, 0, 1 }, { 0.9f, -0.7f, 0, 1 },
+        { 0, -1.3f, 0, 1 }, { 1.3f, 0, 0, 1 },
+        { -0.8f, -over, 0, 1 }, { 0, -over, 0, 1 }, { -over - 1, 0, 0, 1 }, { 0, -over - 1, 0, 1 },
+    };
+    for (int size = 200; size >= 100; size -= 100)
+        for (int width = 1; width <= 5; width += 4) {
+            size_t all = deqp_lines(c, 22, width, size, 1, width == 1 ? "line_clip" : "wide_line_clip");
+            size_t inside = deqp_lines(c, 18, width, size, 1, "line_clip without the lines outside");
+            cr_assert_gt(all, (size_t)size, "the lines are drawn");
+            cr_assert_eq(all, inside, "the lines outside the view leave no fragment, whatever their width");
+        }
+}
+
+/* line_z_clip and wide_line_z_clip and their viewport variants: past far
+ * as in GL; past near cut at z = 0 instead of GL's z = −w (the test above
+ * of the same lines counts that). long_line_clip and long_wide_line_clip
+ * (kernel radius 2 in dEQP): lines across a million units of z, of which
+ * Direct3D's depth range keeps the half from z = 0. */
+Test(lines, deqp_line_z_and_long_line_cases_match_the_reference_in_direct3d_depth)
+{
+    const float depth[][4] = {
+        { 0, 0, 0, 1 }, { 1.3f, 1, 2, 1 },     { 0, 0, 0, 1 }, { 1.3f, -1, 2, 1 }, { 0, 0, 0, 1 }, { -1, -1.1f, -2, 1 },
+        { 0, 0, 0, 1 }, { -1, 1.1f, -2, 1 },   { 0, 0, 0, 1 }, { 1, 0.1f, 2, 0.6f },
+    };
+    const float longs[][4] = {
+        { -41000, -40000, -1000000, 1 }, { 41000, 40000, 1000000, 1 },
+        { 41000, -40000, 1000000, 1 },   { -41000, 40000, -1000000, 1 },
+        { 0.5f, -40000, 100000, 1 },     { 0.5f, 40000, -100000, 1 },
+        { -0.5f, 40000, 100000, 1 },     { -0.5f, -40000, -100000, 1 },
+    };
+    for (int size = 200; size >= 100; size -= 100)
+        for (int width = 1; width <= 5; width += 4)
+            cr_assert_gt(deqp_lines(depth, 10, width, size, 1, "line_z_clip"), (size_t)size / 2);
+    for (int width = 1; width <= 5; width += 4)
+        cr_assert_gt(deqp_lines(longs, 8, width, 200, 2, "long_line_clip"), 80u * (size_t)width, "40 px on each of x = ±0.5");
+}
+
+/* line_attrib_clip: red at the centre to yellow or light blue past far
+ * (z = 2w) or near (z = −2w); dEQP wants each drawn pixel within 20/255
+ * of the reference's colour. Past far, the colour at a pixel is the
+ * original segment's at the pixel centre's projection; past near,
+ * Direct3D keeps only the centre point, no pixel. */
+Test(lines, deqp_line_attrib_clip_colours_match_the_unclipped_segment)
+{
+    const float c[][4] = { { 0, 0, 0, 1 }, { 1.3f, 1, 2, 1 }, { 0, 0, 0, 1 }, { 1.3f, -1, 2, 1 },
+                           { 0, 0, 0, 1 }, { -1, -1, -2, 1 }, { 0, 0, 0, 1 }, { -1, 1, -2, 1 } };
+    const float colors[][3] = { { 1, 0, 0 }, { 1, 1, 0 }, { 1, 0, 0 }, { 0.3f, 0.3f, 1 },
+                                { 1, 0, 0 }, { 1, 1, 0 }, { 1, 0, 0 }, { 0.3f, 0.3f, 1 } };
+    sr_framebuffer fb;
+    scene_fb_make(&fb, 200, 200);
+    sr_mesh m;
+    clip_lines(&m, c, 8, SR_LINE_LIST);
+    m.colors = malloc(8 * sizeof *m.colors);
+    cr_assert_not_null(m.colors);
+    memcpy(m.colors, colors, sizeof colors);
+    sr_framebuffer_clear(&fb, 0);
+    draw_desc(&fb, &(sr_draw_desc){ .mesh = &m, .shade = SR_SHADE_COLOR });
+    int checked = 0;
+    for (int y = 0; y < 200; y++)
+        for (int x = 0; x < 200; x++) {
+            uint32_t got = at(&fb, x, y);
+            if (!got)
+                continue;
+            /* Which line: the upper one (y < 100) is line 0, the lower line 1. */
+            int line = y < 100 ? 0 : 1;
+            double ax = 100.0, ay = 100.0, bx = (1.3 + 1.0) * 100.0, by = (1.0 - (line ? -1.0 : 1.0)) * 100.0;
+            double t = ((x + 0.5 - ax) * (bx - ax) + (y + 0.5 - ay) * (by - ay)) /
+                       ((bx - ax) * (bx - ax) + (by - ay) * (by - ay));
+            t = t < 0 ? 0 : t;
+            for (int ch = 0; ch < 3; ch++) {
+                double want = colors[2 * line][ch] + t * (colors[2 * line + 1][ch] - colors[2 * line][ch]);
+                int got_ch = (int)((got >> (16 - 8 * ch)) & 0xFF);
+                cr_assert_leq(abs(got_ch - (int)lround(want * 255.0)), 20, "pixel (%d, %d) channel %d: %d, want %.1f",
+                              x, y, ch, got_ch, want * 255.0);
+            }
+            checked++;
+        }
+    cr_assert_eq(checked, 130, "65 pixels on each line past far, none past near");
+    sr_mesh_free(&m);
+    sr_framebuffer_destroy(&fb);
+}
+
+/* point_z_clip, point_clip, wide_point_z_clip, wide_point_clip and their
+ * viewport variants (a 100 × 100 canvas), every point of dEQP's lists:
+ * dEQP's verdicts but for the points at −w <= z < 0, which Direct3D's
+ * depth range drops. */
+Test(points, deqp_point_clip_cases_match_the_reference_in_direct3d_depth)
+{
+    const float over = 1.0f + 2.0f / 200.0f;
+    const float viewport[][4] = {
+        { 0, 0, 0, 1 },        { 0.1f, 0.1f, 0.1f, 1 },   { -0.1f, 0.1f, -0.1f, 1 },  { -0.1f, -0.1f, 0.1f, 1 },
+        { 0.1f, -0.1f, -0.1f, 1 }, { 2, 2, 2, 3 },         { -2, -2, 2, 3 },           { 0.5f, -0.5f, 0.5f, 0.7f },
+        { -0.5f, 0.5f, -0.5f, 0.7f }, { -2, -2, 0, 2.2f }, { 1, -1, 0, 1.1f },         { -1, 1, 0, 1.1f },
+        { 1.3f, 0, 0, 1 },     { -1.3f, 0, 0, 1 },        { 0, 1.3f, 0, 1 },          { 0, -1.3f, 0, 1 },
+        { -1.3f, -1.3f, 0, 1 }, { -1.3f, 1.3f, 0, 1 },    { 1.3f, 1.3f, 0, 1 },       { 1.3f, -1.3f, 0, 1 },
+        { over, over, 0, 1 },  { 0, over, 0, 1 },         { over, 0, 0, 1 },
+    };
+    const float depth[][4] = {
+        { 0, 0, 0, 1 },           { 0.1f, 0.1f, 0.1f, 1 },  { -0.1f, 0.1f, -0.1f, 1 }, { -0.1f, -0.1f, 0.1f, 1 },
+        { 0.1f, -0.1f, -0.1f, 1 }, { 0.1f, 0, 1.1f, 1 },    { -0.1f, 0, -1.1f, 1 },    { -0.0f, -0.1f, 1.1f, 1 },
+        { 0, 0.1f, -1.1f, 1 },
+    };
+    for (int size = 200; size >= 100; size -= 100)
+        for (int width = 1; width <= 5; width += 4) {
+            size_t in_view = deqp_case(viewport, 23, SR_POINT_LIST, width, size, 1,
+                                       width == 1 ? "point_clip" : "wide_point_clip");
+            size_t in_depth = deqp_case(depth, 9, SR_POINT_LIST, width, size, 1,
+                                        width == 1 ? "point_z_clip" : "wide_point_z_clip");
+            cr_assert_geq(in_view, (size_t)(9 * width * width) - 2 * (size_t)width, "%d px, %d wide", size, width);
+            cr_assert_geq(in_depth, (size_t)(3 * width * width) - 2 * (size_t)width, "%d px, %d wide", size, width);
+        }
 }

@@ -16,10 +16,10 @@
 #define MAX_THREADS 64
 #define GL_NAME_CHARS 100 /* GL_RENDERER, GL_VERSION: llvmpipe's are 66 */
 
-static const char *const SCENE_NAMES[] = { "all",   "dense",  "fly",  "fill", "fill-flat",
-                                           "depth", "inside", "scan", NULL };
+static const char *const SCENE_NAMES[] = { "all",   "dense",  "fly",  "fill",   "fill-flat",
+                                           "depth", "inside", "scan", "points", NULL };
 enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE, SCENE_SCAN,
-       SCENE_KINDS };
+       SCENE_POINTS, SCENE_KINDS };
 
 typedef struct job {
     int scene, frames, fill_frames, threads, simd;
@@ -85,6 +85,8 @@ static bool make_scene(int kind, int view, sr_bench_scene *s, sr_error *err)
         return sr_bench_fill_flat(s, err);
     case SCENE_INSIDE:
         return sr_bench_inside(s, err);
+    case SCENE_POINTS:
+        return sr_bench_points(s, err);
     default:
         return sr_bench_dense(s, SR_BENCH_DENSE_TRIANGLES, 1920, 1080, SR_SHADE_DEPTH, err);
     }
@@ -161,7 +163,7 @@ static bool print_renderer(char *renderer, size_t cap, sr_error *err)
 static bool parse_job(job *j, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|fill-flat|depth|inside|scan",
+        { "--scene", SR_OPT_CHOICE, &j->scene, "all|dense|fly|fill|fill-flat|depth|inside|scan|points",
           "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &j->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--fill-frames", SR_OPT_INT, &j->fill_frames, "N",

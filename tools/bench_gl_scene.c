@@ -58,7 +58,7 @@ static const char FRAGMENT_BODY[] =
     "    float len2 = dot(v_normal, v_normal);\n"
     "    float d = len2 > 0.0 ? dot(v_normal, light_dir) / sqrt(len2) : 0.0;\n"
     "    frag_color = vec4((AMBIENT + (1.0 - AMBIENT) * max(d, 0.0)) * albedo(), 1.0);\n"
-    "#elif defined(SHADE_TEXTURE)\n"
+    "#elif defined(SHADE_TEXTURE) || defined(SHADE_COLOR)\n"
     "    frag_color = vec4(albedo(), 1.0);\n"
     "#elif defined(SHADE_ID)\n"
     "    uint id = uint(gl_PrimitiveID) + 1u;\n"
@@ -93,6 +93,7 @@ static const char *shade_define(sr_shade shade)
     case SR_SHADE_LAMBERT: return "#define SHADE_LAMBERT\n";
     case SR_SHADE_TEXTURE: return "#define SHADE_TEXTURE\n";
     case SR_SHADE_ID:      return "#define SHADE_ID\n";
+    case SR_SHADE_COLOR:   return "#define SHADE_COLOR\n";
     default: return "";
     }
 }
@@ -168,7 +169,9 @@ static bool upload_mesh(bench_gl_scene *g, const sr_mesh *m, const sr_varying_la
                  GL_STATIC_DRAW);
     /* GL's strip makes odd triangles (k+1, k, k+2), softrast's (k, k+2, k+1):
      * both an odd permutation of (k, k+1, k+2), so the same winding. */
-    g->mode = m->topology == SR_TRIANGLE_STRIP ? GL_TRIANGLE_STRIP : GL_TRIANGLES;
+    g->mode = m->topology == SR_TRIANGLE_STRIP ? GL_TRIANGLE_STRIP
+              : m->topology == SR_POINT_LIST   ? GL_POINTS
+                                               : GL_TRIANGLES;
     g->index_count = (GLsizei)m->index_count;
     return bench_gl_check("uploading the mesh", err);
 }
@@ -239,8 +242,12 @@ static bool set_fixed_state(bench_gl_scene *g, const sr_bench_scene *s, sr_error
 bool bench_gl_scene_create(bench_gl_scene **out, const sr_bench_scene *s, sr_error *err)
 {
     if (s->shade != SR_SHADE_LAMBERT && s->shade != SR_SHADE_TEXTURE && s->shade != SR_SHADE_DEPTH &&
-        s->shade != SR_SHADE_ID)
-        return sr_error_set(err, "scene %s: bench-gl has shaders for lambert, texture, depth and id only", s->name);
+        s->shade != SR_SHADE_ID && s->shade != SR_SHADE_COLOR)
+        return sr_error_set(err, "scene %s: bench-gl has shaders for lambert, texture, color, depth and id only",
+                            s->name);
+    if (s->mesh.topology != SR_TRIANGLE_LIST && s->mesh.topology != SR_TRIANGLE_STRIP &&
+        s->mesh.topology != SR_POINT_LIST)
+        return sr_error_set(err, "scene %s: bench-gl draws triangles and points only", s->name);
     bench_gl_scene *g = calloc(1, sizeof *g);
     if (!g)
         return sr_error_set(err, "out of memory for the GL scene");

@@ -17,9 +17,10 @@
 
 #define MAX_FRAMES 10000
 
-static const char *const SCENE_NAMES[] = { "all",   "dense",  "fly",  "fill", "fill-flat",
-                                           "depth", "inside", "scan", NULL };
-enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE, SCENE_SCAN };
+static const char *const SCENE_NAMES[] = { "all",   "dense",  "fly",  "fill",   "fill-flat",
+                                           "depth", "inside", "scan", "points", NULL };
+enum { SCENE_ALL, SCENE_DENSE, SCENE_FLY, SCENE_FILL, SCENE_FILL_FLAT, SCENE_DEPTH, SCENE_INSIDE, SCENE_SCAN,
+       SCENE_POINTS };
 
 typedef struct bench_job {
     int scene, frames, threads, simd, shade; /* shade: -1 for each scene's own */
@@ -38,7 +39,7 @@ static const char USAGE[] =
 static bool parse_job(bench_job *job, int argc, char **argv, bool *help, sr_error *err)
 {
     const sr_option table[] = {
-        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|fill-flat|depth|inside|scan", "which scenes (default all)", .choices = SCENE_NAMES },
+        { "--scene", SR_OPT_CHOICE, &job->scene, "all|dense|fly|fill|fill-flat|depth|inside|scan|points", "which scenes (default all)", .choices = SCENE_NAMES },
         { "--frames", SR_OPT_INT, &job->frames, "N", "timed frames per scene (default 10)", 1, MAX_FRAMES },
         { "--threads", SR_OPT_INT, &job->threads, "N", "threads in all (default: all cores)", 1, SR_MAX_THREAD_OPTION },
         { "--simd", SR_OPT_CHOICE, &job->simd, SR_SIMD_CHOICES, SR_SIMD_HELP, .choices = sr_simd_names },
@@ -142,6 +143,8 @@ static bool run(const bench_job *job, sr_error *err)
     for (int v = 0; v < SR_BENCH_SCAN_VIEWS; v++)
         if (wants(job, SCENE_SCAN) && !run_scene(&s, sr_bench_scan_view(&s, v, err), job, &r, err))
             return false;
+    if (wants(job, SCENE_POINTS) && !run_scene(&s, sr_bench_points(&s, err), job, &r, err))
+        return false;
     return true;
 }
 

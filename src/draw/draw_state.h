@@ -88,6 +88,8 @@ typedef struct sr_thread_work {
     sr_array setups;     /* sr_tri_setup, of the triangles that span tiles */
     sr_bin *bins;        /* one per tile */
     size_t bin_count;
+    sr_array *fragment_bins; /* sr_fragment, one per band of rows: a point or line draw's on several threads */
+    size_t fragment_bin_count;
     bool out_of_memory;
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
@@ -349,8 +351,9 @@ sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_ras
 bool sr_points_lines_check(const sr_draw_desc *d, sr_error *err);
 
 /* A draw of points or lines (points_lines.c): every primitive through
- * stages 1 to 9 on one thread, counted in thread 0's work; false, with a
- * message, for an index past the vertices (nothing drawn). */
+ * stages 1 to 9, on one thread or binned by band of rows on several,
+ * counted in the threads' work; false, with a message, for an index past
+ * the vertices or out of memory (nothing drawn). */
 bool sr_draw_points_lines(sr_draw_state *st, sr_error *err);
 
 /* The direct path (direct.c): every slot through sr_direct_sink over the

@@ -1,15 +1,23 @@
 /* A draw of the point and line topologies: stages 1 to 9 per primitive,
- * on one thread in submission order (a scalar loop: the same pixels for
- * every thread count and path a triangle draw could take), with the
- * triangles' transform, outcodes, clipper arithmetic (clip_segment.h),
- * viewport and shading. docs/conventions.md, "Points and lines". */
+ * with the triangles' transform, outcodes, clipper arithmetic
+ * (clip_segment.h), viewport and shading. docs/conventions.md, "Points and
+ * lines". On one thread every fragment is stored as it comes; on several,
+ * thread t takes the t-th run of slots and bins its fragments by band of
+ * rows, then each band is stored by one thread from the bins in slot order
+ * (raster_lines.h): the same pixels on every thread count. A run of points
+ * whose vertices are consecutive is transformed and classified in blocks,
+ * four at a time (sr_vertex_run_inside), and a point of size 1 takes its
+ * pixel without the square's set-up (sr_raster_point_pixel): the same
+ * arithmetic, one loop instead of many. docs/performance.md, "Points". */
 #include <math.h>
+#include <stdlib.h>
 
 #include "draw_state.h"
 #include "core/error.h"
 #include "pipeline/04_clip/clip_corner.h"
 #include "pipeline/04_clip/clip_segment.h"
 #include "pipeline/08_raster/raster_lines.h"
+#include "target/framebuffer.h"
 
 #define NEAR_FAR ((1u << SR_PLANE_NEAR) | (1u << SR_PLANE_FAR))
 #define SIDES (SR_OUT_PLANES & ~NEAR_FAR)
@@ -52,6 +60,43 @@ static void count_nonfinite(sr_stats *stats)
     stats->nonfinite++;
 }
 
+/* A primitive whose vertices' outcodes or'd are `any` and and'ed `all`:
+ * dropped and counted if a vertex is not finite or every vertex is
+ * outside one plane of `all`. */
+static bool outcodes_keep(sr_stats *stats, unsigned any, unsigned all)
+{
+    if (any & SR_OUT_NONFINITE) {
+        count_nonfinite(stats);
+        return false;
+    }
+    if (all) {
+        sr_clip_count_rejected(stats, all, 1);
+        return false;
+    }
+    return true;
+}
+
+/* Stage 6 and the raster of a point with clip position clip_d in double
+ * under viewport vp: its snapped position and depth, and no varyings over
+ * w, since a point shades with its vertex's own (raster_lines.h); so it is
+ * dropped as not finite only for a w whose 1/w is not. */
+static void map_and_raster_point(point_line_draw *d, uint32_t k, const sr_vertex_out *v, const double clip_d[4],
+                                 const sr_viewport *vp)
+{
+    const sr_draw_state *st = d->st;
+    sr_stats *stats = &d->work->stats;
+    sr_screen_vertex p;
+    if (!sr_viewport_map_d(v, clip_d, 0, vp, &p)) {
+        count_nonfinite(stats);
+        return;
+    }
+    stats->drawn++;
+    const float *var = v->v + SR_VARYINGS_AT;
+    float size = st->desc->point_size > 0.0f ? st->desc->point_size : 1.0f;
+    stats->fragments += size == 1.0f ? sr_raster_point_pixel(&d->target, &p, var, k)
+                                     : sr_raster_point(&d->target, &p, var, size, k);
+}
+
 /* A point is kept or dropped by its position: outside the near or far
  * plane it is dropped; past a side plane it is kept while its square can
  * reach the framebuffer, tested in a clip space squeezed by the band
@@ -65,19 +110,13 @@ static void draw_point(point_line_draw *d, uint32_t k)
     _Alignas(16) sr_vertex_out v;
     unsigned code = vertex_of(st, i, &v);
     stats->points++;
-    if (code & SR_OUT_NONFINITE) {
-        count_nonfinite(stats);
+    if (!outcodes_keep(stats, code, code & NEAR_FAR))
         return;
-    }
-    if (code & NEAR_FAR) {
-        sr_clip_count_rejected(stats, code & NEAR_FAR, 1);
-        return;
-    }
     double clip_d[4];
     sr_vertex_mesh_clip_d(st->desc->mesh, i, st->xf, clip_d);
     sr_viewport vp = st->vp;
-    float size = st->desc->point_size > 0.0f ? st->desc->point_size : 1.0f;
     if (code & SIDES) {
+        float size = st->desc->point_size > 0.0f ? st->desc->point_size : 1.0f;
         int side = st->fb->width < st->fb->height ? st->fb->width : st->fb->height;
         float band = 1.0f + (size + 2.0f) / (float)side;
         for (int c = SR_X; c <= SR_Y; c++) {
@@ -91,13 +130,51 @@ static void draw_point(point_line_draw *d, uint32_t k)
         }
         vp.guard *= band;
     }
-    sr_screen_vertex p;
-    if (!sr_viewport_map_d(&v, clip_d, st->shade.layout.count, &vp, &p)) {
-        count_nonfinite(stats);
-        return;
+    map_and_raster_point(d, k, &v, clip_d, &vp);
+}
+
+/* Points per block of the fast path: its vertices and outcodes on the stack. */
+#define POINT_BLOCK 64
+
+/* Whether slots [k, k + n) index consecutive vertices. */
+static bool consecutive(const uint32_t *indices, uint32_t k, uint32_t n)
+{
+    for (uint32_t j = 1; j < n; j++)
+        if (indices[k + j] != indices[k] + j)
+            return false;
+    return true;
+}
+
+/* Points [first, end): a block of consecutive vertices transformed and
+ * classified at once; a point inside every plane whose block has finite
+ * varyings goes straight to stage 6, as draw_point would take it; any
+ * other point, and every point of another block, through draw_point. */
+static void draw_points(point_line_draw *d, uint32_t first, uint32_t end)
+{
+    const sr_draw_state *st = d->st;
+    const sr_mesh *mesh = st->desc->mesh;
+    _Alignas(16) sr_vertex_out v[POINT_BLOCK];
+    unsigned char codes[POINT_BLOCK];
+    for (uint32_t k = first; k < end; k += POINT_BLOCK) {
+        uint32_t n = end - k < POINT_BLOCK ? end - k : POINT_BLOCK, i = mesh->indices[k];
+        if (!consecutive(mesh->indices, k, n) ||
+            !sr_vertex_block_finite(mesh, st->xf, &st->shade.layout, i, n)) {
+            for (uint32_t j = 0; j < n; j++)
+                draw_point(d, k + j);
+            continue;
+        }
+        sr_vertex_run_inside(mesh, st->xf, &st->shade.layout, &st->vp.depth, i, n, v, codes);
+        for (uint32_t j = 0; j < n; j++) {
+            if (codes[j]) {
+                draw_point(d, k + j);
+                continue;
+            }
+            d->work->stats.points++;
+            double clip_d[4];
+            sr_vertex_mesh_clip_d(mesh, i + j, st->xf, clip_d);
+            map_and_raster_point(d, k + j, &v[j], clip_d, &st->vp);
+        }
     }
-    stats->drawn++;
-    stats->fragments += sr_raster_point(&d->target, &p, size, k);
 }
 
 /* Stage 6 for a clipped line's end k: a given end from its mesh vertex's
@@ -125,14 +202,8 @@ static void draw_line(point_line_draw *d, uint32_t k)
     stats->lines++;
     _Alignas(16) sr_vertex_out ends[2];
     unsigned c0 = vertex_of(st, idx[0], &ends[0]), c1 = vertex_of(st, idx[1], &ends[1]);
-    if ((c0 | c1) & SR_OUT_NONFINITE) {
-        count_nonfinite(stats);
+    if (!outcodes_keep(stats, c0 | c1, c0 & c1))
         return;
-    }
-    if (c0 & c1) {
-        sr_clip_count_rejected(stats, c0 & c1, 1);
-        return;
-    }
     sr_vertex_out clipped[2];
     int cut_plane[2] = { SR_SEGMENT_END_GIVEN, SR_SEGMENT_END_GIVEN };
     if (c0 | c1) {
@@ -161,18 +232,75 @@ static void draw_line(point_line_draw *d, uint32_t k)
     stats->fragments += sr_raster_line(&d->target, &a, &b, width, k);
 }
 
-static void draw_all(void *ctx, int t)
+/* The draw's two phases on st->threads threads. */
+typedef struct point_line_phases {
+    sr_draw_state *st;
+    sr_point_line_target target; /* bins NULL: each thread sets its own */
+    uint32_t slots;
+    sr_chunks bands;
+} point_line_phases;
+
+/* Thread t's run of slots, its fragments stored or binned. */
+static void slots_phase(void *ctx, int t)
 {
-    (void)t;
-    point_line_draw *d = ctx;
-    const sr_mesh *mesh = d->st->desc->mesh;
-    uint32_t slots = sr_assemble_point_line_slots(mesh);
-    for (uint32_t k = 0; k < slots; k++) {
-        if (mesh->topology == SR_POINT_LIST)
-            draw_point(d, k);
-        else
-            draw_line(d, k);
+    point_line_phases *ph = ctx;
+    sr_draw_state *st = ph->st;
+    sr_thread_work *work = &st->ws->threads[t];
+    point_line_draw d = { .st = st, .work = work, .target = ph->target };
+    if (st->threads > 1)
+        d.target.bins = work->fragment_bins;
+    uint32_t first = (uint32_t)((uint64_t)ph->slots * (uint64_t)t / (uint64_t)st->threads);
+    uint32_t end = (uint32_t)((uint64_t)ph->slots * (uint64_t)(t + 1) / (uint64_t)st->threads);
+    if (st->desc->mesh->topology == SR_POINT_LIST)
+        draw_points(&d, first, end);
+    else
+        for (uint32_t k = first; k < end; k++)
+            draw_line(&d, k);
+    work->out_of_memory = d.target.out_of_memory;
+}
+
+/* The bands thread t takes, each cleared if the draw clears, then given
+ * every thread's bin of it in slot order. */
+static void bands_phase(void *ctx, int t)
+{
+    point_line_phases *ph = ctx;
+    const sr_draw_state *st = ph->st;
+    int rows = ph->target.band_rows;
+    uint64_t passed = 0;
+    uint32_t first, end;
+    while (sr_chunks_take(&ph->bands, &first, &end))
+        for (uint32_t b = first; b < end; b++) {
+            if (st->desc->clear) {
+                int y1 = (int)(b + 1) * rows;
+                sr_framebuffer_clear_rows(st->fb, (int)b * rows, y1 < st->fb->height ? y1 : st->fb->height,
+                                          st->desc->clear_color);
+            }
+            for (int s = 0; s < st->threads; s++) {
+                const sr_array *bin = &st->ws->threads[s].fragment_bins[b];
+                passed += sr_raster_fragments(&ph->target, bin->data, bin->count);
+            }
+        }
+    st->ws->threads[t].stats.fragments += passed;
+}
+
+/* Each thread's bins, one per band, emptied. */
+static bool bins_ready(sr_draw_state *st, int bands)
+{
+    for (int t = 0; t < st->threads; t++) {
+        sr_thread_work *w = &st->ws->threads[t];
+        if (w->fragment_bin_count < (size_t)bands) {
+            sr_array *grown = realloc(w->fragment_bins, (size_t)bands * sizeof *grown);
+            if (!grown)
+                return false;
+            for (size_t b = w->fragment_bin_count; b < (size_t)bands; b++)
+                grown[b] = (sr_array){ 0 };
+            w->fragment_bins = grown;
+            w->fragment_bin_count = (size_t)bands;
+        }
+        for (int b = 0; b < bands; b++)
+            w->fragment_bins[b].count = 0;
     }
+    return true;
 }
 
 bool sr_draw_points_lines(sr_draw_state *st, sr_error *err)
@@ -180,15 +308,27 @@ bool sr_draw_points_lines(sr_draw_state *st, sr_error *err)
     const sr_mesh *mesh = st->desc->mesh;
     if (!sr_assemble_indices_valid(mesh))
         return sr_error_set(err, "mesh has an index past its %u vertices", st->vertex_count);
-    st->threads = 1;
-    if (st->study.times)
-        st->study.times->path = SR_PATH_DIRECT;
-    if (st->desc->clear)
+    int bands = sr_band_count(st->fb->height);
+    if (st->threads > 1 && !bins_ready(st, bands))
+        return sr_error_set(err, "out of memory for the row bands of a point or line draw");
+    bool binned = st->threads > 1;
+    sr_draw_times *times = st->study.times;
+    if (times)
+        times->path = binned ? SR_PATH_ROWS : SR_PATH_DIRECT;
+    if (st->desc->clear && !binned)
         sr_framebuffer_clear(st->fb, st->desc->clear_color);
-    point_line_draw d = { .st = st, .work = &st->ws->threads[0],
-                          .target = { .fb = st->fb, .mode = st->mode, .shade = &st->shade,
-                                      .subpixel_bits = st->vp.subpixel_bits, .depth_bias = st->desc->depth_bias } };
-    if (st->vertex_count > 0)
-        sr_parallel_run(&st->ws->pool, 1, draw_all, &d, st->study.times ? &st->study.times->primitives : NULL);
+    point_line_phases ph = { .st = st, .slots = sr_assemble_point_line_slots(mesh),
+                             .target = { .fb = st->fb, .mode = st->mode, .shade = &st->shade,
+                                         .subpixel_bits = st->vp.subpixel_bits, .depth_bias = st->desc->depth_bias,
+                                         .band_rows = sr_band_rows(st->fb->height) } };
+    if (st->vertex_count > 0 || binned)
+        sr_parallel_run(&st->ws->pool, st->threads, slots_phase, &ph, times ? &times->primitives : NULL);
+    if (!binned)
+        return true;
+    for (int t = 0; t < st->threads; t++)
+        if (st->ws->threads[t].out_of_memory)
+            return sr_error_set(err, "out of memory for the row bands of a point or line draw");
+    sr_chunks_init(&ph.bands, (uint32_t)bands, 1);
+    sr_parallel_run(&st->ws->pool, st->threads, bands_phase, &ph, times ? &times->raster : NULL);
     return true;
 }

@@ -28,6 +28,9 @@ static void thread_work_free(sr_thread_work *w)
     for (size_t i = 0; i < w->bin_count; i++)
         sr_array_free(&w->bins[i].entries);
     free(w->bins);
+    for (size_t i = 0; i < w->fragment_bin_count; i++)
+        sr_array_free(&w->fragment_bins[i]);
+    free(w->fragment_bins);
     *w = (sr_thread_work){ 0 };
 }
 

@@ -49,6 +49,38 @@ bool sr_shape_torus(sr_mesh *mesh, float major, float minor, uint32_t segments, 
     return true;
 }
 
+/* The next of a 64-bit linear congruential sequence (Knuth's MMIX
+ * constants), as a double in [0, 1) from its top 53 bits. */
+static double next_unit(uint64_t *state)
+{
+    *state = *state * 6364136223846793005u + 1442695040888963407u;
+    return (double)(*state >> 11) * 0x1p-53;
+}
+
+bool sr_shape_torus_cloud(sr_mesh *mesh, float major, float minor, uint32_t count, sr_error *err)
+{
+    if (count == 0 || count > UINT32_MAX / 8)
+        return sr_error_set(err, "bad point count %u", count);
+    if (!sr_mesh_alloc(mesh, count, count, false, false, true, err))
+        return false;
+    uint64_t state = 1;
+    for (uint32_t i = 0; i < count; i++) {
+        double u = next_unit(&state), v = next_unit(&state);
+        double theta = TWO_PI * u, psi = TWO_PI * v, ring = major + minor * cos(psi);
+        float *p = mesh->positions[i], *c = mesh->colors[i];
+        p[0] = (float)(ring * cos(theta));
+        p[1] = (float)(minor * sin(psi));
+        p[2] = (float)(ring * sin(theta));
+        c[0] = (float)u;
+        c[1] = (float)v;
+        c[2] = (float)(0.5 + 0.5 * sin(psi));
+        mesh->indices[i] = i;
+    }
+    mesh->topology = SR_POINT_LIST;
+    sr_mesh_update_bounds(mesh);
+    return true;
+}
+
 void sr_shape_torus_grid(uint64_t triangles, uint32_t *segments, uint32_t *sides)
 {
     double s = sqrt((double)triangles); /* 2 · s · s/2 = triangles */

@@ -180,6 +180,14 @@ bool sr_bench_fill(sr_bench_scene *s, sr_error *err)
     return make_fill(s, err) && make_checker(&s->texture, err);
 }
 
+bool sr_bench_points(sr_bench_scene *s, sr_error *err)
+{
+    scene_init(s, "points", "1M coloured points over the torus's surface, 1 px, depth tested", SR_SHADE_COLOR,
+               1920, 1080);
+    glm_vec3_copy((vec3){ 0.0f, 1.1f, -1.9f }, s->camera.eye);
+    return sr_shape_torus_cloud(&s->mesh, 1.0f, 0.4f, SR_BENCH_POINTS, err);
+}
+
 bool sr_bench_fill_flat(sr_bench_scene *s, sr_error *err)
 {
     scene_init(s, "fill-flat", "64 full-screen untextured quads back to front, lambert", SR_SHADE_LAMBERT, 1920,

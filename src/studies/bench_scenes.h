@@ -67,6 +67,13 @@ bool sr_bench_fill(sr_bench_scene *s, sr_error *err);
  * pixel shaded 64 times (bench prints it in Gpix/s). */
 bool sr_bench_fill_flat(sr_bench_scene *s, sr_error *err);
 
+/* A point cloud: SR_BENCH_POINTS points with colours over the dense
+ * torus's surface (the dense camera), drawn 1 pixel each with depth at
+ * 1920x1080, colour shading; many land on the same pixel, so the depth
+ * test decides which shows. */
+#define SR_BENCH_POINTS 1048576u
+bool sr_bench_points(sr_bench_scene *s, sr_error *err);
+
 void sr_bench_scene_free(sr_bench_scene *s);
 
 /* The camera of frame f of n. */

@@ -13,33 +13,79 @@ static int64_t floor_div(wide_int n, wide_int d)
     return (int64_t)(q - (n % d != 0 && n < 0));
 }
 
-/* The depth, varyings and shading of one fragment at parameter t of the
- * segment a -> b (a point: a = b, t = 0); 1 if it passed the depth test. */
-static uint64_t fragment(const sr_point_line_target *t, int x, int y, const sr_screen_vertex *a,
-                         const sr_screen_vertex *b, double s, uint32_t id)
+/* The depth test and the writes of one fragment; 1 if it passed. */
+static inline uint64_t store(const sr_point_line_target *t, const sr_fragment *f)
 {
     sr_framebuffer *fb = t->fb;
-    size_t at = (size_t)y * (size_t)fb->width + (size_t)x;
     if (t->mode == SR_RASTER_COUNT_HITS) {
-        fb->color[at]++;
+        fb->color[f->at]++;
         return 1;
     }
-    double z = (double)a->z + s * ((double)b->z - (double)a->z);
-    z = fb->reversed_z ? z + t->depth_bias : z - t->depth_bias;
-    float zf = z > 0.0 ? (z < 1.0 ? (float)z : 1.0f) : 0.0f;
-    if (!sr_depth_passes(zf, fb->depth[at], fb->reversed_z))
+    if (!sr_depth_passes(f->z, fb->depth[f->at], fb->reversed_z))
         return 0;
-    fb->depth[at] = zf;
+    fb->depth[f->at] = f->z;
     if (fb->ids)
-        fb->ids[at] = id + 1u;
-    if (t->mode == SR_SHADE_DEPTH)
-        return 1;
-    float var[SR_MAX_VARYINGS];
-    double inv_w = (double)a->inv_w + s * ((double)b->inv_w - (double)a->inv_w);
-    for (int k = 0; k < t->shade->layout.count; k++)
-        var[k] = (float)(((double)a->var_w[k] + s * ((double)b->var_w[k] - (double)a->var_w[k])) / inv_w);
-    fb->color[at] = sr_shade_fragment(t->mode, t->shade, var, id);
+        fb->ids[f->at] = f->id + 1u;
+    if (t->mode != SR_SHADE_DEPTH)
+        fb->color[f->at] = f->color;
     return 1;
+}
+
+uint64_t sr_raster_fragments(const sr_point_line_target *t, const sr_fragment *f, size_t n)
+{
+    uint64_t passed = 0;
+    for (size_t k = 0; k < n; k++)
+        passed += store(t, &f[k]);
+    return passed;
+}
+
+/* A fragment of row y stored now, or put in its band's bin. */
+static inline uint64_t put(sr_point_line_target *t, int y, const sr_fragment *f)
+{
+    if (!t->bins)
+        return store(t, f);
+    sr_fragment *slot = sr_array_push(&t->bins[y / t->band_rows], sizeof *slot);
+    if (slot)
+        *slot = *f;
+    else
+        t->out_of_memory = true;
+    return 0;
+}
+
+/* z moved depth_bias nearer, clamped to [0, 1]. */
+static inline float biased_depth(const sr_point_line_target *t, double z)
+{
+    z = t->fb->reversed_z ? z + t->depth_bias : z - t->depth_bias;
+    return z > 0.0 ? (z < 1.0 ? (float)z : 1.0f) : 0.0f;
+}
+
+static inline bool shades(const sr_point_line_target *t)
+{
+    return t->mode != SR_SHADE_DEPTH && t->mode != SR_RASTER_COUNT_HITS;
+}
+
+/* The fragment at (x, y) at parameter s of the segment a -> b. */
+static uint64_t line_fragment(sr_point_line_target *t, int x, int y, const sr_screen_vertex *a,
+                              const sr_screen_vertex *b, double s, uint32_t id)
+{
+    sr_fragment f = { .at = (uint32_t)((size_t)y * (size_t)t->fb->width + (size_t)x),
+                      .z = biased_depth(t, (double)a->z + s * ((double)b->z - (double)a->z)), .id = id };
+    if (shades(t)) {
+        float var[SR_MAX_VARYINGS];
+        double inv_w = (double)a->inv_w + s * ((double)b->inv_w - (double)a->inv_w);
+        for (int k = 0; k < t->shade->layout.count; k++)
+            var[k] = (float)(((double)a->var_w[k] + s * ((double)b->var_w[k] - (double)a->var_w[k])) / inv_w);
+        f.color = sr_shade_fragment(t->mode, t->shade, var, id);
+    }
+    return put(t, y, &f);
+}
+
+/* A point's fragment, all but its pixel. */
+static inline sr_fragment point_fragment(const sr_point_line_target *t, const sr_screen_vertex *p, const float *var,
+                                         uint32_t id)
+{
+    return (sr_fragment){ .z = biased_depth(t, (double)p->z),
+                          .color = shades(t) ? sr_shade_fragment(t->mode, t->shade, var, id) : 0, .id = id };
 }
 
 static bool on_screen(const sr_framebuffer *fb, int64_t x, int64_t y)
@@ -69,7 +115,7 @@ static void pixel_of(const axes *ax, int64_t along, int64_t across, int64_t *x, 
 }
 
 /* The fragments of pixel (along, across) and its copies across a wide line. */
-static uint64_t emit(const sr_point_line_target *t, const axes *ax, int64_t along, int64_t across, int width,
+static uint64_t emit(sr_point_line_target *t, const axes *ax, int64_t along, int64_t across, int width,
                      const sr_screen_vertex *a, const sr_screen_vertex *b, uint32_t id)
 {
     int64_t one = (int64_t)1 << t->subpixel_bits, h = one / 2, x, y;
@@ -85,7 +131,7 @@ static uint64_t emit(const sr_point_line_target *t, const axes *ax, int64_t alon
         int64_t px, py;
         pixel_of(ax, along, across + k, &px, &py);
         if (on_screen(t->fb, px, py))
-            passed += fragment(t, (int)px, (int)py, a, b, s, id);
+            passed += line_fragment(t, (int)px, (int)py, a, b, s, id);
     }
     return passed;
 }
@@ -104,8 +150,8 @@ static int64_t crossing_pixel(const axes *ax, int64_t along, int64_t one)
     return floor_div(n - 1, d * one);
 }
 
-uint64_t sr_raster_line(const sr_point_line_target *t, const sr_screen_vertex *a, const sr_screen_vertex *b,
-                        int width, uint32_t id)
+uint64_t sr_raster_line(sr_point_line_target *t, const sr_screen_vertex *a, const sr_screen_vertex *b, int width,
+                        uint32_t id)
 {
     int64_t dx = b->x - a->x, dy = b->y - a->y;
     if (dx == 0 && dy == 0)
@@ -140,7 +186,8 @@ uint64_t sr_raster_line(const sr_point_line_target *t, const sr_screen_vertex *a
     return passed;
 }
 
-uint64_t sr_raster_point(const sr_point_line_target *t, const sr_screen_vertex *p, float size, uint32_t id)
+uint64_t sr_raster_point(sr_point_line_target *t, const sr_screen_vertex *p, const float *var, float size,
+                         uint32_t id)
 {
     double one = (double)((int64_t)1 << t->subpixel_bits), h = one / 2.0, half = (double)size * h;
     /* Centres c with −half <= c − p < half, c = i·one + h: exact in double. */
@@ -150,9 +197,29 @@ uint64_t sr_raster_point(const sr_point_line_target *t, const sr_screen_vertex *
     y0 = y0 > 0.0 ? y0 : 0.0;
     x1 = x1 < t->fb->width - 1 ? x1 : t->fb->width - 1;
     y1 = y1 < t->fb->height - 1 ? y1 : t->fb->height - 1;
+    if (x0 > x1 || y0 > y1)
+        return 0;
+    sr_fragment f = point_fragment(t, p, var, id);
     uint64_t passed = 0;
     for (double y = y0; y <= y1; y++)
-        for (double x = x0; x <= x1; x++)
-            passed += fragment(t, (int)x, (int)y, p, p, 0.0, id);
+        for (double x = x0; x <= x1; x++) {
+            f.at = (uint32_t)((size_t)y * (size_t)t->fb->width + (size_t)x);
+            passed += put(t, (int)y, &f);
+        }
     return passed;
+}
+
+/* Size 1: the centre c with −h <= c − p < h is i·one + h with
+ * p − one <= i·one < p, so i = ⌊(p − 1) / one⌋, none left of column 0
+ * for p = 0. */
+uint64_t sr_raster_point_pixel(sr_point_line_target *t, const sr_screen_vertex *p, const float *var, uint32_t id)
+{
+    if (p->x <= 0 || p->y <= 0)
+        return 0;
+    int64_t x = (p->x - 1) >> t->subpixel_bits, y = (p->y - 1) >> t->subpixel_bits;
+    if (x >= t->fb->width || y >= t->fb->height)
+        return 0;
+    sr_fragment f = point_fragment(t, p, var, id);
+    f.at = (uint32_t)((size_t)y * (size_t)t->fb->width + (size_t)x);
+    return put(t, (int)y, &f);
 }
