@@ -246,3 +246,40 @@ Test(cli_pinhole, exr_and_millimetre_png_hold_the_npy_values)
     read_exr(temp_path(path, sizeof path, "n.exr"), 3, exr);
     cr_assert_eq(memcmp(npy, exr, 3 * W * H * sizeof *npy), 0, "EXR normals differ from .npy");
 }
+
+/* A quad (triangles 0, 1) left and a pentagon (triangles 2, 3, 4) right
+ * in the plane z = 0, seen as the triangle is: --face-ids names the
+ * triangle each pixel shows, and with --face-ids-of file the file's face
+ * it was fanned from, pixel for pixel. */
+Test(cli_pinhole, face_ids_of_file_name_the_polygon_each_pixel_shows)
+{
+    write_text(temp_dir, "polys.obj",
+               "v -1.5 0.2 0\nv -0.5 0.2 0\nv -0.5 1 0\nv -1.5 1 0\n"
+               "v 0.2 0.2 0\nv 1.4 0.2 0\nv 1.4 0.7 0\nv 0.8 1 0\nv 0.2 0.7 0\n"
+               "f 1 2 3 4\nf 5 6 7 8 9\n");
+    static const char *const kinds[] = { "triangle", "file" };
+    static uint32_t ids[2][W * H];
+    for (int k = 0; k < 2; k++) {
+        char args[768], path[512], name[16];
+        snprintf(name, sizeof name, "%s.npy", kinds[k]);
+        snprintf(args, sizeof args,
+                 "render %s/polys.obj --size %dx%d --intrinsics 40,40,19.5,14.5 " POSE " --face-ids %s "
+                 "--face-ids-of %s --out %s/c.png",
+                 temp_dir, W, H, temp_path(path, sizeof path, name), kinds[k], temp_dir);
+        run_result r = run_softrast(temp_dir, args);
+        cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+        read_npy_of(temp_path(path, sizeof path, name), "<u4", 1, ids[k]);
+    }
+    int seen[6] = { 0 };
+    for (int i = 0; i < W * H; i++) {
+        uint32_t triangle = ids[0][i];
+        cr_assert_leq(triangle, 5u, "pixel %d: triangle id %u", i, triangle);
+        seen[triangle]++;
+        uint32_t face = triangle == 0 ? 0 : triangle <= 2 ? 1 : 2;
+        cr_assert_eq(ids[1][i], face, "pixel %d: triangle %u of face %u, written as face %u", i, triangle, face,
+                     ids[1][i]);
+    }
+    for (int t = 1; t <= 5; t++)
+        cr_assert_gt(seen[t], 0, "triangle %d is seen nowhere: the test proves less than it says", t - 1);
+    assert_one_error("render %s/polys.obj " POSE " --face-ids-of file", "give --face-ids too");
+}

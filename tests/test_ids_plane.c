@@ -104,8 +104,10 @@ static void assert_one_draw_is_two(const sr_draw_desc *base, const sr_shade *mod
         }
         sr_framebuffer_destroy(&plain.fb);
     }
-    /* The SIMD loops did draw (else the scalar loop was tested again). */
-    for (size_t k = 0; k < WAY_COUNT; k++)
+    /* The SIMD loops did draw triangles (else the scalar loop was tested
+     * again); points and lines have one loop, whatever the way. */
+    bool triangles = base->mesh->topology == SR_TRIANGLE_LIST || base->mesh->topology == SR_TRIANGLE_STRIP;
+    for (size_t k = 0; triangles && k < WAY_COUNT; k++)
         cr_assert(WAYS[k].simd == SR_SIMD_SCALAR || simd_draws[k] > 0, "no SIMD draw the way %zu", k);
     free(want_ids);
     sr_framebuffer_destroy(&ids_ref.fb);
@@ -132,24 +134,53 @@ static const sr_texture *texture_4x4(void)
     return &tex;
 }
 
+static const sr_shade ALL_MODES[] = { SR_SHADE_LAMBERT, SR_SHADE_ID,      SR_SHADE_COLOR,
+                                     SR_SHADE_NORMAL,  SR_SHADE_TEXTURE, SR_SHADE_DEPTH };
+#define ALL_MODE_COUNT ((int)(sizeof ALL_MODES / sizeof *ALL_MODES))
+
+/* A torus of `around` x `across` segments with normals, uvs and colours
+ * (the colour shading's). */
+static void colored_torus(sr_mesh *torus, uint32_t around, uint32_t across)
+{
+    sr_error err = { "" };
+    cr_assert(sr_shape_torus(torus, 1.0f, 0.4f, around, across, &err), "%s", err.message);
+    torus->colors = malloc(torus->vertex_count * sizeof *torus->colors);
+    for (uint32_t v = 0; v < torus->vertex_count; v++)
+        for (int k = 0; k < 3; k++)
+            torus->colors[v][k] = 0.5f + 0.35f * torus->positions[v][k];
+}
+
 /* A dense torus, many of its triangles tiny (the tiny queue's), in every
  * mode, with the standard and the reversed depth test. */
 Test(ids_plane, every_loop_path_and_thread_count_writes_the_id_draws_ids_on_a_dense_torus)
 {
     sr_mesh torus;
-    sr_error err = { "" };
-    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
-    torus.colors = malloc(torus.vertex_count * sizeof *torus.colors);
-    for (uint32_t v = 0; v < torus.vertex_count; v++)
-        for (int k = 0; k < 3; k++)
-            torus.colors[v][k] = 0.5f + 0.35f * torus.positions[v][k];
-    static const sr_shade modes[] = { SR_SHADE_LAMBERT, SR_SHADE_ID,      SR_SHADE_COLOR,
-                                      SR_SHADE_NORMAL,  SR_SHADE_TEXTURE, SR_SHADE_DEPTH };
+    colored_torus(&torus, 120, 60);
     for (int reversed = 0; reversed < 2; reversed++) {
         sr_draw_desc desc = { .mesh = &torus, .texture = texture_4x4() };
         look(&desc, (const float[6]){ 0, 1.1f, -1.9f, 0, 0, 0 }, 160.0f / 120.0f, reversed);
-        assert_one_draw_is_two(&desc, modes, sizeof modes / sizeof *modes, 160, 120, reversed);
+        assert_one_draw_is_two(&desc, ALL_MODES, ALL_MODE_COUNT, 160, 120, reversed);
     }
+    sr_mesh_free(&torus);
+}
+
+/* The torus's corners as points 1 and 2 pixels square, and its triangles'
+ * edges as lines and a strip 1 and 2 pixels wide, overlapping each other:
+ * the ids plane holds the id + 1 of the point or line each pixel shows,
+ * as an id draw's colour, and colour and depth are as without the plane. */
+Test(ids_plane, points_and_lines_write_the_id_draws_ids)
+{
+    sr_mesh torus;
+    colored_torus(&torus, 120, 60);
+    static const sr_topology topologies[] = { SR_POINT_LIST, SR_LINE_LIST, SR_LINE_STRIP };
+    for (size_t t = 0; t < 2 * sizeof topologies / sizeof *topologies; t++)
+        for (int reversed = 0; reversed < 2; reversed++) {
+            torus.topology = topologies[t / 2];
+            const float size = 1.0f + (float)(t % 2);
+            sr_draw_desc desc = { .mesh = &torus, .texture = texture_4x4(), .point_size = size, .line_width = size };
+            look(&desc, (const float[6]){ 0, 1.1f, -1.9f, 0, 0, 0 }, 160.0f / 120.0f, reversed);
+            assert_one_draw_is_two(&desc, ALL_MODES, ALL_MODE_COUNT, 160, 120, reversed);
+        }
     sr_mesh_free(&torus);
 }
 
@@ -260,4 +291,32 @@ Test(ids_plane, the_resolve_of_a_shaded_draws_ids_is_the_id_draws_on_any_threads
     sr_framebuffer_destroy(&id_fb);
     sr_framebuffer_destroy(&shaded_fb);
     sr_mesh_free(&room);
+}
+
+/* The ids of points or lines name no triangle: the resolve refuses them
+ * with one line rather than read them as triangles. */
+Test(ids_plane, the_resolve_refuses_a_draw_of_points_or_lines)
+{
+    sr_mesh torus;
+    sr_error err = { "" };
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 12, 8, &err), "%s", err.message);
+    sr_pinhole cam = { .fx = 40.0, .fy = 40.0, .cx = 15.5, .cy = 11.5 };
+    static const double c2w[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, -4 }, { 0, 0, 0, 1 } };
+    cr_assert(sr_pinhole_pose_from_c2w(c2w, cam.w2c, &err), "%s", err.message);
+    sr_pinhole_fit_clip(&cam, &torus);
+    sr_framebuffer fb;
+    cr_assert(sr_framebuffer_create(&fb, 32, 24, &err) && sr_framebuffer_create_ids(&fb, &err), "%s", err.message);
+    static float depth[32 * 24];
+    static const sr_topology topologies[] = { SR_POINT_LIST, SR_LINE_LIST, SR_LINE_STRIP };
+    for (size_t t = 0; t < sizeof topologies / sizeof *topologies; t++) {
+        torus.topology = topologies[t];
+        sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_DEPTH, .clear = true };
+        sr_pinhole_matrices(&cam, &torus, &fb, &desc);
+        cr_assert(sr_draw(&fb, &desc, NULL, &err), "%s", err.message);
+        err.message[0] = '\0';
+        cr_assert_not(sr_pinhole_resolve(&cam, &torus, &fb, &(sr_pinhole_outputs){ .depth = depth }, &err));
+        cr_assert_not_null(strstr(err.message, "points or lines"), "%s", err.message);
+    }
+    sr_framebuffer_destroy(&fb);
+    sr_mesh_free(&torus);
 }

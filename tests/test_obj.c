@@ -235,6 +235,33 @@ Test(obj, polygon_becomes_fan_in_file_order)
     sr_mesh_free(&m);
 }
 
+/* Triangles, quads and pentagons mixed: each fan triangle names the f
+ * line it came from, the triangles before the first polygon included. */
+Test(obj, the_face_map_names_each_triangles_file_face)
+{
+    sr_mesh m = load_ok("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 1 0\n"
+                        "f 1 2 3\n"       /* face 0: triangle 0 */
+                        "f 1 2 3 4\n"     /* face 1: triangles 1, 2 */
+                        "f 5 4 3 2 1\n"   /* face 2: triangles 3, 4, 5 */
+                        "f 2 3 4\n"       /* face 3: triangle 6 */
+                        "f 4 3 2 1\n");   /* face 4: triangles 7, 8 */
+    static const uint32_t want[] = { 0, 1, 1, 2, 2, 2, 3, 4, 4 };
+    cr_assert_eq(m.index_count, 3 * 9);
+    cr_assert_not_null(m.file_faces);
+    for (uint32_t t = 0; t < 9; t++)
+        cr_assert_eq(m.file_faces[t], want[t], "triangle %u: face %u, not %u", t, m.file_faces[t], want[t]);
+    sr_mesh_free(&m);
+}
+
+/* A file of triangles alone needs no map: triangle i is face i. */
+Test(obj, a_file_of_triangles_has_no_face_map)
+{
+    sr_mesh m = load_ok("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+    cr_assert_eq(m.index_count, 6);
+    cr_assert_null(m.file_faces);
+    sr_mesh_free(&m);
+}
+
 Test(obj, crlf_comments_blank_lines_and_whitespace)
 {
     sr_mesh m = load_ok("# a comment\r\n"

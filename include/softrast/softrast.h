@@ -66,11 +66,12 @@ typedef enum sr_topology {
     SR_LINE_STRIP         /* line k = (i[k], i[k+1]) */
 } sr_topology;
 
-/* A run of triangle slots that came from one part of a file: a loader's
- * mesh of a multi-mesh scene (softrast/files.h), in the file's order. With
- * materials (sr_mesh.materials), a part's triangles are drawn with its
- * material; parts then follow each other (first_triangle increasing, no
- * overlap), and a triangle in no part takes material 0. */
+/* A run of triangle slots that came from one part of a file: an OBJ's
+ * group, or a node's instance of a mesh in a scene (softrast/files.h), in
+ * the file's order. With materials (sr_mesh.materials), a part's triangles
+ * are drawn with its material; parts then follow each other
+ * (first_triangle increasing, no overlap), and a triangle in no part takes
+ * material 0. */
 typedef struct sr_mesh_part {
     uint32_t first_triangle, triangle_count;
     uint32_t material; /* an index of sr_mesh.materials; ignored without materials */
@@ -158,7 +159,7 @@ typedef struct sr_mesh {
     char *texture_path; /* a loader's: the used material's map_Kd, or NULL */
     bool z_negated;     /* a loader's: positions are the file's with z negated (right-handed files
                            in softrast's left-handed world); sr_pinhole poses undo it */
-    uint32_t part_count; /* a loader's: the file's meshes as runs of triangle ids; 0 for one */
+    uint32_t part_count; /* a loader's: the file's parts as runs of triangle ids; 0 for one */
     sr_mesh_part *parts;
     /* Optional: the parts' materials, each part drawn with its own in one
      * draw (lambert and texture shading). 0: every triangle drawn as
@@ -166,6 +167,12 @@ typedef struct sr_mesh {
      * texture paths, not the textures. */
     uint32_t material_count;
     sr_material *materials;
+    /* Optional, a loader's: the file's face each triangle slot came from,
+     * counted from 0 in the file's order (a polygon of n corners is fanned
+     * into n − 2 triangles that name it), one per triangle slot. NULL:
+     * triangle i is face i.
+     * sr_mesh_free frees it. */
+    uint32_t *file_faces;
 } sr_mesh;
 
 /* Allocates zeroed arrays for the attributes asked for. False on overflow or
@@ -483,13 +490,14 @@ SR_API void sr_pinhole_matrices(const sr_pinhole *cam, const sr_mesh *mesh, sr_f
 typedef struct sr_pinhole_outputs {
     float *depth;     /* z along the optical axis, in mesh units */
     float *range;     /* distance from the camera centre to the surface point */
-    uint32_t *face_ids; /* triangle id + 1 (0: nothing drawn) */
+    uint32_t *face_ids; /* triangle id + 1, or the file's face + 1 (0: nothing drawn) */
     uint32_t *part_ids; /* sr_mesh.parts index + 1, 1 for a mesh of one part (0: nothing drawn) */
     float *normals;   /* unit normal in the camera frame (x right, y down, z forward); 0 where nothing */
     bool interpolated_normals; /* the vertex normals interpolated at the surface point; false: the
                                   triangle's own, by its winding (the file's front side) */
     float invalid;    /* depth and range where nothing is drawn: 0, or NAN */
     int threads;      /* threads in all, the caller's included; 0 or 1: one */
+    bool file_faces;  /* face_ids name the file's face (sr_mesh.file_faces) rather than the triangle */
 } sr_pinhole_outputs;
 
 /* The outputs asked for, from ids: the framebuffer of a draw of mesh with
@@ -501,7 +509,8 @@ typedef struct sr_pinhole_outputs {
  * (where the ray runs in that plane, the depth buffer's value gives the
  * point). The threads take equal bands of rows; every value is the same
  * for every thread count. False, with one line in err, for a mesh without
- * positions, or interpolated normals of a mesh without normals. */
+ * positions or of points or lines, or interpolated normals of a mesh
+ * without normals. */
 SR_API bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
                                const sr_pinhole_outputs *out, sr_error *err);
 

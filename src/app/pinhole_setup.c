@@ -9,6 +9,7 @@
 
 static const char *const INVALID_NAMES[] = { "zero", "nan", NULL };
 static const char *const NORMAL_KIND_NAMES[] = { "geometric", "interpolated", NULL };
+static const char *const FACE_IDS_OF_NAMES[] = { "triangle", "file", NULL };
 
 static const struct {
     const char *option, *key, *extensions[5];
@@ -39,7 +40,8 @@ void sr_pinhole_setup_options(sr_pinhole_setup *p, sr_option *table)
         { "--view-depth", SR_OPT_STRING, &p->paths[SR_MEASURED_DEPTH], "FILE.npy|.pfm", "z along the optical axis in mesh units, float32 (needs a pose)" },
         { "--range", SR_OPT_STRING, &p->paths[SR_MEASURED_RANGE], "FILE.npy|.pfm", "distance from the camera centre, float32 (needs a pose)" },
         { "--face-ids", SR_OPT_STRING, &p->paths[SR_MEASURED_FACE_IDS], "FILE.npy|.png", "triangle id + 1 per pixel, 0 where nothing: uint32 .npy or 16-bit PNG (needs a pose)" },
-        { "--part-ids", SR_OPT_STRING, &p->paths[SR_MEASURED_PART_IDS], "FILE.npy|.png", "the file's mesh + 1 per pixel, 0 where nothing (needs a pose)" },
+        { "--part-ids", SR_OPT_STRING, &p->paths[SR_MEASURED_PART_IDS], "FILE.npy|.png", "the file's part (an instance of a mesh, an OBJ group) + 1 per pixel, 0 where nothing (needs a pose)" },
+        { "--face-ids-of", SR_OPT_CHOICE, &p->face_ids_of, "triangle|file", "--face-ids names the triangle (default) or the file's face it was fanned from", .choices = FACE_IDS_OF_NAMES, .seen = &p->face_ids_of_set },
         { "--normals", SR_OPT_STRING, &p->paths[SR_MEASURED_NORMALS], "FILE.npy", "unit normals in the camera frame, float32 HxWx3 (needs a pose)" },
         { "--normal-kind", SR_OPT_CHOICE, &p->normal_kind, "geometric|interpolated", "the triangle's normal, or the vertex normals interpolated (default geometric)", .choices = NORMAL_KIND_NAMES },
         { "--depth-scale", SR_OPT_FLOAT, &p->depth_scale, "S", "view depth and range in .png: uint16 of the value times S (default 1000: millimetres of metres)", 1e-30, 3e38 },
@@ -111,6 +113,8 @@ bool sr_pinhole_setup_check(const sr_pinhole_setup *p, const sr_scene_setup *s, 
             return sr_error_set(err, "--intrinsics needs a camera pose: --pose-w2c or --pose-c2w (16 numbers)");
         return true;
     }
+    if (p->face_ids_of_set && !paths[SR_MEASURED_FACE_IDS])
+        return sr_error_set(err, "--face-ids-of says what --face-ids names: give --face-ids too");
     if (s->eye_set || s->target_set || s->look_at_set)
         return sr_error_set(err, "a pose places the camera in the file's frame: --eye, --target, --up, --ortho, --rotate-y, "
                                  "--up-axis and --reversed-z are the look-at camera's");
@@ -230,7 +234,7 @@ static bool write_resolved(const sr_pinhole_setup *p, const sr_pinhole *cam, con
     sr_pinhole_outputs out = { .depth = values[SR_MEASURED_DEPTH], .range = values[SR_MEASURED_RANGE],
                                .face_ids = values[SR_MEASURED_FACE_IDS], .part_ids = values[SR_MEASURED_PART_IDS],
                                .normals = values[SR_MEASURED_NORMALS], .interpolated_normals = p->normal_kind == 1,
-                               .invalid = p->invalid ? NAN : 0.0f, .threads = threads };
+                               .file_faces = p->face_ids_of == 1, .invalid = p->invalid ? NAN : 0.0f, .threads = threads };
     double start = sr_now_ms();
     ok = ok && sr_pinhole_resolve(cam, mesh, fb, &out, err);
     *resolve_ms = sr_now_ms() - start;

@@ -1,6 +1,6 @@
 /* pinhole_setup.h — `render`'s pinhole camera (--intrinsics, --pose-w2c,
  * --pose-c2w) and the outputs measured from it (--view-depth, --range,
- * --face-ids, --part-ids, --normals):
+ * --face-ids, --face-ids-of, --part-ids, --normals):
  * the options, their checks against the look-at camera's, the camera, and
  * the files. */
 #ifndef SOFTRAST_APP_PINHOLE_SETUP_H
@@ -8,7 +8,7 @@
 
 #include "scene_setup.h"
 
-#define SR_PINHOLE_OPTION_COUNT 11
+#define SR_PINHOLE_OPTION_COUNT 12
 
 /* --depth-scale's default: millimetres of metres. */
 #define SR_DEPTH_PNG_SCALE 1000.0f
@@ -31,11 +31,12 @@ const char *sr_measured_key(sr_measured k);
 typedef struct sr_pinhole_setup {
     double intrinsics[4];               /* fx, fy, cx, cy */
     double pose_w2c[16], pose_c2w[16];  /* row-major */
-    bool intrinsics_set, w2c_set, c2w_set;
+    bool intrinsics_set, w2c_set, c2w_set, face_ids_of_set;
     const char *paths[SR_MEASURED_COUNT]; /* NULL: not asked for */
     int invalid;     /* 0: 0 where nothing is drawn, 1: NaN */
     float depth_scale; /* .png depth and range: uint16 of the value times this */
     int normal_kind; /* 0: the triangle's, 1: the vertex normals interpolated */
+    int face_ids_of; /* 0: --face-ids names triangles, 1: the file's faces */
 } sr_pinhole_setup;
 
 /* The options' table entries, SR_PINHOLE_OPTION_COUNT of them, into table. */

@@ -1,26 +1,29 @@
 /* Every mesh format Assimp reads (glTF 2.0, PLY, STL, FBX, COLLADA, 3DS, …)
  * -> sr_mesh, through its C API.
  *
- * Assimp flattens the scene (aiProcess_PreTransformVertices: node transforms
- * applied, instanced meshes repeated), triangulates, merges identical
- * vertices and makes smooth normals where a mesh has none. Its world is
- * right-handed y-up like OBJ's, so the same flip applies: z negated (of
- * positions and normals) and each triangle (a, b, c) written as (a, c, b).
- * Meshes follow in Assimp's mesh order, faces in face order: triangle ids
- * count them so. Points and lines are left out. Each of the scene's
- * materials becomes a mesh material (its colour factor, its base-colour or
- * diffuse texture, glTF's alpha mode and cutoff), and each mesh a part
- * naming its own. Positions are gathered in
- * double and stored relative to a far mesh's centre, as OBJ's are. A
- * texture embedded in the file (.glb, FBX) is decoded here; one beside it
- * is named by texture_path, found by texture_find.h's rules. A mesh that
- * a mirroring node transform places (its determinant negative) has its
- * winding reversed before Assimp flattens the scene, which Assimp does not
- * do: its outward faces stay front faces (glTF requires it; a DirectX .x
- * file exported from Blender mirrors its root frame). Morph targets are
- * applied at their default weights and skinned meshes kept in their bind
- * pose before flattening (assimp_report.h). The import runs in a
- * child process (isolated_load.h): Assimp is not ours to make crash- and
+ * Assimp triangulates, merges identical vertices and makes smooth normals
+ * where a mesh has none; the scene is flattened here, not by Assimp's
+ * aiProcess_PreTransformVertices, which merges the meshes that share a
+ * material: each node's instance of a mesh (assimp_instances.h) is placed
+ * by its node transforms in double and becomes its own part, so part ids
+ * are an instance mask. Its world is right-handed y-up like OBJ's, so the
+ * same flip applies: z negated (of positions and normals) and each
+ * triangle (a, b, c) written as (a, c, b). Instances follow in node order,
+ * faces in face order: triangle ids count them so. Points and lines are
+ * left out. Each of the scene's materials becomes a mesh material (its
+ * colour factor, its base-colour or diffuse texture, glTF's alpha mode and
+ * cutoff), and each part names its mesh's. Positions are stored relative
+ * to a far mesh's centre, as OBJ's are. A texture embedded in the file
+ * (.glb, FBX) is decoded here; one beside it is named by texture_path,
+ * found by texture_find.h's rules. An instance that a mirroring node
+ * transform places (its determinant negative) keeps its outward faces
+ * front faces (glTF requires it; a DirectX .x file exported from Blender
+ * mirrors its root frame): a mesh placed mirrored alone has its winding
+ * reversed before post-processing (sr_assimp_unmirror), a mesh placed both
+ * ways its mirrored instances' reversed here. Morph targets are applied at
+ * their default weights and skinned meshes kept in their bind pose before
+ * post-processing (assimp_report.h). The import runs in a child
+ * process (isolated_load.h): Assimp is not ours to make crash- and
  * hang-free.
  */
 #include <assimp/GltfMaterial.h>
@@ -42,13 +45,15 @@
 #include "mesh_loaders.h"
 #include "mesh_origin.h"
 #include "obj_parse.h"
+#include "assimp_instances.h"
 #include "assimp_report.h"
 #include "texture_find.h"
 #include "texture_read.h"
 
-#define IMPORT_STEPS                                                                                      \
-    (aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |         \
-     aiProcess_GenSmoothNormals | aiProcess_SortByPType | aiProcess_FindInvalidData)
+/* The steps aiImportFile would run, in two calls (Assimp orders the steps of
+ * one call itself): between them, which meshes have normals of their own. */
+#define SHAPE_STEPS (aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_FindInvalidData)
+#define NORMAL_STEPS (aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals)
 
 /* After aiProcess_SortByPType a mesh holds one kind of primitive (the
  * n-gon flag aside); triangles are the ones drawn. */
@@ -119,14 +124,16 @@ static struct aiColor4D material_color(const struct aiMaterial *mat, bool emissi
 /* What the scene needs, counted before anything is allocated for it. */
 typedef struct scene_counts {
     uint64_t vertices, indices;
-    uint32_t parts; /* drawn meshes: at least one triangle */
+    uint32_t parts; /* drawn instances: at least one triangle */
     bool normals, uvs, colors;
 } scene_counts;
 
-static bool count_scene(const struct aiScene *sc, const char *path, scene_counts *n, sr_error *err)
+static bool count_scene(const struct aiScene *sc, const sr_assimp_instances *list, const char *path, scene_counts *n,
+                        sr_error *err)
 {
     *n = (scene_counts){ 0 };
-    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+    for (uint32_t k = 0; k < list->count; k++) {
+        const unsigned i = list->at[k].mesh;
         const struct aiMesh *m = sc->mMeshes[i];
         if (!is_kept(sc, m))
             continue;
@@ -290,21 +297,37 @@ static bool build_materials(const struct aiScene *sc, const char *path, sr_mesh 
     return true;
 }
 
-static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double origin[3])
+/* An instance's normal in softrast's world. Assimp made a mesh's missing
+ * normals from its winding before placing; an instance drawn with that
+ * winding under a mirroring transform (a mesh sr_assimp_unmirror turned)
+ * has them turned back (mirrored edges flip their cross product), so they
+ * match normals made from the placed triangles. */
+static void place_normal(const sr_assimp_instance *in, const struct aiVector3D *n, bool generated, vec3 out)
+{
+    double world[3];
+    sr_assimp_instance_turn(in, n, world);
+    const double sign = generated && in->turned ? -1.0 : 1.0;
+    glm_vec3_copy((vec3){ (float)(sign * world[0]), (float)(sign * world[1]), (float)(-sign * world[2]) }, out);
+}
+
+static void copy_vertices(const struct aiScene *sc, const sr_assimp_instances *list, const bool *generated,
+                          sr_mesh *mesh, const double origin[3])
 {
     uint32_t v = 0, x = 0, part = 0;
-    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
-        const struct aiMesh *m = sc->mMeshes[i];
+    for (uint32_t k = 0; k < list->count; k++) {
+        const sr_assimp_instance *in = &list->at[k];
+        const struct aiMesh *m = sc->mMeshes[in->mesh];
         if (!is_kept(sc, m))
             continue;
         const bool colored = has_colors(m);
         for (unsigned j = 0; j < m->mNumVertices; j++, v++) {
-            const struct aiVector3D p = m->mVertices[j];
-            const double world[3] = { p.x, p.y, -(double)p.z };
-            for (int k = 0; k < 3; k++)
-                mesh->positions[v][k] = (float)(world[k] - origin[k]);
+            double world[3];
+            sr_assimp_instance_place(in, &m->mVertices[j], world);
+            world[2] = -world[2];
+            for (int c = 0; c < 3; c++)
+                mesh->positions[v][c] = (float)(world[c] - origin[c]);
             if (mesh->normals && m->mNormals)
-                glm_vec3_copy((vec3){ m->mNormals[j].x, m->mNormals[j].y, -m->mNormals[j].z }, mesh->normals[v]);
+                place_normal(in, &m->mNormals[j], generated[in->mesh], mesh->normals[v]);
             if (mesh->uvs && m->mTextureCoords[0])
                 glm_vec2_copy((vec2){ m->mTextureCoords[0][j].x, m->mTextureCoords[0][j].y }, mesh->uvs[v]);
             if (mesh->colors) {
@@ -318,9 +341,13 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
                 continue;
             const unsigned *c = m->mFaces[f].mIndices;
             uint32_t base = v - m->mNumVertices;
+            /* The z flip reverses the winding; a mirrored instance of a
+             * mesh sr_assimp_unmirror left as it was (placed plain too)
+             * reverses it back, its outward faces staying front faces. */
+            const bool keep = in->mirrored && !in->turned;
             mesh->indices[x++] = base + c[0];
-            mesh->indices[x++] = base + c[2];
-            mesh->indices[x++] = base + c[1];
+            mesh->indices[x++] = base + c[keep ? 1 : 2];
+            mesh->indices[x++] = base + c[keep ? 2 : 1];
         }
         if (x / 3 > first)
             mesh->parts[part++] = (sr_mesh_part){ first, x / 3 - first,
@@ -329,13 +356,17 @@ static void copy_vertices(const struct aiScene *sc, sr_mesh *mesh, const double 
 }
 
 /* The bounds in double of the flipped positions, and the origin they give. */
-static bool scene_origin(const struct aiScene *sc, const char *path, double origin[3], sr_error *err)
+static bool scene_origin(const struct aiScene *sc, const sr_assimp_instances *list, const char *path, double origin[3],
+                         sr_error *err)
 {
     double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+    for (uint32_t n = 0; n < list->count; n++) {
+        const unsigned i = list->at[n].mesh;
         const struct aiMesh *m = sc->mMeshes[i];
         for (unsigned j = 0; is_kept(sc, m) && j < m->mNumVertices; j++) {
-            const double p[3] = { m->mVertices[j].x, m->mVertices[j].y, -(double)m->mVertices[j].z };
+            double p[3];
+            sr_assimp_instance_place(&list->at[n], &m->mVertices[j], p);
+            p[2] = -p[2];
             for (int k = 0; k < 3; k++) {
                 if (!isfinite(p[k]))
                     return sr_error_set(err, "%s: mesh %u has a non-finite position", path, i);
@@ -351,20 +382,47 @@ static bool scene_origin(const struct aiScene *sc, const char *path, double orig
     return true;
 }
 
-static bool build_mesh(const struct aiScene *sc, const char *path, sr_mesh *mesh, sr_error *err)
+static bool build_mesh(const struct aiScene *sc, const sr_assimp_instances *list, const bool *generated,
+                       const char *path, sr_mesh *mesh, sr_error *err)
 {
     scene_counts n;
     double origin[3];
-    if (!count_scene(sc, path, &n, err) || !scene_origin(sc, path, origin, err) ||
+    if (!count_scene(sc, list, path, &n, err) || !scene_origin(sc, list, path, origin, err) ||
         !sr_mesh_alloc(mesh, (uint32_t)n.vertices, (uint32_t)n.indices, n.normals, n.uvs, n.colors, err))
         return false;
     mesh->parts = calloc(n.parts ? n.parts : 1, sizeof *mesh->parts);
     if (!mesh->parts)
         return sr_error_set(err, "%s: out of memory", path);
     mesh->part_count = n.parts;
-    copy_vertices(sc, mesh, origin);
+    copy_vertices(sc, list, generated, mesh, origin);
     memcpy(mesh->origin, origin, sizeof mesh->origin);
     return true;
+}
+
+/* Assimp 5.2's SortByPType crashes on a mesh without faces, which a file
+ * with faces elsewhere may hold (an empty STL solid): marked as points, it
+ * is left alone, and not drawn. */
+static void mark_faceless(const struct aiScene *sc)
+{
+    for (unsigned i = 0; i < sc->mNumMeshes; i++)
+        if (sc->mMeshes[i]->mNumFaces == 0) /* the child's own copy of the scene, ours to change */
+            sc->mMeshes[i]->mPrimitiveTypes = aiPrimitiveType_POINT;
+}
+
+/* The post-processing in two calls; generated[i] says whether mesh i's
+ * normals are Assimp's own (NULL when out of memory). */
+static const struct aiScene *post_process(const struct aiScene *sc, bool **generated)
+{
+    if (!is_point_cloud(sc)) {
+        mark_faceless(sc);
+        sc = aiApplyPostProcessing(sc, SHAPE_STEPS);
+    }
+    *generated = sc ? calloc(sc->mNumMeshes ? sc->mNumMeshes : 1, sizeof **generated) : NULL;
+    if (!sc || !*generated || is_point_cloud(sc))
+        return sc;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++)
+        (*generated)[i] = sc->mMeshes[i]->mNormals == NULL;
+    return aiApplyPostProcessing(sc, NORMAL_STEPS);
 }
 
 /* Assimp's reason on one line: it may quote bytes of the file (an FBX
@@ -387,18 +445,25 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
     const struct aiScene *sc = aiImportFile(path, 0);
     if (!sc)
         return import_error(path, err);
-    uint32_t mirrored = sr_assimp_unmirror(sc, report);
+    uint32_t mirrored = sr_assimp_unmirror(sc);
     sr_assimp_pose pose = sr_assimp_static_pose(sc);
-    if (!is_point_cloud(sc))
-        sc = aiApplyPostProcessing(sc, IMPORT_STEPS); /* the steps aiImportFile would run, in its order */
-    if (!sc)
+    bool *generated = NULL;
+    sc = post_process(sc, &generated);
+    if (!sc) {
+        free(generated);
         return import_error(path, err);
-    bool ok = build_mesh(sc, path, mesh, err) && find_texture(sc, path, mesh, texture, err) &&
-              build_materials(sc, path, mesh, texture, err);
+    }
+    sr_assimp_instances list = { 0 };
+    bool ok = (generated && sr_assimp_instances_find(sc, SR_MAX_MESH_TRIANGLES, &list)) ||
+              sr_error_set(err, "%s: out of memory, or more than %u mesh instances", path, SR_MAX_MESH_TRIANGLES);
+    ok = ok && build_mesh(sc, &list, generated, path, mesh, err) && find_texture(sc, path, mesh, texture, err) &&
+         build_materials(sc, path, mesh, texture, err);
     if (ok && report) {
         report->mirrored_meshes = mirrored;
-        ok = sr_assimp_report(sc, path, pose, report) || sr_error_set(err, "%s: out of memory", path);
+        ok = sr_assimp_report(sc, &list, path, pose, report) || sr_error_set(err, "%s: out of memory", path);
     }
+    sr_assimp_instances_free(&list);
+    free(generated);
     aiReleaseImport(sc);
     if (!ok)
         sr_mesh_free(mesh);

@@ -50,23 +50,18 @@ static void reverse_faces(struct aiMesh *m)
     }
 }
 
-uint32_t sr_assimp_unmirror(const struct aiScene *sc, sr_load_report *report)
+uint32_t sr_assimp_unmirror(const struct aiScene *sc)
 {
     uint8_t *placed = calloc(sc->mNumMeshes ? sc->mNumMeshes : 1, 1);
     if (!placed)
         return 0;
     mark_placements(sc, sc->mRootNode, false, placed, 0);
-    uint32_t reversed = 0, both = 0;
-    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+    uint32_t reversed = 0;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++)
         if (placed[i] == PLACED_MIRRORED) {
             reverse_faces(sc->mMeshes[i]); /* the child's own copy of the scene, ours to change */
             reversed++;
         }
-        both += placed[i] == (PLACED_PLAIN | PLACED_MIRRORED);
-    }
-    if (both && report)
-        sr_report_warn(report, "%u meshes are placed both mirrored and not; their mirrored copies are drawn inside out",
-                       both);
     free(placed);
     return reversed;
 }
@@ -314,7 +309,8 @@ static int32_t part_texture(const struct aiScene *sc, const struct aiMaterial *m
     return t;
 }
 
-bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_assimp_pose pose, sr_load_report *r)
+bool sr_assimp_report(const struct aiScene *sc, const sr_assimp_instances *list, const char *path,
+                      sr_assimp_pose pose, sr_load_report *r)
 {
     uint32_t mirrored = r->mirrored_meshes, warnings = r->warning_count;
     char kept[SR_REPORT_MAX_WARNINGS][SR_REPORT_TEXT];
@@ -330,8 +326,8 @@ bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_assimp_pose
     r->cameras = sc->mNumCameras;
     r->lights = sc->mNumLights;
     uint32_t first = 0;
-    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
-        const struct aiMesh *m = sc->mMeshes[i];
+    for (uint32_t i = 0; i < list->count; i++) {
+        const struct aiMesh *m = sc->mMeshes[list->at[i].mesh];
         if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || m->mNumVertices == 0) {
             for (unsigned f = 0; f < m->mNumFaces; f++) {
                 r->points += m->mFaces[f].mNumIndices == 1;

@@ -7,22 +7,23 @@
 #include <assimp/scene.h>
 #include <stdint.h>
 
+#include "assimp_instances.h"
 #include "load_report.h"
 
-/* Before the scene is flattened: reverses the faces of every mesh that
- * mirroring node transforms alone place (their global determinant
- * negative), so flattening keeps its outward faces outward. A mesh placed
- * both mirrored and not is left as it is, with a warning in report (which
- * may be NULL). Returns the meshes reversed. */
-uint32_t sr_assimp_unmirror(const struct aiScene *sc, sr_load_report *report);
+/* Before the scene is post-processed: reverses the faces of every mesh
+ * that mirroring node transforms alone place (their global determinant
+ * negative), so its outward faces stay outward and its made normals point
+ * out. A mesh placed both mirrored and not is left as it is: assimp.c
+ * reverses its mirrored instances. Returns the meshes reversed. */
+uint32_t sr_assimp_unmirror(const struct aiScene *sc);
 
-/* What flattening the scene drops, counted before it: animations, and
- * meshes skinned or with morph targets. */
+/* What a static scene leaves out, counted before post-processing:
+ * animations, and meshes skinned or with morph targets. */
 typedef struct sr_assimp_pose {
     uint32_t animations, skinned, morphed;
 } sr_assimp_pose;
 
-/* Before the scene is flattened: poses it statically and counts what that
+/* Before the scene is post-processed: poses it statically and counts what that
  * leaves out. Morph targets are applied at their default weights (glTF's
  * mesh.weights; Assimp stores each target whole, so a vertex moves by
  * weight x (target - base)), to positions and normals; skinned meshes stay
@@ -36,8 +37,9 @@ sr_assimp_pose sr_assimp_static_pose(const struct aiScene *sc);
  * *emissive is set. False when it draws none. */
 bool sr_assimp_material_texture(const struct aiMaterial *mat, struct aiString *name, bool *emissive);
 
-/* The flattened scene's report, with pose (counted before flattening);
- * false when out of memory. */
-bool sr_assimp_report(const struct aiScene *sc, const char *path, sr_assimp_pose pose, sr_load_report *report);
+/* The scene's report, a part for each instance in list, with pose
+ * (counted before post-processing); false when out of memory. */
+bool sr_assimp_report(const struct aiScene *sc, const sr_assimp_instances *list, const char *path,
+                      sr_assimp_pose pose, sr_load_report *report);
 
 #endif

@@ -38,6 +38,9 @@ typedef struct obj_reader {
     sr_array positions, colors, uvs, normals; /* dvec3, vec3, vec2, vec3 as read */
     sr_array corners;                         /* corner per mesh vertex */
     sr_array indices;                         /* uint32_t, three per triangle */
+    sr_array file_faces;                      /* uint32_t per triangle, its f line's index; kept from the
+                                                 first polygon on (before it, triangle i is face i) */
+    uint32_t faces;                           /* f lines so far */
     uint32_t *map;                            /* open addressing: corner id + 1, 0 = free */
     size_t map_cap;                           /* a power of two, kept at least half free */
     bool any_uv, any_normal;
@@ -367,6 +370,25 @@ static bool add_to_part(obj_reader *o, size_t first_index)
     return true;
 }
 
+/* The face's triangles (from first_index on) in the face map: a polygon
+ * is fanned into several, and from the first one on, each triangle names
+ * its face (the triangles before it are the faces before it). */
+static bool map_face(obj_reader *o, size_t first_index)
+{
+    size_t before = first_index / 3, added = (o->indices.count - first_index) / 3;
+    if (o->file_faces.count == 0 && added == 1)
+        return true;
+    size_t from = o->file_faces.count == 0 ? 0 : before;
+    uint32_t *map = sr_array_grow(&o->file_faces, before + added - from, sizeof *map);
+    if (!map)
+        return out_of_memory(o);
+    for (size_t i = from; i < before; i++)
+        map[i - from] = (uint32_t)i;
+    for (size_t i = 0; i < added; i++)
+        map[before - from + i] = o->faces;
+    return true;
+}
+
 /* Streams the fan: on reading corner k >= 2 the fan triangle (c0, c(k-1), ck)
  * is complete, and it is written reversed as (c0, ck, c(k-1)). */
 static bool parse_face(obj_reader *o, char *cursor)
@@ -387,6 +409,9 @@ static bool parse_face(obj_reader *o, char *cursor)
         return sr_line_fail(&o->in, o->err, "a face needs at least 3 vertices, got %zu", n);
     if (!o->texture && o->material >= 0)
         o->texture = current_material(o)->map_kd;
+    if (!map_face(o, first_index))
+        return false;
+    o->faces++;
     return add_to_part(o, first_index) && report_face(o, first_index);
 }
 
@@ -563,7 +588,10 @@ static bool build_mesh(obj_reader *o, sr_mesh *mesh)
         sr_mesh_free(mesh);
         return sr_error_set(o->err, "%s: out of memory", o->in.path);
     }
-    /* Hand the index array over rather than copy it: sr_mesh_free frees it. */
+    /* Hand the index array and face map over rather than copy them:
+     * sr_mesh_free frees them. */
+    mesh->file_faces = o->file_faces.data;
+    o->file_faces = (sr_array){ 0 };
     mesh->indices = o->indices.data;
     mesh->index_count = (uint32_t)o->indices.count;
     mesh->topology = SR_TRIANGLE_LIST;
@@ -580,6 +608,7 @@ static void obj_reader_free(obj_reader *o)
     sr_array_free(&o->normals);
     sr_array_free(&o->corners);
     sr_array_free(&o->indices);
+    sr_array_free(&o->file_faces);
     sr_array_free(&o->parts);
     sr_array_free(&o->used);
     free(o->map);

@@ -43,6 +43,7 @@ void sr_mesh_free(sr_mesh *mesh)
     free(mesh->indices);
     free(mesh->texture_path);
     free(mesh->parts);
+    free(mesh->file_faces);
     for (uint32_t i = 0; mesh->materials && i < mesh->material_count; i++)
         free(mesh->materials[i].texture_path);
     free(mesh->materials);

@@ -403,6 +403,19 @@ static void resolve_run(const resolve_job *job, const resolved_triangle *t, int 
         }
 }
 
+/* A row of face ids from its ids: the plane itself, or each triangle's
+ * file face + 1 where the file's faces are asked for and the mesh has them. */
+static void write_face_ids(const sr_mesh *mesh, const sr_pinhole_outputs *out, const uint32_t *ids, int width,
+                           uint32_t *face_ids)
+{
+    if (!out->file_faces || !mesh->file_faces) {
+        memcpy(face_ids, ids, (size_t)width * sizeof *ids);
+        return;
+    }
+    for (int x = 0; x < width; x++)
+        face_ids[x] = ids[x] ? mesh->file_faces[ids[x] - 1] + 1 : 0;
+}
+
 /* Rows y0 … y1 − 1, in runs of pixels that show one triangle: a run sets
  * its triangle up once (or finds it in the cache) and each output is a
  * loop of its own over the run. */
@@ -416,7 +429,7 @@ static void resolve_rows(const resolve_job *job, int y0, int y1, double *z)
     for (int y = y0; y < y1; y++) {
         const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
         if (out->face_ids) /* the id + 1 each pixel shows, 0 where nothing: the plane itself */
-            memcpy(&out->face_ids[(size_t)y * (size_t)width], ids, (size_t)width * sizeof *ids);
+            write_face_ids(job->mesh, out, ids, width, &out->face_ids[(size_t)y * (size_t)width]);
         for (int x = 0, end; x < width; x = end) {
             uint32_t id = ids[x];
             for (end = x + 1; end < width && ids[end] == id;)
@@ -454,6 +467,8 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
 {
     if (!mesh->positions)
         return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
+    if (mesh->topology != SR_TRIANGLE_LIST && mesh->topology != SR_TRIANGLE_STRIP)
+        return sr_error_set(err, "view depth meets rays with triangles: a draw of points or lines has none");
     if (out->normals && out->interpolated_normals && !mesh->normals)
         return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
     /* Each pixel's values are its own, whichever thread computes them: the

@@ -24,6 +24,8 @@ static inline uint64_t store(const sr_point_line_target *t, const sr_fragment *f
     if (!sr_depth_passes(f->z, fb->depth[f->at], fb->reversed_z))
         return 0;
     fb->depth[f->at] = f->z;
+    if (fb->ids)
+        fb->ids[f->at] = f->id + 1u;
     if (t->mode != SR_SHADE_DEPTH)
         fb->color[f->at] = f->color;
     return 1;

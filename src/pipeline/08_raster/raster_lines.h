@@ -22,7 +22,8 @@
  * point's depth and the varyings its vertex has (nothing to interpolate,
  * so no division by w and back). Every fragment is moved `depth_bias`
  * nearer, then tested (LESS, GREATER for reversed z) and written as a
- * triangle's are.
+ * triangle's are, the id + 1 into the framebuffer's ids plane where it
+ * has one.
  *
  * A fragment is stored at once, or, when the target has bins, appended to
  * the bin of its band of rows, to be stored later by the thread that owns
