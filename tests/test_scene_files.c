@@ -426,11 +426,12 @@ static void write_two_quads(const char *materials)
 }
 
 /* The colours at the middle of the left and right quads of two.gltf,
- * texture-shaded, are these. */
+ * texture-shaded and seen face on (the quads span pixels 18 to 45), are
+ * these. */
 static void expect_left_and_right(uint32_t left, uint32_t right)
 {
     sr_texture image;
-    render_image("two.gltf", 64, 32, "--shade texture", &image);
+    render_image("two.gltf", 64, 32, "--shade texture --eye 0,0,-4", &image);
     uint32_t l = image.texels[16 * 64 + 22] & 0xFFFFFFu, r = image.texels[16 * 64 + 42] & 0xFFFFFFu;
     sr_texture_free(&image);
     cr_expect(l == left && r == right, "left %06x, right %06x", l, r);
