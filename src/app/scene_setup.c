@@ -211,7 +211,7 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
     sr_scene_print_warnings(&scene->report);
     decode_display_colours(s, &scene->mesh);
     sr_axis up = s->up_axis >= 0 ? (sr_axis)s->up_axis : (sr_axis)scene->report.up;
-    sr_upright_matrix(up, scene->mesh.z_negated, scene->upright);
+    sr_upright_matrix(up, (sr_axis)scene->report.front, scene->mesh.z_negated, scene->upright);
     bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);
     if (s->texture_path || !wants_texture)
         sr_texture_free(&scene->texture); /* the file's own, embedded: replaced, or not needed */
