@@ -326,6 +326,24 @@ Test(scene_files, an_md2_faces_the_default_camera)
     cr_expect_eq(seen[2], 0, "the side facing away: %d pixels", seen[2]);
 }
 
+/* An X3D url list, joined by Assimp as "a""b": the first name found. */
+Test(scene_files, an_x3d_url_list_is_its_first_texture_found)
+{
+    char model[640];
+    snprintf(model, sizeof model, "%s/scene.x3d", temp_dir);
+    write_red_png("b.png");
+    char *found = sr_texture_find(model, "a.png\"\"b.png\"\"c.gif");
+    cr_assert_not_null(found);
+    cr_expect_not_null(strstr(found, "/b.png"), "%s", found);
+    free(found);
+    write_red_png("a.png");
+    found = sr_texture_find(model, "a.png\"\"b.png");
+    cr_assert_not_null(found);
+    cr_expect_not_null(strstr(found, "/a.png"), "%s", found);
+    free(found);
+    cr_expect_null(sr_texture_find(model, "c.gif\"\"d.gif"), "neither lies beside it");
+}
+
 /* Assimp names an MD2 skin the file does not name "$texture_dummy.bmp";
  * viewers find sydney.md2's skin as sydney.bmp beside it. */
 Test(scene_files, an_unnamed_md2_skin_is_the_models_stem)
