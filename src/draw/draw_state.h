@@ -172,6 +172,7 @@ typedef struct sr_draw_state {
     bool subpixel_lanes;  /* the sub-pixel lanes drop the triangles that draw nothing (primitives.c) */
     bool double_later;    /* the vertex phase maps the float half of the vertices inside, the verdicts
                              the double half of those of the triangles they keep (primitives.c) */
+    bool verdicts_alone;  /* one thread takes every verdict: the double half's flags need no exchange */
     sr_subpixel_rules subpixel;
 } sr_draw_state;
 

@@ -176,21 +176,38 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
  * bands read the snapped points, and the triangles are drawn in a later
  * phase, or by the one thread that mapped them. Out of line: its arrays
  * on the stack made every batch's verdicts of a draw without it pay for
- * them. */
+ * them.
+ * The vertices not yet mapped are listed first, their positions
+ * prefetched, and only then taken: an atomic exchange waits for every
+ * load before it, so taking each vertex as it was read left each flag's
+ * and each position's wait on memory one after the other. One thread
+ * alone takes them with plain stores. */
 static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept,
                                                          int count)
 {
     atomic_uchar *mapped = st->ws->double_mapped.data;
-    uint32_t taken[3 * SR_VERDICT_BATCH];
-    int n = 0;
+    const sr_mesh *source = st->desc->mesh;
+    uint32_t unmapped[3 * SR_VERDICT_BATCH], taken[3 * SR_VERDICT_BATCH];
+    int m = 0, n = 0;
     for (int j = 0; j < count; j++) {
         if (kept[j].planes)
             continue;
-        for (int c = 0; c < 3; c++) {
+        for (int c = 0; c < 3; c++) { /* no branch on the flag: its loads overlap */
             uint32_t i = kept[j].idx[c];
-            if (!atomic_load_explicit(&mapped[i], memory_order_relaxed) &&
-                !atomic_exchange_explicit(&mapped[i], 1, memory_order_relaxed))
+            unmapped[m] = i;
+            m += !atomic_load_explicit(&mapped[i], memory_order_relaxed);
+            __builtin_prefetch(source->clip_positions ? (const void *)source->clip_positions[i]
+                                                      : (const void *)source->positions[i]);
+        }
+    }
+    for (int k = 0; k < m; k++) {
+        uint32_t i = unmapped[k];
+        if (!st->verdicts_alone) {
+            if (!atomic_exchange_explicit(&mapped[i], 1, memory_order_relaxed))
                 taken[n++] = i;
+        } else if (!atomic_load_explicit(&mapped[i], memory_order_relaxed)) { /* listed twice in the batch */
+            atomic_store_explicit(&mapped[i], 1, memory_order_relaxed);
+            taken[n++] = i;
         }
     }
     /* The mesh and the matrix in locals: read through pointers, they were
