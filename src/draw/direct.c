@@ -28,8 +28,7 @@ static void observe(const sr_draw_state *st, const sr_screen_vertex *const tri[3
 /* A triangle the sub-pixel lanes found covers the one pixel centre of its
  * scan box (one_pixel) is drawn from that one-bit mask, as the tiles draw
  * a tiny triangle they tested while binning: no edges in a mode without
- * varyings, no coverage test in any. Its box over the sink's rows is that
- * pixel or nothing. */
+ * varyings, no coverage test in any. */
 static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
                        int64_t area2, uint32_t id, bool clipped, bool one_pixel)
 {
@@ -39,14 +38,9 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], 
     if (s->observer)
         observe(st, tri, clipped, id);
     bool simd = false;
-    int bits = st->vp.subpixel_bits;
-    sr_raster_rect box;
-    if (!one_pixel)
-        sink->pixels->stats.fragments +=
-            sr_raster_triangle_on(st->fb, sink->rect, bits, st->mode, &st->shade, tri, area2, id, &simd);
-    else if (box = sr_raster_scan_box_of(tri, sink->rect, bits), box.x0 < box.x1 && box.y0 < box.y1)
-        sink->pixels->stats.fragments +=
-            sr_raster_tiny_triangle(st->fb, box, bits, st->mode, &st->shade, tri, area2, 1, id, &simd);
+    sink->pixels->stats.fragments +=
+        (one_pixel ? sr_raster_one_pixel : sr_raster_triangle_on)(st->fb, sink->rect, st->vp.subpixel_bits, st->mode,
+                                                                  &st->shade, tri, area2, id, &simd);
     sink->pixels->simd_draws += simd;
 }
 
