@@ -426,6 +426,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     if (st->study.times)
         st->study.times->path = path;
     bool direct = path == SR_PATH_DIRECT;
+    st->verdicts_alone = direct || st->threads == 1;
     /* Nothing is written before every check has passed; the tiles and the
      * row bands clear the rows they draw, as they draw them. */
     if (st->desc->clear && direct)

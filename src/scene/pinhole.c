@@ -416,6 +416,40 @@ static void write_face_ids(const sr_mesh *mesh, const sr_pinhole_outputs *out, c
         face_ids[x] = ids[x] ? mesh->file_faces[ids[x] - 1] + 1 : 0;
 }
 
+/* Prefetches what the triangles of row y need: their indices (stage 0)
+ * or, those fetched a row before, their vertices (stage 1); one fetch
+ * per run. On a dense mesh nearly every pixel shows a triangle of its own,
+ * far from its neighbours' in the mesh's arrays, and each set-up would
+ * wait on memory twice (its indices, then its vertices and normals), one
+ * triangle after the other; resolve_rows fetches the indices two rows ahead and
+ * the vertices one row ahead, so a row's loads are under way at once. */
+static void prefetch_row(const resolve_job *job, int y, int stage)
+{
+    int width = job->fb->width;
+    const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
+    const sr_mesh *mesh = job->mesh;
+    bool file_faces = job->out->face_ids && job->out->file_faces && mesh->file_faces;
+    bool vertex_normals = job->out->normals && job->out->interpolated_normals;
+    for (int x = 0; x < width; x++) {
+        uint32_t id = ids[x];
+        if (id == 0 || (x > 0 && ids[x - 1] == id))
+            continue;
+        if (stage == 0) {
+            __builtin_prefetch(sr_assemble_slot_indices(mesh, id - 1));
+            if (file_faces)
+                __builtin_prefetch(&mesh->file_faces[id - 1]);
+            continue;
+        }
+        uint32_t idx[3];
+        sr_assemble_triangle(mesh, id - 1, idx);
+        for (int k = 0; k < 3; k++) {
+            __builtin_prefetch(mesh->positions[idx[k]]);
+            if (vertex_normals)
+                __builtin_prefetch(mesh->normals[idx[k]]);
+        }
+    }
+}
+
 /* Rows y0 … y1 − 1, in runs of pixels that show one triangle: a run sets
  * its triangle up once (or finds it in the cache) and each output is a
  * loop of its own over the run. */
@@ -426,8 +460,16 @@ static void resolve_rows(const resolve_job *job, int y0, int y1, double *z)
     resolved_triangle cache[TRIANGLE_CACHE];
     for (int i = 0; i < TRIANGLE_CACHE; i++)
         cache[i].slot = UINT32_MAX;
+    for (int y = y0; y < y0 + 2 && y < y1; y++)
+        prefetch_row(job, y, 0);
+    if (y0 < y1)
+        prefetch_row(job, y0, 1);
     for (int y = y0; y < y1; y++) {
         const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
+        if (y + 2 < y1)
+            prefetch_row(job, y + 2, 0);
+        if (y + 1 < y1)
+            prefetch_row(job, y + 1, 1);
         if (out->face_ids) /* the id + 1 each pixel shows, 0 where nothing: the plane itself */
             write_face_ids(job->mesh, out, ids, width, &out->face_ids[(size_t)y * (size_t)width]);
         for (int x = 0, end; x < width; x = end) {
