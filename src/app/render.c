@@ -84,8 +84,8 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
     if (job->points && job->lines)
         return sr_error_set(err, "--points and --lines draw one or the other");
     for (int k = 0; k < SR_MEASURED_COUNT; k++)
-        if ((job->points || job->lines) && job->pinhole.paths[k])
-            return sr_error_set(err, "--points and --lines draw color and depth: not the measured outputs (--view-depth, ...)");
+        if (job->lines && job->pinhole.paths[k])
+            return sr_error_set(err, "--lines draws color and depth: not the measured outputs (--view-depth, ...)");
     if ((job->points || job->lines) && (job->dataset.poses_path || job->dataset.out_dir))
         return sr_error_set(err, "--points and --lines are not for --poses");
     if (job->dataset.poses_path || job->dataset.out_dir)
@@ -313,7 +313,10 @@ static bool render(void *j, sr_scene *scene, sr_error *err)
         sr_scene_frame_camera(&job->scene, scene);
     sr_mesh primitives = { 0 };
     sr_draw_desc lines;
+    /* A point's normal is its vertex's: made before the points borrow them. */
+    bool point_normals = job->points && job->pinhole.paths[SR_MEASURED_NORMALS] && scene->mesh.index_count;
     if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) || (pinhole && !use_pinhole(job, scene, &cam, &desc, err)) ||
+        (point_normals && !sr_mesh_compute_normals(&scene->mesh, err)) ||
         !primitives_desc(job, scene, &primitives, &desc, &lines, err))
         return false;
     bool ok = run_frames(job->frames, scene, &desc, job->lines ? &lines : NULL, &stats, &times, err) &&
