@@ -173,6 +173,7 @@ typedef struct sr_draw_state {
     bool double_later;    /* the vertex phase maps the float half of the vertices inside, the verdicts
                              the double half of those of the triangles they keep (primitives.c) */
     sr_subpixel_rules subpixel;
+    const struct sr_line_filter *line_filter; /* a line draw's, or NULL (draw.h) */
 } sr_draw_state;
 
 /* The bytes of an sr_screen_vertex up to its last varying, with
