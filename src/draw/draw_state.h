@@ -174,6 +174,7 @@ typedef struct sr_draw_state {
                              the double half of those of the triangles they keep (primitives.c) */
     bool verdicts_alone;  /* one thread takes every verdict: the double half's flags need no exchange */
     sr_subpixel_rules subpixel;
+    const struct sr_line_filter *line_filter; /* a line draw's, or NULL (draw.h) */
 } sr_draw_state;
 
 /* The bytes of an sr_screen_vertex up to its last varying, with
