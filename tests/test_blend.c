@@ -1,0 +1,228 @@
+/* Blending (softrast.h, sr_blend; src/pipeline/11_merge.h): exact pixels
+ * of each blend in both colour spaces on small pixel-space scenes, depth
+ * and ids kept by no_depth_write, submission order, and the same bits on
+ * every loop, path and thread count. */
+#include <criterion/criterion.h>
+#include <string.h>
+
+#include "scene_helpers.h"
+
+#define W 32
+#define H 16
+#define QUADS 3
+
+/* Full-framebuffer quads in pixel space, quad i at depth z[i] and in part
+ * i, drawn in that order, with the materials given (texture shading draws
+ * a material's colour unlit, so every pixel is known). */
+typedef struct quads {
+    sr_mesh mesh;
+    sr_mesh_part parts[QUADS];
+    sr_material materials[QUADS];
+} quads;
+
+static void quads_make(quads *q, const float z[QUADS], const sr_material m[QUADS])
+{
+    sr_error err = { "" };
+    cr_assert(sr_mesh_alloc(&q->mesh, 4 * QUADS, 6 * QUADS, true, false, false, &err), "%s", err.message);
+    for (uint32_t i = 0; i < QUADS; i++) {
+        const float xs[4] = { 0, W, 0, W }, ys[4] = { 0, 0, H, H };
+        for (uint32_t k = 0; k < 4; k++) {
+            glm_vec3_copy((vec3){ xs[k], ys[k], z[i] }, q->mesh.positions[4 * i + k]);
+            glm_vec3_copy((vec3){ 0.0f, 0.0f, -1.0f }, q->mesh.normals[4 * i + k]);
+        }
+        const uint32_t idx[6] = { 4 * i, 4 * i + 1, 4 * i + 2, 4 * i + 1, 4 * i + 3, 4 * i + 2 };
+        memcpy(q->mesh.indices + 6 * i, idx, sizeof idx);
+        q->parts[i] = (sr_mesh_part){ 2 * i, 2, i };
+        q->materials[i] = m[i];
+    }
+    q->mesh.parts = q->parts;
+    q->mesh.part_count = QUADS;
+    q->mesh.materials = q->materials;
+    q->mesh.material_count = QUADS;
+}
+
+static void quads_free(quads *q)
+{
+    q->mesh.parts = NULL;
+    q->mesh.materials = NULL;
+    sr_mesh_free(&q->mesh);
+}
+
+#define OPAQUE_RED { .base_color = { 1, 0, 0, 1 } }
+#define CLEAR { .base_color = { 0, 0, 0, 0 }, .alpha_mode = SR_ALPHA_BLEND } /* draws nothing it blends */
+
+static sr_material blend_of(float r, float g, float b, float a)
+{
+    return (sr_material){ .base_color = { r, g, b, a }, .alpha_mode = SR_ALPHA_BLEND };
+}
+
+/* desc drawn into a fresh framebuffer (cleared to black, with ids) on every
+ * loop the CPU has, one thread and three (tiles, row bands), all asserted
+ * equal; fb gets the first. */
+static void draw_everywhere(const sr_draw_desc *base, sr_framebuffer *fb)
+{
+    sr_draw_desc desc = *base;
+    desc.cull = SR_CULL_NONE;
+    desc.shade = SR_SHADE_TEXTURE;
+    scene_pixel_ortho(&desc, W, H);
+    sr_simd loops[SCENE_LOOPS];
+    size_t n = scene_available_loops(loops);
+    static const sr_draw_path paths[] = { SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_ROWS };
+    sr_error err = { "" };
+    for (size_t l = 0; l < n; l++)
+        for (size_t p = 0; p < sizeof paths / sizeof *paths; p++) {
+            sr_framebuffer out;
+            sr_stats stats;
+            scene_fb_make(&out, W, H);
+            cr_assert(sr_framebuffer_create_ids(&out, &err), "%s", err.message);
+            scene_draw_on_loop(&out, &desc, loops[l], paths[p] == SR_PATH_DIRECT ? 1 : 3, paths[p], &stats);
+            if (l == 0 && p == 0) {
+                *fb = out;
+                continue;
+            }
+            cr_assert_eq(memcmp(fb->color, out.color, W * H * sizeof(uint32_t)), 0, "%s, path %d: colours",
+                         sr_simd_name(loops[l]), (int)paths[p]);
+            cr_assert_eq(memcmp(fb->depth, out.depth, W * H * sizeof(float)), 0, "depths");
+            cr_assert_eq(memcmp(fb->ids, out.ids, W * H * sizeof(uint32_t)), 0, "ids");
+            sr_framebuffer_destroy(&out);
+        }
+}
+
+/* Every pixel of the scene drawn with this blend and colour space. */
+static uint32_t colour_of(const quads *q, sr_blend blend, sr_color_space space)
+{
+    sr_framebuffer fb;
+    draw_everywhere(&(sr_draw_desc){ .mesh = &q->mesh, .blend = blend, .color_space = space }, &fb);
+    uint32_t c = fb.color[0];
+    cr_assert_eq(scene_count_color(&fb, c), (size_t)W * H, "not one colour: %06x at 0", c);
+    sr_framebuffer_destroy(&fb);
+    return c;
+}
+
+/* Blue at alpha 0.5 (128/256) over opaque red. Raw: red 255·128/256 →
+ * 128, blue the same. sRGB: 4095 (red, linear) · ½ = 2048, encoded 188.
+ * Added: red stays, blue is half. A draw that replaces draws BLEND as
+ * MASK at 0.5: blue whole. */
+Test(blend, each_blend_over_red_in_both_colour_spaces)
+{
+    quads q;
+    quads_make(&q, (const float[QUADS]){ 0.5f, 0.25f, 0.2f },
+               (const sr_material[QUADS]){ OPAQUE_RED, blend_of(0, 0, 1, 0.5f), CLEAR });
+    cr_expect_eq(colour_of(&q, SR_BLEND_ALPHA, SR_COLOR_RAW), 0x800080u);
+    cr_expect_eq(colour_of(&q, SR_BLEND_ALPHA, SR_COLOR_SRGB), 0xBC00BCu);
+    cr_expect_eq(colour_of(&q, SR_BLEND_ADD, SR_COLOR_RAW), 0xFF0080u);
+    cr_expect_eq(colour_of(&q, SR_BLEND_ADD, SR_COLOR_SRGB), 0xFF00BCu);
+    cr_expect_eq(colour_of(&q, SR_BLEND_REPLACE, SR_COLOR_RAW), 0x0000FFu);
+    /* Premultiplied: the source is blue 0.5 already times its alpha. */
+    q.materials[1] = blend_of(0, 0, 0.5f, 0.5f);
+    cr_expect_eq(colour_of(&q, SR_BLEND_PREMULTIPLIED, SR_COLOR_RAW), 0x800080u);
+    cr_expect_eq(colour_of(&q, SR_BLEND_PREMULTIPLIED, SR_COLOR_SRGB), 0xBC00BCu);
+    /* Added past 1: clamped. */
+    q.materials[1] = blend_of(1, 1, 1, 1);
+    cr_expect_eq(colour_of(&q, SR_BLEND_ADD, SR_COLOR_RAW), 0xFFFFFFu);
+    quads_free(&q);
+}
+
+/* Alpha blending is not commutative: green then blue over red is (64,
+ * 64, 128), blue then green (64, 128, 64); each layer halves what is
+ * below (128·128/256 = 64). */
+Test(blend, layers_blend_in_submission_order)
+{
+    quads q;
+    quads_make(&q, (const float[QUADS]){ 0.5f, 0.3f, 0.25f },
+               (const sr_material[QUADS]){ OPAQUE_RED, blend_of(0, 1, 0, 0.5f), blend_of(0, 0, 1, 0.5f) });
+    cr_expect_eq(colour_of(&q, SR_BLEND_ALPHA, SR_COLOR_RAW), 0x404080u);
+    q.materials[1] = blend_of(0, 0, 1, 0.5f);
+    q.materials[2] = blend_of(0, 1, 0, 0.5f);
+    cr_expect_eq(colour_of(&q, SR_BLEND_ALPHA, SR_COLOR_RAW), 0x408040u);
+    quads_free(&q);
+}
+
+/* With no_depth_write a blended layer over an opaque draw leaves the
+ * opaque depth and ids; blended with depth writes, the layer's own. */
+Test(blend, no_depth_write_keeps_the_opaque_depth_and_ids)
+{
+    quads q;
+    quads_make(&q, (const float[QUADS]){ 0.5f, 0.25f, 0.2f },
+               (const sr_material[QUADS]){ OPAQUE_RED, blend_of(0, 0, 1, 0.5f), CLEAR });
+    for (int keep = 0; keep < 2; keep++) {
+        sr_framebuffer fb;
+        draw_everywhere(&(sr_draw_desc){ .mesh = &q.mesh, .blend = SR_BLEND_ALPHA, .no_depth_write = keep }, &fb);
+        for (int i = 0; i < W * H; i++) {
+            cr_assert_eq(fb.color[i], 0x800080u, "pixel %d: %06x", i, fb.color[i]);
+            if (keep) { /* nothing wrote depth or ids: the clear values */
+                cr_assert_eq(fb.depth[i], 1.0f, "pixel %d: depth %g", i, fb.depth[i]);
+                cr_assert_eq(fb.ids[i], 0u, "pixel %d: id %u", i, fb.ids[i]);
+            } else { /* the nearest layer's, the clear one at 0.2 (slots 4 and 5) */
+                cr_assert_eq(fb.depth[i], 0.2f, "pixel %d: depth %g", i, fb.depth[i]);
+                cr_assert(fb.ids[i] == 5u || fb.ids[i] == 6u, "pixel %d: id %u", i, fb.ids[i]);
+            }
+        }
+        sr_framebuffer_destroy(&fb);
+    }
+    quads_free(&q);
+}
+
+/* A torus of translucent triangles seen through itself (no culling, no
+ * depth writes: every layer blends over the ones before), lambert lit,
+ * in both colour spaces: every loop, path and thread count from 1 to 16
+ * gives the one-thread direct path's bits. */
+Test(blend, a_translucent_torus_is_the_same_at_every_thread_count)
+{
+    sr_mesh torus;
+    sr_error err = { "" };
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 60, 30, &err), "%s", err.message);
+    sr_material glass = blend_of(0.9f, 0.5f, 0.2f, 0.4f);
+    sr_mesh_part all = { 0, sr_mesh_triangle_slots(&torus), 0 };
+    torus.materials = &glass;
+    torus.material_count = 1;
+    torus.parts = &all;
+    torus.part_count = 1;
+    sr_camera cam = scene_camera(0, 1.1f, -1.9f, 0, 0, 0, 60.0f, SR_CAMERA_NEAR, SR_CAMERA_FAR);
+    for (int space = 0; space < 2; space++) {
+        sr_draw_desc desc = { .mesh = &torus, .blend = SR_BLEND_ALPHA, .no_depth_write = true, .cull = SR_CULL_NONE,
+                              .color_space = (sr_color_space)space };
+        scene_camera_desc(&desc, &cam, 160, 96);
+        sr_framebuffer one;
+        sr_stats one_stats;
+        scene_fb_make(&one, 160, 96);
+        scene_draw_on_loop(&one, &desc, SR_SIMD_SCALAR, 1, SR_PATH_DIRECT, &one_stats);
+        cr_assert_gt(one_stats.fragments, 160u * 96u / 4, "too little drawn to compare");
+        static const int counts[] = { 1, 2, 3, 4, 7, 16 };
+        static const sr_draw_path paths[] = { SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_ROWS };
+        for (size_t p = 0; p < sizeof paths / sizeof *paths; p++)
+            for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
+                if (paths[p] == SR_PATH_DIRECT && counts[c] > 1)
+                    continue;
+                sr_framebuffer many;
+                sr_stats stats;
+                scene_fb_make(&many, 160, 96);
+                scene_draw_on_loop(&many, &desc, SR_SIMD_AUTO, counts[c], paths[p], &stats);
+                cr_assert_eq(memcmp(one.color, many.color, 160 * 96 * sizeof(uint32_t)), 0,
+                             "space %d, path %d, %d threads: colours", space, (int)paths[p], counts[c]);
+                cr_assert_eq(memcmp(&one_stats, &stats, sizeof stats), 0, "counts");
+                sr_framebuffer_destroy(&many);
+            }
+        sr_framebuffer_destroy(&one);
+    }
+    torus.materials = NULL;
+    torus.parts = NULL;
+    sr_mesh_free(&torus);
+}
+
+Test(blend, an_unknown_blend_is_refused)
+{
+    quads q;
+    quads_make(&q, (const float[QUADS]){ 0.5f, 0.25f, 0.2f },
+               (const sr_material[QUADS]){ OPAQUE_RED, OPAQUE_RED, OPAQUE_RED });
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    sr_draw_desc desc = { .mesh = &q.mesh, .blend = (sr_blend)4 };
+    scene_pixel_ortho(&desc, W, H);
+    sr_error err = { "" };
+    cr_assert_not(sr_draw(&fb, &desc, NULL, &err));
+    cr_assert_not_null(strstr(err.message, "blend"), "%s", err.message);
+    cr_assert_eq(scene_count_color(&fb, SCENE_BACKGROUND), (size_t)W * H, "the framebuffer was touched");
+    sr_framebuffer_destroy(&fb);
+    quads_free(&q);
+}
