@@ -366,6 +366,22 @@ static PyObject *mesh_texture(sr_py_mesh *self, void *closure)
     return (PyObject *)a;
 }
 
+/* The file's face of each triangle, int64 (M,) from 0: a polygon fanned
+ * into triangles names one face for all of them (identity where the
+ * loader kept no map: a mesh from arrays, or a file of triangles). */
+static PyObject *mesh_file_faces(sr_py_mesh *self, void *closure)
+{
+    (void)closure;
+    npy_intp count = sr_mesh_triangle_slots(&self->mesh);
+    PyArrayObject *a = (PyArrayObject *)PyArray_SimpleNew(1, &count, NPY_INT64);
+    if (!a)
+        return NULL;
+    int64_t *out = PyArray_DATA(a);
+    for (npy_intp i = 0; i < count; i++)
+        out[i] = self->mesh.file_faces ? self->mesh.file_faces[i] : i;
+    return (PyObject *)a;
+}
+
 static PyObject *mesh_vertex_count(sr_py_mesh *self, void *closure)
 {
     (void)closure;
@@ -408,6 +424,9 @@ static PyGetSetDef mesh_getset[] = {
     { "uvs", (getter)mesh_attribute, NULL, "a copy of the texture coordinates, (N, 2), or None", (void *)&UVS },
     { "colors", (getter)mesh_attribute, NULL, "a copy of the vertex colours, (N, 3) 0..1, or None", (void *)&COLORS },
     { "texture", (getter)mesh_texture, NULL, "a copy of the texture, (H, W, 3) uint8, or None", NULL },
+    { "file_faces", (getter)mesh_file_faces, NULL,
+      "int64 (M,): the file's face (from 0) of each triangle; face_ids k + 1 came from file face file_faces[k]",
+      NULL },
     { "vertex_count", (getter)mesh_vertex_count, NULL, "number of vertices", NULL },
     { "triangle_count", (getter)mesh_triangle_count, NULL, "number of triangles (face ids run 1 to this)", NULL },
     { "part_count", (getter)mesh_part_count, NULL, "the largest part id: the file's meshes, or the largest given",

@@ -211,3 +211,24 @@ def test_loaded_meshes_keep_their_parts(root):
                                              outputs=("part_ids", "face_ids"))
     assert len(np.unique(out["part_ids"])) > 5
     assert out["face_ids"].max() <= mesh.triangle_count
+
+
+def test_file_faces_map_face_ids_to_the_obj_faces_as_the_command_line_does(tmp_path, cli):
+    # a quad, a triangle and a pentagon: fanned into 2, 1 and 3 triangles
+    (tmp_path / "poly.obj").write_text(
+        "v -1 -1 0\nv 0 -1 0\nv 0 0 0\nv -1 0 0\nv 0.2 -1 0\nv 1 -1 0\nv 0.6 0 0\n"
+        "v -1 0.2 0\nv 0 0.2 0\nv 0.3 0.6 0\nv 0 1 0\nv -1 1 0\n"
+        "f 1 2 3 4\nf 5 6 7\nf 8 9 10 11 12\n")
+    mesh = softrast.Mesh.load(tmp_path / "poly.obj")
+    assert mesh.file_faces.dtype == np.int64
+    assert mesh.file_faces.tolist() == [0, 0, 1, 2, 2, 2]
+    pose = look_pose([0.1, 0.05, 3.0], [0, 0, 0])
+    cli("render", tmp_path / "poly.obj", "--size", "64x48", "--intrinsics", "40,40,31.5,23.5",
+        "--pose-w2c", ",".join(repr(float(v)) for v in pose.ravel()), "--face-ids", tmp_path / "f.npy",
+        "--face-ids-of", "file", "--quiet")
+    ids = softrast.Renderer(64, 48).render(mesh, fx=40, pose=pose, outputs=("face_ids",))["face_ids"]
+    assert set(np.unique(ids)) == {0, 1, 2, 3, 4, 5, 6}
+    as_file = np.where(ids > 0, mesh.file_faces[np.maximum(ids, 1) - 1] + 1, 0)
+    assert np.array_equal(np.load(tmp_path / "f.npy"), as_file.astype(np.uint32))
+    # a mesh from arrays is its own faces
+    assert softrast.Mesh(TRIANGLE, TRIANGLE_FACES).file_faces.tolist() == [0]
