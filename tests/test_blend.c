@@ -240,6 +240,82 @@ Test(blend, a_translucent_torus_is_the_same_on_every_loop_path_and_thread_count)
     }
 }
 
+/* Points and lines merge as triangles do, with the draw's alpha: its
+ * texture's (they take no material), 1 without one. Over a red clear: an
+ * additive blue point and an additive white line (saturating: 255 + 255
+ * is 255), and a point of a texture of alpha 128 blended: 128 is
+ * 128 + 1 = 129 out of 256, so red 255·127/256 → 127 and blue
+ * 255·129/256 → 128 (each rounded to nearest). None writes depth. */
+Test(blend, points_and_lines_merge_with_their_texture_alpha)
+{
+    sr_error err = { "" };
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    sr_framebuffer_clear(&fb, 0xFF0000u);
+    sr_mesh m;
+    cr_assert(sr_mesh_alloc(&m, 4, 2, false, true, true, &err), "%s", err.message);
+    const float xyz[4][3] = { { 3.5f, 2.5f, 0.5f }, { 8.5f, 2.5f, 0.5f }, { 2.0f, 9.5f, 0.5f }, { 12.0f, 9.5f, 0.5f } };
+    memcpy(m.positions, xyz, sizeof xyz);
+    for (int i = 0; i < 4; i++)
+        glm_vec3_copy(i < 2 ? (vec3){ 0, 0, 1 } : (vec3){ 1, 1, 1 }, m.colors[i]);
+    m.indices[0] = 0;
+    m.indices[1] = 1;
+    m.topology = SR_POINT_LIST;
+    sr_draw_desc desc = { .mesh = &m, .shade = SR_SHADE_COLOR, .blend = SR_BLEND_ADD, .no_depth_write = true };
+    scene_pixel_ortho(&desc, W, H);
+    cr_assert(sr_draw(&fb, &desc, NULL, &err), "%s", err.message);
+    m.indices[0] = 2;
+    m.indices[1] = 3;
+    m.topology = SR_LINE_LIST; /* from pixel 2 up to 12, not including it (Direct3D's diamond exit) */
+    cr_assert(sr_draw(&fb, &desc, NULL, &err), "%s", err.message);
+    const uint32_t texel = 0x800000FFu; /* blue at alpha 128 */
+    sr_texture half_blue = { .width = 1, .height = 1, .texels = (uint32_t *)&texel, .alpha = true };
+    m.indices[0] = m.indices[1] = 1; /* the second point again, over its additive blue */
+    m.topology = SR_POINT_LIST;
+    desc = (sr_draw_desc){ .mesh = &m, .shade = SR_SHADE_TEXTURE, .texture = &half_blue, .filter = SR_FILTER_NEAREST,
+                           .blend = SR_BLEND_ALPHA, .no_depth_write = true };
+    scene_pixel_ortho(&desc, W, H);
+    cr_assert(sr_draw(&fb, &desc, NULL, &err), "%s", err.message);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            /* (8, 2): additive blue, then blue at 128 over it twice: red 255 → 127 → 63 (127·127/256
+             * rounded), blue 255 → 255 (255·127 + 255·129 = 255·256) */
+            uint32_t want = x == 3 && y == 2             ? 0xFF00FFu
+                            : x == 8 && y == 2           ? 0x3F00FFu
+                            : y == 9 && x >= 2 && x < 12 ? 0xFFFFFFu
+                                                         : 0xFF0000u;
+            cr_assert_eq(fb.color[y * W + x], want, "(%d, %d): %06x, not %06x", x, y, fb.color[y * W + x], want);
+            cr_assert_eq(fb.depth[y * W + x], 1.0f, "(%d, %d): depth written", x, y);
+        }
+    sr_framebuffer_destroy(&fb);
+    sr_mesh_free(&m);
+}
+
+/* A torus's vertices as additive points and its edges as translucent
+ * lines (lit, through one another, no depth writes): the same bits on
+ * every path and thread count, binned or not. */
+Test(blend, points_and_lines_are_the_same_on_every_path_and_thread_count)
+{
+    static const struct {
+        sr_topology topology;
+        sr_blend blend;
+    } cases[] = { { SR_POINT_LIST, SR_BLEND_ADD }, { SR_LINE_LIST, SR_BLEND_ADD }, { SR_LINE_STRIP, SR_BLEND_PREMULTIPLIED } };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        sr_mesh torus;
+        sr_error err = { "" };
+        cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 80, 40, &err), "%s", err.message);
+        torus.topology = cases[i].topology;
+        sr_camera cam = scene_camera(0, 1.1f, -1.9f, 0, 0, 0, 60.0f, SR_CAMERA_NEAR, SR_CAMERA_FAR);
+        sr_draw_desc desc = { .mesh = &torus, .blend = cases[i].blend, .no_depth_write = true, .point_size = 3.0f,
+                              .line_width = 2.0f, .color_space = SR_COLOR_SRGB };
+        scene_camera_desc(&desc, &cam, 160, 96);
+        char what[64];
+        snprintf(what, sizeof what, "topology %d", (int)cases[i].topology);
+        assert_the_same_everywhere(&desc, 160, 96, what);
+        sr_mesh_free(&torus);
+    }
+}
+
 Test(blend, an_unknown_blend_is_refused)
 {
     quads q;
