@@ -146,7 +146,7 @@ bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
         lines.depth_bias = sr_wireframe_depth_bias(&desc, v->scene.fb.height);
         ok = sr_wireframe_frame(&v->scene.fb, &desc, &lines, &fill, &v->stats, &v->frame_ms, err);
     } else {
-        ok = sr_frame_draw_timed(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
+        ok = sr_frame_draw_layers_timed(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
     }
     show_image(v);
     if (ok && overlays)
