@@ -283,3 +283,36 @@ Test(cli_pinhole, face_ids_of_file_name_the_polygon_each_pixel_shows)
         cr_assert_gt(seen[t], 0, "triangle %d is seen nowhere: the test proves less than it says", t - 1);
     assert_one_error("render %s/polys.obj " POSE " --face-ids-of file", "give --face-ids too");
 }
+
+/* `render --points` writes view depth and ids: each vertex's pixel
+ * carries its z (the OBJ loader's z negation undone by the pose). */
+Test(cli_pinhole, points_write_their_view_depth)
+{
+    write_text(temp_dir, "pts.obj", "v 0 0 2\nv 0.5 0 4\nv 0 -0.4 8\nf 1 2 3\n");
+    char args[512];
+    snprintf(args, sizeof args,
+             "render %s/pts.obj --points --size %dx%d --intrinsics 40,40,19,14 --pose-w2c " IDENTITY
+             " --view-depth %s/d.npy --face-ids %s/f.npy --quiet",
+             temp_dir, W, H, temp_dir, temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+    static float depth[W * H];
+    static uint32_t ids[W * H];
+    char path[512];
+    read_npy(temp_path(path, sizeof path, "d.npy"), depth);
+    read_npy_of(temp_path(path, sizeof path, "f.npy"), "<u4", 1, ids);
+    /* pixel (19 + 40x/z, 14 + 40y/z) */
+    const struct {
+        int x, y;
+        float z;
+    } want[] = { { 19, 14, 2.0f }, { 24, 14, 4.0f }, { 19, 12, 8.0f } };
+    int drawn = 0;
+    for (size_t at = 0; at < (size_t)W * H; at++)
+        drawn += ids[at] != 0;
+    cr_assert_eq(drawn, 3, "%d pixels drawn", drawn);
+    for (int k = 0; k < 3; k++) {
+        size_t at = (size_t)want[k].y * W + (size_t)want[k].x;
+        cr_assert_eq(ids[at], (uint32_t)k + 1, "point %d: pixel (%d, %d) shows %u", k, want[k].x, want[k].y, ids[at]);
+        cr_assert_eq(depth[at], want[k].z, "point %d: depth %.9g", k, depth[at]);
+    }
+}

@@ -266,7 +266,7 @@ Test(viewer, f6_draws_the_edges_with_hidden_lines_removed_and_f2_still_collects_
     press(SDLK_F2, 0);
     cr_assert(sr_viewer_draw(&viewer, true, &err), "%s", err.message);
     cr_assert_eq(viewer.stats.triangles, 0);
-    cr_assert_eq(viewer.stats.lines, viewer.edges.index_count / 2);
+    cr_assert_eq(viewer.stats.lines, viewer.wire.wire.edges.index_count / 2);
     cr_assert_gt(viewer.stats.fragments, 0);
     cr_assert_gt(viewer.wire_count, 0, "F2's fan triangles come from the depth pass");
     char status[512];

@@ -526,9 +526,12 @@ typedef struct sr_pinhole_outputs {
  * of the triangle it shows, in double, each value rounded to float once
  * (where the ray runs in that plane, the depth buffer's value gives the
  * point). The threads take equal bands of rows; every value is the same
- * for every thread count. False, with one line in err, for a mesh without
- * positions or of points or lines, or interpolated normals of a mesh
- * without normals. */
+ * for every thread count. A pixel that shows a point or a line takes the
+ * primitive's point nearest its ray (a point's vertex; a line's closest
+ * approach to the ray, clamped to the segment), its normal the vertex
+ * normals there, whichever `interpolated_normals` says. False, with one
+ * line in err, for a mesh without positions, or normals asked of a mesh
+ * without vertex normals where they are needed. */
 SR_API bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
                                const sr_pinhole_outputs *out, sr_error *err);
 

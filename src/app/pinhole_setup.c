@@ -263,7 +263,8 @@ bool sr_pinhole_setup_write(const sr_pinhole_setup *p, const sr_pinhole *cam, sr
     *resolve_ms = 0.0;
     if (!sr_pinhole_setup_wants_depth(p))
         return true;
-    if (p->paths[SR_MEASURED_NORMALS] && p->normal_kind && !sr_mesh_compute_normals(&scene->mesh, err))
+    if (p->paths[SR_MEASURED_NORMALS] && p->normal_kind && desc->mesh == &scene->mesh &&
+        !sr_mesh_compute_normals(&scene->mesh, err))
         return false;
-    return write_resolved(p, cam, &scene->mesh, &scene->fb, desc->threads, resolve_ms, err);
+    return write_resolved(p, cam, desc->mesh, &scene->fb, desc->threads, resolve_ms, err);
 }

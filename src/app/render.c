@@ -8,7 +8,7 @@
 #include "transforms.h"
 #include "pinhole_setup.h"
 #include "scene_setup.h"
-#include "wireframe.h"
+#include "hidden_lines.h"
 #include "core/clock.h"
 #include "scene/frame.h"
 
@@ -91,10 +91,12 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
     if (job->points && job->lines)
         return sr_error_set(err, "--points and --lines draw one or the other");
     for (int k = 0; k < SR_MEASURED_COUNT; k++)
-        if ((job->points || job->lines) && job->pinhole.paths[k])
-            return sr_error_set(err, "--points and --lines draw color and depth: not the measured outputs (--view-depth, ...)");
+        if (job->lines && job->pinhole.paths[k])
+            return sr_error_set(err, "--lines draws color and depth: not the measured outputs (--view-depth, ...)");
     if ((job->points || job->lines) && (job->dataset.poses_path || job->dataset.out_dir))
         return sr_error_set(err, "--points and --lines are not for --poses");
+    if (job->blend_set && job->lines)
+        return sr_error_set(err, "--blend is not for --lines (their triangles fill the depth the lines are tested by)");
     if (job->depth_write_set && !job->blend_set)
         return sr_error_set(err, "--depth-write goes with --blend (without it, BLEND parts write no depth, the others do)");
     for (int k = 0; k < SR_MEASURED_COUNT; k++)
@@ -107,20 +109,20 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
 }
 
 /* One timed frame: desc (in the file's layers unless `one_draw`: layers.h),
- * or with `lines` the hidden-line frame of desc's triangles and those lines,
+ * or with `wire` the hidden-line frame of desc's triangles and their edges,
  * counted as the lines' draw. */
-static bool draw_frame(sr_scene *scene, const sr_draw_desc *desc, const sr_draw_desc *lines, bool one_draw,
+static bool draw_frame(sr_scene *scene, const sr_draw_desc *desc, sr_hidden_lines *wire, bool one_draw,
                        sr_stats *stats, double *ms, sr_error *err)
 {
     sr_stats fill;
-    if (lines)
-        return sr_wireframe_frame(&scene->fb, desc, lines, &fill, stats, ms, err);
+    if (wire)
+        return sr_hidden_lines_frame(wire, &scene->fb, desc, &fill, stats, ms, err);
     return one_draw ? sr_frame_draw_timed(&scene->fb, desc, stats, ms, err)
                     : sr_frame_draw_layers_timed(&scene->fb, desc, stats, ms, err);
 }
 
-static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, const sr_draw_desc *lines,
-                       bool one_draw, sr_stats *stats, frame_times *times, sr_error *err)
+static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr_hidden_lines *lines, bool one_draw,
+                       sr_stats *stats, frame_times *times, sr_error *err)
 {
     double *ms = malloc((size_t)frames * sizeof *ms), warm;
     if (!ms)
@@ -282,10 +284,10 @@ static bool use_pinhole(render_job *job, sr_scene *scene, sr_pinhole *cam, sr_dr
     return true;
 }
 
-/* With --points, desc draws the mesh's vertices; with --lines, *lines its
- * edges after desc's triangles (sr_wireframe_frame). */
+/* With --points, desc draws the mesh's vertices; with --lines, *lines
+ * holds its edges, drawn after desc's triangles (sr_hidden_lines_frame). */
 static bool primitives_desc(const render_job *job, const sr_scene *scene, sr_mesh *primitives, sr_draw_desc *desc,
-                            sr_draw_desc *lines, sr_error *err)
+                            sr_hidden_lines *lines, sr_error *err)
 {
     if (job->points) {
         if (!sr_wireframe_points(&scene->mesh, primitives, err))
@@ -293,12 +295,9 @@ static bool primitives_desc(const render_job *job, const sr_scene *scene, sr_mes
         desc->mesh = primitives;
         desc->point_size = job->point_size;
     } else if (job->lines) {
-        if (!sr_wireframe_edges(&scene->mesh, primitives, err))
+        if (!sr_hidden_lines_make(&scene->mesh, lines, err))
             return false;
-        *lines = *desc;
-        lines->mesh = primitives;
         lines->line_width = job->line_width;
-        lines->depth_bias = sr_wireframe_depth_bias(desc, scene->fb.height);
     }
     return true;
 }
@@ -326,19 +325,20 @@ static bool render(void *j, sr_scene *scene, sr_error *err)
     if (!pinhole)
         sr_scene_frame_camera(&job->scene, scene);
     sr_mesh primitives = { 0 };
-    sr_draw_desc lines;
+    sr_hidden_lines lines = { 0 };
+    /* A point's normal is its vertex's: made before the points borrow them. */
+    bool point_normals = job->points && job->pinhole.paths[SR_MEASURED_NORMALS] && scene->mesh.index_count;
     if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) || (pinhole && !use_pinhole(job, scene, &cam, &desc, err)) ||
+        (point_normals && !sr_mesh_compute_normals(&scene->mesh, err)) ||
         !primitives_desc(job, scene, &primitives, &desc, &lines, err))
         return false;
-    if (job->blend_set) { /* on the lines alone with --lines: their triangles fill the depth they are tested by */
-        sr_draw_desc *blended = job->lines ? &lines : &desc;
-        blended->blend = (sr_blend)job->blend;
-        blended->no_depth_write = job->depth_write == 1;
-    }
+    desc.blend = (sr_blend)job->blend;
+    desc.no_depth_write = job->depth_write == 1;
     bool ok = run_frames(job->frames, scene, &desc, job->lines ? &lines : NULL, job->blend_set, &stats, &times, err) &&
               write_outputs(job, scene, err) &&
               (!pinhole || sr_pinhole_setup_write(&job->pinhole, &cam, scene, &desc, &times.resolve, err));
     sr_wireframe_free(&primitives);
+    sr_hidden_lines_destroy(&lines);
     if (!ok)
         return false;
     if (!pinhole)

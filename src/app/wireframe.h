@@ -1,7 +1,6 @@
-/* wireframe.h — a mesh's vertices as points and its edges as lines, and
- * the hidden-line draw of `render --lines` and the viewer's wireframe:
- * the triangles fill depth first, then the edges pass the depth test with
- * a bias (docs/conventions.md, "Points and lines"). */
+/* wireframe.h — a mesh's vertices as points, and its edges as lines with
+ * the triangles that own each (what the hidden-line frame reads,
+ * hidden_lines.h). */
 #ifndef SOFTRAST_APP_WIREFRAME_H
 #define SOFTRAST_APP_WIREFRAME_H
 
@@ -9,29 +8,29 @@
 
 /* A mesh of the same vertex arrays (borrowed: free it with
  * sr_wireframe_free, never sr_mesh_free) drawn as SR_POINT_LIST, every
- * vertex once in order, or as SR_LINE_LIST of the triangles' edges, each
- * once, in the order of their first appearance (triangle slots in order,
- * edges v0-v1, v1-v2, v2-v0), so line id k + 1 names the k-th; an edge is
- * its two end positions, so the copies of a vertex that a loader makes
- * (one per face normal or uv) give one line, the first one's, its smaller
- * index first. False, with a message, when out of memory. */
+ * vertex once in order. False, with a message, when out of memory. */
 bool sr_wireframe_points(const sr_mesh *mesh, sr_mesh *points, sr_error *err);
-bool sr_wireframe_edges(const sr_mesh *mesh, sr_mesh *lines, sr_error *err);
 void sr_wireframe_free(sr_mesh *borrowed);
 
-/* The lines' depth bias for desc's camera and mesh in a framebuffer
- * `height` rows tall: the z_ndc that three pixels' width of view depth
- * takes at the mesh's nearest point (no nearer than the camera's near
- * plane), which covers the tie of a line on a face turned up to about 75°
- * from the view (a line pixel's centre lies up to 0.7 pixel off the
- * line). */
-float sr_wireframe_depth_bias(const sr_draw_desc *desc, int height);
+/* A triangle edge of no line: the edges of a slot that holds no triangle. */
+#define SR_WIREFRAME_NO_EDGE UINT32_MAX
 
-/* One frame of hidden lines into fb: `fill` (its mesh's triangles, its
- * camera) cleared to color 0 and drawn into depth alone, then `lines`
- * with the bias. The counts of each draw into fill_stats and line_stats
- * (zeroed first), the time of both into *ms. */
-bool sr_wireframe_frame(sr_framebuffer *fb, const sr_draw_desc *fill, const sr_draw_desc *lines, sr_stats *fill_stats,
-                        sr_stats *line_stats, double *ms, sr_error *err);
+/* A mesh's wireframe. edges: the same vertex arrays (borrowed) drawn as
+ * SR_LINE_LIST of the triangles' edges, each once, in the order of their
+ * first appearance (triangle slots in order, edges v0-v1, v1-v2, v2-v0),
+ * so line id k + 1 names the k-th; an edge is its two end positions, so
+ * the copies of a vertex that a loader makes (one per face normal or uv)
+ * give one line, the first one's, its smaller index first.
+ * triangle_edges: 3 per triangle slot, the lines of its edges v0-v1,
+ * v1-v2, v2-v0 (every triangle with both ends of a line owns it). */
+typedef struct sr_wireframe {
+    sr_mesh edges;
+    uint32_t *triangle_edges;
+    uint32_t triangle_slots;
+} sr_wireframe;
+
+/* False, with a message, when out of memory (then w is all zero). */
+bool sr_wireframe_make(const sr_mesh *mesh, sr_wireframe *w, sr_error *err);
+void sr_wireframe_destroy(sr_wireframe *w);
 
 #endif

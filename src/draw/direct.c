@@ -25,8 +25,12 @@ static void observe(const sr_draw_state *st, const sr_screen_vertex *const tri[3
     st->study.observer(st->study.observer_user, copy, clipped, id);
 }
 
+/* A triangle the sub-pixel lanes found covers the one pixel centre of its
+ * scan box (one_pixel) is drawn from that one-bit mask, as the tiles draw
+ * a tiny triangle they tested while binning: no edges in a mode without
+ * varyings, no coverage test in any. */
 static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
-                       int64_t area2, uint32_t id, bool clipped)
+                       int64_t area2, uint32_t id, bool clipped, bool one_pixel)
 {
     (void)ref;
     const sr_draw_state *st = sink->st;
@@ -35,7 +39,8 @@ static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], 
         observe(st, tri, clipped, id);
     bool simd = false;
     sink->pixels->stats.fragments +=
-        sr_raster_triangle_on(st->fb, sink->rect, st->vp.subpixel_bits, st->mode, &st->shade, tri, area2, id, &simd);
+        (one_pixel ? sr_raster_one_pixel : sr_raster_triangle_on)(st->fb, sink->rect, st->vp.subpixel_bits, st->mode,
+                                                                  &st->shade, tri, area2, id, &simd);
     sink->pixels->simd_draws += simd;
 }
 

@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "draw.h"
 #include "draw_state.h"
 #include "materials.h"
 #include "pipeline/02_assemble.h"
@@ -430,6 +431,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     if (st->study.times)
         st->study.times->path = path;
     bool direct = path == SR_PATH_DIRECT;
+    st->verdicts_alone = direct || st->threads == 1;
     /* Nothing is written before every check has passed; the tiles and the
      * row bands clear the rows they draw, as they draw them. */
     if (st->desc->clear && direct)
@@ -483,7 +485,8 @@ static sr_varying_layout draw_layout(sr_shade mode, const sr_draw_desc *d)
     return sr_vertex_layout(mode, mesh, textured);
 }
 
-bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err)
+static bool draw(sr_framebuffer *fb, const sr_draw_desc *desc, const sr_line_filter *filter, sr_stats *stats,
+                 sr_error *err)
 {
     if (!desc)
         return sr_error_set(err, "draw without a description");
@@ -504,7 +507,7 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
                          .tile_rows = SR_TILE_ROWS(fb->width),
                          .vp = { fb->width, fb->height, subpixel_bits(&study), guard_band(&study),
                                  clip_depth(desc) },
-                         .precision = study.clip_precision };
+                         .precision = study.clip_precision, .line_filter = filter };
     st.tiles = (fb->height + st.tile_rows - 1) / st.tile_rows;
     /* Half a subpixel step, in NDC of the squeezed clip space of a guard band. */
     int side = fb->width > fb->height ? fb->width : fb->height;
@@ -520,4 +523,15 @@ bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_e
     if (study.times)
         study.times->total += sr_now_ms() - start;
     return ok;
+}
+
+bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err)
+{
+    return draw(fb, desc, NULL, stats, err);
+}
+
+bool sr_draw_lines_filtered(sr_framebuffer *fb, const sr_draw_desc *desc, const sr_line_filter *filter,
+                            sr_stats *stats, sr_error *err)
+{
+    return draw(fb, desc, filter, stats, err);
 }

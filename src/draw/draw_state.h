@@ -172,7 +172,9 @@ typedef struct sr_draw_state {
     bool subpixel_lanes;  /* the sub-pixel lanes drop the triangles that draw nothing (primitives.c) */
     bool double_later;    /* the vertex phase maps the float half of the vertices inside, the verdicts
                              the double half of those of the triangles they keep (primitives.c) */
+    bool verdicts_alone;  /* one thread takes every verdict: the double half's flags need no exchange */
     sr_subpixel_rules subpixel;
+    const struct sr_line_filter *line_filter; /* a line draw's, or NULL (draw.h) */
 } sr_draw_state;
 
 /* The bytes of an sr_screen_vertex up to its last varying, with
@@ -211,8 +213,11 @@ static inline sr_screen_vertex *sr_screen_at(const sr_draw_state *st, uint32_t i
 typedef struct sr_fan_sink sr_fan_sink;
 struct sr_fan_sink {
     uint32_t (*store)(sr_fan_sink *sink, const sr_screen_vertex *v, int n);
+    /* one_pixel: the sub-pixel lanes found its scan box holds one pixel
+     * centre, which it covers (sr_kept_slot), so its edges need not be
+     * tested again. */
     void (*triangle)(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3], int64_t area2,
-                     uint32_t id, bool clipped);
+                     uint32_t id, bool clipped, bool one_pixel);
     const sr_draw_state *st;
     sr_thread_work *work; /* counts the triangles */
     /* Drawing as they come (draw.c's direct path, row_bands.c): the rows
@@ -249,11 +254,13 @@ static inline unsigned sr_slot_verdict(const sr_mesh *mesh, const unsigned char 
     return any;
 }
 
-/* A slot the verdicts kept: its triangle's indices and the OR of their
- * outcodes (sr_slot_verdict). */
+/* A slot the verdicts kept: its triangle's indices, the OR of their
+ * outcodes (sr_slot_verdict), and whether the sub-pixel lanes found it
+ * covers the one pixel centre of its scan box (sr_subpixel_verdict). */
 typedef struct sr_kept_slot {
     uint32_t k, idx[3];
     unsigned planes;
+    bool one_pixel;
 } sr_kept_slot;
 
 /* The slots whose verdicts are taken at a time: the sub-pixel lanes' batch. */
@@ -293,10 +300,12 @@ typedef struct sr_band_span {
     unsigned char first, last;
 } sr_band_span;
 
-/* A slot the row bands' verdicts kept, and its span. */
+/* A slot the row bands' verdicts kept, its span, and its one_pixel
+ * (sr_kept_slot). */
 typedef struct sr_band_slot {
     uint32_t k;
     sr_band_span span;
+    bool one_pixel;
 } sr_band_slot;
 
 /* The span of a triangle that crosses a plane (its clipped polygon may

@@ -320,6 +320,7 @@ bool sr_draw_points_lines(sr_draw_state *st, sr_error *err)
     point_line_phases ph = { .st = st, .slots = sr_assemble_point_line_slots(mesh),
                              .target = { .fb = st->fb, .mode = st->mode, .shade = &st->shade,
                                          .subpixel_bits = st->vp.subpixel_bits, .depth_bias = st->desc->depth_bias,
+                                         .filter = st->line_filter,
                                          .band_rows = sr_band_rows(st->fb->height) } };
     if (st->vertex_count > 0 || binned)
         sr_parallel_run(&st->ws->pool, st->threads, slots_phase, &ph, times ? &times->primitives : NULL);

@@ -10,7 +10,7 @@
 /* Stage 7 for one fan triangle whose vertices are *tri[] (refs name them
  * for the sink). */
 static void cull_and_emit(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
-                          uint32_t id, bool clipped)
+                          uint32_t id, bool clipped, bool one_pixel)
 {
     const sr_draw_desc *d = sink->st->desc;
     int64_t area2 = sr_cull_area2(tri[0], tri[1], tri[2]);
@@ -19,7 +19,7 @@ static void cull_and_emit(sr_fan_sink *sink, const sr_screen_vertex *const tri[3
         return;
     }
     sink->work->stats.drawn++;
-    sink->triangle(sink, tri, ref, area2, id, clipped);
+    sink->triangle(sink, tri, ref, area2, id, clipped, one_pixel);
 }
 
 /* Stages 5 and 6 for the polygon clipped from triangle idx: map every
@@ -46,18 +46,18 @@ static void emit_polygon(sr_fan_sink *sink, const sr_polygon *poly, const uint32
     for (int i = 1; i + 1 < poly->count; i++) {
         const uint32_t ref[3] = { base, base + (uint32_t)i, base + (uint32_t)i + 1 };
         cull_and_emit(sink, (const sr_screen_vertex *const[3]){ &screen[0], &screen[i], &screen[i + 1] }, ref, id,
-                      true);
+                      true, false);
     }
 }
 
 /* An unclipped triangle uses the screen vertices the vertex phase mapped. */
-static void emit_inside(sr_fan_sink *sink, const uint32_t idx[3], uint32_t id)
+static void emit_inside(sr_fan_sink *sink, const uint32_t idx[3], uint32_t id, bool one_pixel)
 {
     const sr_draw_state *st = sink->st;
     cull_and_emit(sink,
                   (const sr_screen_vertex *const[3]){ sr_screen_at(st, idx[0]), sr_screen_at(st, idx[1]),
                                                       sr_screen_at(st, idx[2]) },
-                  idx, id, false);
+                  idx, id, false, one_pixel);
 }
 
 /* Stages 4 to 6 for triangle slot k, which crosses the planes in `planes`.
@@ -83,10 +83,10 @@ static __attribute__((noinline)) void emit_clipped(sr_fan_sink *sink, const uint
 
 /* Stage 4, when `planes` (the OR of its outcodes) says it crosses one, and
  * on to the sink for a slot the verdict kept. */
-static void emit_kept(sr_fan_sink *sink, const uint32_t idx[3], unsigned planes, uint32_t k)
+static void emit_kept(sr_fan_sink *sink, const uint32_t idx[3], unsigned planes, uint32_t k, bool one_pixel)
 {
     if (!planes)
-        emit_inside(sink, idx, k);
+        emit_inside(sink, idx, k, one_pixel);
     else
         emit_clipped(sink, idx, planes, k);
 }
@@ -126,6 +126,7 @@ static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, 
         if (!s->planes)
             PREFETCH_TRIANGLE(screen, stride, s->idx);
         s->k = k;
+        s->one_pixel = false;
         count++;
     }
     return count;
@@ -133,8 +134,9 @@ static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, 
 
 /* The triangles of kept[0 .. count) inside every plane that the sub-pixel
  * lanes find draw no pixel (subpixel.h) are counted in stats as stage 7
- * counts them and dropped; the others stay, in order, and their count is
- * returned. */
+ * counts them and dropped; the others stay, in order, marked one_pixel
+ * where the lanes found they cover the one centre of their box, and their
+ * count is returned. */
 static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count, sr_stats *stats)
 {
     if (count == 0)
@@ -159,13 +161,16 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
         inside |= (uint64_t)in << j;
     }
     sr_subpixel_verdict v = sr_subpixel_reject(&b, count, &st->subpixel);
-    uint64_t culled = v.culled & inside, drawn = v.drawn & inside;
+    uint64_t culled = v.culled & inside, drawn = v.drawn & inside, one_pixel = v.one_pixel & inside;
     stats->culled += (uint64_t)__builtin_popcountll(culled);
     stats->drawn += (uint64_t)__builtin_popcountll(drawn);
     int n = 0;
     uint64_t used = count == SR_SUBPIXEL_BATCH ? ~(uint64_t)0 : ((uint64_t)1 << count) - 1;
-    for (uint64_t m = ~(culled | drawn) & used; m; m &= m - 1)
-        kept[n++] = kept[__builtin_ctzll(m)];
+    for (uint64_t m = ~(culled | drawn) & used; m; m &= m - 1) {
+        int j = __builtin_ctzll(m);
+        kept[n] = kept[j];
+        kept[n++].one_pixel = (one_pixel >> j) & 1;
+    }
     return n;
 }
 
@@ -176,21 +181,38 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
  * bands read the snapped points, and the triangles are drawn in a later
  * phase, or by the one thread that mapped them. Out of line: its arrays
  * on the stack made every batch's verdicts of a draw without it pay for
- * them. */
+ * them.
+ * The vertices not yet mapped are listed first, their positions
+ * prefetched, and only then taken: an atomic exchange waits for every
+ * load before it, so taking each vertex as it was read left each flag's
+ * and each position's wait on memory one after the other. One thread
+ * alone takes them with plain stores. */
 static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept,
                                                          int count)
 {
     atomic_uchar *mapped = st->ws->double_mapped.data;
-    uint32_t taken[3 * SR_VERDICT_BATCH];
-    int n = 0;
+    const sr_mesh *source = st->desc->mesh;
+    uint32_t unmapped[3 * SR_VERDICT_BATCH], taken[3 * SR_VERDICT_BATCH];
+    int m = 0, n = 0;
     for (int j = 0; j < count; j++) {
         if (kept[j].planes)
             continue;
-        for (int c = 0; c < 3; c++) {
+        for (int c = 0; c < 3; c++) { /* no branch on the flag: its loads overlap */
             uint32_t i = kept[j].idx[c];
-            if (!atomic_load_explicit(&mapped[i], memory_order_relaxed) &&
-                !atomic_exchange_explicit(&mapped[i], 1, memory_order_relaxed))
+            unmapped[m] = i;
+            m += !atomic_load_explicit(&mapped[i], memory_order_relaxed);
+            __builtin_prefetch(source->clip_positions ? (const void *)source->clip_positions[i]
+                                                      : (const void *)source->positions[i]);
+        }
+    }
+    for (int k = 0; k < m; k++) {
+        uint32_t i = unmapped[k];
+        if (!st->verdicts_alone) {
+            if (!atomic_exchange_explicit(&mapped[i], 1, memory_order_relaxed))
                 taken[n++] = i;
+        } else if (!atomic_load_explicit(&mapped[i], memory_order_relaxed)) { /* listed twice in the batch */
+            atomic_store_explicit(&mapped[i], 1, memory_order_relaxed);
+            taken[n++] = i;
         }
     }
     /* The mesh and the matrix in locals: read through pointers, they were
@@ -228,7 +250,7 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
         sr_kept_slot kept[SR_VERDICT_BATCH];
         int count = sr_draw_verdicts(sink->st, batch, batch_end, end, &verdicts, kept);
         for (int j = 0; j < count; j++)
-            emit_kept(sink, kept[j].idx, kept[j].planes, kept[j].k);
+            emit_kept(sink, kept[j].idx, kept[j].planes, kept[j].k, kept[j].one_pixel);
         batch = batch_end;
     }
     sr_stats_add(&sink->work->stats, &verdicts);
@@ -264,6 +286,6 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slo
         /* A span of every band may be of a triangle that crosses a plane. */
         unsigned planes =
             sr_band_span_is_every(span) ? outcodes[idx[0]] | outcodes[idx[1]] | outcodes[idx[2]] : 0;
-        emit_kept(span.first >= lo ? own : shared, idx, planes, k);
+        emit_kept(span.first >= lo ? own : shared, idx, planes, k, slots[i].one_pixel);
     }
 }

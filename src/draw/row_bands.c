@@ -64,7 +64,7 @@ static void verdicts(void *ctx, int t)
             int count = sr_draw_verdicts(st, batch, batch_end, end, &counted, kept);
             for (int j = 0; j < count; j++) {
                 sr_band_span span = span_of(bands, kept[j].idx, kept[j].planes);
-                slots[first + kept_in_chunk++] = (sr_band_slot){ kept[j].k, span };
+                slots[first + kept_in_chunk++] = (sr_band_slot){ kept[j].k, span, kept[j].one_pixel };
                 if (kept[j].planes == 0)
                     per_band[span.first]++;
             }

@@ -105,9 +105,9 @@ static sr_bin_entry *bin_push(sr_thread_work *w, sr_bin *bin, uint64_t cost)
  * mesh), and the others' entries carry the mask, so the tile does not
  * test them again. */
 static void bin_triangle(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
-                         int64_t area2, uint32_t id, bool clipped)
+                         int64_t area2, uint32_t id, bool clipped, bool one_pixel)
 {
-    (void)clipped;
+    (void)clipped, (void)one_pixel; /* a tiny triangle's mask is found while binning */
     sr_thread_work *w = sink->work;
     const sr_draw_state *st = sink->st;
     sr_raster_rect all = { 0, 0, st->fb->width, st->fb->height };

@@ -416,6 +416,106 @@ static void write_face_ids(const sr_mesh *mesh, const sr_pinhole_outputs *out, c
         face_ids[x] = ids[x] ? mesh->file_faces[ids[x] - 1] + 1 : 0;
 }
 
+/* Prefetches what the triangles of row y need: their indices (stage 0)
+ * or, those fetched a row before, their vertices (stage 1); one fetch
+ * per run. On a dense mesh nearly every pixel shows a triangle of its own,
+ * far from its neighbours' in the mesh's arrays, and each set-up would
+ * wait on memory twice (its indices, then its vertices and normals), one
+ * triangle after the other; resolve_rows fetches the indices two rows ahead and
+ * the vertices one row ahead, so a row's loads are under way at once. */
+static void prefetch_row(const resolve_job *job, int y, int stage)
+{
+    int width = job->fb->width;
+    const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
+    const sr_mesh *mesh = job->mesh;
+    bool file_faces = job->out->face_ids && job->out->file_faces && mesh->file_faces;
+    bool vertex_normals = job->out->normals && job->out->interpolated_normals;
+    if (!sr_assemble_triangles(mesh)) /* points and lines: their slots are not triples */
+        return;
+    for (int x = 0; x < width; x++) {
+        uint32_t id = ids[x];
+        if (id == 0 || (x > 0 && ids[x - 1] == id))
+            continue;
+        if (stage == 0) {
+            __builtin_prefetch(sr_assemble_slot_indices(mesh, id - 1));
+            if (file_faces)
+                __builtin_prefetch(&mesh->file_faces[id - 1]);
+            continue;
+        }
+        uint32_t idx[3];
+        sr_assemble_triangle(mesh, id - 1, idx);
+        for (int k = 0; k < 3; k++) {
+            __builtin_prefetch(mesh->positions[idx[k]]);
+            if (vertex_normals)
+                __builtin_prefetch(mesh->normals[idx[k]]);
+        }
+    }
+}
+
+/* A point or a line seen at a pixel: the primitive's point nearest the
+ * pixel's ray, in the camera frame, and where it lies between the line's
+ * ends (t, 0 for a point). A point is its vertex. A line A + t·u, u = B − A,
+ * is |(A + t·u) × d| / |d| from the ray along d = (ray_x, ray_y, 1), least
+ * at t = −(A × d)·(u × d) / |u × d|², clamped to the segment: cross
+ * products, so a segment nearly along the ray loses no digits to
+ * cancellation; one exactly along it shows its nearer end. */
+typedef struct sparse_point {
+    double p[3], t;
+    uint32_t idx[2];
+} sparse_point;
+
+static void sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x, double ray_y, sparse_point *sp)
+{
+    const sr_mesh *mesh = job->mesh;
+    if (mesh->topology == SR_POINT_LIST) {
+        sp->idx[0] = sp->idx[1] = mesh->indices[slot];
+        to_camera(job->cam, mesh, mesh->positions[sp->idx[0]], sp->p);
+        sp->t = 0.0;
+        return;
+    }
+    double a[3], b[3], u[3], a_d[3], u_d[3];
+    sr_assemble_line(mesh, slot, sp->idx); /* drawn, so not degenerate */
+    to_camera(job->cam, mesh, mesh->positions[sp->idx[0]], a);
+    to_camera(job->cam, mesh, mesh->positions[sp->idx[1]], b);
+    for (int k = 0; k < 3; k++)
+        u[k] = b[k] - a[k];
+    const double d[3] = { ray_x, ray_y, 1.0 };
+    sr_dvec3_cross(a, d, a_d);
+    sr_dvec3_cross(u, d, u_d);
+    double along = sr_dvec3_dot(u_d, u_d);
+    double t = along > 0.0 ? -sr_dvec3_dot(a_d, u_d) / along : (b[2] < a[2] ? 1.0 : 0.0);
+    sp->t = t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; /* NaN (an overflow) takes the first end */
+    for (int k = 0; k < 3; k++)
+        sp->p[k] = a[k] + sp->t * u[k];
+}
+
+/* Pixel `at` showing point or line slot id − 1: each output from the
+ * primitive's point nearest its ray. Per pixel: a point cloud's pixels
+ * rarely share a primitive with their neighbours for long. */
+static void resolve_sparse_pixel(const resolve_job *job, uint32_t id, size_t at, double ray_x, double ray_y)
+{
+    const sr_pinhole_outputs *out = job->out;
+    sparse_point sp;
+    sparse_point_at(job, id - 1, ray_x, ray_y, &sp);
+    if (out->depth)
+        out->depth[at] = (float)sp.p[2];
+    if (out->range)
+        out->range[at] = (float)sqrt(sr_dvec3_dot(sp.p, sp.p));
+    if (out->part_ids)
+        out->part_ids[at] = job->mesh->parts ? part_of(job->mesh, id - 1) : 1;
+    if (!out->normals)
+        return;
+    double normal[3];
+    for (int k = 0; k < 3; k++) {
+        const float *n0 = job->mesh->normals[sp.idx[0]], *n1 = job->mesh->normals[sp.idx[1]];
+        double z_sign = job->mesh->z_negated && k == 2 ? -1.0 : 1.0;
+        normal[k] = z_sign * ((1.0 - sp.t) * n0[k] + sp.t * n1[k]);
+    }
+    double camera[3];
+    rotate(job->cam, normal, camera);
+    normalize_into(camera, &out->normals[3 * at]);
+}
+
 /* Rows y0 … y1 − 1, in runs of pixels that show one triangle: a run sets
  * its triangle up once (or finds it in the cache) and each output is a
  * loop of its own over the run. */
@@ -426,8 +526,16 @@ static void resolve_rows(const resolve_job *job, int y0, int y1, double *z)
     resolved_triangle cache[TRIANGLE_CACHE];
     for (int i = 0; i < TRIANGLE_CACHE; i++)
         cache[i].slot = UINT32_MAX;
+    for (int y = y0; y < y0 + 2 && y < y1; y++)
+        prefetch_row(job, y, 0);
+    if (y0 < y1)
+        prefetch_row(job, y0, 1);
     for (int y = y0; y < y1; y++) {
         const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
+        if (y + 2 < y1)
+            prefetch_row(job, y + 2, 0);
+        if (y + 1 < y1)
+            prefetch_row(job, y + 1, 1);
         if (out->face_ids) /* the id + 1 each pixel shows, 0 where nothing: the plane itself */
             write_face_ids(job->mesh, out, ids, width, &out->face_ids[(size_t)y * (size_t)width]);
         for (int x = 0, end; x < width; x = end) {
@@ -436,6 +544,11 @@ static void resolve_rows(const resolve_job *job, int y0, int y1, double *z)
                 end++;
             if (id == 0) {
                 resolve_empty(out, (size_t)y * (size_t)width + (size_t)x, end - x);
+                continue;
+            }
+            if (!sr_assemble_triangles(job->mesh)) {
+                for (int i = x; i < end; i++)
+                    resolve_sparse_pixel(job, id, (size_t)y * (size_t)width + (size_t)i, job->ray_x[i], job->ray_y[y]);
                 continue;
             }
             resolved_triangle *t = &cache[(id - 1) % TRIANGLE_CACHE];
@@ -467,10 +580,10 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
 {
     if (!mesh->positions)
         return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
-    if (mesh->topology != SR_TRIANGLE_LIST && mesh->topology != SR_TRIANGLE_STRIP)
-        return sr_error_set(err, "view depth meets rays with triangles: a draw of points or lines has none");
-    if (out->normals && out->interpolated_normals && !mesh->normals)
-        return sr_error_set(err, "interpolated normals need the mesh's vertex normals");
+    bool sparse = !sr_assemble_triangles(mesh);
+    if (out->normals && (out->interpolated_normals || sparse) && !mesh->normals)
+        return sr_error_set(err, sparse ? "normals of points or lines are their vertex normals, which the mesh lacks"
+                                        : "interpolated normals need the mesh's vertex normals");
     /* Each pixel's values are its own, whichever thread computes them: the
      * bands change no bit. More threads than rows would have empty bands. */
     int bands = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;

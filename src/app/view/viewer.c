@@ -3,7 +3,6 @@
 #include <string.h>
 
 #include "app/app.h"
-#include "app/wireframe.h"
 #include "scene/frame.h"
 #include "overlay.h"
 #include "viewer.h"
@@ -52,7 +51,7 @@ bool sr_viewer_init(sr_viewer *v, const sr_scene_setup *setup, sr_error *err)
 
 void sr_viewer_free(sr_viewer *v)
 {
-    sr_wireframe_free(&v->edges);
+    sr_hidden_lines_destroy(&v->wire);
     sr_scene_free(&v->scene);
     free(v->display);
     free(v->wires);
@@ -137,14 +136,10 @@ bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
     }
     bool ok;
     if (v->hidden_lines) {
-        if (!v->edges.indices && !sr_wireframe_edges(&v->scene.mesh, &v->edges, err))
+        if (!v->wire.wire.edges.indices && !sr_hidden_lines_make(&v->scene.mesh, &v->wire, err))
             return false;
-        sr_draw_desc lines = desc;
         sr_stats fill;
-        lines.mesh = &v->edges;
-        lines.study = NULL; /* the clipping diagnostic (F2) is the triangles' */
-        lines.depth_bias = sr_wireframe_depth_bias(&desc, v->scene.fb.height);
-        ok = sr_wireframe_frame(&v->scene.fb, &desc, &lines, &fill, &v->stats, &v->frame_ms, err);
+        ok = sr_hidden_lines_frame(&v->wire, &v->scene.fb, &desc, &fill, &v->stats, &v->frame_ms, err);
     } else {
         ok = sr_frame_draw_layers_timed(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
     }

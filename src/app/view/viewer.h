@@ -11,6 +11,7 @@
 #include <SDL.h>
 
 #include "app/scene_setup.h"
+#include "app/hidden_lines.h"
 #include "flycam.h"
 
 #define SR_VIEWER_MIN_NEAR 1e-6f
@@ -42,8 +43,8 @@ typedef struct sr_viewer {
     float speed; /* units per second */
     unsigned held; /* sr_viewer_move bits */
     bool mouse_look, look_button, show_depth, depth_linear, wireframe, help, quit;
-    bool hidden_lines; /* F6: the mesh's edges, hidden lines removed (app/wireframe.h) */
-    sr_mesh edges;     /* the mesh's edges, made at the first F6 */
+    bool hidden_lines;   /* F6: the mesh's edges, hidden lines removed (app/hidden_lines.h) */
+    sr_hidden_lines wire; /* the mesh's edges, made at the first F6 */
     bool screenshot_wanted;
     sr_stats stats;
     double frame_ms;

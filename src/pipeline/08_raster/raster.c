@@ -661,6 +661,14 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                            triangle_id, false, 0, true, simd);
 }
 
+uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
+                             const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
+                             uint32_t triangle_id, bool *simd)
+{
+    return triangle_in_box(fb, scan_box(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri, area2,
+                           triangle_id, true, 1, false, simd);
+}
+
 void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
 {
     s->box = share;

@@ -98,4 +98,12 @@ uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int sub
                                  const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                                  uint64_t mask, uint32_t triangle_id, bool *simd);
 
+/* sr_raster_triangle_on for a triangle known to cover the one pixel centre
+ * its scan box holds (the sub-pixel lanes' one_pixel): drawn as
+ * sr_raster_tiny_triangle draws that box's one-bit mask, or not at all
+ * where the box is outside rect. */
+uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
+                             const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
+                             uint32_t triangle_id, bool *simd);
+
 #endif

@@ -74,8 +74,10 @@ static inline uint32_t shaded_colour(const sr_point_line_target *t, const float 
 static uint64_t line_fragment(sr_point_line_target *t, int x, int y, const sr_screen_vertex *a,
                               const sr_screen_vertex *b, double s, uint32_t id)
 {
-    sr_fragment f = { .at = (uint32_t)((size_t)y * (size_t)t->fb->width + (size_t)x),
-                      .z = biased_depth(t, (double)a->z + s * ((double)b->z - (double)a->z)), .id = id };
+    float z = biased_depth(t, (double)a->z + s * ((double)b->z - (double)a->z));
+    if (t->filter && !t->filter->keep(t->filter->user, id, x, y, &z))
+        return 0;
+    sr_fragment f = { .at = (uint32_t)((size_t)y * (size_t)t->fb->width + (size_t)x), .z = z, .id = id };
     if (shades(t)) {
         float var[SR_MAX_VARYINGS];
         double inv_w = (double)a->inv_w + s * ((double)b->inv_w - (double)a->inv_w);

@@ -23,7 +23,9 @@
  * so no division by w and back). Every fragment is moved `depth_bias`
  * nearer, then tested (LESS, GREATER for reversed z) and written as a
  * triangle's are, the id + 1 into the framebuffer's ids plane where it
- * has one.
+ * has one. A line draw may first put each fragment to a test of its own
+ * (sr_line_filter: the hidden-line frame's, app/wireframe.h), which drops
+ * it or moves its depth.
  *
  * A fragment is stored at once, or, when the target has bins, appended to
  * the bin of its band of rows, to be stored later by the thread that owns
@@ -47,12 +49,23 @@ typedef struct sr_fragment {
     uint32_t id;    /* the primitive's slot */
 } sr_fragment;
 
+/* A line draw's own test of each line fragment, before the depth test:
+ * keep(user, line slot, x, y, &z) with z the fragment's depth (biased)
+ * drops it (false) or keeps it, with z as it leaves it. Called by the
+ * threads that make fragments, several at once and in no order: it may
+ * only read. */
+typedef struct sr_line_filter {
+    bool (*keep)(const void *user, uint32_t line, int x, int y, float *z);
+    const void *user;
+} sr_line_filter;
+
 typedef struct sr_point_line_target {
     sr_framebuffer *fb;
     sr_shade mode; /* a shading mode or SR_RASTER_COUNT_HITS (raster.h) */
     const sr_shade_context *shade;
     int subpixel_bits;
     float depth_bias; /* >= 0, z_ndc */
+    const sr_line_filter *filter; /* NULL: none */
     sr_array *bins;   /* NULL: store each fragment at once; else one sr_fragment array per band of rows */
     int band_rows;    /* with bins: the rows of a band */
     bool out_of_memory; /* a bin could not grow: fragments were lost */

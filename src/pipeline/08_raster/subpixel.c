@@ -9,5 +9,6 @@ sr_subpixel_verdict sr_subpixel_reject(const sr_subpixel_batch *b, int n, const 
     uint64_t used = n >= SR_SUBPIXEL_BATCH ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1;
     v.culled &= used;
     v.drawn &= used;
+    v.one_pixel &= used;
     return v;
 }

@@ -112,16 +112,19 @@ static SR_ALWAYS_INLINE sr_subpixel_verdict group(const sr_subpixel_batch *b, in
     lanes outside = (edge_at(x0, y0, sx1, sy1, cx, cy) | edge_at(sx1, sy1, sx2, sy2, cx, cy) |
                      edge_at(sx2, sy2, x0, y0, cx, cy)) < zero;
     lanes misses = empty | (one_centre & outside);
-    return (sr_subpixel_verdict){ .culled = lane_bits(small & ~keeps), .drawn = lane_bits(small & keeps & misses) };
+    return (sr_subpixel_verdict){ .culled = lane_bits(small & ~keeps),
+                                  .drawn = lane_bits(small & keeps & misses),
+                                  .one_pixel = lane_bits(small & keeps & one_centre & ~outside) };
 }
 
 sr_subpixel_verdict SUBPIXEL_GROUPS(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules)
 {
-    sr_subpixel_verdict v = { 0, 0 };
+    sr_subpixel_verdict v = { 0, 0, 0 };
     for (int at = 0; at < n; at += SUBPIXEL_LANES) {
         sr_subpixel_verdict g = group(b, at, rules);
         v.culled |= g.culled << at;
         v.drawn |= g.drawn << at;
+        v.one_pixel |= g.one_pixel << at;
     }
     return v;
 }

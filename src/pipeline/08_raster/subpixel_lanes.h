@@ -30,9 +30,11 @@ typedef struct sr_subpixel_rules {
 
 /* The lanes of the triangles that draw no pixel, by how stage 7 counts
  * them: culled (its area or winding), or drawn (kept, but no centre
- * covered). Every other lane goes on to the per-triangle path. */
+ * covered). Every other lane goes on to the per-triangle path, and of
+ * those, one_pixel are the kept triangles whose scan box holds one pixel
+ * centre, which they cover: their coverage is known, a one-bit mask. */
 typedef struct sr_subpixel_verdict {
-    uint64_t culled, drawn;
+    uint64_t culled, drawn, one_pixel;
 } sr_subpixel_verdict;
 
 /* The two widths (subpixel_body.h, compiled by subpixel_sse2.c and

@@ -1,0 +1,264 @@
+/* View depth, range, ids and normals of points and lines seen by a pinhole
+ * camera: a point's pixels carry its vertex, a line's pixels the segment's
+ * point nearest their ray, held to oracles written independently of
+ * src/scene/pinhole.c (in long double, in the camera frame: a point's own
+ * coordinates, and a golden-section search along the segment for its
+ * point nearest the ray). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "softrast_private.h"
+#include "test_rng.h"
+
+#define W 64
+#define H 48
+
+typedef long double real;
+
+/* Looking along the file's +z from its origin, image y down: camera
+ * coordinates are the file's, so an oracle in the camera frame needs no
+ * pose. A second camera turned and moved checks the pose is applied. */
+static sr_pinhole camera(double fx, double fy, double cx, double cy)
+{
+    return (sr_pinhole){ .fx = fx, .fy = fy, .cx = cx, .cy = cy,
+                         .w2c = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } } };
+}
+
+/* Draws mesh (points or lines) in id shading with cam's matrices, then
+ * resolves every output: depth, range, face ids, part ids and normals. */
+typedef struct resolved {
+    sr_framebuffer fb;
+    float depth[W * H], range[W * H], normals[3 * W * H];
+    uint32_t face_ids[W * H], part_ids[W * H];
+} resolved;
+
+static void draw_and_resolve(sr_pinhole *cam, const sr_mesh *mesh, int threads, resolved *r)
+{
+    sr_error err = { "" };
+    cr_assert(sr_framebuffer_create(&r->fb, W, H, &err), "%s", err.message);
+    sr_draw_desc desc = { .mesh = mesh, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE, .clear = true,
+                          .point_size = 1.0f, .threads = threads };
+    sr_pinhole_fit_clip(cam, mesh);
+    sr_pinhole_matrices(cam, mesh, &r->fb, &desc);
+    cr_assert(sr_draw(&r->fb, &desc, NULL, &err), "%s", err.message);
+    sr_pinhole_outputs out = { .depth = r->depth, .range = r->range, .face_ids = r->face_ids,
+                               .part_ids = r->part_ids, .normals = r->normals, .threads = threads };
+    cr_assert(sr_pinhole_resolve(cam, mesh, &r->fb, &out, &err), "%s", err.message);
+}
+
+static void unit(real v[3])
+{
+    real length = sqrtl(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int k = 0; k < 3; k++)
+        v[k] /= length;
+}
+
+/* |got − want| within `ulps` float steps of want. */
+static bool near_float(float got, real want, int ulps)
+{
+    float w = (float)want;
+    return fabsl((real)got - want) <= ulps * (real)(nextafterf(fabsf(w), INFINITY) - fabsf(w));
+}
+
+TestSuite(pinhole_sparse);
+
+/* Points placed exactly on pixel centres, at random depths and with random
+ * normals: each one's pixel shows it, with its own z, distance and normal;
+ * every other drawn pixel belongs to a point whose 1-px square covers it. */
+Test(pinhole_sparse, a_point_shows_its_vertex_depth_range_and_normal)
+{
+    enum { POINTS = 40 };
+    test_rng rng = { 31 };
+    sr_error err = { "" };
+    sr_mesh mesh;
+    cr_assert(sr_mesh_alloc(&mesh, POINTS, POINTS, true, false, false, &err), "%s", err.message);
+    mesh.topology = SR_POINT_LIST;
+    sr_pinhole cam = camera(41.0, 37.5, 30.25, 22.75);
+    int used[W * H] = { 0 };
+    real want_z[POINTS], want_n[POINTS][3];
+    int px[POINTS], py[POINTS];
+    for (int k = 0; k < POINTS; k++) {
+        do {
+            px[k] = 1 + (int)(rng_unit(&rng) * (W - 2));
+            py[k] = 1 + (int)(rng_unit(&rng) * (H - 2));
+        } while (used[py[k] * W + px[k]]);
+        used[py[k] * W + px[k]] = 1;
+        float z = (float)rng_uniform(&rng, 0.5, 50.0);
+        /* (u − cx)·z/fx rounded to float moves the point off the centre by
+         * far less than half a pixel */
+        mesh.positions[k][0] = (float)((px[k] - cam.cx) * z / cam.fx);
+        mesh.positions[k][1] = (float)((py[k] - cam.cy) * z / cam.fy);
+        mesh.positions[k][2] = z;
+        real n[3] = { rng_uniform(&rng, -1, 1), rng_uniform(&rng, -1, 1), rng_uniform(&rng, -1, 1) };
+        unit(n);
+        for (int c = 0; c < 3; c++) {
+            mesh.normals[k][c] = (float)n[c];
+            want_n[k][c] = mesh.normals[k][c];
+        }
+        unit(want_n[k]);
+        want_z[k] = z;
+        mesh.indices[k] = (uint32_t)k;
+    }
+    for (int threads = 1; threads <= 3; threads += 2) {
+        static resolved r;
+        draw_and_resolve(&cam, &mesh, threads, &r);
+        for (int k = 0; k < POINTS; k++) {
+            size_t at = (size_t)py[k] * W + (size_t)px[k];
+            cr_assert_eq(r.face_ids[at], (uint32_t)k + 1, "point %d at (%d, %d) shows %u", k, px[k], py[k],
+                         r.face_ids[at]);
+            const float *p = mesh.positions[k];
+            real range = sqrtl((real)p[0] * p[0] + (real)p[1] * p[1] + (real)p[2] * p[2]);
+            cr_assert_eq(r.depth[at], (float)want_z[k], "point %d: depth %.9g, want %.9g", k, r.depth[at],
+                         (float)want_z[k]);
+            cr_assert(near_float(r.range[at], range, 1), "point %d: range %.9g, want %.9Lg", k, r.range[at], range);
+            cr_assert_eq(r.part_ids[at], 1u);
+            for (int c = 0; c < 3; c++)
+                cr_assert(fabsl(r.normals[3 * at + c] - want_n[k][c]) < 1e-6L, "point %d: normal[%d] %.9g, want %.9Lg",
+                          k, c, r.normals[3 * at + c], want_n[k][c]);
+        }
+        for (size_t at = 0; at < (size_t)W * H; at++)
+            cr_assert(r.face_ids[at] == 0 ? r.depth[at] == 0.0f && r.range[at] == 0.0f && r.part_ids[at] == 0
+                                          : r.depth[at] == (float)want_z[r.face_ids[at] - 1],
+                      "pixel %zu: id %u, depth %.9g", at, r.face_ids[at], r.depth[at]);
+        sr_framebuffer_destroy(&r.fb);
+    }
+    sr_mesh_free(&mesh);
+}
+
+/* The distance from point a + t·u to the line through the origin along d. */
+static real distance_to_ray(const real a[3], const real u[3], real t, const real d[3])
+{
+    real p[3] = { a[0] + t * u[0], a[1] + t * u[1], a[2] + t * u[2] };
+    real c[3] = { p[1] * d[2] - p[2] * d[1], p[2] * d[0] - p[0] * d[2], p[0] * d[1] - p[1] * d[0] };
+    return sqrtl(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+/* The camera z of the segment's point nearest the ray through pixel
+ * (x, y): a golden-section search for t in [0, 1] (the distance is convex
+ * in t), to far below a float step. */
+static real nearest_z(const sr_pinhole *cam, const float a_f[3], const float b_f[3], int x, int y)
+{
+    real a[3], u[3], d[3] = { (x - cam->cx) / cam->fx, (y - cam->cy) / cam->fy, 1.0L };
+    for (int k = 0; k < 3; k++) {
+        a[k] = a_f[k];
+        u[k] = (real)b_f[k] - a_f[k];
+    }
+    const real g = (sqrtl(5.0L) - 1.0L) / 2.0L;
+    real lo = 0.0L, hi = 1.0L;
+    for (int i = 0; i < 120; i++) {
+        real m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
+        if (distance_to_ray(a, u, m1, d) <= distance_to_ray(a, u, m2, d))
+            hi = m2;
+        else
+            lo = m1;
+    }
+    real t = (lo + hi) / 2.0L;
+    return a[2] + t * u[2];
+}
+
+/* Random segments in front of the camera, one per draw: every pixel a
+ * segment draws carries the depth of its point nearest the pixel's ray,
+ * between its ends' depths, and its distance from the camera. */
+Test(pinhole_sparse, a_line_shows_its_point_nearest_each_pixels_ray)
+{
+    test_rng rng = { 77 };
+    sr_error err = { "" };
+    sr_mesh mesh;
+    cr_assert(sr_mesh_alloc(&mesh, 2, 2, true, false, false, &err), "%s", err.message);
+    mesh.topology = SR_LINE_LIST;
+    mesh.indices[0] = 0;
+    mesh.indices[1] = 1;
+    sr_pinhole cam = camera(45.0, 52.0, 33.5, 20.25);
+    int checked = 0;
+    for (int trial = 0; trial < 60; trial++) {
+        for (int e = 0; e < 2; e++) {
+            float z = (float)rng_uniform(&rng, 0.3, 30.0);
+            mesh.positions[e][0] = (float)(rng_uniform(&rng, -0.5, W + 0.5) - cam.cx) * z / (float)cam.fx;
+            mesh.positions[e][1] = (float)(rng_uniform(&rng, -0.5, H + 0.5) - cam.cy) * z / (float)cam.fy;
+            mesh.positions[e][2] = z;
+            glm_vec3_copy((vec3){ 0.0f, (float)e, 1.0f - (float)e }, mesh.normals[e]);
+        }
+        static resolved r;
+        cam.near = cam.far = 0.0;
+        draw_and_resolve(&cam, &mesh, 1 + trial % 3, &r);
+        float zmin = fminf(mesh.positions[0][2], mesh.positions[1][2]);
+        float zmax = fmaxf(mesh.positions[0][2], mesh.positions[1][2]);
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                size_t at = (size_t)y * W + (size_t)x;
+                if (r.face_ids[at] == 0)
+                    continue;
+                cr_assert_eq(r.face_ids[at], 1u);
+                real want = nearest_z(&cam, mesh.positions[0], mesh.positions[1], x, y);
+                cr_assert(fabsl(r.depth[at] - want) <= 1e-6L * want, "trial %d, (%d, %d): depth %.9g, want %.9Lg",
+                          trial, x, y, r.depth[at], want);
+                cr_assert(r.depth[at] >= zmin && r.depth[at] <= zmax, "trial %d: depth %.9g outside the ends' %g..%g",
+                          trial, r.depth[at], zmin, zmax);
+                cr_assert(r.range[at] >= r.depth[at], "trial %d: range %.9g below depth", trial, r.range[at]);
+                real n = sqrtl((real)r.normals[3 * at] * r.normals[3 * at] +
+                               (real)r.normals[3 * at + 1] * r.normals[3 * at + 1] +
+                               (real)r.normals[3 * at + 2] * r.normals[3 * at + 2]);
+                cr_assert(fabsl(n - 1.0L) < 1e-6L, "trial %d: normal of length %.9Lg", trial, n);
+                checked++;
+            }
+        sr_framebuffer_destroy(&r.fb);
+    }
+    cr_assert(checked > 500, "only %d line pixels checked", checked);
+    sr_mesh_free(&mesh);
+}
+
+/* Segments nearly along one pixel's ray, from depth 2 to 8 (their ends a
+ * pixel or two apart on screen), in both orders: where |u × d| is tiny,
+ * every pixel drawn still carries the oracle's depth. */
+Test(pinhole_sparse, a_line_nearly_along_a_ray_keeps_its_depth)
+{
+    sr_error err = { "" };
+    sr_mesh mesh;
+    cr_assert(sr_mesh_alloc(&mesh, 2, 2, true, false, false, &err), "%s", err.message);
+    mesh.topology = SR_LINE_STRIP;
+    mesh.indices[0] = 0;
+    mesh.indices[1] = 1;
+    sr_pinhole cam = camera(40.0, 40.0, 31.5, 23.5);
+    const float d[3] = { 0.25f, -0.125f, 1.0f }, off[3] = { 0.03f, 0.01f, 0.0f };
+    for (int order = 0; order < 2; order++) {
+        for (int k = 0; k < 3; k++) {
+            mesh.positions[order][k] = 2.0f * d[k];
+            mesh.positions[1 - order][k] = 8.0f * (d[k] + off[k]);
+        }
+        static resolved r;
+        cam.near = cam.far = 0.0;
+        draw_and_resolve(&cam, &mesh, 1, &r);
+        int drawn = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                size_t at = (size_t)y * W + (size_t)x;
+                if (!r.face_ids[at])
+                    continue;
+                drawn++;
+                real want = nearest_z(&cam, mesh.positions[0], mesh.positions[1], x, y);
+                cr_assert(fabsl(r.depth[at] - want) <= 1e-6L * want, "order %d, (%d, %d): depth %.9g, want %.9Lg",
+                          order, x, y, r.depth[at], want);
+            }
+        cr_assert(drawn >= 1 && drawn <= 4, "order %d: %d pixels drawn", order, drawn);
+        sr_framebuffer_destroy(&r.fb);
+    }
+    sr_mesh_free(&mesh);
+}
+
+Test(pinhole_sparse, normals_of_points_without_vertex_normals_are_refused)
+{
+    sr_error err = { "" };
+    sr_mesh mesh;
+    cr_assert(sr_mesh_alloc(&mesh, 1, 1, false, false, false, &err), "%s", err.message);
+    mesh.topology = SR_POINT_LIST;
+    glm_vec3_copy((vec3){ 0.0f, 0.0f, 3.0f }, mesh.positions[0]);
+    sr_pinhole cam = camera(40.0, 40.0, 31.5, 23.5);
+    static resolved r;
+    cr_assert(sr_framebuffer_create(&r.fb, W, H, &err), "%s", err.message);
+    sr_pinhole_outputs out = { .normals = r.normals };
+    cr_assert_not(sr_pinhole_resolve(&cam, &mesh, &r.fb, &out, &err));
+    cr_assert(strstr(err.message, "vertex normals"), "%s", err.message);
+    sr_framebuffer_destroy(&r.fb);
+    sr_mesh_free(&mesh);
+}
