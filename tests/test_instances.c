@@ -6,6 +6,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "gltf_square.h"
 #include "run_helpers.h"
 #include "softrast/files.h"
 #include "temp_dir.h"
@@ -21,11 +22,7 @@ static const char SQUARES_GLTF[] =
     "{\"translation\":[0,0,1],\"children\":[3]},{\"mesh\":0,\"scale\":[-1,1,1]}],"
     "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.25,1,1]}}],"
     "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"material\":0}]}],"
-    "\"buffers\":[{\"byteLength\":60,\"uri\":\"data:application/octet-stream;base64,"
-    "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAACAPwAAgD8AAAAAAAAAAAAAgD8AAAAAAAABAAIAAAACAAMA\"}],"
-    "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},{\"buffer\":0,\"byteOffset\":48,"
-    "\"byteLength\":12}],\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
-    "\"min\":[0,0,0],\"max\":[1,1,1]},{\"bufferView\":1,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}]}";
+    GLTF_UNIT_SQUARE_ARRAYS "}";
 
 /* One triangle geometry instanced by two nodes, one material bound to both. */
 static const char TRIANGLES_DAE[] =

@@ -100,8 +100,9 @@ typedef struct sr_texture {
 /* How a material's alpha (the base colour factor's times its texture's)
  * draws. MASK discards a fragment whose alpha is below alpha_cutoff: no
  * depth and no colour is written there, so a cut-out (a leaf, a fence) is a
- * hole in every buffer. BLEND is drawn as MASK with a cutoff of 0.5 (no
- * blending yet). */
+ * hole in every buffer. BLEND is blended by its alpha in a draw that
+ * blends (sr_draw_desc.blend), and drawn as MASK with a cutoff of 0.5 in
+ * one that replaces. */
 typedef enum sr_alpha_mode { SR_ALPHA_OPAQUE = 0, SR_ALPHA_MASK, SR_ALPHA_BLEND } sr_alpha_mode;
 
 /* What lambert and texture shading draw a part with (glTF's metallic-
@@ -347,6 +348,21 @@ typedef enum sr_filter { SR_FILTER_BILINEAR = 0, SR_FILTER_NEAREST } sr_filter;
  * never do. */
 typedef enum sr_color_space { SR_COLOR_RAW = 0, SR_COLOR_SRGB } sr_color_space;
 
+/* How a draw's fragments meet the colour already in the framebuffer
+ * (docs/conventions.md, "Blending"), with a fragment's alpha a from its
+ * material (a BLEND material's base_color alpha times its texel's alpha;
+ * 1 for OPAQUE and MASK), or for a mesh without materials its texture's
+ * alpha (1 without one). The colour buffer stays 8-bit RGB: it holds no
+ * alpha. Under SR_COLOR_SRGB both colours are decoded to linear light,
+ * blended there and encoded. Fragments meet the buffer in submission order
+ * on every path and thread count, so the result is the same bits. */
+typedef enum sr_blend {
+    SR_BLEND_REPLACE = 0,  /* the fragment's colour, as every draw did */
+    SR_BLEND_ALPHA,        /* src·a + dst·(1 − a) */
+    SR_BLEND_ADD,          /* src·a + dst, clamped to 1 */
+    SR_BLEND_PREMULTIPLIED /* src + dst·(1 − a), clamped: src already multiplied by a */
+} sr_blend;
+
 /* Toward the light: from above, a little left and in front of a camera at -z. */
 #define SR_DEFAULT_LIGHT { -0.35f, 0.8f, -0.5f }
 
@@ -394,7 +410,7 @@ typedef struct sr_draw_study sr_draw_study;
 
 /* Every zero field is a default: an all-zero matrix is the identity, shade 0
  * is lambert, cull 0 is back, front 0 is clockwise, filter 0 is bilinear,
- * color_space 0 is raw, a zero light direction is SR_DEFAULT_LIGHT, threads
+ * color_space 0 is raw, blend 0 replaces, a zero light direction is SR_DEFAULT_LIGHT, threads
  * 0 is one. */
 typedef struct sr_draw_desc {
     const sr_mesh *mesh;
@@ -408,6 +424,8 @@ typedef struct sr_draw_desc {
     sr_front front;
     sr_filter filter;
     sr_color_space color_space;
+    sr_blend blend;
+    bool no_depth_write; /* test depth, but write neither depth nor ids: a translucent layer over opaque ones */
     const sr_texture *texture; /* required by texture shading; lambert uses it when given (a mesh
                                   with materials uses theirs instead) */
     vec3 light_dir;            /* toward the light, world space */

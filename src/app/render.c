@@ -13,7 +13,7 @@
 #include "scene/frame.h"
 
 #define MAX_FRAMES 100000
-#define RENDER_OPTION_COUNT 13 /* render's own, before the pinhole camera's */
+#define RENDER_OPTION_COUNT 15 /* render's own, before the pinhole camera's */
 
 typedef struct render_job {
     sr_scene_setup scene;
@@ -24,7 +24,12 @@ typedef struct render_job {
     bool stats, quiet;
     bool points, lines; /* draw the mesh's vertices, or its edges with hidden lines removed */
     float point_size, line_width;
+    int blend, depth_write;        /* --blend (sr_blend), --depth-write (an index of DEPTH_WRITE_NAMES) */
+    bool blend_set, depth_write_set; /* given: one draw of the whole mesh so, not the file's layers */
 } render_job;
+
+static const char *const BLEND_NAMES[] = { "replace", "alpha", "additive", "premultiplied", NULL }; /* sr_blend */
+static const char *const DEPTH_WRITE_NAMES[] = { "on", "off", NULL };
 
 typedef struct frame_times {
     double median, min; /* of the draws */
@@ -68,6 +73,8 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
         { "--lines", SR_OPT_FLAG, &job->lines, NULL, "draw the mesh's edges, hidden lines removed" },
         { "--point-size", SR_OPT_FLOAT, &job->point_size, "PX", "with --points: each point a square this many pixels wide (default 1)", 1.0, SR_MAX_POINT_SIZE },
         { "--line-width", SR_OPT_FLOAT, &job->line_width, "PX", "with --lines: lines this many whole pixels wide (default 1)", 1.0, SR_MAX_LINE_WIDTH },
+        { "--blend", SR_OPT_CHOICE, &job->blend, "replace|alpha|additive|premultiplied", "draw the whole mesh in one draw blending so, in file order (default: the file's BLEND parts blended over the rest, farthest first)", .choices = BLEND_NAMES, .seen = &job->blend_set },
+        { "--depth-write", SR_OPT_CHOICE, &job->depth_write, "on|off", "with --blend: whether the draw writes depth (default on)", .choices = DEPTH_WRITE_NAMES, .seen = &job->depth_write_set },
     };
     sr_pinhole_setup_options(&job->pinhole, own + RENDER_OPTION_COUNT);
     if (!sr_scene_setup_parse(&job->scene, own, NULL, USAGE, argc, argv, help, err))
@@ -89,32 +96,41 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
             return sr_error_set(err, "--lines draws color and depth: not the measured outputs (--view-depth, ...)");
     if ((job->points || job->lines) && (job->dataset.poses_path || job->dataset.out_dir))
         return sr_error_set(err, "--points and --lines are not for --poses");
+    if (job->blend_set && job->lines)
+        return sr_error_set(err, "--blend is not for --lines (their triangles fill the depth the lines are tested by)");
+    if (job->depth_write_set && !job->blend_set)
+        return sr_error_set(err, "--depth-write goes with --blend (without it, BLEND parts write no depth, the others do)");
+    for (int k = 0; k < SR_MEASURED_COUNT; k++)
+        if (job->blend_set && (job->pinhole.paths[k] || job->dataset.poses_path || job->dataset.out_dir))
+            return sr_error_set(err, "--blend draws the color image: not for --poses or the measured outputs (--view-depth, ...)");
     if (job->dataset.poses_path || job->dataset.out_dir)
         return sr_dataset_check(&job->dataset, &job->pinhole, &job->scene, single[0] ? single : NULL, err);
     return !job->dataset.range_set ? sr_pinhole_setup_check(&job->pinhole, &job->scene, err)
                                     : sr_error_set(err, "--frame-range goes with --poses");
 }
 
-/* One timed frame: desc, or with `wire` the hidden-line frame of desc's
- * triangles and their edges, counted as the lines' draw. */
-static bool draw_frame(sr_scene *scene, const sr_draw_desc *desc, sr_hidden_lines *wire, sr_stats *stats, double *ms,
-                       sr_error *err)
+/* One timed frame: desc (in the file's layers unless `one_draw`: layers.h),
+ * or with `wire` the hidden-line frame of desc's triangles and their edges,
+ * counted as the lines' draw. */
+static bool draw_frame(sr_scene *scene, const sr_draw_desc *desc, sr_hidden_lines *wire, bool one_draw,
+                       sr_stats *stats, double *ms, sr_error *err)
 {
     sr_stats fill;
     if (wire)
         return sr_hidden_lines_frame(wire, &scene->fb, desc, &fill, stats, ms, err);
-    return sr_frame_draw_timed(&scene->fb, desc, stats, ms, err);
+    return one_draw ? sr_frame_draw_timed(&scene->fb, desc, stats, ms, err)
+                    : sr_frame_draw_layers_timed(&scene->fb, desc, stats, ms, err);
 }
 
-static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr_hidden_lines *lines, sr_stats *stats,
-                       frame_times *times, sr_error *err)
+static bool run_frames(int frames, sr_scene *scene, const sr_draw_desc *desc, sr_hidden_lines *lines, bool one_draw,
+                       sr_stats *stats, frame_times *times, sr_error *err)
 {
     double *ms = malloc((size_t)frames * sizeof *ms), warm;
     if (!ms)
         return sr_error_set(err, "out of memory for %d frame times", frames);
-    bool ok = frames == 1 || draw_frame(scene, desc, lines, stats, &warm, err);
+    bool ok = frames == 1 || draw_frame(scene, desc, lines, one_draw, stats, &warm, err);
     for (int f = 0; ok && f < frames; f++)
-        ok = draw_frame(scene, desc, lines, stats, &ms[f], err);
+        ok = draw_frame(scene, desc, lines, one_draw, stats, &ms[f], err);
     if (ok)
         sr_median_min(ms, frames, &times->median, &times->min);
     free(ms);
@@ -317,7 +333,9 @@ static bool render(void *j, sr_scene *scene, sr_error *err)
         (point_normals && !sr_mesh_compute_normals(&scene->mesh, err)) ||
         !primitives_desc(job, scene, &primitives, &desc, &lines, err))
         return false;
-    bool ok = run_frames(job->frames, scene, &desc, job->lines ? &lines : NULL, &stats, &times, err) &&
+    desc.blend = (sr_blend)job->blend;
+    desc.no_depth_write = job->depth_write == 1;
+    bool ok = run_frames(job->frames, scene, &desc, job->lines ? &lines : NULL, job->blend_set, &stats, &times, err) &&
               write_outputs(job, scene, err) &&
               (!pinhole || sr_pinhole_setup_write(&job->pinhole, &cam, scene, &desc, &times.resolve, err));
     sr_wireframe_free(&primitives);

@@ -10,6 +10,7 @@
 #include "pipeline/01_vertex.h"
 #include "pipeline/06_viewport.h"
 #include "pipeline/07_cull.h"
+#include "pipeline/11_merge.h"
 #include "core/error.h"
 #include "core/clock.h"
 #include "core/dmat4.h"
@@ -59,8 +60,8 @@ static bool check_inputs(const sr_framebuffer *fb, const sr_draw_desc *d, const 
         return sr_error_set(err, "draw without a mesh");
     if ((unsigned)d->shade >= SR_SHADE_COUNT || (unsigned)d->cull > SR_CULL_NONE ||
         (unsigned)d->front > SR_FRONT_CCW || (unsigned)d->filter > SR_FILTER_NEAREST ||
-        (unsigned)d->color_space > SR_COLOR_SRGB)
-        return sr_error_set(err, "draw with an unknown shading, culling, front, filter mode or colour space");
+        (unsigned)d->color_space > SR_COLOR_SRGB || (unsigned)d->blend > SR_BLEND_PREMULTIPLIED)
+        return sr_error_set(err, "draw with an unknown shading, culling, front, filter mode, colour space or blend");
     if (!check_accuracy_knobs(fb, study, err) || !sr_points_lines_check(d, err))
         return false;
     const double *o = d->mesh->origin;
@@ -98,7 +99,10 @@ static void shade_context_make(const sr_draw_desc *d, sr_simd simd, const sr_var
     *c = (sr_shade_context){ .layout = *l, .texture = d->texture, .filter = d->filter,
                              .simd = sr_raster_simd_resolve(simd), .srgb = d->color_space == SR_COLOR_SRGB,
                              .albedo = { SR_LAMBERT_GRAY, SR_LAMBERT_GRAY, SR_LAMBERT_GRAY },
-                             .tint = { 1.0f, 1.0f, 1.0f } };
+                             .tint = { 1.0f, 1.0f, 1.0f }, .blend = d->blend, .depth_write = !d->no_depth_write,
+                             .merges = d->blend != SR_BLEND_REPLACE || d->no_depth_write,
+                             .alpha_scale = SR_MERGE_ALPHA_ONE,
+                             .alpha_texel = l->uv >= 0 && d->texture && d->texture->texels && d->texture->alpha };
     glm_vec3_copy(light, c->light_dir);
 }
 

@@ -14,8 +14,9 @@
 #include "materials.h"
 #include "core/error.h"
 #include "pipeline/02_assemble.h"
+#include "pipeline/11_merge.h"
 
-/* BLEND, until blending is drawn: MASK at this cutoff. */
+/* BLEND in a draw that replaces: MASK at this cutoff. */
 #define BLEND_AS_MASK_CUTOFF 0.5f
 
 bool sr_materials_check(const sr_mesh *mesh, sr_error *err)
@@ -91,6 +92,8 @@ static void material_context(const sr_shade_context *base, const sr_material *m,
     c->texture = t;
     if (!texture)
         c->layout.uv = -1;
+    c->alpha_scale = SR_MERGE_ALPHA_ONE; /* opaque but for a BLEND material blended (below) */
+    c->alpha_texel = false;
     for (int i = 0; i < 3; i++) {
         c->albedo[i] = m->base_color[i];
         c->tint[i] = m->base_color[i];
@@ -98,6 +101,13 @@ static void material_context(const sr_shade_context *base, const sr_material *m,
     }
     if (m->alpha_mode == SR_ALPHA_OPAQUE)
         return;
+    if (m->alpha_mode == SR_ALPHA_BLEND && base->blend != SR_BLEND_REPLACE) {
+        /* the factor's alpha in 8.8 fixed point, as 11_merge.h takes it */
+        float a = m->base_color[3] > 0.0f ? (m->base_color[3] < 1.0f ? m->base_color[3] : 1.0f) : 0.0f;
+        c->alpha_scale = (uint32_t)(a * (float)SR_MERGE_ALPHA_ONE + 0.5f);
+        c->alpha_texel = texture && t->alpha;
+        return;
+    }
     float cutoff = m->alpha_mode == SR_ALPHA_BLEND ? BLEND_AS_MASK_CUTOFF : m->alpha_cutoff;
     uint32_t floor = texture && t->alpha ? alpha_floor(m->base_color[3], cutoff)
                                                   : (m->base_color[3] >= cutoff ? 0 : 256);

@@ -41,6 +41,16 @@ typedef struct sr_shade_context {
      * filtered) is below it is discarded; 0: none is. */
     uint32_t alpha_min;
     bool hidden;        /* MASK whose alpha is below the cutoff everywhere: nothing is drawn */
+    /* The output merger's (11_merge.h): the draw's blend, whether it
+     * writes depth and ids, whether either differs from a replacing draw
+     * that writes them (merges: the scalar loop merges each fragment),
+     * and the fragment's alpha, alpha_scale (0..256) times the texel's
+     * where alpha_texel. */
+    sr_blend blend;
+    bool depth_write;
+    bool merges;
+    uint32_t alpha_scale;
+    bool alpha_texel;
     /* The draw's base context only: a mesh's per-material contexts
      * (material_count of them, 0: none) and its parts, by which a
      * triangle's is found (sr_shade_context_of). */

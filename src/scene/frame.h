@@ -12,4 +12,9 @@
  * given, is zeroed first. */
 bool sr_frame_draw_timed(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err);
 
+/* The same, desc drawn as its materials mean it: BLEND parts blended
+ * over the others, farthest first (layers.h). */
+bool sr_frame_draw_layers_timed(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, double *ms,
+                                sr_error *err);
+
 #endif

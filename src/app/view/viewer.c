@@ -141,7 +141,7 @@ bool sr_viewer_draw(sr_viewer *v, bool overlays, sr_error *err)
         sr_stats fill;
         ok = sr_hidden_lines_frame(&v->wire, &v->scene.fb, &desc, &fill, &v->stats, &v->frame_ms, err);
     } else {
-        ok = sr_frame_draw_timed(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
+        ok = sr_frame_draw_layers_timed(&v->scene.fb, &desc, &v->stats, &v->frame_ms, err);
     }
     show_image(v);
     if (ok && overlays)

@@ -4,6 +4,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "pipeline/11_merge.h"
 #include "raster.h"
 #include "simd_select.h"
 #include "tiny_queue.h"
@@ -164,6 +165,15 @@ static inline bool mode_reads_varyings(sr_shade mode)
     return mode != SR_SHADE_ID && mode != SR_SHADE_DEPTH && mode != SR_RASTER_COUNT_HITS;
 }
 
+/* The shaded colour of a fragment at var. */
+static inline __attribute__((always_inline)) uint32_t fragment_colour(const setup *s, sr_shade mode, sr_interp interp,
+                                                                      const sr_shade_context *shade, const float *var,
+                                                                      uint32_t id)
+{
+    return mode == SR_SHADE_LAMBERT && sr_interp_flat_normal(interp) ? sr_shade_lit(shade, var, s->lambert)
+                                                                     : sr_shade_fragment(mode, shade, var, id);
+}
+
 /* Depth test, depth write, id write (with_ids: fb has an ids plane) and
  * shading of covered pixel i of a row; returns 1 if the fragment passed.
  * Counting hits, the pixel only counts one more. */
@@ -185,14 +195,18 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool
         if (shade->alpha_min && !sr_shade_alpha_passes(shade, var))
             return 0;
     }
+    if (shade->merges) { /* a draw that blends or keeps its depth (11_merge.h) */
+        bool coloured = mode != SR_SHADE_DEPTH;
+        sr_merge_fragment(fb, shade, at, z, with_ids, id, coloured,
+                          coloured ? fragment_colour(s, mode, interp, shade, var, id) : 0,
+                          coloured && mode_reads_varyings(mode) ? sr_merge_alpha(shade, var) : shade->alpha_scale);
+        return 1;
+    }
     fb->depth[at] = z;
     if (with_ids)
         fb->ids[at] = id + 1u;
-    if (mode != SR_SHADE_DEPTH) {
-        fb->color[at] = mode == SR_SHADE_LAMBERT && sr_interp_flat_normal(interp)
-                            ? sr_shade_lit(shade, var, s->lambert)
-                            : sr_shade_fragment(mode, shade, var, id);
-    }
+    if (mode != SR_SHADE_DEPTH)
+        fb->color[at] = fragment_colour(s, mode, interp, shade, var, id);
     return 1;
 }
 

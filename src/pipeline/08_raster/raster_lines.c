@@ -1,6 +1,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "pipeline/11_merge.h"
 #include "raster.h"
 #include "raster_lines.h"
 
@@ -23,11 +24,8 @@ static inline uint64_t store(const sr_point_line_target *t, const sr_fragment *f
     }
     if (!sr_depth_passes(f->z, fb->depth[f->at], fb->reversed_z))
         return 0;
-    fb->depth[f->at] = f->z;
-    if (fb->ids)
-        fb->ids[f->at] = f->id + 1u;
-    if (t->mode != SR_SHADE_DEPTH)
-        fb->color[f->at] = f->color;
+    sr_merge_fragment(fb, t->shade, f->at, f->z, fb->ids != NULL, f->id, t->mode != SR_SHADE_DEPTH,
+                      f->color & 0xFFFFFFu, sr_merge_alpha_of_byte(f->color >> 24));
     return 1;
 }
 
@@ -64,6 +62,14 @@ static inline bool shades(const sr_point_line_target *t)
     return t->mode != SR_SHADE_DEPTH && t->mode != SR_RASTER_COUNT_HITS;
 }
 
+/* A fragment's colour, and in its top byte its alpha: its texel's, for
+ * points and lines take no material's (a draw's base context has alpha_scale
+ * 1), so 8 bits hold it exactly and a binned fragment stays 16 bytes. */
+static inline uint32_t shaded_colour(const sr_point_line_target *t, const float *var, uint32_t id)
+{
+    return sr_shade_fragment(t->mode, t->shade, var, id) | sr_merge_texel_alpha(t->shade, var) << 24;
+}
+
 /* The fragment at (x, y) at parameter s of the segment a -> b. */
 static uint64_t line_fragment(sr_point_line_target *t, int x, int y, const sr_screen_vertex *a,
                               const sr_screen_vertex *b, double s, uint32_t id)
@@ -77,7 +83,7 @@ static uint64_t line_fragment(sr_point_line_target *t, int x, int y, const sr_sc
         double inv_w = (double)a->inv_w + s * ((double)b->inv_w - (double)a->inv_w);
         for (int k = 0; k < t->shade->layout.count; k++)
             var[k] = (float)(((double)a->var_w[k] + s * ((double)b->var_w[k] - (double)a->var_w[k])) / inv_w);
-        f.color = sr_shade_fragment(t->mode, t->shade, var, id);
+        f.color = shaded_colour(t, var, id);
     }
     return put(t, y, &f);
 }
@@ -86,8 +92,8 @@ static uint64_t line_fragment(sr_point_line_target *t, int x, int y, const sr_sc
 static inline sr_fragment point_fragment(const sr_point_line_target *t, const sr_screen_vertex *p, const float *var,
                                          uint32_t id)
 {
-    return (sr_fragment){ .z = biased_depth(t, (double)p->z),
-                          .color = shades(t) ? sr_shade_fragment(t->mode, t->shade, var, id) : 0, .id = id };
+    return (sr_fragment){ .z = biased_depth(t, (double)p->z), .color = shades(t) ? shaded_colour(t, var, id) : 0,
+                          .id = id };
 }
 
 static bool on_screen(const sr_framebuffer *fb, int64_t x, int64_t y)

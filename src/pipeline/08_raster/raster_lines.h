@@ -45,7 +45,7 @@
 typedef struct sr_fragment {
     uint32_t at;    /* y · width + x */
     float z;        /* z_ndc, biased and clamped to [0, 1] */
-    uint32_t color; /* packed, or unused (depth shading, SR_RASTER_COUNT_HITS) */
+    uint32_t color; /* packed, its alpha (11_merge.h) in the top byte; or unused (depth shading, SR_RASTER_COUNT_HITS) */
     uint32_t id;    /* the primitive's slot */
 } sr_fragment;
 

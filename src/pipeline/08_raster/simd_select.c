@@ -55,9 +55,13 @@ const char *sr_simd_name(sr_simd simd)
  * loops"). */
 #define SR_AVX512_MIN_WIDTH 16
 
+/* A draw that blends or keeps its depth (shade->merges) takes the scalar
+ * loop, which merges its fragments in submission order (11_merge.h). */
 sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, bool greater, bool with_ids,
                                   int width)
 {
+    if (shade->merges)
+        return NULL;
     switch (sr_raster_simd_resolve(shade->simd)) {
     case SR_SIMD_AVX512:
         return width >= SR_AVX512_MIN_WIDTH ? sr_span_kernel_avx512(mode, greater, with_ids, shade)
@@ -70,6 +74,8 @@ sr_span_kernel sr_span_kernel_for(const sr_shade_context *shade, sr_shade mode, 
 
 sr_tiny_shader sr_tiny_shader_for(const sr_shade_context *shade, sr_shade mode)
 {
+    if (shade->merges)
+        return NULL;
     switch (sr_raster_simd_resolve(shade->simd)) {
     case SR_SIMD_AVX512: /* the AVX2 shader: see SR_AVX512_MIN_WIDTH */
     case SR_SIMD_AVX2: return sr_tiny_shader_avx2(mode, shade);
