@@ -104,7 +104,8 @@ Test(camera_fit, framed_tiny_mesh_draws)
     sr_stats stats = { 0 };
     cr_assert(sr_draw(&fb, &desc, &stats, NULL));
     cr_expect_eq(stats.rejected, 0);
-    cr_expect_gt(stats.fragments, 32 * 32 / 8, "%llu fragments", (unsigned long long)stats.fragments);
+    /* A fair share of the frame, seen from the framed three-quarter view. */
+    cr_expect_gt(stats.fragments, 32 * 32 / 12, "%llu fragments", (unsigned long long)stats.fragments);
 }
 
 /* The depth row z_clip = a·z_view + b of every mode, a and b the double

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "app/upright.h"
 #include "case_format.h"
 #include "io/texture_find.h"
 #include "run_helpers.h"
@@ -247,6 +248,102 @@ Test(scene_files, a_texture_in_the_folder_it_names_is_found_in_any_case)
     free(found);
 }
 
+/* The upright turn takes the up axis to +y and the front to +z (facing
+ * the default camera), for every pair of axes, as a rotation; a front
+ * along the up axis, or none, is the up axis's default; the loader's z
+ * flip conjugates it. */
+Test(scene_files, the_upright_turn_takes_up_to_y_and_front_to_z)
+{
+    for (int up = 0; up < SR_AXIS_COUNT; up++)
+        for (int front = 0; front <= SR_AXIS_COUNT; front++) {
+            int want_front = front < SR_AXIS_COUNT && front / 2 != up / 2 ? front : (int)sr_upright_default_front((sr_axis)up);
+            cr_assert_neq(want_front / 2, up / 2);
+            mat4 plain, flipped;
+            sr_upright_matrix((sr_axis)up, (sr_axis)front, false, plain);
+            sr_upright_matrix((sr_axis)up, (sr_axis)front, true, flipped);
+            vec3 u = { 0 }, f = { 0 }, tu, tf;
+            u[up / 2] = up % 2 ? -1.0f : 1.0f;
+            f[want_front / 2] = want_front % 2 ? -1.0f : 1.0f;
+            glm_mat4_mulv3(plain, u, 0.0f, tu);
+            glm_mat4_mulv3(plain, f, 0.0f, tf);
+            cr_expect(glm_vec3_eqv(tu, (vec3){ 0, 1, 0 }) && glm_vec3_eqv(tf, (vec3){ 0, 0, 1 }),
+                      "up %s front %s: up to %g,%g,%g, front to %g,%g,%g", SR_AXIS_SIGNED[up],
+                      SR_AXIS_SIGNED[want_front], tu[0], tu[1], tu[2], tf[0], tf[1], tf[2]);
+            cr_expect_float_eq(glm_mat4_det(plain), 1.0f, 0.0f, "a rotation");
+            for (int r = 0; r < 3; r++)
+                for (int c = 0; c < 3; c++)
+                    cr_expect_eq(flipped[c][r], ((r == 2) != (c == 2) ? -1.0f : 1.0f) * plain[c][r]);
+        }
+}
+
+/* A small MD2 (Quake 2's frame: +z up, models facing +x) of two
+ * triangles 2 wide and 2 tall, wound as Quake winds them (clockwise seen
+ * from outside): id 1 facing +x, the model's front; id 2 facing -y, the
+ * model's right, where a front of +z after Assimp's turn to +y up lies. */
+static void write_two_faced_md2(const char *name)
+{
+    enum { HEADER = 68, ST = 4, TRIS = 2 * 12, FRAME = 40 + 6 * 4, END = HEADER + ST + TRIS + FRAME + 4 };
+    const int32_t header[16] = { 8, 8, 8, FRAME, 0, 6, 1, 2, 1, 1, HEADER, HEADER, HEADER + ST, HEADER + ST + TRIS,
+                                 HEADER + ST + TRIS + FRAME, END };
+    const uint16_t tris[12] = { 1, 0, 2, 0, 0, 0, 4, 3, 5, 0, 0, 0 };
+    const float scale_translate[6] = { 1, 1, 1, -1, -1, 0 };
+    /* + translate: (0,-1,0) (0,1,0) (0,0,2) at x = 0; (-1,3,0) (1,3,0) (0,3,2) at y = 3 */
+    const uint8_t verts[6][4] = { { 1, 0, 0 }, { 1, 2, 0 }, { 1, 1, 2 }, { 0, 4, 0 }, { 2, 4, 0 }, { 1, 4, 2 } };
+    uint8_t file[END] = { 'I', 'D', 'P', '2' }; /* x86: the format's little-endian words as they lie */
+    memcpy(file + 4, header, sizeof header);
+    memcpy(file + HEADER + ST, tris, sizeof tris);
+    memcpy(file + HEADER + ST + TRIS, scale_translate, sizeof scale_translate);
+    memcpy(file + HEADER + ST + TRIS + 40, verts, sizeof verts);
+    char path[600];
+    snprintf(path, sizeof path, "%s/%s", temp_dir, name);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(fwrite(file, sizeof file, 1, f), 1u);
+    fclose(f);
+}
+
+/* The default camera sees an MD2 from its front (+x), not its side. */
+Test(scene_files, an_md2_faces_the_default_camera)
+{
+    write_two_faced_md2("two.md2");
+    cJSON *o = info_json("two.md2");
+    cr_expect_str_eq(json_string(o, "up_axis"), "+y");
+    cr_expect_str_eq(json_string(o, "front_axis"), "+x");
+    cJSON_Delete(o);
+    char args[1024], out[600];
+    snprintf(out, sizeof out, "%s/ids.png", temp_dir);
+    snprintf(args, sizeof args, "render %s/two.md2 --size %dx%d --shade id --quiet --out %s", temp_dir, SIDE, SIDE, out);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+    sr_texture image;
+    sr_error err;
+    cr_assert(sr_texture_load(&image, out, &err), "%s", err.message);
+    int seen[3] = { 0 };
+    for (int i = 0; i < SIDE * SIDE; i++)
+        seen[(image.texels[i] & 0xFFFFFFu) < 3 ? image.texels[i] & 0xFFFFFFu : 0]++;
+    sr_texture_free(&image);
+    cr_expect_gt(seen[1], SIDE * SIDE / 40, "the front: %d pixels", seen[1]);
+    cr_expect_eq(seen[2], 0, "the side facing away: %d pixels", seen[2]);
+}
+
+/* An X3D url list, joined by Assimp as "a""b": the first name found. */
+Test(scene_files, an_x3d_url_list_is_its_first_texture_found)
+{
+    char model[640];
+    snprintf(model, sizeof model, "%s/scene.x3d", temp_dir);
+    write_red_png("b.png");
+    char *found = sr_texture_find(model, "a.png\"\"b.png\"\"c.gif");
+    cr_assert_not_null(found);
+    cr_expect_not_null(strstr(found, "/b.png"), "%s", found);
+    free(found);
+    write_red_png("a.png");
+    found = sr_texture_find(model, "a.png\"\"b.png");
+    cr_assert_not_null(found);
+    cr_expect_not_null(strstr(found, "/a.png"), "%s", found);
+    free(found);
+    cr_expect_null(sr_texture_find(model, "c.gif\"\"d.gif"), "neither lies beside it");
+}
+
 /* Assimp names an MD2 skin the file does not name "$texture_dummy.bmp";
  * viewers find sydney.md2's skin as sydney.bmp beside it. */
 Test(scene_files, an_unnamed_md2_skin_is_the_models_stem)
@@ -426,11 +523,12 @@ static void write_two_quads(const char *materials)
 }
 
 /* The colours at the middle of the left and right quads of two.gltf,
- * texture-shaded, are these. */
+ * texture-shaded and seen face on (the quads span pixels 18 to 45), are
+ * these. */
 static void expect_left_and_right(uint32_t left, uint32_t right)
 {
     sr_texture image;
-    render_image("two.gltf", 64, 32, "--shade texture", &image);
+    render_image("two.gltf", 64, 32, "--shade texture --eye 0,0,-4", &image);
     uint32_t l = image.texels[16 * 64 + 22] & 0xFFFFFFu, r = image.texels[16 * 64 + 42] & 0xFFFFFFu;
     sr_texture_free(&image);
     cr_expect(l == left && r == right, "left %06x, right %06x", l, r);

@@ -296,10 +296,11 @@ typedef struct sr_camera {
 /* At -z looking at the origin, up +y, 60°, near 0.1, far 100. */
 SR_API sr_camera sr_camera_default(void);
 
-/* Points the camera from -z at the centre of [lo, hi] (relative to the
- * camera's origin, as eye and target are), far enough back that the
- * bounding sphere fits the vertical and horizontal fov, and fits near and
- * far to it (sr_camera_fit_clip). */
+/* Points the camera at the centre of [lo, hi] (relative to the camera's
+ * origin, as eye and target are) from a three-quarter view: from -z,
+ * turned 30° toward +x and raised 20° toward +y. Far enough back that the
+ * bounding sphere fits the vertical and horizontal fov; near and far
+ * fitted to it (sr_camera_fit_clip). */
 SR_API void sr_camera_frame_bounds(sr_camera *cam, const vec3 lo, const vec3 hi, float aspect);
 
 /* Keeps near and far while the bounding sphere of [lo, hi] lies between

@@ -58,6 +58,14 @@ static sr_axis up_axis(const info_job *job, const sr_load_report *r)
     return job->up_axis >= 0 ? (sr_axis)job->up_axis : (sr_axis)r->up;
 }
 
+/* The axis the upright turn brings to the front: the file's when it says
+ * one across the up axis, else the up axis's default. */
+static sr_axis front_axis(const info_job *job, const sr_load_report *r)
+{
+    sr_axis up = up_axis(job, r), front = (sr_axis)r->front;
+    return front < SR_AXIS_COUNT && front / 2 != up / 2 ? front : sr_upright_default_front(up);
+}
+
 /* ---- JSON ---- */
 
 static cJSON *json_box(const double box[2][3])
@@ -114,7 +122,7 @@ static bool print_json(const info_job *job, const sr_mesh *m, const sr_load_repo
 {
     info_bounds b = mesh_bounds(m);
     mat4 turn;
-    sr_upright_matrix(up_axis(job, r), m->z_negated, turn);
+    sr_upright_matrix(up_axis(job, r), front_axis(job, r), m->z_negated, turn);
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "file", job->path);
     cJSON_AddStringToObject(o, "format", r->format);
@@ -131,6 +139,7 @@ static bool print_json(const info_job *job, const sr_mesh *m, const sr_load_repo
     cJSON_AddStringToObject(o, "up_axis", SR_AXIS_SIGNED[up_axis(job, r)]);
     cJSON_AddStringToObject(o, "up_found", up_found(job, r));
     cJSON_AddStringToObject(o, "up_why", job->up_axis >= 0 ? "--up-axis" : r->up_why);
+    cJSON_AddStringToObject(o, "front_axis", SR_AXIS_SIGNED[front_axis(job, r)]);
     cJSON *rows = cJSON_AddArrayToObject(o, "upright_turn"); /* rows of the world turn, softrast's world */
     for (int row = 0; row < 3; row++) {
         cJSON *line = cJSON_CreateArray();
@@ -198,8 +207,8 @@ static void print_text(const info_job *job, const sr_mesh *m, const sr_load_repo
         print_box(m->z_negated ? "; softrast's world (z negated)" : "; softrast's world", b.world);
         printf("\n");
     }
-    printf("up: %s (%s: %s)\n", SR_AXIS_SIGNED[up_axis(job, r)], up_found(job, r),
-           job->up_axis >= 0 ? "--up-axis" : r->up_why);
+    printf("up: %s, front %s (%s: %s)\n", SR_AXIS_SIGNED[up_axis(job, r)], SR_AXIS_SIGNED[front_axis(job, r)],
+           up_found(job, r), job->up_axis >= 0 ? "--up-axis" : r->up_why);
     print_units(r);
     print_parts(r);
     printf("left out: %llu points, %llu lines, %u animations, %u cameras, %u lights",

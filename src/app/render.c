@@ -39,7 +39,8 @@ typedef struct frame_times {
 static const char USAGE[] =
     "usage: softrast render MESH.obj [options]\n"
     "Draws MESH.obj into an image without a window. Without --eye/--target the camera\n"
-    "looks from -z at the centre of the mesh's bounds, far enough back to see all of it.\n"
+    "looks at the centre of the mesh's bounds from its front, 30 degrees to the right and\n"
+    "20 above, far enough back to see all of it.\n"
     "With --pose-w2c or --pose-c2w it is a pinhole camera in OpenCV's convention, in the\n"
     "file's own frame, and --view-depth and --range write metric depth (docs/cli.md).";
 

@@ -37,7 +37,7 @@ static void scene_options(sr_scene_setup *s, sr_option *table)
 {
     const sr_option entries[] = {
         { "--size", SR_OPT_SIZE, s->size, "WxH", "framebuffer size (default 1280x720)", 1, SR_MAX_FRAMEBUFFER_SIDE, .seen = &s->size_set },
-        { "--eye", SR_OPT_DVEC3, s->eye, "X,Y,Z", "camera position (default: framed on the mesh from -z)", .seen = &s->eye_set },
+        { "--eye", SR_OPT_DVEC3, s->eye, "X,Y,Z", "camera position (default: framed on the mesh, a three-quarter view from its front)", .seen = &s->eye_set },
         { "--target", SR_OPT_DVEC3, s->target, "X,Y,Z", "point looked at (default: the mesh's centre)", .seen = &s->target_set },
         { "--up", SR_OPT_VEC3, s->camera.up, "X,Y,Z", "up direction (default 0,1,0)", .seen = &s->look_at_set },
         { "--fov", SR_OPT_FLOAT, &s->camera.fov_deg, "DEG", "vertical field of view in degrees (default 60)", 1e-3, 179.999, .seen = &s->fov_set },
@@ -211,7 +211,7 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
     sr_scene_print_warnings(&scene->report);
     decode_display_colours(s, &scene->mesh);
     sr_axis up = s->up_axis >= 0 ? (sr_axis)s->up_axis : (sr_axis)scene->report.up;
-    sr_upright_matrix(up, scene->mesh.z_negated, scene->upright);
+    sr_upright_matrix(up, (sr_axis)scene->report.front, scene->mesh.z_negated, scene->upright);
     bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);
     if (s->texture_path || !wants_texture)
         sr_texture_free(&scene->texture); /* the file's own, embedded: replaced, or not needed */
@@ -278,8 +278,9 @@ static bool upright_bounds(const sr_scene *scene, const double origin[3], vec3 l
     return true;
 }
 
-/* Framed from -z when neither --eye nor --target is given; else the eye
- * given looks at the target given or the scene's centre. Near and far are
+/* Framed (sr_camera_frame_bounds: a three-quarter view from the front)
+ * when neither --eye nor --target is given; else the eye given looks at
+ * the target given or the scene's centre. Near and far are
  * fitted to the scene unless one of them is given (sr_camera_fit_clip keeps
  * the contract's defaults while the scene lies between them, so its images
  * do not change). */

@@ -166,7 +166,7 @@ static void report_importer(const struct aiScene *sc, const char *path, sr_load_
 
 typedef struct format_axes {
     const char *endings; /* space-separated, lower case */
-    sr_axis up;
+    sr_axis up, front; /* front SR_AXIS_COUNT: the format says none */
     sr_found found;
     const char *why;
     double metres; /* 0: unknown */
@@ -177,16 +177,18 @@ typedef struct format_axes {
 /* Checked against assimp-testmodels (docs/conventions.md, "Axes and
  * units"): which way each format's scenes arrive up from Assimp. */
 static const format_axes FORMATS[] = {
-    { "gltf glb", SR_AXIS_PY, SR_FOUND_READ, "glTF 2.0 defines +y up", 1.0, SR_FOUND_READ, "glTF 2.0 defines metres" },
-    { "dae zae", SR_AXIS_PY, SR_FOUND_READ, "Assimp turns COLLADA's <up_axis> to +y itself", 0, SR_FOUND_UNKNOWN, "not reported by Assimp" },
-    { "3ds md2 ifc ifczip", SR_AXIS_PY, SR_FOUND_READ, "Assimp turns this format to +y up itself", 0, SR_FOUND_UNKNOWN, "not reported by Assimp" },
-    { "x", SR_AXIS_PY, SR_FOUND_READ, "DirectX .x files are +y up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
-    { "3mf", SR_AXIS_PZ, SR_FOUND_READ, "3MF defines +z up (the build direction)", 0.001, SR_FOUND_GUESSED, "3MF's default unit, millimetres" },
-    { "amf", SR_AXIS_PZ, SR_FOUND_READ, "AMF defines +z up (the build direction)", 0.001, SR_FOUND_GUESSED, "AMF's default unit, millimetres" },
-    { "stl", SR_AXIS_PZ, SR_FOUND_GUESSED, "STL states no axis; 3D-printing tools take +z up", 0.001, SR_FOUND_GUESSED, "STL states no unit; 3D printing takes millimetres" },
-    { "blend", SR_AXIS_PZ, SR_FOUND_READ, "Blender's world is +z up", 1.0, SR_FOUND_GUESSED, "Blender's default unit, metres" },
-    { "smd", SR_AXIS_PZ, SR_FOUND_GUESSED, "SMD states no axis; the Source engine is +z up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
-    { "cob scn", SR_AXIS_PZ, SR_FOUND_GUESSED, "COB states no axis; trueSpace is +z up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
+    { "gltf glb", SR_AXIS_PY, SR_AXIS_COUNT, SR_FOUND_READ, "glTF 2.0 defines +y up", 1.0, SR_FOUND_READ, "glTF 2.0 defines metres" },
+    { "dae zae", SR_AXIS_PY, SR_AXIS_COUNT, SR_FOUND_READ, "Assimp turns COLLADA's <up_axis> to +y itself", 0, SR_FOUND_UNKNOWN, "not reported by Assimp" },
+    { "3ds ifc ifczip", SR_AXIS_PY, SR_AXIS_COUNT, SR_FOUND_READ, "Assimp turns this format to +y up itself", 0, SR_FOUND_UNKNOWN, "not reported by Assimp" },
+    { "md2", SR_AXIS_PY, SR_AXIS_PX, SR_FOUND_READ, "Assimp turns Quake 2's +z up to +y itself; Quake's models face +x", 0, SR_FOUND_UNKNOWN, "not reported by Assimp" },
+    { "x", SR_AXIS_PY, SR_AXIS_COUNT, SR_FOUND_READ, "DirectX .x files are +y up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
+    { "ac acc ac3d", SR_AXIS_PY, SR_AXIS_COUNT, SR_FOUND_GUESSED, "AC3D states no axis; the AC3D modeller is +y up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
+    { "3mf", SR_AXIS_PZ, SR_AXIS_COUNT, SR_FOUND_READ, "3MF defines +z up (the build direction)", 0.001, SR_FOUND_GUESSED, "3MF's default unit, millimetres" },
+    { "amf", SR_AXIS_PZ, SR_AXIS_COUNT, SR_FOUND_READ, "AMF defines +z up (the build direction)", 0.001, SR_FOUND_GUESSED, "AMF's default unit, millimetres" },
+    { "stl", SR_AXIS_PZ, SR_AXIS_COUNT, SR_FOUND_GUESSED, "STL states no axis; 3D-printing tools take +z up", 0.001, SR_FOUND_GUESSED, "STL states no unit; 3D printing takes millimetres" },
+    { "blend", SR_AXIS_PZ, SR_AXIS_COUNT, SR_FOUND_READ, "Blender's world is +z up", 1.0, SR_FOUND_GUESSED, "Blender's default unit, metres" },
+    { "smd", SR_AXIS_PZ, SR_AXIS_COUNT, SR_FOUND_GUESSED, "SMD states no axis; the Source engine is +z up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
+    { "cob scn", SR_AXIS_PZ, SR_AXIS_COUNT, SR_FOUND_GUESSED, "COB states no axis; trueSpace is +z up", 0, SR_FOUND_UNKNOWN, "the format states no unit" },
 };
 
 static bool listed(const char *endings, const char *e)
@@ -230,7 +232,7 @@ static double amf_unit(const char *path)
 
 static void report_axes(const struct aiScene *sc, const char *path, sr_load_report *r)
 {
-    *r = (sr_load_report){ .up = SR_AXIS_PY, .up_found = SR_FOUND_GUESSED };
+    *r = (sr_load_report){ .up = SR_AXIS_PY, .front = SR_AXIS_COUNT, .up_found = SR_FOUND_GUESSED };
     sr_report_copy(r->up_why, "the format states no axis; +y up assumed");
     sr_report_copy(r->units_why, "the format states no unit");
     for (size_t i = 0; i < sizeof FORMATS / sizeof *FORMATS; i++) {
@@ -238,6 +240,7 @@ static void report_axes(const struct aiScene *sc, const char *path, sr_load_repo
         if (!listed(f->endings, ending(path)))
             continue;
         r->up = f->up;
+        r->front = f->front;
         r->up_found = f->found;
         sr_report_copy(r->up_why, f->why);
         r->metres_per_unit = f->metres;

@@ -82,6 +82,7 @@ void sr_report_obj_format(sr_load_report *r)
     sr_report_copy(r->format, "Wavefront OBJ");
     r->up = SR_AXIS_PY;
     r->up_found = SR_FOUND_GUESSED;
+    r->front = SR_AXIS_COUNT;
     sr_report_copy(r->up_why, "OBJ states no axis; Blender, Maya and most exporters write it +y up");
     r->units_found = SR_FOUND_UNKNOWN;
     sr_report_copy(r->units_why, "OBJ states no unit");

@@ -50,6 +50,7 @@ typedef struct sr_load_report {
     uint32_t up;                   /* sr_axis, in the file's frame */
     uint32_t up_found;             /* sr_found */
     char up_why[SR_REPORT_TEXT];   /* "glTF 2.0 defines +y up", … */
+    uint32_t front;                /* sr_axis the scene faces, said with the up axis; SR_AXIS_COUNT: unsaid */
     double metres_per_unit;        /* 0 when unknown */
     uint32_t units_found;          /* sr_found */
     char units_why[SR_REPORT_TEXT];

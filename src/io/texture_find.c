@@ -137,7 +137,7 @@ static char *model_stem(const char *base_file)
     return dot && dot != base ? strndup(base, (size_t)(dot - base)) : strdup(base);
 }
 
-char *sr_texture_find(const char *base_file, const char *written)
+static char *find_one(const char *base_file, const char *written)
 {
     char *as_written = sr_obj_path_beside(base_file, written);
     if (!as_written || is_regular(as_written))
@@ -161,4 +161,25 @@ char *sr_texture_find(const char *base_file, const char *written)
         return found;
     }
     return found ? found : search_beside(base_file, base);
+}
+
+/* Assimp's X3D importer joins the quoted names of a url list,
+ * url='"a.png" "b.gif"', into one: a.png""b.gif. */
+#define JOINED_NAMES "\"\""
+
+char *sr_texture_find(const char *base_file, const char *written)
+{
+    if (!strstr(written, JOINED_NAMES))
+        return find_one(base_file, written);
+    char *names = strdup(written), *found = NULL;
+    for (char *name = names, *next; name && !found; name = next) {
+        next = strstr(name, JOINED_NAMES);
+        if (next) {
+            *next = '\0';
+            next += strlen(JOINED_NAMES);
+        }
+        found = *name ? find_one(base_file, name) : NULL;
+    }
+    free(names);
+    return found;
 }

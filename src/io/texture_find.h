@@ -16,7 +16,8 @@
  * A name Assimp makes up for a skin the file does not name
  * ("$texture_dummy.bmp", MD2) is looked for as the model's own stem with an
  * image ending ("sydney.md2": "sydney.bmp"), by steps 2 and 3.
- * Only regular files count. Malloc'd; NULL when none is found (or out of
+ * A url list X3D names, which Assimp joins as a.png""b.gif, is the first
+ * of its names found. Only regular files count. Malloc'd; NULL when none is found (or out of
  * memory). */
 char *sr_texture_find(const char *base_file, const char *written);
 

@@ -9,6 +9,12 @@
 
 #define FRAME_MARGIN 1.05f /* a little room around the framed bounds */
 
+/* Where the framed camera stands, seen from the scene's centre: in front
+ * (-z), turned 30 degrees to the right and raised 20 above it, a
+ * three-quarter view (docs/cli.md, "The default camera", says why). */
+#define FRAME_AZIMUTH_DEG 30.0
+#define FRAME_ELEVATION_DEG 20.0
+
 /* Slack around the bounding sphere when near and far are fitted to it, so
  * its nearest and farthest points are never clipped; an eye inside the
  * sphere keeps near above FIT_NEAR_MIN of far (the depth buffer's
@@ -40,9 +46,11 @@ void sr_camera_frame_bounds(sr_camera *cam, const vec3 lo, const vec3 hi, float 
     float half_fov_x = atanf(tanf(half_fov) * aspect);
     float narrow = half_fov < half_fov_x ? half_fov : half_fov_x;
     float distance = radius > 0.0f ? FRAME_MARGIN * radius / sinf(narrow) : 1.0f;
+    const double az = FRAME_AZIMUTH_DEG * GLM_PI / 180.0, el = FRAME_ELEVATION_DEG * GLM_PI / 180.0;
+    const double toward_eye[3] = { sin(az) * cos(el), sin(el), -cos(az) * cos(el) };
     glm_vec3_copy(centre, cam->target);
-    glm_vec3_copy(centre, cam->eye);
-    cam->eye[2] -= distance;
+    for (int k = 0; k < 3; k++)
+        cam->eye[k] = sr_double_to_float(centre[k] + distance * toward_eye[k]);
     if (cam->ortho_height > 0.0f)
         cam->ortho_height = 2.0f * FRAME_MARGIN * radius;
     sr_camera_fit_clip(cam, lo, hi);
