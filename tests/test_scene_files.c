@@ -612,6 +612,49 @@ Test(scene_files, an_amf_draws_its_colours_as_given_and_none_in_gray)
               rgb[2]);
 }
 
+/* AMF (as 3MF) stores a solid's facets, no normals, its corners shared:
+ * each triangle is shaded by its own outward normal, the same at its three
+ * corners, never one averaged over a corner (a box's sides would shade as
+ * gradients). */
+Test(scene_files, an_amf_solid_is_shaded_by_its_facets)
+{
+    write_text(temp_dir, "tetra.amf",
+               "<?xml version=\"1.0\"?>\n<amf><object id=\"1\"><mesh><vertices>"
+               "<vertex><coordinates><x>0</x><y>0</y><z>0</z></coordinates></vertex>"
+               "<vertex><coordinates><x>1</x><y>0</y><z>0</z></coordinates></vertex>"
+               "<vertex><coordinates><x>0</x><y>2</y><z>0</z></coordinates></vertex>"
+               "<vertex><coordinates><x>0</x><y>0</y><z>3</z></coordinates></vertex></vertices><volume>"
+               "<triangle><v1>0</v1><v2>2</v2><v3>1</v3></triangle><triangle><v1>0</v1><v2>1</v2><v3>3</v3></triangle>"
+               "<triangle><v1>0</v1><v2>3</v2><v3>2</v3></triangle><triangle><v1>1</v1><v2>2</v2><v3>3</v3></triangle>"
+               "</volume></mesh></object></amf>\n");
+    sr_mesh m;
+    sr_texture tex = { 0 };
+    sr_error err = { "" };
+    char path[600];
+    cr_assert(sr_mesh_load(&m, &tex, temp_path(path, sizeof path, "tetra.amf"), &err), "%s", err.message);
+    cr_assert_eq(m.index_count, 12u);
+    cr_assert_not_null(m.normals);
+    vec3 centre = { 0, 0, 0 };
+    for (uint32_t i = 0; i < m.index_count; i++)
+        glm_vec3_muladds(m.positions[m.indices[i]], 1.0f / 12.0f, centre);
+    for (uint32_t t = 0; t < 4; t++) {
+        const uint32_t *v = &m.indices[3 * t];
+        vec3 e1, e2, face, out;
+        glm_vec3_sub(m.positions[v[1]], m.positions[v[0]], e1);
+        glm_vec3_sub(m.positions[v[2]], m.positions[v[0]], e2);
+        glm_vec3_cross(e1, e2, face);
+        glm_vec3_normalize(face);
+        glm_vec3_sub(m.positions[v[0]], centre, out);
+        cr_expect_gt(glm_vec3_dot(face, out), 0.0f, "triangle %u winds inward", t);
+        for (int c = 0; c < 3; c++)
+            cr_expect(glm_vec3_distance(m.normals[v[c]], face) < 1e-6f,
+                      "triangle %u corner %d: normal (%g, %g, %g), its face's (%g, %g, %g)", t, c, m.normals[v[c]][0],
+                      m.normals[v[c]][1], m.normals[v[c]][2], face[0], face[1], face[2]);
+    }
+    sr_mesh_free(&m);
+    sr_texture_free(&tex);
+}
+
 /* A triangle whose one morph target lifts its apex by 2, at a default
  * weight of 0.5 (the glTF mesh's "weights"): drawn with the apex at
  * 1 + 0.5 * 2; `info` says what was posed. */

@@ -24,8 +24,9 @@
  * their default weights and skinned meshes kept in their bind pose
  * before post-processing (assimp_report.h), and an AMF file's
  * constellation instances placed as the file says (amf_constellations.h).
- * The import runs in a child process (isolated_load.h): Assimp is not ours
- * to make crash- and hang-free.
+ * 3MF and AMF meshes are shaded by their facets (mesh_facets.h). The
+ * import runs in a child process (isolated_load.h): Assimp is not ours to
+ * make crash- and hang-free.
  */
 #include <assimp/GltfMaterial.h>
 #include <assimp/cimport.h>
@@ -43,6 +44,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "isolated_load.h"
+#include "mesh_facets.h"
 #include "mesh_loaders.h"
 #include "mesh_origin.h"
 #include "obj_parse.h"
@@ -452,6 +454,9 @@ static bool ends_in(const char *path, const char *const *endings)
 
 static const char *const AMF[] = { ".amf", NULL };
 
+/* Formats whose meshes are a solid's facets, shaded flat (mesh_facets.h). */
+static const char *const FACETED[] = { ".3mf", ".amf", NULL };
+
 /* In the child process: Assimp's import, AMF's constellations placed, its
  * mirrored meshes turned outward, flattened and converted; what it found
  * into report. */
@@ -474,7 +479,8 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
     sr_assimp_instances list = { 0 };
     bool ok = (generated && sr_assimp_instances_find(sc, SR_MAX_MESH_TRIANGLES, &list)) ||
               sr_error_set(err, "%s: out of memory, or more than %u mesh instances", path, SR_MAX_MESH_TRIANGLES);
-    ok = ok && build_mesh(sc, &list, generated, path, mesh, err) && find_texture(sc, path, mesh, texture, err) &&
+    ok = ok && build_mesh(sc, &list, generated, path, mesh, err) &&
+         (!ends_in(path, FACETED) || sr_mesh_facet(mesh, err)) && find_texture(sc, path, mesh, texture, err) &&
          build_materials(sc, path, mesh, texture, err);
     if (ok && report) {
         report->mirrored_meshes = mirrored;
