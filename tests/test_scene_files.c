@@ -682,6 +682,68 @@ Test(scene_files, morph_targets_are_drawn_at_their_default_weights)
     cJSON_Delete(o);
 }
 
+/* A triangle skinned to two joints, (0,0,0) to the first alone, (1,0,0) to
+ * the second alone, (0,1,0) half to each. The first joint's node stands at
+ * (0,2,0) with an identity inverse bind matrix; the second's at (0,0,3)
+ * with one that moves by (0,0,-1). The mesh's own node, moved by (5,0,0),
+ * does not place a skinned mesh (glTF's skinning): the vertices are drawn
+ * at (0,2,0), (1,0,2) and (0,2,1), softrast's world negating z. */
+Test(scene_files, a_skinned_mesh_is_posed_by_its_joints_nodes)
+{
+    static const struct {
+        float positions[3][3];
+        uint16_t indices[4];        /* three, and padding */
+        uint8_t joints[3][4];
+        float weights[3][4];
+        float inverse_bind[2][16];  /* column-major */
+    } bin = { { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } },
+              { 0, 1, 2, 0 },
+              { { 0, 0, 0, 0 }, { 1, 0, 0, 0 }, { 0, 1, 0, 0 } },
+              { { 1, 0, 0, 0 }, { 1, 0, 0, 0 }, { 0.5f, 0.5f, 0, 0 } },
+              { { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 }, { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -1, 1 } } };
+    cr_assert_eq(sizeof bin, 232u);
+    char path[600];
+    snprintf(path, sizeof path, "%s/s.bin", temp_dir);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(fwrite(&bin, sizeof bin, 1, f), 1u);
+    fclose(f);
+    write_text(temp_dir, "s.gltf",
+               "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2]}],"
+               "\"nodes\":[{\"mesh\":0,\"skin\":0,\"translation\":[5,0,0]},{\"translation\":[0,2,0]},"
+               "{\"translation\":[0,0,3]}],\"skins\":[{\"joints\":[1,2],\"inverseBindMatrices\":4}],"
+               "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"JOINTS_0\":2,\"WEIGHTS_0\":3},"
+               "\"indices\":1}]}],\"buffers\":[{\"byteLength\":232,\"uri\":\"s.bin\"}],"
+               "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6},"
+               "{\"buffer\":0,\"byteOffset\":44,\"byteLength\":12},{\"buffer\":0,\"byteOffset\":56,\"byteLength\":48},"
+               "{\"buffer\":0,\"byteOffset\":104,\"byteLength\":128}],\"accessors\":["
+               "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]},"
+               "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"},"
+               "{\"bufferView\":2,\"componentType\":5121,\"count\":3,\"type\":\"VEC4\"},"
+               "{\"bufferView\":3,\"componentType\":5126,\"count\":3,\"type\":\"VEC4\"},"
+               "{\"bufferView\":4,\"componentType\":5126,\"count\":2,\"type\":\"MAT4\"}]}");
+    sr_mesh m;
+    sr_texture tex = { 0 };
+    sr_error err = { "" };
+    cr_assert(sr_mesh_load(&m, &tex, temp_path(path, sizeof path, "s.gltf"), &err), "%s", err.message);
+    cr_assert_eq(m.index_count, 3u);
+    static const double want[3][3] = { { 0, 2, 0 }, { 1, 0, -2 }, { 0, 2, -1 } };
+    for (int w = 0; w < 3; w++) {
+        bool seen = false;
+        for (uint32_t i = 0; i < m.index_count; i++) {
+            const float *p = m.positions[m.indices[i]];
+            seen |= m.origin[0] + p[0] == want[w][0] && m.origin[1] + p[1] == want[w][1] &&
+                    m.origin[2] + p[2] == want[w][2];
+        }
+        cr_expect(seen, "no corner at (%g, %g, %g)", want[w][0], want[w][1], want[w][2]);
+    }
+    sr_mesh_free(&m);
+    sr_texture_free(&tex);
+    cJSON *o = info_json("s.gltf");
+    cr_expect_eq(cJSON_GetObjectItem(o, "skinned_meshes")->valueint, 1);
+    cJSON_Delete(o);
+}
+
 /* The glTF reproducers of fuzz/regressions/mesh (byte 0 picks the format,
  * the rest is the file): a material index out of range, a texture that is
  * a directory, a path through "..", a thousand materials sharing one

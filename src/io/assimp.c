@@ -21,7 +21,7 @@
  * mirrors its root frame): a mesh placed mirrored alone has its winding
  * reversed before post-processing (sr_assimp_unmirror), a mesh placed both
  * ways its mirrored instances' reversed here. Morph targets are applied at
- * their default weights and skinned meshes kept in their bind pose
+ * their default weights and skinned meshes posed by their skeletons
  * before post-processing (assimp_report.h), and an AMF file's
  * constellation instances placed as the file says (amf_constellations.h).
  * 3MF and AMF meshes are shaded by their facets (mesh_facets.h). The
