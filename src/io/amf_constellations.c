@@ -14,7 +14,8 @@
 
 /* Names and ids longer than this are kept as "", matching no node. */
 #define MAX_NAME 32
-/* A file placing more instances than this is left to Assimp's placement. */
+/* A file of more constellations or instances than this is left to
+ * Assimp's placement. */
 #define MAX_INSTANCES (1u << 20)
 /* A hostile hierarchy is walked no deeper than this. */
 #define MAX_NODE_DEPTH 1024
@@ -179,7 +180,9 @@ static bool read_tag(reader *r, parse_state *s)
     if (!read_attributes(f, c, constellation ? "id" : "objectid", attribute, &empty))
         return false;
     if (constellation && !empty) {
-        amf_constellation *con = sr_array_push(&r->constellations, sizeof *con);
+        amf_constellation *con = r->constellations.count < MAX_INSTANCES
+                                     ? sr_array_push(&r->constellations, sizeof *con)
+                                     : NULL;
         r->failed = !con;
         if (con) {
             *con = (amf_constellation){ .first = r->instances.count };
