@@ -228,11 +228,50 @@ Test(blend_layers, a_datasets_frame_is_renders_image_blended)
     char path[600];
     cr_assert(sr_texture_load(&image, temp_path(path, sizeof path, "ds/c/frame_00000.png"), &err), "%s",
               err.message);
-    expect_pixels(&image, (const double[2]){ 9.0, 8.0 }, (const uint32_t[4]){ 0x408040u, 0x800080u, 0x808000u, 0xFF0000u },
-                  "the dataset's frame");
+    expect_pixels(&image, (const double[2]){ 9.0, 8.0 },
+                  (const uint32_t[4]){ 0x408040u, 0x800080u, 0x808000u, 0xFF0000u }, "the dataset's frame");
     sr_texture_free(&image);
     static float depth[SIDE * SIDE];
     read_depth("ds/d/frame_00000.pfm", depth, SIDE, SIDE);
     for (int i = 0; i < SIDE * SIDE; i++)
         cr_assert_float_eq(depth[i], 10.0f, 1e-5f, "pixel %d: depth %g, not the opaque square's", i, depth[i]);
+}
+
+/* The library's entry on a mesh of its own: a BLEND square of alpha 0.5
+ * (blue, triangles 0 and 1, nearer: z 0.25) listed before an opaque one
+ * (red, 2 and 3, z 0.5), both over the whole 4x4 view in clip space (the
+ * matrices left as the identity). Texture shading, raw: blue blends over
+ * red (0x800080 by hand, as above), and depth and ids are the red
+ * square's, its ids the file's; id shading leaves the blue square out. */
+Test(blend_layers, the_library_draws_a_meshs_layers)
+{
+    vec3 positions[8] = { { -1, -1, 0.25f }, { -1, 1, 0.25f }, { 1, 1, 0.25f }, { 1, -1, 0.25f },
+                          { -1, -1, 0.5f },  { -1, 1, 0.5f },  { 1, 1, 0.5f },  { 1, -1, 0.5f } };
+    uint32_t indices[12] = { 0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7 };
+    sr_mesh_part parts[2] = { { 0, 2, 0 }, { 2, 2, 1 } };
+    sr_material materials[2] = { { .base_color = { 0, 0, 1, 0.5f }, .alpha_mode = SR_ALPHA_BLEND },
+                                 { .base_color = { 1, 0, 0, 1 } } };
+    sr_mesh mesh = { .vertex_count = 8, .positions = positions, .index_count = 12, .indices = indices,
+                     .part_count = 2, .parts = parts, .material_count = 2, .materials = materials };
+    sr_framebuffer fb;
+    sr_error err = { "" };
+    cr_assert(sr_framebuffer_create(&fb, 4, 4, &err) && sr_framebuffer_create_ids(&fb, &err), "%s", err.message);
+    for (int shade = 0; shade < 2; shade++) {
+        sr_draw_desc desc = { .mesh = &mesh, .shade = shade ? SR_SHADE_ID : SR_SHADE_TEXTURE, .cull = SR_CULL_NONE,
+                              .clear = true };
+        sr_stats stats = { 0 };
+        cr_assert(sr_draw_layered(&fb, &desc, &stats, &err), "%s", err.message);
+        cr_assert_eq(stats.triangles, shade ? 2u : 4u, "each triangle drawn is counted once");
+        for (int i = 0; i < 16; i++) {
+            cr_assert(fb.ids[i] == 3 || fb.ids[i] == 4, "pixel %d shows triangle %u", i, fb.ids[i] - 1);
+            cr_assert_eq(fb.depth[i], 0.5f, "pixel %d: depth %g", i, fb.depth[i]);
+            cr_assert_eq(fb.color[i], shade ? fb.ids[i] : 0x800080u, "pixel %d: %06x", i, fb.color[i]);
+        }
+    }
+    /* what sr_draw refuses, it refuses here with its one line */
+    mesh.materials = NULL;
+    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_TEXTURE, .cull = SR_CULL_NONE };
+    cr_assert_not(sr_draw_layered(&fb, &desc, NULL, &err));
+    cr_assert_not_null(strstr(err.message, "no material array"), "%s", err.message);
+    sr_framebuffer_destroy(&fb);
 }

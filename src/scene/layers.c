@@ -22,12 +22,12 @@ static uint32_t blend_part_count(const sr_mesh *mesh)
 
 /* Whether desc is drawn in layers: it replaces and writes depth (as the
  * file's materials mean it), and its mesh is a triangle list in world
- * positions with BLEND parts in range. */
+ * positions with BLEND parts in range (sr_draw refuses what is not). */
 static bool layered(const sr_draw_desc *desc)
 {
     const sr_mesh *m = desc->mesh;
     if (desc->blend != SR_BLEND_REPLACE || desc->no_depth_write || m->topology != SR_TRIANGLE_LIST ||
-        m->clip_positions || !m->positions)
+        m->clip_positions || !m->positions || !m->indices || (m->material_count && !m->materials))
         return false;
     for (uint32_t i = 0; i < m->part_count; i++) {
         const sr_mesh_part *p = &m->parts[i];
