@@ -437,6 +437,7 @@ void fuzz_draw(reader *r)
     check_shading_independent(&id_runs[sc.cull], &shaded);
     check_threads(&sc);
     check_points_lines(&sc);
+    check_pinhole(&sc, r);
     for (int c = 0; c < CULL_MODES; c++)
         draw_run_free(&id_runs[c]);
     draw_run_free(&shaded);

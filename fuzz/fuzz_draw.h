@@ -2,7 +2,8 @@
  * reader, the decoded scene, one draw's record, the invariants' helpers.
  * fuzz_draw.c is the entry point (see there for the input format);
  * draw_input.c decodes, draw_checks.c draws and checks, draw_stages.c
- * re-runs the stages by hand, draw_clip.c tests the clipper alone. */
+ * re-runs the stages by hand, draw_pinhole.c resolves a pinhole camera's
+ * view, draw_clip.c tests the clipper alone. */
 #ifndef SOFTRAST_FUZZ_DRAW_H
 #define SOFTRAST_FUZZ_DRAW_H
 
@@ -102,6 +103,9 @@ bool viewport_may_refuse(const float *v, int varyings);
 void check_clip_area(const sr_polygon *tri, unsigned planes, const sr_polygon *got, double vertex_tolerance,
                      const sr_clip_depth *depth, const char *what);
 void check_stages(const scene *sc, const sr_stats *stats);
+
+/* draw_pinhole.c: a pinhole camera's draw and resolve, from the bytes the scene leaves */
+void check_pinhole(const scene *sc, reader *r);
 
 /* draw_clip.c: the clipper on its own */
 void fuzz_clip(reader *r);
