@@ -330,6 +330,67 @@ Test(pinhole, bad_cameras_are_refused_with_one_line)
     cr_assert_not(sr_pinhole_pose_from_c2w(sheared, w2c, &err), "a sheared camera-to-world pose accepted");
 }
 
+/* The resolve takes an ids plane on trust only from a draw of its mesh:
+ * a plane drawn from another mesh (an id past this one's triangles, or
+ * one whose corners this one lacks), a camera sr_pinhole_check refuses or
+ * one whose clip planes are unset, and a framebuffer without pixels are
+ * each one line and false, on one thread and on three, for triangles and
+ * for points; the plane of its own draw resolves. */
+Test(pinhole, a_resolve_refuses_what_is_no_draw_of_its_mesh)
+{
+    double c2w[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } };
+    sr_error err = { "" };
+    sr_mesh drawn, fewer, lacking;
+    /* Two triangles (or six points) in the middle of the view at z = 2,
+     * and a mesh of one (or three). */
+    cr_assert(sr_mesh_alloc(&drawn, 4, 6, false, false, false, &err), "%s", err.message);
+    const float corners[4][3] = { { -0.6f, -0.6f, 2 }, { 0.6f, -0.6f, 2 }, { 0.6f, 0.6f, 2 }, { -0.6f, 0.6f, 2 } };
+    const uint32_t quad[6] = { 0, 1, 2, 0, 2, 3 };
+    memcpy(drawn.positions, corners, sizeof corners);
+    memcpy(drawn.indices, quad, sizeof quad);
+    cr_assert(sr_mesh_alloc(&fewer, 4, 3, false, false, false, &err), "%s", err.message);
+    memcpy(fewer.positions, corners, sizeof corners);
+    memcpy(fewer.indices, quad, 3 * sizeof *quad);
+    /* The same indices over three vertices: the second triangle names a fourth. */
+    cr_assert(sr_mesh_alloc(&lacking, 3, 6, false, false, false, &err), "%s", err.message);
+    memcpy(lacking.positions, corners, 3 * sizeof *corners);
+    memcpy(lacking.indices, quad, sizeof quad);
+    for (int points = 0; points < 2; points++) {
+        drawn.topology = fewer.topology = lacking.topology = points ? SR_POINT_LIST : SR_TRIANGLE_LIST;
+        sr_pinhole cam = camera_of(8, 8, 7.5, 7.5, c2w);
+        sr_pinhole_fit_clip(&cam, &drawn);
+        sr_framebuffer fb;
+        draw_ids(&fb, &cam, &drawn, 16, 16);
+        float depth[16 * 16];
+        for (int threads = 1; threads <= 3; threads += 2) {
+            sr_pinhole_outputs out = { .depth = depth, .threads = threads };
+            cr_assert(sr_pinhole_resolve(&cam, &drawn, &fb, &out, &err), "%s", err.message);
+            const sr_mesh *strangers[2] = { &fewer, &lacking };
+            for (int m = 0; m < 2; m++) {
+                err.message[0] = '\0';
+                cr_assert_not(sr_pinhole_resolve(&cam, strangers[m], &fb, &out, &err),
+                              "points %d, threads %d: the plane of another mesh resolved (%d)", points, threads, m);
+                cr_assert(strstr(err.message, "not a draw of this mesh") && !strchr(err.message, '\n'), "%s",
+                          err.message);
+            }
+            sr_pinhole unfitted = camera_of(8, 8, 7.5, 7.5, c2w), bent = cam;
+            bent.w2c[0][0] = 2;
+            cr_assert_not(sr_pinhole_resolve(&unfitted, &drawn, &fb, &out, &err));
+            cr_assert(strstr(err.message, "clip planes"), "%s", err.message);
+            cr_assert_not(sr_pinhole_resolve(&bent, &drawn, &fb, &out, &err));
+            cr_assert(strstr(err.message, "rigid"), "%s", err.message);
+            sr_framebuffer empty = fb;
+            empty.height = 0;
+            cr_assert_not(sr_pinhole_resolve(&cam, &drawn, &empty, &out, &err));
+            cr_assert(strstr(err.message, "no pixels"), "%s", err.message);
+        }
+        sr_framebuffer_destroy(&fb);
+    }
+    sr_mesh_free(&drawn);
+    sr_mesh_free(&fewer);
+    sr_mesh_free(&lacking);
+}
+
 /* The rigid inverse: w2c · c2w is the identity. */
 Test(pinhole, the_pose_from_c2w_inverts_it)
 {

@@ -531,8 +531,11 @@ typedef struct sr_pinhole_outputs {
  * primitive's point nearest its ray (a point's vertex; a line's closest
  * approach to the ray, clamped to the segment), its normal the vertex
  * normals there, whichever `interpolated_normals` says. False, with one
- * line in err, for a mesh without positions, or normals asked of a mesh
- * without vertex normals where they are needed. */
+ * line in err, for a mesh without positions, normals asked of a mesh
+ * without vertex normals where they are needed, a camera sr_pinhole_check
+ * refuses or whose clip planes are unset, or an ids plane that is no draw
+ * of mesh (an id past its primitives, or one naming a vertex it lacks:
+ * the outputs are then partly written). */
 SR_API bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
                                const sr_pinhole_outputs *out, sr_error *err);
 

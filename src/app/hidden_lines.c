@@ -199,17 +199,34 @@ static bool touches(const line_judge *j, uint32_t k, uint32_t line)
     return false;
 }
 
+/* The face seen at the pixel whose square holds the clip point p, when
+ * that pixel is (x, y) or a neighbour of it; else the face at (x, y). A
+ * line snapped onto a pixel its exact path only skirts has its point
+ * nearest the centre in the neighbour's square, whose face stands for
+ * the surface over it. */
+static uint32_t face_over(const line_judge *j, const double p[4], int x, int y)
+{
+    double s[2];
+    to_pixels(j, p, s);
+    double px = floor(s[0]), py = floor(s[1]);
+    if (px >= x - 1 && px <= x + 1 && py >= y - 1 && py <= y + 1 && px >= 0 && py >= 0 && px < j->width &&
+        py < j->height)
+        return j->ids[(size_t)py * (size_t)j->width + (size_t)px];
+    return j->ids[(size_t)y * (size_t)j->width + (size_t)x];
+}
+
 /* Whether the faces seen at and next to (x, y), the face at (x, y) not
  * owning line `line`, hide it there. One that does not own it hides it
  * when its plane is nearer than the line's point nearest the pixel centre
  * by more than TIE_DEPTH and it covers that point; or no face that owns
  * the line is seen (the line lies behind the plane of the surface around
- * it: a far side seen through a near one); or it is the face at (x, y)
- * and has neither end of the line as a corner (it stands for a surface in
- * front whose face over the point is too small to hold a pixel centre).
- * A neighbour of the line seen beside a face of it, not over the point,
- * is the next facet of a curved surface, which bends away from the line. */
-static bool hidden_at(const line_judge *j, uint32_t line, int x, int y, uint32_t here)
+ * it: a far side seen through a near one); or it is the face seen over
+ * that point (face_over) and has neither end of the line as a corner (it
+ * stands for a surface in front whose face over the point is too small
+ * to hold a pixel centre: a cylinder's silhouette facets). A neighbour of
+ * the line seen beside a face of it, not over the point, is the next
+ * facet of a curved surface, which bends away from the line. */
+static bool hidden_at(const line_judge *j, uint32_t line, int x, int y)
 {
     uint32_t others[9];
     bool owned;
@@ -217,11 +234,12 @@ static bool hidden_at(const line_judge *j, uint32_t line, int x, int y, uint32_t
     double p[4];
     if (n == 0 || !line_point_near(j, line, x, y, p))
         return false;
+    uint32_t over = face_over(j, p, x, y);
     double z = p[2] / p[3], tie = j->reversed_z ? z + TIE_DEPTH : z - TIE_DEPTH, face;
     for (int k = 0; k < n; k++) {
         bool covers;
         if (plane_through(j, others[k] - 1, p, &face, &covers) && nearer(face, tie, j->reversed_z) &&
-            (covers || !owned || (others[k] == here && !touches(j, others[k] - 1, line))))
+            (covers || !owned || (others[k] == over && !touches(j, others[k] - 1, line))))
             return true;
     }
     return false;
@@ -249,7 +267,7 @@ static bool keep_fragment(const void *user, uint32_t line, int x, int y, float *
     size_t at = (size_t)y * (size_t)j->width + (size_t)x;
     uint32_t here = j->ids[at];
     bool bordered = here != 0 && here <= j->wire->triangle_slots && owns(j, here, line);
-    if (!j->kept[line] || (!bordered && hidden_at(j, line, x, y, here)))
+    if (!j->kept[line] || (!bordered && hidden_at(j, line, x, y)))
         return false;
     float hair = hair_nearer(j->depth[at], j->reversed_z);
     if (!nearer(*z, hair, j->reversed_z))

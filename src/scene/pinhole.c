@@ -200,12 +200,16 @@ static uint32_t part_of(const sr_mesh *mesh, uint32_t slot)
     return mesh->part_count ? lo + 1 : 1;
 }
 
-static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, const sr_pinhole_outputs *out,
+/* False for a triangle whose corners are not all the mesh's vertices: an
+ * ids plane of another mesh's draw. */
+static bool resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, const sr_pinhole_outputs *out,
                              uint32_t slot, resolved_triangle *t)
 {
     uint32_t idx[3];
     double v[3][3];
     sr_assemble_triangle(mesh, slot, idx); /* drawn, so not degenerate */
+    if (idx[0] >= mesh->vertex_count || idx[1] >= mesh->vertex_count || idx[2] >= mesh->vertex_count)
+        return false;
     for (int k = 0; k < 3; k++)
         to_camera(cam, mesh, mesh->positions[idx[k]], v[k]);
     for (int k = 0; k < 3; k++) {
@@ -230,6 +234,7 @@ static void resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, const s
     }
     t->part = out->part_ids && mesh->parts ? part_of(mesh, slot) : 1;
     t->slot = slot;
+    return true;
 }
 
 /* The view z of the ray through a pixel centre, ((x − cx)/fx, (y − cy)/fy, 1),
@@ -347,6 +352,7 @@ typedef struct resolve_job {
     const sr_mesh *mesh;
     const sr_framebuffer *fb;
     const uint32_t *ids; /* fb's ids plane, or its color of an SR_SHADE_ID draw */
+    uint32_t slots;      /* the mesh's primitive slots: the largest id a draw of it writes */
     const sr_pinhole_outputs *out;
     double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
     double *z;             /* a row of view z for each band */
@@ -405,15 +411,16 @@ static void resolve_run(const resolve_job *job, const resolved_triangle *t, int 
 
 /* A row of face ids from its ids: the plane itself, or each triangle's
  * file face + 1 where the file's faces are asked for and the mesh has them. */
-static void write_face_ids(const sr_mesh *mesh, const sr_pinhole_outputs *out, const uint32_t *ids, int width,
-                           uint32_t *face_ids)
+static void write_face_ids(const resolve_job *job, const uint32_t *ids, uint32_t *face_ids)
 {
-    if (!out->file_faces || !mesh->file_faces) {
+    const sr_mesh *mesh = job->mesh;
+    int width = job->fb->width;
+    if (!job->out->file_faces || !mesh->file_faces) {
         memcpy(face_ids, ids, (size_t)width * sizeof *ids);
         return;
     }
-    for (int x = 0; x < width; x++)
-        face_ids[x] = ids[x] ? mesh->file_faces[ids[x] - 1] + 1 : 0;
+    for (int x = 0; x < width; x++) /* an id past the mesh's stops the resolve after this row */
+        face_ids[x] = ids[x] && ids[x] <= job->slots ? mesh->file_faces[ids[x] - 1] + 1 : 0;
 }
 
 /* Prefetches what the triangles of row y need: their indices (stage 0)
@@ -434,7 +441,7 @@ static void prefetch_row(const resolve_job *job, int y, int stage)
         return;
     for (int x = 0; x < width; x++) {
         uint32_t id = ids[x];
-        if (id == 0 || (x > 0 && ids[x - 1] == id))
+        if (id == 0 || id > job->slots || (x > 0 && ids[x - 1] == id))
             continue;
         if (stage == 0) {
             __builtin_prefetch(sr_assemble_slot_indices(mesh, id - 1));
@@ -464,17 +471,21 @@ typedef struct sparse_point {
     uint32_t idx[2];
 } sparse_point;
 
-static void sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x, double ray_y, sparse_point *sp)
+static bool sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x, double ray_y, sparse_point *sp)
 {
     const sr_mesh *mesh = job->mesh;
     if (mesh->topology == SR_POINT_LIST) {
         sp->idx[0] = sp->idx[1] = mesh->indices[slot];
+        if (sp->idx[0] >= mesh->vertex_count)
+            return false;
         to_camera(job->cam, mesh, mesh->positions[sp->idx[0]], sp->p);
         sp->t = 0.0;
-        return;
+        return true;
     }
     double a[3], b[3], u[3], a_d[3], u_d[3];
     sr_assemble_line(mesh, slot, sp->idx); /* drawn, so not degenerate */
+    if (sp->idx[0] >= mesh->vertex_count || sp->idx[1] >= mesh->vertex_count)
+        return false;
     to_camera(job->cam, mesh, mesh->positions[sp->idx[0]], a);
     to_camera(job->cam, mesh, mesh->positions[sp->idx[1]], b);
     for (int k = 0; k < 3; k++)
@@ -487,16 +498,18 @@ static void sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x,
     sp->t = t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; /* NaN (an overflow) takes the first end */
     for (int k = 0; k < 3; k++)
         sp->p[k] = a[k] + sp->t * u[k];
+    return true;
 }
 
 /* Pixel `at` showing point or line slot id − 1: each output from the
  * primitive's point nearest its ray. Per pixel: a point cloud's pixels
  * rarely share a primitive with their neighbours for long. */
-static void resolve_sparse_pixel(const resolve_job *job, uint32_t id, size_t at, double ray_x, double ray_y)
+static bool resolve_sparse_pixel(const resolve_job *job, uint32_t id, size_t at, double ray_x, double ray_y)
 {
     const sr_pinhole_outputs *out = job->out;
     sparse_point sp;
-    sparse_point_at(job, id - 1, ray_x, ray_y, &sp);
+    if (!sparse_point_at(job, id - 1, ray_x, ray_y, &sp))
+        return false;
     if (out->depth)
         out->depth[at] = (float)sp.p[2];
     if (out->range)
@@ -504,7 +517,7 @@ static void resolve_sparse_pixel(const resolve_job *job, uint32_t id, size_t at,
     if (out->part_ids)
         out->part_ids[at] = job->mesh->parts ? part_of(job->mesh, id - 1) : 1;
     if (!out->normals)
-        return;
+        return true;
     double normal[3];
     for (int k = 0; k < 3; k++) {
         const float *n0 = job->mesh->normals[sp.idx[0]], *n1 = job->mesh->normals[sp.idx[1]];
@@ -514,12 +527,15 @@ static void resolve_sparse_pixel(const resolve_job *job, uint32_t id, size_t at,
     double camera[3];
     rotate(job->cam, normal, camera);
     normalize_into(camera, &out->normals[3 * at]);
+    return true;
 }
 
 /* Rows y0 … y1 − 1, in runs of pixels that show one triangle: a run sets
  * its triangle up once (or finds it in the cache) and each output is a
- * loop of its own over the run. */
-static void resolve_rows(const resolve_job *job, int y0, int y1, double *z)
+ * loop of its own over the run. Returns 0, or an id that is no primitive
+ * of the mesh (or one whose vertices it lacks): the ids plane is not a
+ * draw of it, and the band stops there. */
+static uint32_t resolve_rows(const resolve_job *job, int y0, int y1, double *z)
 {
     const sr_pinhole_outputs *out = job->out;
     int width = job->fb->width;
@@ -537,7 +553,7 @@ static void resolve_rows(const resolve_job *job, int y0, int y1, double *z)
         if (y + 1 < y1)
             prefetch_row(job, y + 1, 1);
         if (out->face_ids) /* the id + 1 each pixel shows, 0 where nothing: the plane itself */
-            write_face_ids(job->mesh, out, ids, width, &out->face_ids[(size_t)y * (size_t)width]);
+            write_face_ids(job, ids, &out->face_ids[(size_t)y * (size_t)width]);
         for (int x = 0, end; x < width; x = end) {
             uint32_t id = ids[x];
             for (end = x + 1; end < width && ids[end] == id;)
@@ -547,16 +563,23 @@ static void resolve_rows(const resolve_job *job, int y0, int y1, double *z)
                 continue;
             }
             if (!sr_assemble_triangles(job->mesh)) {
+                if (id > job->slots)
+                    return id;
                 for (int i = x; i < end; i++)
-                    resolve_sparse_pixel(job, id, (size_t)y * (size_t)width + (size_t)i, job->ray_x[i], job->ray_y[y]);
+                    if (!resolve_sparse_pixel(job, id, (size_t)y * (size_t)width + (size_t)i, job->ray_x[i],
+                                              job->ray_y[y]))
+                        return id;
                 continue;
             }
             resolved_triangle *t = &cache[(id - 1) % TRIANGLE_CACHE];
-            if (t->slot != id - 1)
-                resolve_triangle(job->cam, job->mesh, out, id - 1, t);
+            if (t->slot != id - 1 && (id > job->slots || !resolve_triangle(job->cam, job->mesh, out, id - 1, t))) {
+                t->slot = UINT32_MAX;
+                return id;
+            }
             resolve_run(job, t, y, x, end - x, z + x);
         }
     }
+    return 0;
 }
 
 /* One thread's rows: band k of `bands` equal runs of rows. */
@@ -564,13 +587,14 @@ typedef struct resolve_band {
     const resolve_job *job;
     int k, bands;
     pthread_t thread;
+    uint32_t stranger; /* resolve_rows' verdict */
 } resolve_band;
 
 static void *resolve_band_run(void *arg)
 {
-    const resolve_band *b = arg;
+    resolve_band *b = arg;
     int height = b->job->fb->height;
-    resolve_rows(b->job, (int)((int64_t)height * b->k / b->bands), (int)((int64_t)height * (b->k + 1) / b->bands),
+    b->stranger = resolve_rows(b->job, (int)((int64_t)height * b->k / b->bands), (int)((int64_t)height * (b->k + 1) / b->bands),
                  b->job->z + (size_t)b->k * (size_t)b->job->fb->width);
     return NULL;
 }
@@ -584,12 +608,19 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
     if (out->normals && (out->interpolated_normals || sparse) && !mesh->normals)
         return sr_error_set(err, sparse ? "normals of points or lines are their vertex normals, which the mesh lacks"
                                         : "interpolated normals need the mesh's vertex normals");
+    if (!sr_pinhole_check(cam, err))
+        return false;
+    if (cam->near == 0.0)
+        return sr_error_set(err, "the camera's clip planes are unset: fit them (sr_pinhole_fit_clip) as for its draw");
+    if (ids->width < 1 || ids->height < 1 || !(ids->ids || ids->color) || !ids->depth)
+        return sr_error_set(err, "the ids framebuffer has no pixels, or no ids, colour or depth plane");
     /* Each pixel's values are its own, whichever thread computes them: the
      * bands change no bit. More threads than rows would have empty bands. */
     int bands = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;
     bands = bands > ids->height ? ids->height : bands;
     size_t width = (size_t)ids->width;
-    resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color, out,
+    resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color,
+                        sparse ? sr_assemble_point_line_slots(mesh) : sr_assemble_slots(mesh), out,
                         malloc(width * sizeof *job.ray_x), malloc((size_t)ids->height * sizeof *job.ray_y),
                         malloc((size_t)bands * width * sizeof *job.z) };
     if (!job.ray_x || !job.ray_y || !job.z) {
@@ -612,10 +643,16 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
     for (int k = 0; k < bands; k++)
         if (k == 0 || k >= started)
             resolve_band_run(&band[k]);
-    for (int k = 1; k < started; k++)
-        pthread_join(band[k].thread, NULL);
+    uint32_t stranger = 0;
+    for (int k = 0; k < bands; k++) {
+        if (k >= 1 && k < started)
+            pthread_join(band[k].thread, NULL);
+        stranger = stranger ? stranger : band[k].stranger;
+    }
     free(job.ray_x);
     free(job.ray_y);
     free(job.z);
-    return true;
+    return !stranger || sr_error_set(err, "the ids plane holds id %u, and this mesh has %u primitives over %u "
+                                          "vertices: it is not a draw of this mesh",
+                                     stranger, job.slots, mesh->vertex_count);
 }
