@@ -58,9 +58,9 @@ setup(
     ext_modules=[
         Extension(
             "softrast._softrast",
-            sources=["src/module.c", "src/mesh.c", "src/renderer.c", "src/mesh_origin.c"],
+            sources=["src/module.c", "src/mesh.c", "src/renderer.c", "src/mesh_origin.c", "src/vertex_colours.c"],
             depends=["src/softrast_py.h"] + [os.path.join(ROOT, a) for a in ARCHIVES],
-            # src/ for io/mesh_origin.c (src/mesh_origin.c)
+            # src/ for io/mesh_origin.c and io/vertex_colours.c (src/mesh_origin.c, src/vertex_colours.c)
             include_dirs=[os.path.join(ROOT, "include"), os.path.join(ROOT, "src"), numpy.get_include()],
             extra_compile_args=extra_compile_args,
             extra_objects=[os.path.join(ROOT, a) for a in ARCHIVES],

@@ -1,4 +1,4 @@
-/* glTF BLEND materials drawn as the file means them (src/scene/layers.h):
+/* glTF BLEND materials drawn as the file means them (sr_draw_layered, src/scene/layers.c):
  * opaque parts first, then the BLEND parts farthest first, alpha-blended
  * and writing no depth; `render --blend` and `--depth-write` draw the whole
  * mesh in one draw instead. Exact pixels on a small scene of squares. */
@@ -48,20 +48,26 @@ static void render(const char *options, sr_texture *image)
     cr_assert(image->width == SIDE && image->height == SIDE);
 }
 
-/* Which squares cover the centre of pixel (c, r), row 0 at the top. */
-static bool inside(int c, int r, double x0, double x1, double y0, double y1)
+/* Which squares cover the centre of pixel (c, r), row 0 at the top, seen
+ * from the camera's plane z = 10: at the square's distance d from it,
+ * pixel column c is at x = (c − 19.5)·d/100 (ORTHO: d = 10 for all). */
+#define ORTHO ((const double[2]){ 10.0, 10.0 })
+static bool inside(int c, int r, double d, double x0, double x1, double y0, double y1)
 {
-    double x = (c + 0.5) / 10.0 - 2.0, y = 2.0 - (r + 0.5) / 10.0;
+    double x = (c - 19.5) * d / 100.0, y = (19.5 - r) * d / 100.0;
     return x > x0 && x < x1 && y > y0 && y < y1;
 }
 
 /* Every pixel of the image against its colour under both translucent
- * squares, under blue alone, under green alone, and elsewhere. */
-static void expect_pixels(const sr_texture *image, const uint32_t want[4], const char *what)
+ * squares, under blue alone, under green alone, and elsewhere; the blue
+ * and the green square at distances[0] and [1] (ORTHO, or a pinhole's). */
+static void expect_pixels(const sr_texture *image, const double distances[2], const uint32_t want[4],
+                          const char *what)
 {
     for (int r = 0; r < SIDE; r++)
         for (int c = 0; c < SIDE; c++) {
-            bool blue = inside(c, r, -1, 0, -0.5, 0.5), green = inside(c, r, -0.5, 0.5, -0.5, 0.5);
+            bool blue = inside(c, r, distances[0], -1, 0, -0.5, 0.5),
+                 green = inside(c, r, distances[1], -0.5, 0.5, -0.5, 0.5);
             uint32_t w = want[blue && green ? 0 : blue ? 1 : green ? 2 : 3];
             uint32_t got = image->texels[r * SIDE + c] & 0xFFFFFFu;
             cr_assert_eq(got, w, "%s: pixel (%d, %d) is %06x, not %06x", what, c, r, got, w);
@@ -72,7 +78,7 @@ static void expect_render(const char *options, const uint32_t want[4])
 {
     sr_texture image;
     render(options, &image);
-    expect_pixels(&image, want, options);
+    expect_pixels(&image, ORTHO, want, options);
     sr_texture_free(&image);
 }
 
@@ -179,4 +185,93 @@ Test(blend_layers, clearcoat_blends_its_coating_and_writes_no_depth_for_it)
         coating++;
     }
     cr_assert_gt(coating, 100u, "the coating's stripes: %zu pixels", coating);
+}
+
+/* A camera dataset draws the BLEND parts as `render` does: frame 0 of a
+ * --poses dataset, a pinhole at z = 10 looking down −z (glTF's frame;
+ * cx, cy from the top-left pixel's corner), is the single image of the
+ * same camera, colour, depth and part ids byte for byte; its colours are
+ * the layers' by hand (the blue square 9 from the camera, the green 8),
+ * and its depth is the opaque square's, 10, under the translucent ones
+ * too: they write no depth and no ids, in id shading as well. */
+Test(blend_layers, a_datasets_frame_is_renders_image_blended)
+{
+    static const char POSES[] = "{\"fl_x\": 100, \"fl_y\": 100, \"cx\": 20, \"cy\": 20, \"w\": 40, \"h\": 40, "
+                                "\"frames\": [{\"transform_matrix\": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 10], "
+                                "[0, 0, 0, 1]]}]}";
+    static const char LOOK[] = "--shade texture --color-space raw --quiet";
+    write_text(temp_dir, "squares.gltf", SQUARES_GLTF);
+    write_text(temp_dir, "poses.json", POSES);
+    const char *d = temp_dir;
+    char args[2400];
+    snprintf(args, sizeof args, "render '%s/squares.gltf' --poses '%s/poses.json' --out-dir '%s/ds' %s --out c.png "
+                                "--view-depth d.pfm --part-ids p.png", d, d, d, LOOK);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+    snprintf(args, sizeof args, "render '%s/squares.gltf' --size 40x40 --intrinsics 100,100,19.5,19.5 "
+                                "--pose-w2c 1,0,0,0,0,-1,0,0,0,0,-1,10,0,0,0,1 %s --out '%s/c.png' "
+                                "--view-depth '%s/d.pfm' --part-ids '%s/p.png'", d, LOOK, d, d, d);
+    r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+    /* id shading, which pictures the ids, measures the same surfaces */
+    snprintf(args, sizeof args, "render '%s/squares.gltf' --size 40x40 --intrinsics 100,100,19.5,19.5 "
+                                "--pose-w2c 1,0,0,0,0,-1,0,0,0,0,-1,10,0,0,0,1 --shade id --quiet "
+                                "--view-depth '%s/id_d.pfm' --part-ids '%s/id_p.png'", d, d, d);
+    r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+    char cmd[1600];
+    snprintf(cmd, sizeof cmd, "cd '%s' && cmp c.png ds/c/frame_00000.png && cmp d.pfm ds/d/frame_00000.pfm && "
+                              "cmp p.png ds/p/frame_00000.png && cmp d.pfm id_d.pfm && cmp p.png id_p.png", temp_dir);
+    cr_assert_eq(system(cmd), 0, "the dataset's frame differs from the single image");
+    sr_texture image;
+    sr_error err = { "" };
+    char path[600];
+    cr_assert(sr_texture_load(&image, temp_path(path, sizeof path, "ds/c/frame_00000.png"), &err), "%s",
+              err.message);
+    expect_pixels(&image, (const double[2]){ 9.0, 8.0 },
+                  (const uint32_t[4]){ 0x408040u, 0x800080u, 0x808000u, 0xFF0000u }, "the dataset's frame");
+    sr_texture_free(&image);
+    static float depth[SIDE * SIDE];
+    read_depth("ds/d/frame_00000.pfm", depth, SIDE, SIDE);
+    for (int i = 0; i < SIDE * SIDE; i++)
+        cr_assert_float_eq(depth[i], 10.0f, 1e-5f, "pixel %d: depth %g, not the opaque square's", i, depth[i]);
+}
+
+/* The library's entry on a mesh of its own: a BLEND square of alpha 0.5
+ * (blue, triangles 0 and 1, nearer: z 0.25) listed before an opaque one
+ * (red, 2 and 3, z 0.5), both over the whole 4x4 view in clip space (the
+ * matrices left as the identity). Texture shading, raw: blue blends over
+ * red (0x800080 by hand, as above), and depth and ids are the red
+ * square's, its ids the file's; id shading leaves the blue square out. */
+Test(blend_layers, the_library_draws_a_meshs_layers)
+{
+    vec3 positions[8] = { { -1, -1, 0.25f }, { -1, 1, 0.25f }, { 1, 1, 0.25f }, { 1, -1, 0.25f },
+                          { -1, -1, 0.5f },  { -1, 1, 0.5f },  { 1, 1, 0.5f },  { 1, -1, 0.5f } };
+    uint32_t indices[12] = { 0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7 };
+    sr_mesh_part parts[2] = { { 0, 2, 0 }, { 2, 2, 1 } };
+    sr_material materials[2] = { { .base_color = { 0, 0, 1, 0.5f }, .alpha_mode = SR_ALPHA_BLEND },
+                                 { .base_color = { 1, 0, 0, 1 } } };
+    sr_mesh mesh = { .vertex_count = 8, .positions = positions, .index_count = 12, .indices = indices,
+                     .part_count = 2, .parts = parts, .material_count = 2, .materials = materials };
+    sr_framebuffer fb;
+    sr_error err = { "" };
+    cr_assert(sr_framebuffer_create(&fb, 4, 4, &err) && sr_framebuffer_create_ids(&fb, &err), "%s", err.message);
+    for (int shade = 0; shade < 2; shade++) {
+        sr_draw_desc desc = { .mesh = &mesh, .shade = shade ? SR_SHADE_ID : SR_SHADE_TEXTURE, .cull = SR_CULL_NONE,
+                              .clear = true };
+        sr_stats stats = { 0 };
+        cr_assert(sr_draw_layered(&fb, &desc, &stats, &err), "%s", err.message);
+        cr_assert_eq(stats.triangles, shade ? 2u : 4u, "each triangle drawn is counted once");
+        for (int i = 0; i < 16; i++) {
+            cr_assert(fb.ids[i] == 3 || fb.ids[i] == 4, "pixel %d shows triangle %u", i, fb.ids[i] - 1);
+            cr_assert_eq(fb.depth[i], 0.5f, "pixel %d: depth %g", i, fb.depth[i]);
+            cr_assert_eq(fb.color[i], shade ? fb.ids[i] : 0x800080u, "pixel %d: %06x", i, fb.color[i]);
+        }
+    }
+    /* what sr_draw refuses, it refuses here with its one line */
+    mesh.materials = NULL;
+    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_TEXTURE, .cull = SR_CULL_NONE };
+    cr_assert_not(sr_draw_layered(&fb, &desc, NULL, &err));
+    cr_assert_not_null(strstr(err.message, "no material array"), "%s", err.message);
+    sr_framebuffer_destroy(&fb);
 }

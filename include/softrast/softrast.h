@@ -464,6 +464,22 @@ typedef struct sr_draw_desc {
  * and every path. */
 SR_API bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
 
+/* sr_draw of a mesh as its materials mean it (docs/conventions.md,
+ * "Blending"), what the command line, its datasets and Python draw: the
+ * parts of OPAQUE and MASK materials first, in one draw, then under
+ * lambert and texture shading each part of a BLEND material in a draw of
+ * its own, farthest first by the distance from the eye of its bounds'
+ * centre, alpha-blended over what is drawn, depth-tested and writing no
+ * depth and no ids. So depth and ids (and sr_pinhole_resolve's outputs)
+ * hold the surfaces behind a BLEND part, whatever the shading: id, normal,
+ * color and depth shading, which picture those buffers and ignore
+ * materials, leave the BLEND parts out. A desc that already blends or
+ * keeps its depth, a mesh of no BLEND part, of strips, of points or lines
+ * or of clip positions: one sr_draw of desc as it is. stats gets every
+ * draw's counts, each triangle once (a BLEND part's triangles are left
+ * out of the first draw as degenerate slots, so ids stay the file's). */
+SR_API bool sr_draw_layered(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err);
+
 /* ---- pinhole cameras ---------------------------------------------------- */
 
 /* A camera as vision pipelines give it, in OpenCV's convention: a point

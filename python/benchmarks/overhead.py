@@ -9,7 +9,7 @@ assimp-testmodels, depth and face ids (and colour with depth), one thread.
    function's instructions a frame are the difference over 2 (the first
    frame, which sets up the workspace, drops out). render() is the
    binding's render_call, all of it; the library's part of it is what it
-   calls in the library's sources (sr_draw, sr_pinhole_resolve,
+   calls in the library's sources (sr_draw_layered, sr_pinhole_resolve,
    sr_pinhole_fit_clip, ...), and the rest (argument checks, arrays, the
    dict, the GIL released and taken back) is Python's overhead, given as a
    share of the draw's. A render of colour (lambert) and depth is counted
@@ -112,7 +112,7 @@ def main():
         (call1, lib1), (call3, lib3) = instructions(1, IDS, tmp), instructions(3, IDS, tmp)
         (colour1, _), (colour3, _) = instructions(1, COLOUR, tmp), instructions(3, COLOUR, tmp)
     each = {name: (lib3[name] - lib1.get(name, 0)) / 2 for name in lib3}
-    call, library, draw = (call3 - call1) / 2, sum(each.values()), each["sr_draw"]
+    call, library, draw = (call3 - call1) / 2, sum(each.values()), each["sr_draw_layered"]
     overhead = call - library
     print(f"  instructions a frame (callgrind): render() {call / 1e6:.3f} M; the library {library / 1e6:.3f} M "
           f"({', '.join(f'{name} {n / 1e6:.3f} M' for name, n in sorted(each.items(), key=lambda x: -x[1]) if n)})")

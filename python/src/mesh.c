@@ -8,7 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/mesh_origin.h" /* the loaders' rule for a mesh's origin, kept in one place */
+#include "io/mesh_origin.h"    /* the loaders' rule for a mesh's origin, kept in one place */
+#include "io/vertex_colours.h" /* which files' colours are sRGB, and their decoding: the command line's */
 #include "softrast/files.h"
 #include "softrast_py.h"
 
@@ -19,6 +20,8 @@ static void mesh_clear(sr_py_mesh *self)
     sr_texture_free(&self->texture);
     free(self->part_map);
     self->part_map = NULL;
+    free(self->linear_colors);
+    self->linear_colors = NULL;
 }
 
 static void mesh_dealloc(sr_py_mesh *self)
@@ -239,6 +242,7 @@ static int mesh_init(sr_py_mesh *self, PyObject *args, PyObject *kwargs)
         goto done;
     }
     self->mesh.topology = SR_TRIANGLE_LIST;
+    self->display_colours = true;
     sr_mesh_update_bounds(&self->mesh);
     status = 0;
 done:
@@ -270,6 +274,7 @@ static PyObject *mesh_load(PyObject *cls, PyObject *args)
         PyErr_Format(PyExc_ValueError, "%s: no faces: an empty mesh, nothing to render", PyBytes_AS_STRING(path));
     else if (untextured) /* as the command line: a model shared without its textures still draws */
         PyErr_WarnFormat(PyExc_UserWarning, 1, "%s; the mesh is drawn untextured", why.message);
+    self->display_colours = sr_vertex_colours_are_display(PyBytes_AS_STRING(path));
     Py_DECREF(path);
     if (PyErr_Occurred()) {
         Py_DECREF(self);

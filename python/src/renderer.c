@@ -1,14 +1,17 @@
 /* softrast.Renderer: a framebuffer with an ids plane and a workspace
  * reused from call to call, and the pinhole renders over them. Each render
- * is the command line's: one draw into the reversed-z framebuffer with the
+ * is the command line's: the draw into the reversed-z framebuffer with the
  * matrices of sr_pinhole_matrices, shaded as the colour output asks (else
- * SR_SHADE_ID), writing colour, depth and ids at once, then
- * sr_pinhole_resolve of the ids on the renderer's threads into new numpy
- * arrays, with the GIL released around all of it. */
+ * SR_SHADE_ID) in the colour space asked for, a file's BLEND parts
+ * blended over the rest (sr_draw_layered), writing colour, depth and ids
+ * at once, then sr_pinhole_resolve of the ids on the renderer's threads
+ * into new numpy arrays, with the GIL released around all of it. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "io/vertex_colours.h" /* the display colours' decoding, the command line's */
 #include "softrast_py.h"
 
 enum { OUT_COLOR, OUT_DEPTH, OUT_RANGE, OUT_FACE_IDS, OUT_PART_IDS, OUT_NORMALS, OUT_COUNT };
@@ -18,6 +21,9 @@ static const char *const OUT_NAMES[OUT_COUNT] = { "color", "depth", "range", "fa
 /* The colour output's shading modes, named as the command line's --shade, in sr_shade's order. */
 static const char *const SHADE_NAMES[SR_SHADE_COUNT] = { "lambert", "id", "color", "normal", "texture", "depth" };
 #define SHADE_LIST "'lambert', 'id', 'color', 'normal', 'texture', 'depth'"
+
+/* The colour spaces, named as the command line's --color-space, in sr_color_space's order. */
+static const char *const COLOR_SPACE_NAMES[] = { "raw", "srgb" };
 
 /* The draw's own limit on threads; more are drawn with this many. */
 #define MAX_THREADS 64
@@ -38,6 +44,7 @@ typedef struct job {
     bool interpolated;
     float invalid;
     sr_shade shade; /* the colour output's */
+    sr_color_space color_space;
     vec3 light;     /* toward the light in softrast's world; zero: SR_DEFAULT_LIGHT */
 } job;
 
@@ -204,9 +211,10 @@ static bool parse_vector(PyObject *obj, const char *name, double out[3])
     return finite;
 }
 
-/* The colour output's shading, and its light: a direction in the poses'
- * frame, into softrast's world (z negated, as every mesh is stored: mesh.c). */
-static bool parse_shading(PyObject *shade, PyObject *light, job *j)
+/* The colour output's shading, its colour space (the command line's
+ * default, sRGB) and its light: a direction in the poses' frame, into
+ * softrast's world (z negated, as every mesh is stored: mesh.c). */
+static bool parse_shading(PyObject *shade, PyObject *color_space, PyObject *light, job *j)
 {
     int k = shade ? name_index(shade, SHADE_NAMES, SR_SHADE_COUNT) : SR_SHADE_LAMBERT;
     if (k < 0) {
@@ -214,6 +222,12 @@ static bool parse_shading(PyObject *shade, PyObject *light, job *j)
         return false;
     }
     j->shade = (sr_shade)k;
+    int space = color_space ? name_index(color_space, COLOR_SPACE_NAMES, 2) : SR_COLOR_SRGB;
+    if (space < 0) {
+        PyErr_Format(PyExc_ValueError, "color_space: %R is not 'srgb' or 'raw'", color_space);
+        return false;
+    }
+    j->color_space = (sr_color_space)space;
     double l[3] = { 0, 0, 0 };
     if (light != Py_None && !parse_vector(light, "light", l))
         return false;
@@ -431,18 +445,19 @@ static sr_shade draw_shade(const job *j)
     return j->wanted[OUT_COLOR] ? j->shade : SR_SHADE_ID;
 }
 
-/* The one draw a frame's outputs come from: colour, depth and ids into
- * self->fb (the ids plane is what sr_pinhole_resolve reads). */
+/* The draw a frame's outputs come from: colour, depth and ids into
+ * self->fb (the ids plane is what sr_pinhole_resolve reads), a file's
+ * BLEND parts blended over the rest as the command line draws them. */
 static bool draw_view(sr_py_renderer *self, const sr_mesh *mesh, const sr_texture *texture, sr_pinhole *cam,
                       const job *j, sr_stats *stats, sr_error *err)
 {
     sr_pinhole_fit_clip(cam, mesh);
     sr_draw_desc desc = { .mesh = mesh, .shade = draw_shade(j), .cull = SR_CULL_NONE, .threads = self->threads,
-                          .workspace = self->workspace, .clear = true,
+                          .workspace = self->workspace, .clear = true, .color_space = j->color_space,
                           .texture = j->wanted[OUT_COLOR] && texture->texels ? texture : NULL };
     glm_vec3_copy((float *)j->light, desc.light_dir);
     sr_pinhole_matrices(cam, mesh, &self->fb, &desc);
-    return sr_draw(&self->fb, &desc, stats, err);
+    return sr_draw_layered(&self->fb, &desc, stats, err);
 }
 
 /* The colour output, (H, W, 3) uint8, from the draw's colour. */
@@ -513,6 +528,24 @@ static bool claim(sr_py_renderer *self)
     return true;
 }
 
+/* A mesh of display colours drawn under sRGB by a shading that reads them
+ * (lambert, color) draws them decoded, as the command line does as it
+ * loads a file: made once, with the GIL held (no render reads it now). */
+static bool linear_colours(sr_py_mesh *mesh, const job *j)
+{
+    sr_shade shade = draw_shade(j);
+    if (j->color_space != SR_COLOR_SRGB || (shade != SR_SHADE_LAMBERT && shade != SR_SHADE_COLOR) ||
+        !mesh->mesh.colors || !mesh->display_colours || mesh->linear_colors)
+        return true;
+    mesh->linear_colors = malloc((size_t)mesh->mesh.vertex_count * sizeof *mesh->linear_colors);
+    if (!mesh->linear_colors) {
+        PyErr_NoMemory();
+        return false;
+    }
+    sr_vertex_colours_to_linear(mesh->mesh.colors, mesh->linear_colors, mesh->mesh.vertex_count);
+    return true;
+}
+
 /* The outputs of `frames` poses as a dict of new arrays (stacked when many). */
 static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job *j, double (*poses)[4][4],
                                npy_intp frames, bool many)
@@ -526,6 +559,8 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
     if (((j->wanted[OUT_NORMALS] && j->interpolated) || lit) && !mesh->mesh.normals &&
         !sr_mesh_compute_normals(&mesh->mesh, &err)) /* with the GIL held: no render reads it now */
         return sr_py_raise(PyExc_ValueError, &err);
+    if (!linear_colours(mesh, j))
+        return NULL;
     npy_intp width = self->fb.width, height = self->fb.height, pixels = width * height;
     PyArrayObject *arrays[OUT_COUNT] = { 0 };
     sr_stats *stats = PyMem_Calloc(frames ? (size_t)frames : 1, sizeof *stats);
@@ -544,6 +579,8 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
     if (ok) {
         mesh->renders++;
         sr_mesh m = mesh->mesh; /* a copy: Mesh's normals may be filled in meanwhile */
+        if (mesh->linear_colors && j->color_space == SR_COLOR_SRGB)
+            m.colors = mesh->linear_colors;
         for (npy_intp i = 0; ok && i < frames; i++) {
             sr_pinhole cam = j->cam;
             memcpy(cam.w2c, poses[i], sizeof cam.w2c);
@@ -591,7 +628,7 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
 
 /* The keywords render and render_many share: the intrinsics, and after the poses the rest. */
 #define CAMERA_KEYWORDS "K", "fx", "fy", "cx", "cy", "fov"
-#define OUTPUT_KEYWORDS "near", "far", "outputs", "normals", "invalid", "shade", "light"
+#define OUTPUT_KEYWORDS "near", "far", "outputs", "normals", "invalid", "shade", "light", "color_space"
 
 static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwargs, bool many)
 {
@@ -602,17 +639,19 @@ static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwa
     sr_py_mesh *mesh;
     PyObject *K = Py_None, *numbers[4] = { Py_None, Py_None, Py_None, Py_None }, *fov = Py_None;
     PyObject *w2c = Py_None, *c2w = Py_None, *eye = Py_None, *target = Py_None, *up = Py_None;
-    PyObject *outputs = NULL, *normals = NULL, *shade = NULL, *light = Py_None;
+    PyObject *outputs = NULL, *normals = NULL, *shade = NULL, *light = Py_None, *color_space = NULL;
     double near = 0.0, far = 0.0;
     float invalid = 0.0f;
-    int parsed = many ? PyArg_ParseTupleAndKeywords(args, kwargs, "O!|O$OOOOOOOOOOddOOfOO:render_many", stacked,
+    int parsed = many ? PyArg_ParseTupleAndKeywords(args, kwargs, "O!|O$OOOOOOOOOOddOOfOOO:render_many", stacked,
                                                     &sr_py_mesh_type, &mesh, &w2c, &K, &numbers[0], &numbers[1],
                                                     &numbers[2], &numbers[3], &fov, &c2w, &eye, &target, &up, &near,
-                                                    &far, &outputs, &normals, &invalid, &shade, &light)
-                      : PyArg_ParseTupleAndKeywords(args, kwargs, "O!|$OOOOOOOOOOOddOOfOO:render", single,
+                                                    &far, &outputs, &normals, &invalid, &shade, &light,
+                                                    &color_space)
+                      : PyArg_ParseTupleAndKeywords(args, kwargs, "O!|$OOOOOOOOOOOddOOfOOO:render", single,
                                                     &sr_py_mesh_type, &mesh, &K, &numbers[0], &numbers[1],
                                                     &numbers[2], &numbers[3], &fov, &w2c, &c2w, &eye, &target, &up,
-                                                    &near, &far, &outputs, &normals, &invalid, &shade, &light);
+                                                    &near, &far, &outputs, &normals, &invalid, &shade, &light,
+                                                    &color_space);
     if (!parsed)
         return NULL;
     bool look_at = eye != Py_None || target != Py_None || up != Py_None;
@@ -626,7 +665,7 @@ static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwa
     PyObject *geometric = normals ? NULL : PyUnicode_FromString("geometric");
     bool ok = (outputs || depth_only) && (normals || geometric) &&
               parse_outputs(outputs ? outputs : depth_only, normals ? normals : geometric, &j) &&
-              parse_shading(shade, light, &j) && parse_intrinsics(self, K, numbers, fov, look_at, &j.cam);
+              parse_shading(shade, color_space, light, &j) && parse_intrinsics(self, K, numbers, fov, look_at, &j.cam);
     Py_XDECREF(depth_only);
     Py_XDECREF(geometric);
     PyObject *looking = ok && look_at ? look_at_poses(eye, target, up, many) : NULL;
@@ -680,10 +719,10 @@ static PyMethodDef renderer_methods[] = {
     { "render", (PyCFunction)(void (*)(void))renderer_render, METH_VARARGS | METH_KEYWORDS,
       "render(mesh, *, K=None, fx=None, fy=None, cx=None, cy=None, fov=None, pose=None, pose_c2w=None,\n"
       "       eye=None, target=None, up=None, near=0, far=0, outputs=('depth',), normals='geometric',\n"
-      "       invalid=0.0, shade='lambert', light=None) -> dict\n\n"
+      "       invalid=0.0, shade='lambert', light=None, color_space='srgb') -> dict\n\n"
       "One pinhole view of mesh (OpenCV's convention; pose world-to-camera, identity if not given, or\n"
       "the look-at camera eye, target, up). Returns new arrays for the outputs asked for among 'color',\n"
-      "'depth', 'range', 'face_ids', 'part_ids', 'normals', and 'stats' (the one draw's counts)." },
+      "'depth', 'range', 'face_ids', 'part_ids', 'normals', and 'stats' (the draw's counts)." },
     { "render_many", (PyCFunction)(void (*)(void))renderer_render_many, METH_VARARGS | METH_KEYWORDS,
       "render_many(mesh, poses, *, K=None, ..., poses_c2w=None, eye=None, target=None, up=None, ...) -> dict\n\n"
       "render() for each of N poses (N, 4, 4), or of N look-at cameras (eye, target, up each (N, 3),\n"

@@ -27,6 +27,12 @@ typedef struct sr_py_mesh {
      * face order, and part_map[run] the id the caller gave that run (the
      * library's part_ids output is run + 1). NULL for a loaded mesh. */
     uint32_t *part_map;
+    /* Whether its colours are display (sRGB-encoded) values, as arrays and
+     * every file but glTF's are (io/vertex_colours.h), and then, made at
+     * the first render under sRGB that reads them, the same in linear
+     * light, which the draw takes. */
+    bool display_colours;
+    vec3 *linear_colors;
     int renders; /* renders using it with the GIL released: __init__ waits for none */
 } sr_py_mesh;
 

@@ -36,20 +36,22 @@ def coloured_obj(tmp_path):
     return path, positions, faces, colors
 
 
+@pytest.mark.parametrize("space", [None, "srgb", "raw"])
 @pytest.mark.parametrize("shade", SHADES)
-def test_color_equals_the_command_lines_image_bit_for_bit(cli, root, tmp_path, png, shade):
+def test_color_equals_the_command_lines_image_bit_for_bit(cli, root, tmp_path, png, shade, space):
+    """Each colour space as the command line's --color-space, and the
+    default as its default (sRGB: the OBJ's vertex colours decoded)."""
     obj, pose = torus(root)
     if shade == "color":
         obj, *_ = coloured_obj(tmp_path)
         pose = look_pose([0.3, 0.2, -3.0], [0, 0, 0])
-    # The package draws the library's raw colours (python/README.md).
     cli("render", obj, "--size", f"{W}x{H}", "--intrinsics", ",".join(map(repr, K)), "--pose-w2c",
-        ",".join(repr(float(v)) for v in pose.ravel()), "--shade", shade, "--color-space", "raw",
-        "--out", tmp_path / "c.png", "--quiet")
+        ",".join(repr(float(v)) for v in pose.ravel()), "--shade", shade,
+        *(["--color-space", space] if space else []), "--out", tmp_path / "c.png", "--quiet")
     want = png.read_rgb_png(tmp_path / "c.png")
     mesh = softrast.Mesh.load(obj)
     out = softrast.Renderer(W, H).render(mesh, **intrinsics(), pose=pose, outputs=("color", "face_ids"),
-                                         shade=shade)
+                                         shade=shade, **({"color_space": space} if space else {}))
     assert out["color"].shape == (H, W, 3) and out["color"].dtype == np.uint8 and out["color"].flags.owndata
     assert np.array_equal(out["color"], want)
     assert (out["face_ids"] > 0).sum() > 500 and len(np.unique(want.reshape(-1, 3), axis=0)) > 20
@@ -92,8 +94,8 @@ def test_lambert_follows_the_light_given_in_the_poses_frame():
     r = softrast.Renderer(32, 32, threads=1)
     mesh = square()
 
-    def gray(light):
-        c = r.render(mesh, fx=20, outputs=("color",), light=light)["color"]
+    def gray(light):  # raw: the lit colour is the light's fraction, as stored
+        c = r.render(mesh, fx=20, outputs=("color",), light=light, color_space="raw")["color"]
         assert np.all(c == c[16, 16]), "a flat square is lit evenly"
         return c[16, 16].astype(float)
 

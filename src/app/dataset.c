@@ -96,7 +96,8 @@ static bool dataset_size(const sr_transforms *t, const sr_dataset_job *d, sr_sce
     return true;
 }
 
-/* Frame i: its camera, its one draw (color and ids), its files. */
+/* Frame i: its camera, its draw (color and ids, the file's BLEND parts
+ * blended over the rest as `render` draws them: sr_draw_layered), its files. */
 static bool render_frame(const sr_dataset_job *d, const sr_pinhole_setup *p, const sr_scene_setup *s,
                          const sr_transforms *t, int i, sr_scene *scene, sr_error *err)
 {
@@ -110,7 +111,7 @@ static bool render_frame(const sr_dataset_job *d, const sr_pinhole_setup *p, con
     sr_pinhole_setup_desc(s, &cam, scene, &desc);
     desc.clear = true;
     char rel[PATH_MAX], path[PATH_MAX];
-    if (!sr_draw(&scene->fb, &desc, NULL, err) ||
+    if (!sr_draw_layered(&scene->fb, &desc, NULL, err) ||
         (d->color_name && !(frame_file(d->out_dir, d->color_name, i, digits, rel, path, err) &&
                             sr_image_write_png(path, scene->fb.color, scene->fb.width, scene->fb.height, err))))
         return false;

@@ -109,7 +109,7 @@ static bool parse_job(void *j, int argc, char **argv, bool *help, sr_error *err)
                                     : sr_error_set(err, "--frame-range goes with --poses");
 }
 
-/* One timed frame: desc (in the file's layers unless `one_draw`: layers.h),
+/* One timed frame: desc (in the file's layers unless `one_draw`: sr_draw_layered),
  * or with `wire` the hidden-line frame of desc's triangles and their edges,
  * counted as the lines' draw. */
 static bool draw_frame(sr_scene *scene, const sr_draw_desc *desc, sr_hidden_lines *wire, bool one_draw,

@@ -1,13 +1,12 @@
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <unistd.h>
 
 #include "load_progress.h"
 #include "scene_setup.h"
 #include "upright.h"
+#include "io/vertex_colours.h"
 
 const char *const SR_SHADE_NAMES[] = { "lambert", "id", "color", "normal", "texture", "depth", NULL };
 const char *const SR_CULL_NAMES[] = { "back", "front", "none", NULL };
@@ -179,27 +178,13 @@ static void drop_materials(sr_mesh *mesh)
     mesh->material_count = 0;
 }
 
-/* An sRGB display value 0..1 in linear light (IEC 61966-2-1). */
-static float srgb_to_linear(float c)
-{
-    double v = c;
-    return (float)(v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4));
-}
-
-/* Under --color-space srgb the draw takes vertex colours as linear, as
- * glTF's COLOR_0 is; every other format stores display values (a PLY
- * scan's bytes, MeshLab's OBJ `v x y z r g b`), which Blender 4's PLY
- * importer and three.js's PLY and OBJ loaders decode from sRGB: so does
- * this, once, as the file is loaded (docs/conventions.md, "Colour space"). */
+/* Under --color-space srgb the draw takes vertex colours as linear: a
+ * file of display values (io/vertex_colours.h) has them decoded once, as
+ * it is loaded (docs/conventions.md, "Colour space"). */
 static void decode_display_colours(const sr_scene_setup *s, sr_mesh *mesh)
 {
-    const char *dot = strrchr(s->mesh_path, '.');
-    bool gltf = dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
-    if (s->color_space != SR_COLOR_SRGB || gltf || !mesh->colors)
-        return;
-    for (uint32_t i = 0; i < mesh->vertex_count; i++)
-        for (int k = 0; k < 3; k++)
-            mesh->colors[i][k] = srgb_to_linear(mesh->colors[i][k]);
+    if (s->color_space == SR_COLOR_SRGB && mesh->colors && sr_vertex_colours_are_display(s->mesh_path))
+        sr_vertex_colours_to_linear(mesh->colors, mesh->colors, mesh->vertex_count);
 }
 
 bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr_error *err)

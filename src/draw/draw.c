@@ -255,7 +255,7 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
 {
     uint32_t n = st->vertex_count;
     sr_workspace *ws = st->ws;
-    if (!sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
+    if (!sr_array_reserve(&ws->outcodes, (size_t)n + SR_OUTCODES_GATHER_SLACK, sizeof(unsigned char)) ||
         (st->band_rows && !sr_array_reserve(&ws->row_bands, n, sizeof(unsigned char))) ||
         (st->double_later && !sr_array_reserve(&ws->double_mapped, n, sizeof(atomic_uchar))) ||
         n > SIZE_MAX / st->screen_stride || !sr_array_reserve(&ws->screen, n * st->screen_stride, 1))
@@ -361,6 +361,15 @@ static sr_subpixel_rules subpixel_rules(const sr_draw_state *st)
                                 .keep_cw = sr_cull_keeps(1, d->cull, d->front),
                                 .keep_ccw = sr_cull_keeps(-1, d->cull, d->front),
                                 .avx2 = st->shade.simd >= SR_SIMD_AVX2 };
+}
+
+/* The slot lanes (sr_subpixel_slot_group_avx2) gather a triangle list's
+ * outcodes and screen vertices, at offsets of 32 bits: with the sub-pixel
+ * lanes at the AVX2 level or above, where every vertex's offset fits. */
+static bool slot_lanes(const sr_draw_state *st)
+{
+    return st->subpixel_lanes && st->subpixel.avx2 && st->desc->mesh->topology == SR_TRIANGLE_LIST &&
+           (uint64_t)st->vertex_count * st->screen_stride <= INT32_MAX;
 }
 
 /* A mesh outside the view: every assembled triangle is rejected, nothing
@@ -516,6 +525,7 @@ static bool draw(sr_framebuffer *fb, const sr_draw_desc *desc, const sr_line_fil
     st.screen_stride = sr_screen_stride(layout.count);
     st.subpixel_lanes = subpixel_lanes(&st);
     st.subpixel = subpixel_rules(&st);
+    st.slot_lanes = slot_lanes(&st);
     sr_stats scratch = { 0 };
     bool ok = sr_materials_make(&st, err) && draw_with(&st, stats ? stats : &scratch, err);
     if (!desc->workspace)

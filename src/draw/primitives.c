@@ -228,12 +228,75 @@ static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st,
     sr_viewport_map_double_n((const double(*)[4])clip_d, out, n, &st->vp);
 }
 
+/* The slots ahead whose screen vertices the slot lanes prefetch: the
+ * lanes' gathers waited on memory without it. */
+#define SCREEN_AHEAD 32
+
+/* The verdicts of slots [first, end) of a triangle list with the
+ * sub-pixel lanes (st->slot_lanes), eight slots at a time straight from
+ * the indices, the outcodes and the screen vertices
+ * (sr_subpixel_slot_group_avx2): no kept slot is written for a triangle
+ * the lanes drop, and no vertex is read twice. A group with a degenerate
+ * triangle or a vertex outside a plane, and the last few slots, take the
+ * verdicts one at a time and the lanes after them, as every other draw
+ * does; so the kept slots and the counts are the same. */
+static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end,
+                                  sr_stats *stats, sr_kept_slot *kept)
+{
+    const uint32_t *indices = st->desc->mesh->indices;
+    const unsigned char *outcodes = st->ws->outcodes.data;
+    const char *screen = st->ws->screen.data;
+    uint32_t stride = (uint32_t)st->screen_stride;
+    int count = 0;
+    uint64_t culled = 0, drawn = 0; /* of the slots from first on: counted once, a call of libgcc's where the
+                                       build has no popcnt instruction */
+    for (uint32_t g = first; g < end; g += SR_SUBPIXEL_SLOT_GROUP) {
+        uint32_t g_end = end - g > SR_SUBPIXEL_SLOT_GROUP ? g + SR_SUBPIXEL_SLOT_GROUP : end;
+        const uint32_t *idx = indices + 3 * (size_t)g;
+        if (last_end - g > SR_INDICES_AHEAD + SR_SUBPIXEL_SLOT_GROUP) { /* a group's 96 bytes span two lines */
+            __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD);
+            __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD + SR_SUBPIXEL_SLOT_GROUP * 3 - 1);
+        }
+        if (last_end - g > SCREEN_AHEAD + SR_SUBPIXEL_SLOT_GROUP)
+            for (int j = 0; j < SR_SUBPIXEL_SLOT_GROUP; j++)
+                PREFETCH_TRIANGLE(screen, stride, idx + 3 * (SCREEN_AHEAD + j));
+        sr_subpixel_slots v = { .plain = false };
+        if (g_end - g == SR_SUBPIXEL_SLOT_GROUP)
+            v = sr_subpixel_slot_group_avx2(idx, outcodes, screen, stride, &st->subpixel);
+        if (!v.plain) {
+            int n = take_verdicts(st, g, g_end, last_end, stats, kept + count);
+            count += drop_subpixel(st, kept + count, n, stats);
+            continue;
+        }
+        stats->triangles += SR_SUBPIXEL_SLOT_GROUP;
+        culled |= v.verdict.culled << (g - first);
+        drawn |= v.verdict.drawn << (g - first);
+        uint64_t left = ~(v.verdict.culled | v.verdict.drawn) & ((1u << SR_SUBPIXEL_SLOT_GROUP) - 1);
+        for (; left; left &= left - 1) {
+            int j = __builtin_ctzll(left);
+            sr_kept_slot *s = &kept[count++];
+            s->k = g + (uint32_t)j;
+            memcpy(s->idx, idx + 3 * j, sizeof s->idx);
+            s->planes = 0;
+            s->one_pixel = (v.verdict.one_pixel >> j) & 1;
+        }
+    }
+    stats->culled += (uint64_t)__builtin_popcountll(culled);
+    stats->drawn += (uint64_t)__builtin_popcountll(drawn);
+    return count;
+}
+
 int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end, sr_stats *stats,
                      sr_kept_slot *kept)
 {
-    int count = take_verdicts(st, first, end, last_end, stats, kept);
-    if (st->subpixel_lanes)
-        count = drop_subpixel(st, kept, count, stats);
+    int count;
+    if (st->slot_lanes) {
+        count = take_verdicts_in_lanes(st, first, end, last_end, stats, kept);
+    } else {
+        count = take_verdicts(st, first, end, last_end, stats, kept);
+        if (st->subpixel_lanes)
+            count = drop_subpixel(st, kept, count, stats);
+    }
     if (st->double_later)
         map_double_halves(st, kept, count);
     return count;

@@ -2,7 +2,7 @@
 #include "frame.h"
 
 #include "core/clock.h"
-#include "layers.h"
+#include "softrast/softrast.h"
 
 static bool draw_timed(sr_framebuffer *fb, const sr_draw_desc *desc, bool layers, sr_stats *stats, double *ms,
                        sr_error *err)
@@ -12,7 +12,7 @@ static bool draw_timed(sr_framebuffer *fb, const sr_draw_desc *desc, bool layers
         *stats = (sr_stats){ 0 };
     sr_draw_desc clearing = *desc;
     clearing.clear = true; /* to color 0, inside the draw (each tile by its thread) */
-    bool ok = layers ? sr_layers_draw(fb, &clearing, stats, err) : sr_draw(fb, &clearing, stats, err);
+    bool ok = layers ? sr_draw_layered(fb, &clearing, stats, err) : sr_draw(fb, &clearing, stats, err);
     *ms = sr_now_ms() - start;
     return ok;
 }

@@ -13,7 +13,7 @@
 bool sr_frame_draw_timed(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, double *ms, sr_error *err);
 
 /* The same, desc drawn as its materials mean it: BLEND parts blended
- * over the others, farthest first (layers.h). */
+ * over the others, farthest first (sr_draw_layered). */
 bool sr_frame_draw_layers_timed(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, double *ms,
                                 sr_error *err);
 

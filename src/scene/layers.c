@@ -1,11 +1,11 @@
-/* layers.c — opaque parts, then BLEND parts back to front (layers.h). */
-#include "layers.h"
-
+/* layers.c — opaque parts, then BLEND parts back to front: sr_draw_layered
+ * (softrast.h). */
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/dmat4.h"
 #include "core/error.h"
+#include "softrast/softrast.h"
 
 static bool is_blend_part(const sr_mesh *mesh, const sr_mesh_part *p)
 {
@@ -21,13 +21,13 @@ static uint32_t blend_part_count(const sr_mesh *mesh)
 }
 
 /* Whether desc is drawn in layers: it replaces and writes depth (as the
- * file's materials mean it), shades with materials, and its mesh is a
- * triangle list in world positions with BLEND parts in range. */
+ * file's materials mean it), and its mesh is a triangle list in world
+ * positions with BLEND parts in range (sr_draw refuses what is not). */
 static bool layered(const sr_draw_desc *desc)
 {
     const sr_mesh *m = desc->mesh;
     if (desc->blend != SR_BLEND_REPLACE || desc->no_depth_write || m->topology != SR_TRIANGLE_LIST ||
-        m->clip_positions || !m->positions || (desc->shade != SR_SHADE_LAMBERT && desc->shade != SR_SHADE_TEXTURE))
+        m->clip_positions || !m->positions || !m->indices || (m->material_count && !m->materials))
         return false;
     for (uint32_t i = 0; i < m->part_count; i++) {
         const sr_mesh_part *p = &m->parts[i];
@@ -97,15 +97,22 @@ static void layer_make(const sr_mesh *mesh, const sr_mesh_part *p, uint32_t orde
     l->distance = d2;
 }
 
-bool sr_layers_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err)
+/* Whether the shading draws materials (their colours and alpha): the
+ * others picture depth and ids, which no BLEND part writes. */
+static bool shades_materials(sr_shade shade)
 {
-    if (!desc->mesh || !layered(desc))
+    return shade == SR_SHADE_LAMBERT || shade == SR_SHADE_TEXTURE;
+}
+
+bool sr_draw_layered(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stats, sr_error *err)
+{
+    if (!desc || !desc->mesh || !layered(desc))
         return sr_draw(fb, desc, stats, err);
     const sr_mesh *mesh = desc->mesh;
-    uint32_t n = blend_part_count(mesh);
+    uint32_t n = shades_materials(desc->shade) ? blend_part_count(mesh) : 0;
     uint32_t *indices = malloc((size_t)mesh->index_count * sizeof *indices);
-    layer *layers = malloc((size_t)n * sizeof *layers);
-    bool ok = indices && layers;
+    layer *layers = n ? malloc((size_t)n * sizeof *layers) : NULL;
+    bool ok = indices && (layers || n == 0);
     if (!ok) {
         sr_error_set(err, "out of memory for the layers of %u BLEND parts", n);
     } else {
@@ -119,9 +126,11 @@ bool sr_layers_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stat
                 continue;
             for (uint32_t t = p->first_triangle; t < p->first_triangle + p->triangle_count; t++)
                 indices[3 * t + 1] = indices[3 * t + 2] = indices[3 * t];
-            layer_make(mesh, p, i, &eye, &layers[j++]);
+            if (j < n)
+                layer_make(mesh, p, i, &eye, &layers[j++]);
         }
-        qsort(layers, n, sizeof *layers, farthest_first);
+        if (n)
+            qsort(layers, n, sizeof *layers, farthest_first);
         sr_mesh opaque = *mesh;
         opaque.indices = indices;
         sr_draw_desc d = *desc;

@@ -5,6 +5,7 @@
  * function it makes: sr_subpixel_verdict SUBPIXEL_GROUPS(const
  * sr_subpixel_batch *, int n, const sr_subpixel_rules *). Every width
  * computes the same exact integers, so the same verdicts. */
+#include <stddef.h>
 #include <string.h>
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -80,15 +81,14 @@ static SR_ALWAYS_INLINE lanes edge_at(lanes px, lanes py, lanes qx, lanes qy, la
     return (lanes)((ulanes)dx * minus(cy, py) - (ulanes)dy * minus(cx, px) - (ulanes)(top_left + 1));
 }
 
-/* Lanes [at, at + SUBPIXEL_LANES) of b. */
-static SR_ALWAYS_INLINE sr_subpixel_verdict group(const sr_subpixel_batch *b, int at, const sr_subpixel_rules *r)
+/* The verdicts of the triangles (x0, y0) (x1, y1) (x2, y2), one a lane. */
+static SR_ALWAYS_INLINE sr_subpixel_verdict verdict_of(lanes x0, lanes y0, lanes x1, lanes y1, lanes x2, lanes y2,
+                                                       const sr_subpixel_rules *r)
 {
     const lanes zero = { 0 };
     int bits = r->bits;
     int32_t one_s = (int32_t)1 << bits;
     lanes one = zero + one_s, half = zero + one_s / 2;
-    lanes x0 = load(b->x[0] + at), x1 = load(b->x[1] + at), x2 = load(b->x[2] + at);
-    lanes y0 = load(b->y[0] + at), y1 = load(b->y[1] + at), y2 = load(b->y[2] + at);
     lanes lo_x = min_of(min_of(x0, x1), x2), hi_x = max_of(max_of(x0, x1), x2);
     lanes lo_y = min_of(min_of(y0, y1), y2), hi_y = max_of(max_of(y0, y1), y2);
     /* Within two pixels on each axis: the lanes below hold every value exactly. */
@@ -121,10 +121,51 @@ sr_subpixel_verdict SUBPIXEL_GROUPS(const sr_subpixel_batch *b, int n, const sr_
 {
     sr_subpixel_verdict v = { 0, 0, 0 };
     for (int at = 0; at < n; at += SUBPIXEL_LANES) {
-        sr_subpixel_verdict g = group(b, at, rules);
+        sr_subpixel_verdict g = verdict_of(load(b->x[0] + at), load(b->y[0] + at), load(b->x[1] + at),
+                                           load(b->y[1] + at), load(b->x[2] + at), load(b->y[2] + at), rules);
         v.culled |= g.culled << at;
         v.drawn |= g.drawn << at;
         v.one_pixel |= g.one_pixel << at;
     }
     return v;
 }
+
+#if SUBPIXEL_LANES == 8 && defined(__AVX2__)
+/* The 32-bit values at base + offsets[i] bytes, a lane each. */
+static SR_ALWAYS_INLINE lanes gather(const void *base, lanes offsets)
+{
+    return (lanes)_mm256_i32gather_epi32((const int *)base, (__m256i)offsets, 1);
+}
+
+/* Lane i from a where bit i of the blend is clear, from b where set. */
+#define BLEND(a, b, bits) _mm256_blend_epi32((a), (b), (bits))
+
+sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const unsigned char *outcodes,
+                                              const char *screen, uint32_t stride, const sr_subpixel_rules *rules)
+{
+    /* i0 i1 i2 of slot 0, of slot 1, ... in three loads: each corner of
+     * the eight slots into its own lanes by two blends and a permute. */
+    __m256i a = _mm256_loadu_si256((const __m256i *)indices), b = _mm256_loadu_si256((const __m256i *)(indices + 8)),
+            c = _mm256_loadu_si256((const __m256i *)(indices + 16));
+    lanes i0 = (lanes)_mm256_permutevar8x32_epi32(BLEND(BLEND(a, b, 0x92), c, 0x24),
+                                                  _mm256_setr_epi32(0, 3, 6, 1, 4, 7, 2, 5));
+    lanes i1 = (lanes)_mm256_permutevar8x32_epi32(BLEND(BLEND(a, b, 0x24), c, 0x49),
+                                                  _mm256_setr_epi32(1, 4, 7, 2, 5, 0, 3, 6));
+    lanes i2 = (lanes)_mm256_permutevar8x32_epi32(BLEND(BLEND(a, b, 0x49), c, 0x92),
+                                                  _mm256_setr_epi32(2, 5, 0, 3, 6, 1, 4, 7));
+    const lanes zero = { 0 };
+    /* sr_slot_verdict's triangle: three distinct indices, each vertex inside every plane (outcode 0). */
+    lanes codes = (gather(outcodes, i0) | gather(outcodes, i1) | gather(outcodes, i2)) & (zero + 0xff);
+    lanes plain = (i0 != i1) & (i1 != i2) & (i0 != i2) & (codes == zero);
+    if (lane_bits(plain) != 0xff)
+        return (sr_subpixel_slots){ .plain = false };
+    /* The low 32 bits of the screen vertices' x and y: below 2^30 inside every plane. */
+    _Static_assert(offsetof(sr_screen_vertex, x) == 0, "x is read at the screen vertex's first byte");
+    ulanes step = (ulanes){ 0 } + stride;
+    lanes o0 = (lanes)((ulanes)i0 * step), o1 = (lanes)((ulanes)i1 * step), o2 = (lanes)((ulanes)i2 * step);
+    const char *y = screen + offsetof(sr_screen_vertex, y);
+    sr_subpixel_verdict v = verdict_of(gather(screen, o0), gather(y, o0), gather(screen, o1), gather(y, o1),
+                                       gather(screen, o2), gather(y, o2), rules);
+    return (sr_subpixel_slots){ .plain = true, .verdict = v };
+}
+#endif
