@@ -47,6 +47,29 @@ static const char TRIANGLES_DAE[] =
     "</visual_scene></library_visual_scenes>\n"
     "<scene><instance_visual_scene url=\"#vs\"/></scene>\n</COLLADA>\n";
 
+/* One tetrahedron, (0,0,0) (1,0,0) (0,2,0) (0,0,3), placed by AMF
+ * constellations: "2" holds it at x + 10, and turned a quarter about z
+ * then moved by (−10, 0, 5); "3" holds "2" as it is, and turned a quarter
+ * about x then moved by (0, 50, 0). A comment and metadata stand where a
+ * careless reader would take them for instances. */
+static const char TETRA_AMF[] =
+    "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<amf unit=\"millimeter\">\n"
+    "<object id=\"1\"><mesh><vertices>"
+    "<vertex><coordinates><x>0</x><y>0</y><z>0</z></coordinates></vertex>"
+    "<vertex><coordinates><x>1</x><y>0</y><z>0</z></coordinates></vertex>"
+    "<vertex><coordinates><x>0</x><y>2</y><z>0</z></coordinates></vertex>"
+    "<vertex><coordinates><x>0</x><y>0</y><z>3</z></coordinates></vertex>"
+    "</vertices><volume><triangle><v1>0</v1><v2>2</v2><v3>1</v3></triangle>"
+    "<triangle><v1>0</v1><v2>1</v2><v3>3</v3></triangle><triangle><v1>0</v1><v2>3</v2><v3>2</v3></triangle>"
+    "<triangle><v1>1</v1><v2>2</v2><v3>3</v3></triangle></volume></mesh></object>\n"
+    "<!-- <constellation id=\"2\"><instance objectid=\"1\"><deltax>7</deltax></instance> -->\n"
+    "<constellation id=\"2\"><metadata type=\"Name\">pair</metadata>"
+    "<instance objectid=\"1\"><deltax>10</deltax><deltay>0</deltay><deltaz>0</deltaz></instance>"
+    "<instance objectid='1'>\n  <deltax> -10 </deltax><deltaz>5</deltaz><rx>0</rx><ry>0</ry><rz>90</rz>\n</instance>"
+    "</constellation>\n"
+    "<constellation id=\"3\"><instance objectid=\"2\"/>"
+    "<instance objectid=\"2\"><deltay>50</deltay><rx>90</rx></instance></constellation>\n</amf>\n";
+
 static void load(sr_mesh *mesh, const char *name, const char *text)
 {
     char path[600];
@@ -123,6 +146,20 @@ Test(instances, each_collada_instance_geometry_is_a_part)
     cr_assert_eq(m.parts[0].material, m.parts[1].material);
     assert_part_at(&m, 0, (double[]){ -2, 0, 0 }, (double[]){ -1, 1, 0 });
     assert_part_at(&m, 1, (double[]){ 2, 0, 0 }, (double[]){ 3, 1, 0 });
+    sr_mesh_free(&m);
+}
+
+/* Each instance is turned about the file's axes, in degrees, then moved:
+ * the bounds of each part, in softrast's world (z negated), are exact. */
+Test(instances, each_amf_constellation_instance_is_placed_at_its_offset_and_turn)
+{
+    sr_mesh m;
+    load(&m, "tetra.amf", TETRA_AMF);
+    cr_assert_eq(m.part_count, 4, "two instances of a constellation of two: %u parts", m.part_count);
+    assert_part_at(&m, 0, (double[]){ 10, 0, -3 }, (double[]){ 11, 2, 0 });
+    assert_part_at(&m, 1, (double[]){ -12, 0, -8 }, (double[]){ -10, 1, -5 });
+    assert_part_at(&m, 2, (double[]){ 10, 47, -2 }, (double[]){ 11, 50, 0 });
+    assert_part_at(&m, 3, (double[]){ -12, 42, -1 }, (double[]){ -10, 45, 0 });
     sr_mesh_free(&m);
 }
 

@@ -138,6 +138,31 @@ Test(materials, two_parts_draw_their_own_colours)
     quads_free(&mesh);
 }
 
+/* A triangle in no part takes material 0; parts that all take material 0
+ * are not looked up per triangle (draw/materials.c), and draw as the
+ * lookup would: every quad green. One part naming material 1 turns its
+ * quad red, the others staying green. */
+Test(materials, parts_all_of_material_0_and_triangles_in_none_draw_in_it)
+{
+    sr_mesh mesh;
+    sr_mesh_part parts[3];
+    sr_material materials[2] = { { .base_color = { 0, 1, 0, 1 } }, { .base_color = { 1, 0, 0, 1 } } };
+    const quad q[3] = { { 0, 8, 0.25f, 0 }, { 8, 16, 0.25f, 0 }, { 16, 32, 0.25f, 0 } };
+    quads_with(&mesh, q, 3, parts, materials, 2);
+    mesh.part_count = 2; /* the third quad in no part */
+    sr_framebuffer fb;
+    scene_fb_make(&fb, W, H);
+    draw_everywhere(&fb, &mesh, SR_SHADE_TEXTURE, SR_FILTER_NEAREST);
+    expect_columns(&fb, 0, 32, 0x00FF00, 0.25f);
+    parts[1].material = 1;
+    draw_everywhere(&fb, &mesh, SR_SHADE_TEXTURE, SR_FILTER_NEAREST);
+    expect_columns(&fb, 0, 8, 0x00FF00, 0.25f);
+    expect_columns(&fb, 8, 16, 0xFF0000, 0.25f);
+    expect_columns(&fb, 16, 32, 0x00FF00, 0.25f);
+    sr_framebuffer_destroy(&fb);
+    quads_free(&mesh);
+}
+
 /* A texel times the material's colour: each channel times its factor in
  * 8.8 fixed point, rounded (0x80 · 0.5 → 0x40, 0x40 · 0.25 → 0x10). */
 Test(materials, a_texture_is_tinted_by_the_base_colour)

@@ -612,6 +612,49 @@ Test(scene_files, an_amf_draws_its_colours_as_given_and_none_in_gray)
               rgb[2]);
 }
 
+/* AMF (as 3MF) stores a solid's facets, no normals, its corners shared:
+ * each triangle is shaded by its own outward normal, the same at its three
+ * corners, never one averaged over a corner (a box's sides would shade as
+ * gradients). */
+Test(scene_files, an_amf_solid_is_shaded_by_its_facets)
+{
+    write_text(temp_dir, "tetra.amf",
+               "<?xml version=\"1.0\"?>\n<amf><object id=\"1\"><mesh><vertices>"
+               "<vertex><coordinates><x>0</x><y>0</y><z>0</z></coordinates></vertex>"
+               "<vertex><coordinates><x>1</x><y>0</y><z>0</z></coordinates></vertex>"
+               "<vertex><coordinates><x>0</x><y>2</y><z>0</z></coordinates></vertex>"
+               "<vertex><coordinates><x>0</x><y>0</y><z>3</z></coordinates></vertex></vertices><volume>"
+               "<triangle><v1>0</v1><v2>2</v2><v3>1</v3></triangle><triangle><v1>0</v1><v2>1</v2><v3>3</v3></triangle>"
+               "<triangle><v1>0</v1><v2>3</v2><v3>2</v3></triangle><triangle><v1>1</v1><v2>2</v2><v3>3</v3></triangle>"
+               "</volume></mesh></object></amf>\n");
+    sr_mesh m;
+    sr_texture tex = { 0 };
+    sr_error err = { "" };
+    char path[600];
+    cr_assert(sr_mesh_load(&m, &tex, temp_path(path, sizeof path, "tetra.amf"), &err), "%s", err.message);
+    cr_assert_eq(m.index_count, 12u);
+    cr_assert_not_null(m.normals);
+    vec3 centre = { 0, 0, 0 };
+    for (uint32_t i = 0; i < m.index_count; i++)
+        glm_vec3_muladds(m.positions[m.indices[i]], 1.0f / 12.0f, centre);
+    for (uint32_t t = 0; t < 4; t++) {
+        const uint32_t *v = &m.indices[3 * t];
+        vec3 e1, e2, face, out;
+        glm_vec3_sub(m.positions[v[1]], m.positions[v[0]], e1);
+        glm_vec3_sub(m.positions[v[2]], m.positions[v[0]], e2);
+        glm_vec3_cross(e1, e2, face);
+        glm_vec3_normalize(face);
+        glm_vec3_sub(m.positions[v[0]], centre, out);
+        cr_expect_gt(glm_vec3_dot(face, out), 0.0f, "triangle %u winds inward", t);
+        for (int c = 0; c < 3; c++)
+            cr_expect(glm_vec3_distance(m.normals[v[c]], face) < 1e-6f,
+                      "triangle %u corner %d: normal (%g, %g, %g), its face's (%g, %g, %g)", t, c, m.normals[v[c]][0],
+                      m.normals[v[c]][1], m.normals[v[c]][2], face[0], face[1], face[2]);
+    }
+    sr_mesh_free(&m);
+    sr_texture_free(&tex);
+}
+
 /* A triangle whose one morph target lifts its apex by 2, at a default
  * weight of 0.5 (the glTF mesh's "weights"): drawn with the apex at
  * 1 + 0.5 * 2; `info` says what was posed. */
@@ -636,6 +679,68 @@ Test(scene_files, morph_targets_are_drawn_at_their_default_weights)
     const cJSON *max = cJSON_GetObjectItem(cJSON_GetObjectItem(o, "bounds_file"), "max");
     cr_expect_eq(cJSON_GetArrayItem(max, 1)->valuedouble, 2.0);
     cr_expect_eq(cJSON_GetObjectItem(o, "morphed_meshes")->valueint, 1);
+    cJSON_Delete(o);
+}
+
+/* A triangle skinned to two joints, (0,0,0) to the first alone, (1,0,0) to
+ * the second alone, (0,1,0) half to each. The first joint's node stands at
+ * (0,2,0) with an identity inverse bind matrix; the second's at (0,0,3)
+ * with one that moves by (0,0,-1). The mesh's own node, moved by (5,0,0),
+ * does not place a skinned mesh (glTF's skinning): the vertices are drawn
+ * at (0,2,0), (1,0,2) and (0,2,1), softrast's world negating z. */
+Test(scene_files, a_skinned_mesh_is_posed_by_its_joints_nodes)
+{
+    static const struct {
+        float positions[3][3];
+        uint16_t indices[4];        /* three, and padding */
+        uint8_t joints[3][4];
+        float weights[3][4];
+        float inverse_bind[2][16];  /* column-major */
+    } bin = { { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } },
+              { 0, 1, 2, 0 },
+              { { 0, 0, 0, 0 }, { 1, 0, 0, 0 }, { 0, 1, 0, 0 } },
+              { { 1, 0, 0, 0 }, { 1, 0, 0, 0 }, { 0.5f, 0.5f, 0, 0 } },
+              { { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 }, { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -1, 1 } } };
+    cr_assert_eq(sizeof bin, 232u);
+    char path[600];
+    snprintf(path, sizeof path, "%s/s.bin", temp_dir);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(fwrite(&bin, sizeof bin, 1, f), 1u);
+    fclose(f);
+    write_text(temp_dir, "s.gltf",
+               "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2]}],"
+               "\"nodes\":[{\"mesh\":0,\"skin\":0,\"translation\":[5,0,0]},{\"translation\":[0,2,0]},"
+               "{\"translation\":[0,0,3]}],\"skins\":[{\"joints\":[1,2],\"inverseBindMatrices\":4}],"
+               "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"JOINTS_0\":2,\"WEIGHTS_0\":3},"
+               "\"indices\":1}]}],\"buffers\":[{\"byteLength\":232,\"uri\":\"s.bin\"}],"
+               "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6},"
+               "{\"buffer\":0,\"byteOffset\":44,\"byteLength\":12},{\"buffer\":0,\"byteOffset\":56,\"byteLength\":48},"
+               "{\"buffer\":0,\"byteOffset\":104,\"byteLength\":128}],\"accessors\":["
+               "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]},"
+               "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"},"
+               "{\"bufferView\":2,\"componentType\":5121,\"count\":3,\"type\":\"VEC4\"},"
+               "{\"bufferView\":3,\"componentType\":5126,\"count\":3,\"type\":\"VEC4\"},"
+               "{\"bufferView\":4,\"componentType\":5126,\"count\":2,\"type\":\"MAT4\"}]}");
+    sr_mesh m;
+    sr_texture tex = { 0 };
+    sr_error err = { "" };
+    cr_assert(sr_mesh_load(&m, &tex, temp_path(path, sizeof path, "s.gltf"), &err), "%s", err.message);
+    cr_assert_eq(m.index_count, 3u);
+    static const double want[3][3] = { { 0, 2, 0 }, { 1, 0, -2 }, { 0, 2, -1 } };
+    for (int w = 0; w < 3; w++) {
+        bool seen = false;
+        for (uint32_t i = 0; i < m.index_count; i++) {
+            const float *p = m.positions[m.indices[i]];
+            seen |= m.origin[0] + p[0] == want[w][0] && m.origin[1] + p[1] == want[w][1] &&
+                    m.origin[2] + p[2] == want[w][2];
+        }
+        cr_expect(seen, "no corner at (%g, %g, %g)", want[w][0], want[w][1], want[w][2]);
+    }
+    sr_mesh_free(&m);
+    sr_texture_free(&tex);
+    cJSON *o = info_json("s.gltf");
+    cr_expect_eq(cJSON_GetObjectItem(o, "skinned_meshes")->valueint, 1);
     cJSON_Delete(o);
 }
 

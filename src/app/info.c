@@ -214,7 +214,7 @@ static void print_text(const info_job *job, const sr_mesh *m, const sr_load_repo
     printf("left out: %llu points, %llu lines, %u animations, %u cameras, %u lights",
            (unsigned long long)r->points, (unsigned long long)r->lines, r->animations, r->cameras, r->lights);
     if (r->skinned_meshes)
-        printf("; %u skinned meshes drawn in their bind pose", r->skinned_meshes);
+        printf("; %u skinned meshes posed by their skeletons", r->skinned_meshes);
     if (r->morphed_meshes)
         printf("; %u meshes with morph targets at their default weights", r->morphed_meshes);
     if (r->mirrored_meshes)

@@ -129,7 +129,12 @@ bool sr_materials_make(sr_draw_state *st, sr_error *err)
         material_context(&st->shade, &mesh->materials[i], st->desc->texture, &contexts[i]);
     st->shade.materials = contexts;
     st->shade.material_count = mesh->material_count;
-    st->shade.parts = mesh->parts;
-    st->shade.part_count = mesh->part_count;
+    /* Parts that all take material 0 (a mesh of one material in several
+     * groups) are not searched per triangle: every triangle's is 0. */
+    bool one = true;
+    for (uint32_t i = 0; one && i < mesh->part_count; i++)
+        one = mesh->parts[i].material == 0;
+    st->shade.parts = one ? NULL : mesh->parts;
+    st->shade.part_count = one ? 0 : mesh->part_count;
     return true;
 }

@@ -21,10 +21,12 @@
  * mirrors its root frame): a mesh placed mirrored alone has its winding
  * reversed before post-processing (sr_assimp_unmirror), a mesh placed both
  * ways its mirrored instances' reversed here. Morph targets are applied at
- * their default weights and skinned meshes kept in their bind pose before
- * post-processing (assimp_report.h). The import runs in a child
- * process (isolated_load.h): Assimp is not ours to make crash- and
- * hang-free.
+ * their default weights and skinned meshes posed by their skeletons
+ * before post-processing (assimp_report.h), and an AMF file's
+ * constellation instances placed as the file says (amf_constellations.h).
+ * 3MF and AMF meshes are shaded by their facets (mesh_facets.h). The
+ * import runs in a child process (isolated_load.h): Assimp is not ours to
+ * make crash- and hang-free.
  */
 #include <assimp/GltfMaterial.h>
 #include <assimp/cimport.h>
@@ -42,9 +44,11 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "isolated_load.h"
+#include "mesh_facets.h"
 #include "mesh_loaders.h"
 #include "mesh_origin.h"
 #include "obj_parse.h"
+#include "amf_constellations.h"
 #include "assimp_instances.h"
 #include "assimp_report.h"
 #include "texture_find.h"
@@ -437,14 +441,33 @@ static bool import_error(const char *path, sr_error *err)
     return sr_error_set(err, "%s: %s", path, reason);
 }
 
-/* In the child process: Assimp's import, its mirrored meshes turned
- * outward, flattened and converted; what it found into report. */
+/* Whether path's ending is one of endings (lower case, each with its
+ * dot), as Assimp picks a format. */
+static bool ends_in(const char *path, const char *const *endings)
+{
+    const char *dot = strrchr(path, '.');
+    for (; dot && !strchr(dot, '/') && *endings; endings++)
+        if (strcasecmp(dot, *endings) == 0)
+            return true;
+    return false;
+}
+
+static const char *const AMF[] = { ".amf", NULL };
+
+/* Formats whose meshes are a solid's facets, shaded flat (mesh_facets.h). */
+static const char *const FACETED[] = { ".3mf", ".amf", NULL };
+
+/* In the child process: Assimp's import, AMF's constellations placed, its
+ * mirrored meshes turned outward, flattened and converted; what it found
+ * into report. */
 static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr_load_report *report, sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
     const struct aiScene *sc = aiImportFile(path, 0);
     if (!sc)
         return import_error(path, err);
+    if (ends_in(path, AMF))
+        sr_amf_place_instances(sc, path);
     uint32_t mirrored = sr_assimp_unmirror(sc);
     sr_assimp_pose pose = sr_assimp_static_pose(sc);
     bool *generated = NULL;
@@ -456,7 +479,8 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
     sr_assimp_instances list = { 0 };
     bool ok = (generated && sr_assimp_instances_find(sc, SR_MAX_MESH_TRIANGLES, &list)) ||
               sr_error_set(err, "%s: out of memory, or more than %u mesh instances", path, SR_MAX_MESH_TRIANGLES);
-    ok = ok && build_mesh(sc, &list, generated, path, mesh, err) && find_texture(sc, path, mesh, texture, err) &&
+    ok = ok && build_mesh(sc, &list, generated, path, mesh, err) &&
+         (!ends_in(path, FACETED) || sr_mesh_facet(mesh, err)) && find_texture(sc, path, mesh, texture, err) &&
          build_materials(sc, path, mesh, texture, err);
     if (ok && report) {
         report->mirrored_meshes = mirrored;

@@ -12,6 +12,9 @@
 #include "assimp_report.h"
 #include "texture_find.h"
 
+/* A hostile hierarchy is walked no deeper than this. */
+#define MAX_NODE_DEPTH 1024
+
 /* ---- mirrored meshes ---- */
 
 static double determinant3(const struct aiMatrix4x4 *m)
@@ -28,7 +31,7 @@ enum { PLACED_PLAIN = 1, PLACED_MIRRORED = 2 };
 static void mark_placements(const struct aiScene *sc, const struct aiNode *node, bool mirrored, uint8_t *placed,
                             unsigned depth)
 {
-    if (!node || depth > 1024) /* a hostile hierarchy: no deeper than this */
+    if (!node || depth > MAX_NODE_DEPTH)
         return;
     mirrored ^= determinant3(&node->mTransformation) < 0.0;
     for (unsigned i = 0; i < node->mNumMeshes; i++)
@@ -99,13 +102,167 @@ static bool apply_morphs(struct aiMesh *m)
     return any;
 }
 
+/* An affine transform in double, row-major: p' = m · (x, y, z, 1). */
+typedef double affine[3][4];
+
+static void affine_of(const struct aiMatrix4x4 *a, affine out)
+{
+    const double m[3][4] = { { a->a1, a->a2, a->a3, a->a4 }, { a->b1, a->b2, a->b3, a->b4 },
+                             { a->c1, a->c2, a->c3, a->c4 } };
+    memcpy(out, m, sizeof m);
+}
+
+/* out = a · b (out may be either). */
+static void affine_mul(const affine a, const affine b, affine out)
+{
+    affine r;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            r[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j] + (j == 3 ? a[i][3] : 0.0);
+    memcpy(out, r, sizeof r);
+}
+
+/* The cofactors of the linear part: its inverse times its determinant,
+ * transposed; the normals' transform up to scale. */
+static void cofactors(const affine m, double c[3][3])
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            c[i][j] = m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1];
+        }
+}
+
+/* The inverse of an affine transform; false when it is singular. */
+static bool affine_invert(const affine m, affine out)
+{
+    double c[3][3];
+    cofactors(m, c);
+    const double det = m[0][0] * c[0][0] + m[0][1] * c[0][1] + m[0][2] * c[0][2];
+    if (!isfinite(det) || det == 0.0)
+        return false;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            out[i][j] = c[j][i] / det;
+    for (int i = 0; i < 3; i++)
+        out[i][3] = -(out[i][0] * m[0][3] + out[i][1] * m[1][3] + out[i][2] * m[2][3]);
+    return true;
+}
+
+/* A node's transform composed with its parents'. */
+static void node_global(const struct aiNode *n, affine out)
+{
+    static const affine IDENTITY = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 } };
+    memcpy(out, IDENTITY, sizeof IDENTITY);
+    for (unsigned depth = 0; n && depth <= MAX_NODE_DEPTH; n = n->mParent, depth++) {
+        affine local;
+        affine_of(&n->mTransformation, local);
+        affine_mul(local, out, out);
+    }
+}
+
+/* The node named name, or that places mesh `mesh` (name NULL); NULL when none. */
+static const struct aiNode *find_node(const struct aiNode *n, const char *name, unsigned mesh, unsigned depth)
+{
+    if (!n || depth > MAX_NODE_DEPTH)
+        return NULL;
+    if (name && strcmp(n->mName.data, name) == 0)
+        return n;
+    for (unsigned i = 0; !name && i < n->mNumMeshes; i++)
+        if (n->mMeshes[i] == mesh)
+            return n;
+    for (unsigned i = 0; i < n->mNumChildren; i++) {
+        const struct aiNode *found = find_node(n->mChildren[i], name, mesh, depth + 1);
+        if (found)
+            return found;
+    }
+    return NULL;
+}
+
+/* A skinned mesh posed by its skeleton as the node tree holds it (no
+ * animation): each vertex at the weighted sum of its bones' global
+ * transforms times their offset (inverse bind) matrices, glTF's skinning
+ * formula, which Assimp's viewer also draws. The result is stored in the
+ * mesh's own frame, of the first node that places it, so that placing
+ * the mesh by that node gives the posed vertex. A vertex no bone weighs
+ * stays as stored; false, the mesh as stored, when no node places it or
+ * out of memory. */
+static bool pose_skin(const struct aiScene *sc, unsigned mesh)
+{
+    struct aiMesh *m = sc->mMeshes[mesh]; /* the child's own copy of the scene, ours to change */
+    const struct aiNode *placing = find_node(sc->mRootNode, NULL, mesh, 0);
+    affine to_world, to_mesh;
+    if (!placing || m->mNumVertices == 0)
+        return false;
+    node_global(placing, to_world);
+    if (!affine_invert(to_world, to_mesh))
+        return false;
+    double(*sum)[13] = calloc(m->mNumVertices, sizeof *sum); /* the weighted transform, then the weight */
+    if (!sum)
+        return false;
+    for (unsigned b = 0; b < m->mNumBones; b++) {
+        const struct aiBone *bone = m->mBones[b];
+        const struct aiNode *node = bone ? find_node(sc->mRootNode, bone->mName.data, 0, 0) : NULL;
+        if (!node)
+            continue;
+        affine skin, offset;
+        node_global(node, skin);
+        affine_of(&bone->mOffsetMatrix, offset);
+        affine_mul(skin, offset, skin);
+        affine_mul(to_mesh, skin, skin);
+        for (unsigned k = 0; k < bone->mNumWeights; k++) {
+            const struct aiVertexWeight w = bone->mWeights[k];
+            if (w.mVertexId >= m->mNumVertices || !isfinite(w.mWeight) || w.mWeight <= 0.0f)
+                continue;
+            double *s = sum[w.mVertexId];
+            for (int e = 0; e < 12; e++)
+                s[e] += w.mWeight * skin[e / 4][e % 4];
+            s[12] += w.mWeight;
+        }
+    }
+    for (unsigned j = 0; j < m->mNumVertices; j++) {
+        const double *s = sum[j];
+        if (s[12] <= 0.0)
+            continue;
+        affine a;
+        for (int e = 0; e < 12; e++)
+            a[e / 4][e % 4] = s[e] / s[12];
+        const struct aiVector3D p = m->mVertices[j];
+        double q[3], n[3] = { 0, 0, 0 }, c[3][3];
+        for (int i = 0; i < 3; i++)
+            q[i] = a[i][0] * p.x + a[i][1] * p.y + a[i][2] * p.z + a[i][3];
+        if (!isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]))
+            continue;
+        m->mVertices[j] = (struct aiVector3D){ (ai_real)q[0], (ai_real)q[1], (ai_real)q[2] };
+        if (!m->mNormals)
+            continue;
+        cofactors(a, c);
+        const struct aiVector3D d = m->mNormals[j];
+        double len2 = 0.0;
+        for (int i = 0; i < 3; i++) {
+            n[i] = c[i][0] * d.x + c[i][1] * d.y + c[i][2] * d.z;
+            len2 += n[i] * n[i];
+        }
+        const double det = a[0][0] * c[0][0] + a[0][1] * c[0][1] + a[0][2] * c[0][2];
+        const double scale = len2 > 0.0 && isfinite(len2) ? (det < 0.0 ? -1.0 : 1.0) / sqrt(len2) : 0.0;
+        if (scale != 0.0)
+            m->mNormals[j] = (struct aiVector3D){ (ai_real)(n[0] * scale), (ai_real)(n[1] * scale),
+                                                  (ai_real)(n[2] * scale) };
+    }
+    free(sum);
+    return true;
+}
+
 sr_assimp_pose sr_assimp_static_pose(const struct aiScene *sc)
 {
     sr_assimp_pose pose = { .animations = sc->mNumAnimations };
     for (unsigned i = 0; i < sc->mNumMeshes; i++) {
         struct aiMesh *m = sc->mMeshes[i]; /* the child's own copy of the scene, ours to change */
-        pose.skinned += m->mNumBones > 0;
         pose.morphed += apply_morphs(m);
+        if (m->mNumBones > 0) {
+            pose.skinned++;
+            pose_skin(sc, i);
+        }
     }
     return pose;
 }

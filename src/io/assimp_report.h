@@ -26,9 +26,14 @@ typedef struct sr_assimp_pose {
 /* Before the scene is post-processed: poses it statically and counts what that
  * leaves out. Morph targets are applied at their default weights (glTF's
  * mesh.weights; Assimp stores each target whole, so a vertex moves by
- * weight x (target - base)), to positions and normals; skinned meshes stay
- * in their bind pose, the vertices as stored (no animation, so no time
- * whose pose would be the file's more than another's). */
+ * weight x (target - base)), to positions and normals; skinned meshes are
+ * posed by their skeletons as the node tree holds them, no animation
+ * applied (no time of an animation is more the file's than another): a
+ * vertex at the weighted mean of its bones' global transforms times their
+ * offset matrices, glTF's skinning formula, which ignores the transform of
+ * the skinned mesh's own node, as Assimp's viewer and glTF viewers draw
+ * it. The vertices stored are not a pose: BCN_Epileptic.X's head would
+ * float above its body, lying along the file's z. */
 sr_assimp_pose sr_assimp_static_pose(const struct aiScene *sc);
 
 /* The texture a material draws: its base-colour (glTF), else diffuse

@@ -61,13 +61,13 @@ typedef struct sr_shade_context {
 } sr_shade_context;
 
 /* The context that shades triangle `id`: its part's material's (10_shade.c;
- * material 0 for a triangle in no part), or c itself for a draw without
- * materials. */
+ * material 0 for a triangle in no part, so material 0 for every triangle
+ * of a draw given no parts), or c itself for a draw without materials. */
 const sr_shade_context *sr_shade_material_of(const sr_shade_context *c, uint32_t id);
 
 static inline const sr_shade_context *sr_shade_context_of(const sr_shade_context *c, uint32_t id)
 {
-    return c->material_count ? sr_shade_material_of(c, id) : c;
+    return !c->material_count ? c : c->part_count ? sr_shade_material_of(c, id) : c->materials;
 }
 
 /* 0..1 to 0..255, clamped; NaN gives 0. */
