@@ -22,7 +22,7 @@ import numpy as np
 from pinhole_sheet import read_rgb_png, write_rgb_png
 
 MODELS = "/usr/share/assimp/models/"
-FILES = [  # docs/conventions.md, "Materials", names what each row shows
+FILES = [  # docs/scene-files.md, "Materials", names what each row shows
     "glTF/CesiumMilkTruck/CesiumMilkTruck.gltf",
     "OBJ/spider.obj",
     "Collada/teapots.DAE",

@@ -1,6 +1,6 @@
 /* upright.h — the world turn that shows a scene upright: the file's up axis
  * to softrast's +y, as a rotation of the look-at camera's world, never a
- * change of the positions (docs/conventions.md, "Axes and units"). */
+ * change of the positions (docs/scene-files.md, "Axes and units"). */
 #ifndef SOFTRAST_APP_UPRIGHT_H
 #define SOFTRAST_APP_UPRIGHT_H
 

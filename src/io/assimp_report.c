@@ -331,7 +331,7 @@ typedef struct format_axes {
     const char *units_why;
 } format_axes;
 
-/* Checked against assimp-testmodels (docs/conventions.md, "Axes and
+/* Checked against assimp-testmodels (docs/scene-files.md, "Axes and
  * units"): which way each format's scenes arrive up from Assimp. */
 static const format_axes FORMATS[] = {
     { "gltf glb", SR_AXIS_PY, SR_AXIS_COUNT, SR_FOUND_READ, "glTF 2.0 defines +y up", 1.0, SR_FOUND_READ, "glTF 2.0 defines metres" },
