@@ -18,6 +18,7 @@ static void mesh_clear(sr_py_mesh *self)
 {
     sr_mesh_free(&self->mesh);
     sr_texture_free(&self->texture);
+    sr_material_textures_free(&self->material_textures);
     free(self->part_map);
     self->part_map = NULL;
     free(self->linear_colors);
@@ -251,6 +252,26 @@ done:
     return status;
 }
 
+/* The texture files that did not load, for the UserWarnings raised once
+ * the GIL is held again. */
+typedef struct untextured {
+    sr_error *why;
+    uint32_t count;
+    bool out_of_memory;
+} untextured;
+
+static void note_untextured(void *context, const sr_error *why)
+{
+    untextured *u = context;
+    sr_error *grown = realloc(u->why, (u->count + 1) * sizeof *grown);
+    if (!grown) {
+        u->out_of_memory = true;
+        return;
+    }
+    u->why = grown;
+    u->why[u->count++] = *why;
+}
+
 static PyObject *mesh_load(PyObject *cls, PyObject *args)
 {
     PyObject *path = NULL;
@@ -261,19 +282,24 @@ static PyObject *mesh_load(PyObject *cls, PyObject *args)
         Py_DECREF(path);
         return NULL;
     }
-    sr_error err, why;
-    bool ok, untextured = false;
+    sr_error err;
+    untextured missing = { 0 };
+    bool ok, textures = true;
     Py_BEGIN_ALLOW_THREADS
     ok = sr_mesh_load(&self->mesh, &self->texture, PyBytes_AS_STRING(path), &err);
-    if (ok && !self->texture.texels && self->mesh.texture_path && self->mesh.uvs)
-        untextured = !sr_texture_load(&self->texture, self->mesh.texture_path, &why);
+    textures = !ok || sr_material_textures_load(&self->mesh, &self->material_textures, note_untextured, &missing);
     Py_END_ALLOW_THREADS
     if (!ok)
         sr_py_raise(PyExc_OSError, &err);
+    else if (!textures || missing.out_of_memory)
+        PyErr_NoMemory();
     else if (sr_mesh_triangle_slots(&self->mesh) == 0 || !self->mesh.positions)
         PyErr_Format(PyExc_ValueError, "%s: no faces: an empty mesh, nothing to render", PyBytes_AS_STRING(path));
-    else if (untextured) /* as the command line: a model shared without its textures still draws */
-        PyErr_WarnFormat(PyExc_UserWarning, 1, "%s; the mesh is drawn untextured", why.message);
+    /* as the command line: a model shared without its textures still draws */
+    for (uint32_t i = 0; !PyErr_Occurred() && i < missing.count; i++)
+        PyErr_WarnFormat(PyExc_UserWarning, 1, "%s; its materials are drawn untextured, in their base colour",
+                         missing.why[i].message);
+    free(missing.why);
     self->display_colours = sr_vertex_colours_are_display(PyBytes_AS_STRING(path));
     Py_DECREF(path);
     if (PyErr_Occurred()) {
@@ -353,12 +379,27 @@ static PyObject *mesh_attribute(sr_py_mesh *self, void *closure)
 
 static const int NORMALS = ATTRIBUTE_NORMALS, UVS = ATTRIBUTE_UVS, COLORS = ATTRIBUTE_COLORS;
 
+/* The texture `texture` gives: the one given as an array or embedded in the
+ * file, else the first material's that has one (in the materials' order;
+ * a file's parts may each draw their own); NULL for none. */
+static const sr_texture *first_texture(const sr_py_mesh *self)
+{
+    if (self->texture.texels)
+        return &self->texture;
+    for (uint32_t i = 0; i < self->mesh.material_count; i++) {
+        const sr_texture *t = self->mesh.materials[i].texture;
+        if (t && t->texels)
+            return t;
+    }
+    return NULL;
+}
+
 /* A copy of the texture, (H, W, 3) uint8, row 0 at the top; None without one. */
 static PyObject *mesh_texture(sr_py_mesh *self, void *closure)
 {
     (void)closure;
-    const sr_texture *t = &self->texture;
-    if (!t->texels)
+    const sr_texture *t = first_texture(self);
+    if (!t)
         Py_RETURN_NONE;
     npy_intp dims[3] = { t->height, t->width, 3 };
     PyArrayObject *a = (PyArrayObject *)PyArray_SimpleNew(3, dims, NPY_UINT8);

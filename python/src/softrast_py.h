@@ -16,13 +16,15 @@
 
 #include <stdbool.h>
 
+#include "io/material_textures.h" /* the command line's loading of each material's texture */
 #include "softrast/softrast.h"
 
 /* softrast.Mesh: an sr_mesh that owns its arrays, and its texture. */
 typedef struct sr_py_mesh {
     PyObject_HEAD
     sr_mesh mesh;
-    sr_texture texture; /* empty: none */
+    sr_texture texture; /* empty: none; a loaded file's embedded one */
+    sr_material_textures material_textures; /* a loaded file's materials' texture files */
     /* Part ids given as arrays: mesh.parts are the runs of equal ids in
      * face order, and part_map[run] the id the caller gave that run (the
      * library's part_ids output is run + 1). NULL for a loaded mesh. */

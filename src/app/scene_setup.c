@@ -111,61 +111,12 @@ static bool load_texture(const sr_scene_setup *s, sr_scene *scene, sr_error *err
     return true;
 }
 
-/* Materials by texture path, for qsort: those of one path next to each
- * other, paths in strcmp order, none (NULL) last. */
-static const sr_material *sorted_materials;
-
-static int by_texture_path(const void *a, const void *b)
+/* One line for a material texture that did not load: its materials draw
+ * their base colour. */
+static void warn_untextured(void *context, const sr_error *why)
 {
-    const char *pa = sorted_materials[*(const uint32_t *)a].texture_path,
-               *pb = sorted_materials[*(const uint32_t *)b].texture_path;
-    if (!pa || !pb)
-        return (pa == NULL) - (pb == NULL);
-    return strcmp(pa, pb);
-}
-
-/* Each distinct texture path of the mesh's materials loaded once (the
- * materials sorted by path, so a thousand naming one file cost a sort, not
- * a thousand searches); one missing or unreadable is one warning, and its
- * materials draw their base colour (their path dropped, so the draw does
- * not give them desc's texture, which an embedded one may be). False only
- * when out of memory. */
-static bool load_material_textures(sr_scene *scene, sr_error *err)
-{
-    sr_mesh *mesh = &scene->mesh;
-    uint32_t n = mesh->material_count, *order = malloc(n * sizeof *order);
-    scene->material_textures = calloc(n, sizeof *scene->material_textures);
-    if (!order || !scene->material_textures) {
-        free(order);
-        return sr_error_set(err, "out of memory for %u textures", n);
-    }
-    for (uint32_t i = 0; i < n; i++)
-        order[i] = i;
-    sorted_materials = mesh->materials;
-    qsort(order, n, sizeof *order, by_texture_path);
-    for (uint32_t i = 0; i < n && mesh->materials[order[i]].texture_path;) {
-        const char *path = mesh->materials[order[i]].texture_path;
-        sr_texture *t = &scene->material_textures[scene->material_texture_count++];
-        sr_error why;
-        if (!sr_texture_load(t, path, &why))
-            fprintf(stderr, "softrast: warning: %s; drawing its materials untextured, in their base colour\n",
-                    why.message);
-        uint32_t end = i + 1;
-        while (end < n && mesh->materials[order[end]].texture_path &&
-               strcmp(mesh->materials[order[end]].texture_path, path) == 0)
-            end++;
-        for (; i < end; i++) {
-            sr_material *m = &mesh->materials[order[i]];
-            if (t->texels) {
-                m->texture = t;
-            } else {
-                free(m->texture_path);
-                m->texture_path = NULL;
-            }
-        }
-    }
-    free(order);
-    return true;
+    (void)context;
+    fprintf(stderr, "softrast: warning: %s; drawing its materials untextured, in their base colour\n", why->message);
 }
 
 /* --texture: the whole mesh with it, as before materials. */
@@ -203,8 +154,9 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
     if (s->texture_path)
         drop_materials(&scene->mesh);
     bool materials = scene->mesh.material_count > 0;
-    if (wants_texture && materials && !load_material_textures(scene, err))
-        return false;
+    if (wants_texture && materials &&
+        !sr_material_textures_load(&scene->mesh, &scene->material_textures, warn_untextured, NULL))
+        return sr_error_set(err, "out of memory for %u materials' textures", scene->mesh.material_count);
     if (wants_texture && !materials && !scene->texture.texels && !load_texture(s, scene, err))
         return false;
     bool wants_normals = everything || shade_uses_normals((sr_shade)s->shade);
@@ -232,11 +184,7 @@ void sr_scene_free(sr_scene *scene)
     sr_mesh_free(&scene->mesh);
     sr_load_report_free(&scene->report);
     sr_texture_free(&scene->texture);
-    for (uint32_t i = 0; i < scene->material_texture_count; i++)
-        sr_texture_free(&scene->material_textures[i]);
-    free(scene->material_textures);
-    scene->material_textures = NULL;
-    scene->material_texture_count = 0;
+    sr_material_textures_free(&scene->material_textures);
     sr_framebuffer_destroy(&scene->fb);
     sr_workspace_destroy(scene->workspace);
     scene->workspace = NULL;

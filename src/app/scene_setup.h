@@ -4,6 +4,7 @@
 #define SOFTRAST_APP_SCENE_SETUP_H
 
 #include "io/load_report.h"
+#include "io/material_textures.h"
 #include "options.h"
 #include "softrast_private.h"
 
@@ -30,8 +31,7 @@ typedef struct sr_scene {
     sr_load_report report; /* what the loader found besides the mesh */
     mat4 upright;          /* the world turn that shows the file's up axis as +y (upright.h) */
     sr_texture texture;
-    sr_texture *material_textures; /* the mesh's materials' textures, each file once */
-    uint32_t material_texture_count;
+    sr_material_textures material_textures; /* the mesh's materials' textures, each file once */
     sr_framebuffer fb;
     sr_workspace *workspace; /* reused by every draw of the scene */
 } sr_scene;
