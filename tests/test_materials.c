@@ -1,8 +1,9 @@
 /* Materials per part in one draw (softrast.h, sr_material): each part's
  * triangles shaded with its own colour, texture, tint and alpha mode, on
  * small pixel-space scenes whose every pixel is known, in every per-pixel
- * loop; MASK leaves holes through which what is behind shows, in colour
- * and depth; and the draw refuses a table it cannot take. */
+ * loop; MASK leaves holes through which what is behind shows, in colour,
+ * depth and ids, the same in every shading; and the draw refuses a table
+ * it cannot take. */
 #include <criterion/criterion.h>
 #include <string.h>
 
@@ -198,7 +199,8 @@ static void cutout_make(sr_mesh *mesh, sr_mesh_part parts[2], sr_material materi
 
 /* A cut-out: a 2x1 texture whose left texel has alpha 0, in front of a
  * blue wall drawn after it. The hole writes no depth, so the wall shows
- * through it at its own depth; the opaque half hides the wall. */
+ * through it at its own depth and, in id shading, with its own ids; the
+ * opaque half hides the wall. */
 Test(materials, mask_cuts_holes_that_show_what_is_behind)
 {
     sr_texture tex;
@@ -222,6 +224,16 @@ Test(materials, mask_cuts_holes_that_show_what_is_behind)
         cr_assert_eq(fb.color[y * W + W - 1] & 0xFF00FF, 0u, "the green half: %06x", fb.color[y * W + W - 1]);
         cr_assert_eq(fb.depth[y * W + W - 1], 0.25f);
     }
+    /* Id shading: through the hole, the wall's triangles (ids 3, 4) at its depth. */
+    stats = draw_everywhere(&fb, &mesh, SR_SHADE_ID, SR_FILTER_NEAREST);
+    cr_expect_eq(stats.fragments, (uint64_t)W * H);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            uint32_t id = fb.color[y * W + x];
+            float d = fb.depth[y * W + x];
+            cr_assert(x < 16 ? (id == 3 || id == 4) && d == 0.75f : (id == 1 || id == 2) && d == 0.25f,
+                      "id shading: pixel (%d, %d) shows triangle %u at depth %g", x, y, id - 1, d);
+        }
     /* A texture without alpha is opaque: the whole front quad is drawn. */
     tex.alpha = false;
     draw_everywhere(&fb, &mesh, SR_SHADE_TEXTURE, SR_FILTER_NEAREST);
@@ -254,8 +266,77 @@ Test(materials, a_material_below_its_cutoff_draws_nothing)
     quads_free(&mesh);
 }
 
-/* Modes without an albedo draw every triangle, materials or not. */
-Test(materials, id_and_depth_shading_ignore_materials)
+/* Whether each pixel of fb was drawn (its depth written) where want's was. */
+static void expect_same_coverage(const sr_framebuffer *fb, const sr_framebuffer *want, const char *what)
+{
+    for (int i = 0; i < W * H; i++)
+        cr_assert_eq(fb->depth[i] < SR_DEPTH_CLEAR, want->depth[i] < SR_DEPTH_CLEAR,
+                     "%s: pixel (%d, %d) drawn %d, lambert's %d", what, i % W, i / W, fb->depth[i] < SR_DEPTH_CLEAR,
+                     want->depth[i] < SR_DEPTH_CLEAR);
+}
+
+/* Id, depth, normal and colour shading draw a MASK material's coverage as
+ * lambert does, so depth and ids agree with the colour image: a quad alone
+ * whose left texel has alpha 0. With the nearest filter the cut is at the
+ * texel boundary, column 16: the left half keeps the clear colour and
+ * depth, the right half is the quad's; with the bilinear filter (alpha
+ * lerped, wrapping at u = 0) the coverage is lambert's, pixel for pixel.
+ * Every loop, path and thread count draws the same (draw_everywhere). */
+Test(materials, mask_cuts_the_same_holes_in_every_shading)
+{
+    sr_texture tex = { .width = 2, .height = 1, .texels = cutout_texels, .alpha = true };
+    sr_material mask = { .base_color = { 1, 1, 1, 1 }, .texture = &tex, .alpha_mode = SR_ALPHA_MASK,
+                         .alpha_cutoff = 0.5f };
+    sr_mesh mesh;
+    sr_mesh_part parts[1];
+    quads_with(&mesh, (const quad[1]){ { 0, 32, 0.5f, 0 } }, 1, parts, &mask, 1);
+    mesh.colors = malloc(mesh.vertex_count * sizeof *mesh.colors);
+    cr_assert_not_null(mesh.colors);
+    for (uint32_t v = 0; v < mesh.vertex_count; v++)
+        glm_vec3_copy((vec3){ 0.2f, 0.4f, 0.6f }, mesh.colors[v]);
+    static const sr_shade coverage[] = { SR_SHADE_ID, SR_SHADE_DEPTH, SR_SHADE_NORMAL, SR_SHADE_COLOR };
+    sr_framebuffer lit, fb;
+    scene_fb_make(&lit, W, H);
+    scene_fb_make(&fb, W, H);
+    for (int filter = 0; filter < 2; filter++) {
+        sr_stats lit_stats = draw_everywhere(&lit, &mesh, SR_SHADE_LAMBERT, (sr_filter)filter);
+        for (size_t m = 0; m < sizeof coverage / sizeof *coverage; m++) {
+            char what[48];
+            snprintf(what, sizeof what, "mode %d, filter %d", coverage[m], filter);
+            sr_stats stats = draw_everywhere(&fb, &mesh, coverage[m], (sr_filter)filter);
+            expect_same_coverage(&fb, &lit, what);
+            cr_expect_eq(stats.fragments, lit_stats.fragments, "%s", what);
+            if (filter == SR_FILTER_NEAREST) {
+                cr_expect_eq(stats.fragments, (uint64_t)W * H / 2, "%s", what);
+                for (int y = 0; y < H; y++)
+                    for (int x = 0; x < W; x++) {
+                        uint32_t c = fb.color[y * W + x];
+                        float d = fb.depth[y * W + x];
+                        cr_assert(x < 16 ? c == SCENE_BACKGROUND && d == SR_DEPTH_CLEAR : d == 0.5f,
+                                  "%s: pixel (%d, %d) is %06x at depth %g", what, x, y, c, d);
+                        if (coverage[m] == SR_SHADE_ID && x >= 16)
+                            cr_assert(c == 1 || c == 2, "%s: pixel (%d, %d) is id %u", what, x, y, c);
+                    }
+            }
+        }
+    }
+    /* The ids plane, on the tiles: written where the id colour is, 0 in the holes. */
+    cr_assert(sr_framebuffer_create_ids(&fb, &(sr_error){ "" }));
+    sr_framebuffer_clear(&fb, SCENE_BACKGROUND);
+    sr_draw_desc desc = { .mesh = &mesh, .shade = SR_SHADE_ID, .filter = SR_FILTER_NEAREST, .cull = SR_CULL_NONE };
+    scene_pixel_ortho(&desc, W, H);
+    sr_stats stats;
+    scene_draw_on_loop(&fb, &desc, SR_SIMD_AUTO, 3, SR_PATH_TILES, &stats);
+    for (int i = 0; i < W * H; i++)
+        cr_assert_eq(fb.ids[i], i % W < 16 ? 0u : fb.color[i], "pixel (%d, %d): id %u", i % W, i / W, fb.ids[i]);
+    sr_framebuffer_destroy(&fb);
+    sr_framebuffer_destroy(&lit);
+    quads_free(&mesh);
+}
+
+/* A material whose alpha is below its cutoff everywhere draws nothing in
+ * id and depth shading either; an opaque table's draw ignores materials. */
+Test(materials, a_hidden_material_is_hidden_in_id_and_depth_shading)
 {
     sr_mesh mesh;
     sr_mesh_part parts[1];
@@ -263,6 +344,10 @@ Test(materials, id_and_depth_shading_ignore_materials)
     quads_with(&mesh, (const quad[1]){ { 0, 32, 0.5f, 0 } }, 1, parts, &hidden, 1);
     sr_framebuffer fb;
     scene_fb_make(&fb, W, H);
+    cr_expect_eq(draw_everywhere(&fb, &mesh, SR_SHADE_ID, 0).fragments, 0u);
+    cr_expect_eq(scene_count_depth_written(&fb), 0u);
+    cr_expect_eq(draw_everywhere(&fb, &mesh, SR_SHADE_DEPTH, 0).fragments, 0u);
+    hidden.alpha_mode = SR_ALPHA_OPAQUE;
     cr_expect_eq(draw_everywhere(&fb, &mesh, SR_SHADE_ID, 0).fragments, (uint64_t)W * H);
     cr_expect_eq(draw_everywhere(&fb, &mesh, SR_SHADE_DEPTH, 0).fragments, (uint64_t)W * H);
     sr_framebuffer_destroy(&fb);

@@ -768,7 +768,9 @@ Test(simd, kernel_calls_are_the_last_draws_alone)
  * texture with alpha (the bilinear filter lerping alpha; nearest reading
  * it), BLEND drawn as MASK, and a material hidden by its alpha, on large
  * triangles (the span kernels) and narrow ones (the tiny queue, and the
- * tiny loop for MASK). */
+ * tiny loop for MASK); and id, depth, normal and colour shading cut the
+ * same holes (the cut triangles on the scalar loop, the others on the
+ * kernels and the tiny queue). */
 #define MATERIAL_PARTS 6
 static void materials_set(sr_mesh *mesh, sr_material materials[MATERIAL_PARTS], sr_mesh_part parts[MATERIAL_PARTS],
                           const sr_texture *tex)
@@ -807,13 +809,15 @@ Test(simd, each_part_keeps_its_material_in_every_loop)
     sr_mesh *meshes[] = { &wide, &narrow };
     for (size_t m = 0; m < 2; m++) {
         sr_mesh mesh = *meshes[m];
-        mesh.colors = NULL; /* vertex colours only where no material has a texture (below) */
         materials_set(&mesh, materials, parts, &tex);
-        static const sr_shade shades[] = { SR_SHADE_LAMBERT, SR_SHADE_TEXTURE };
-        for (size_t s = 0; s < 2; s++)
+        static const sr_shade shades[] = { SR_SHADE_LAMBERT, SR_SHADE_TEXTURE, SR_SHADE_ID,
+                                           SR_SHADE_DEPTH,   SR_SHADE_NORMAL,  SR_SHADE_COLOR };
+        for (size_t s = 0; s < sizeof shades / sizeof *shades; s++)
             for (int filter = 0; filter < 2; filter++)
                 for (int run = 0; run < 3; run++) { /* raw both depth conventions, sRGB one */
                     bool reversed = run == 1, srgb = run == 2;
+                    /* vertex colours only where no material has a texture (below), or to draw them */
+                    mesh.colors = shades[s] == SR_SHADE_COLOR ? meshes[m]->colors : NULL;
                     sr_draw_desc desc = { .mesh = &mesh, .shade = shades[s], .filter = (sr_filter)filter,
                                           .cull = SR_CULL_NONE, .color_space = srgb ? SR_COLOR_SRGB : SR_COLOR_RAW };
                     look(&desc, (const float[6]){ 0, 0, 0, 0, 0, 1 }, 90.0f, reversed);

@@ -113,7 +113,9 @@ typedef enum sr_alpha_mode { SR_ALPHA_OPAQUE = 0, SR_ALPHA_MASK, SR_ALPHA_BLEND 
  * SR_COLOR_SRGB the texture is sRGB and base_color linear, as in glTF; the
  * alpha is never encoded. A texture needs the mesh's uvs: without
  * them it is ignored, as lambert ignores desc's texture. Other modes (id,
- * normal, color, depth) draw every triangle and ignore materials. */
+ * normal, color, depth) ignore the materials' colours, and draw their
+ * coverage: what MASK cuts (or BLEND drawn as MASK) is a hole there too,
+ * so depth and ids agree with the colour image. */
 typedef struct sr_material {
     float base_color[4];       /* RGBA, 0..1 */
     const sr_texture *texture; /* optional (NULL) */
@@ -473,7 +475,7 @@ SR_API bool sr_draw(sr_framebuffer *fb, const sr_draw_desc *desc, sr_stats *stat
  * depth and no ids. So depth and ids (and sr_pinhole_resolve's outputs)
  * hold the surfaces behind a BLEND part, whatever the shading: id, normal,
  * color and depth shading, which picture those buffers and ignore
- * materials, leave the BLEND parts out. A desc that already blends or
+ * materials' colours, leave the BLEND parts out. A desc that already blends or
  * keeps its depth, a mesh of no BLEND part, of strips, of points or lines
  * or of clip positions: one sr_draw of desc as it is. stats gets every
  * draw's counts, each triangle once (a BLEND part's triangles are left

@@ -94,6 +94,16 @@ static bool shade_uses_texture(sr_shade shade)
     return shade == SR_SHADE_TEXTURE || shade == SR_SHADE_LAMBERT;
 }
 
+/* A material whose alpha may cut it (MASK, or BLEND drawn as MASK): every
+ * shading then reads its texture's alpha, so depth and ids see its holes. */
+static bool has_alpha_materials(const sr_mesh *mesh)
+{
+    for (uint32_t i = 0; i < mesh->material_count; i++)
+        if (mesh->materials[i].alpha_mode != SR_ALPHA_OPAQUE)
+            return true;
+    return false;
+}
+
 static bool shade_uses_normals(sr_shade shade)
 {
     return shade == SR_SHADE_NORMAL || shade == SR_SHADE_LAMBERT;
@@ -148,7 +158,8 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
     decode_display_colours(s, &scene->mesh);
     sr_axis up = s->up_axis >= 0 ? (sr_axis)s->up_axis : (sr_axis)scene->report.up;
     sr_upright_matrix(up, (sr_axis)scene->report.front, scene->mesh.z_negated, scene->upright);
-    bool wants_texture = everything || shade_uses_texture((sr_shade)s->shade);
+    bool wants_texture =
+        everything || shade_uses_texture((sr_shade)s->shade) || has_alpha_materials(&scene->mesh);
     if (s->texture_path || !wants_texture)
         sr_texture_free(&scene->texture); /* the file's own, embedded: replaced, or not needed */
     if (s->texture_path)

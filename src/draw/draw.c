@@ -491,7 +491,7 @@ static sr_varying_layout draw_layout(sr_shade mode, const sr_draw_desc *d)
     bool textured = mesh->materials && sr_materials_textured(mesh, d->texture) && mesh->uvs;
     if (mode == SR_SHADE_TEXTURE && !textured)
         return (sr_varying_layout){ .color = -1, .uv = -1, .normal = -1 };
-    return sr_vertex_layout(mode, mesh, textured);
+    return sr_materials_layout(mode, d, sr_vertex_layout(mode, mesh, textured)); /* uvs for MASK's alpha */
 }
 
 static bool draw(sr_framebuffer *fb, const sr_draw_desc *desc, const sr_line_filter *filter, sr_stats *stats,

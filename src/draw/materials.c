@@ -79,8 +79,46 @@ static uint32_t alpha_floor(float factor, float cutoff)
     return a;
 }
 
-static void material_context(const sr_shade_context *base, const sr_material *m, const sr_texture *desc_texture,
-                             sr_shade_context *c)
+/* Whether the material's alpha cuts it in a draw of this blend: MASK, or
+ * BLEND in a draw that replaces (as MASK at BLEND_AS_MASK_CUTOFF). */
+static bool masked(const sr_material *m, sr_blend blend)
+{
+    return m->alpha_mode == SR_ALPHA_MASK || (m->alpha_mode == SR_ALPHA_BLEND && blend == SR_BLEND_REPLACE);
+}
+
+/* The modes that shade the materials' albedo, and test their alpha in
+ * their own loops; the others (id, depth, normal, colour) draw the
+ * materials' coverage alone, and make contexts only for a draw in which
+ * some material is masked. */
+static bool shades_albedo(sr_shade mode)
+{
+    return mode == SR_SHADE_LAMBERT || mode == SR_SHADE_TEXTURE;
+}
+
+static bool draws_coverage(sr_shade mode)
+{
+    return mode == SR_SHADE_ID || mode == SR_SHADE_DEPTH || mode == SR_SHADE_NORMAL || mode == SR_SHADE_COLOR;
+}
+
+sr_varying_layout sr_materials_layout(sr_shade mode, const sr_draw_desc *d, sr_varying_layout l)
+{
+    const sr_mesh *mesh = d->mesh;
+    if (!draws_coverage(mode) || !mesh->uvs || !mesh->materials || !sr_assemble_triangles(mesh))
+        return l;
+    for (uint32_t i = 0; i < mesh->material_count; i++) {
+        const sr_material *m = &mesh->materials[i];
+        const sr_texture *t = texture_of(m, d->texture);
+        if (masked(m, d->blend) && t && t->alpha) {
+            l.uv = l.count;
+            l.count += 2;
+            return l;
+        }
+    }
+    return l;
+}
+
+static void material_context(sr_shade mode, const sr_shade_context *base, const sr_material *m,
+                             const sr_texture *desc_texture, sr_shade_context *c)
 {
     *c = *base;
     c->materials = NULL;
@@ -111,22 +149,28 @@ static void material_context(const sr_shade_context *base, const sr_material *m,
     float cutoff = m->alpha_mode == SR_ALPHA_BLEND ? BLEND_AS_MASK_CUTOFF : m->alpha_cutoff;
     uint32_t floor = texture && t->alpha ? alpha_floor(m->base_color[3], cutoff)
                                                   : (m->base_color[3] >= cutoff ? 0 : 256);
-    c->hidden = floor > 255;
-    c->alpha_min = c->hidden ? 0 : floor;
+    bool hidden = floor > 255;
+    c->alpha_min = hidden ? 0 : floor;
+    c->cut = hidden ? SR_CUT_ALL : c->alpha_min && !shades_albedo(mode) ? SR_CUT_TEXELS : SR_CUT_NONE;
 }
 
 bool sr_materials_make(sr_draw_state *st, sr_error *err)
 {
     const sr_mesh *mesh = st->desc->mesh;
-    if (mesh->material_count == 0 || (st->mode != SR_SHADE_LAMBERT && st->mode != SR_SHADE_TEXTURE) ||
+    if (mesh->material_count == 0 || !(shades_albedo(st->mode) || draws_coverage(st->mode)) ||
         !sr_assemble_triangles(mesh))
         return true;
+    bool any_masked = false;
+    for (uint32_t i = 0; !any_masked && i < mesh->material_count; i++)
+        any_masked = masked(&mesh->materials[i], st->desc->blend);
+    if (!shades_albedo(st->mode) && !any_masked)
+        return true; /* every triangle drawn whole, as without materials */
     sr_array *a = &st->ws->material_shades;
     if (!sr_array_reserve(a, mesh->material_count, sizeof(sr_shade_context)))
         return sr_error_set(err, "out of memory for %u materials", mesh->material_count);
     sr_shade_context *contexts = a->data;
     for (uint32_t i = 0; i < mesh->material_count; i++)
-        material_context(&st->shade, &mesh->materials[i], st->desc->texture, &contexts[i]);
+        material_context(st->mode, &st->shade, &mesh->materials[i], st->desc->texture, &contexts[i]);
     st->shade.materials = contexts;
     st->shade.material_count = mesh->material_count;
     /* Parts that all take material 0 (a mesh of one material in several

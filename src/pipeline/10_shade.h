@@ -21,6 +21,13 @@
 #define SR_LAMBERT_AMBIENT 0.2f
 #define SR_LAMBERT_GRAY 0.8f
 
+/* What a material's triangles draw of themselves (sr_shade_context.cut). */
+typedef enum sr_shade_cut {
+    SR_CUT_NONE,  /* every fragment, or in lambert and texture shading those alpha_min passes */
+    SR_CUT_ALL,   /* none: MASK whose alpha is below the cutoff everywhere */
+    SR_CUT_TEXELS /* those whose texel alpha passes alpha_min, in a mode that samples no texture */
+} sr_shade_cut;
+
 /* The shading of a draw, or of one material of a mesh with materials
  * (draw/materials.c makes one context per material, each with the draw's
  * layout, light, filter and loop, and picks a triangle's by its part). A
@@ -40,7 +47,13 @@ typedef struct sr_shade_context {
     /* MASK on a texture with alpha: a fragment whose texel alpha (0..255,
      * filtered) is below it is discarded; 0: none is. */
     uint32_t alpha_min;
-    bool hidden;        /* MASK whose alpha is below the cutoff everywhere: nothing is drawn */
+    /* Tested once per triangle. Lambert and texture shading test alpha_min
+     * in their own loops; id, depth, normal and colour shading, which sample
+     * no texture, draw a triangle cut by its texels apart (raster.c,
+     * cut_triangle), so that their loops, and every draw without such a
+     * material, test nothing per pixel; their coverage is then the colour
+     * image's. */
+    sr_shade_cut cut;
     /* The output merger's (11_merge.h): the draw's blend, whether it
      * writes depth and ids, whether either differs from a replacing draw
      * that writes them (merges: the scalar loop merges each fragment),

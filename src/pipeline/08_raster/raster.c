@@ -176,9 +176,11 @@ static inline __attribute__((always_inline)) uint32_t fragment_colour(const setu
 
 /* Depth test, depth write, id write (with_ids: fb has an ids plane) and
  * shading of covered pixel i of a row; returns 1 if the fragment passed.
- * Counting hits, the pixel only counts one more. */
+ * Counting hits, the pixel only counts one more. `cut`: a triangle of a
+ * material cut by its texels (sr_shade_context.cut), whose varyings are
+ * interpolated for the alpha test in a mode that reads none. */
 static inline __attribute__((always_inline)) uint64_t
-fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids, sr_interp interp,
+fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool greater, bool with_ids, sr_interp interp,
            const sr_shade_context *shade, uint32_t id, size_t at, float z_row, float k, int64_t e1, int64_t e2)
 {
     if (mode == SR_RASTER_COUNT_HITS) {
@@ -189,7 +191,7 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool
     if (!sr_depth_passes(z, fb->depth[at], greater))
         return 0;
     float var[SR_MAX_VARYINGS];
-    if (mode_reads_varyings(mode)) {
+    if (mode_reads_varyings(mode) || cut) {
         varyings_at(s, interp, (float)e1 * s->inv_area2, (float)e2 * s->inv_area2, var);
         /* A MASK material's fragment under its alpha floor writes nothing. */
         if (shade->alpha_min && !sr_shade_alpha_passes(shade, var))
@@ -223,7 +225,7 @@ static inline bool wide(const setup *s)
 
 /* A tiny box's covered pixels, in the rows' order. */
 static inline __attribute__((always_inline)) uint64_t
-tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids, sr_interp interp,
+tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool greater, bool with_ids, sr_interp interp,
           const sr_shade_context *shade, uint32_t id)
 {
     uint64_t fragments = 0;
@@ -231,8 +233,8 @@ tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool 
         sr_tiny_pixel p = sr_tiny_pixel_of(s, fb, __builtin_ctzll(m));
         /* The edges only for the varyings: a mode without leaves them unset
          * when the mask came from binning (setup_in). */
-        bool edges = mode_reads_varyings(mode);
-        fragments += fill_pixel(s, fb, mode, greater, with_ids, interp, shade, id, p.at, p.z_row, p.k,
+        bool edges = mode_reads_varyings(mode) || cut;
+        fragments += fill_pixel(s, fb, mode, cut, greater, with_ids, interp, shade, id, p.at, p.z_row, p.k,
                                 edges ? sr_edge_at(&s->e[1], p.px, p.py) : 0,
                                 edges ? sr_edge_at(&s->e[2], p.px, p.py) : 0);
     }
@@ -243,7 +245,7 @@ tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool 
  * test and ids plane so each combination gets its own loop with those
  * branches folded away. */
 static inline __attribute__((always_inline)) uint64_t
-raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids, sr_interp interp,
+raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool greater, bool with_ids, sr_interp interp,
             const sr_shade_context *shade, uint32_t id)
 {
     uint64_t fragments = 0;
@@ -256,8 +258,8 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, boo
         float k = r.k;
         for (int d = 0; d < r.count; d++, e0 += step[0], e1 += step[1], e2 += step[2], k += 1.0f)
             if (spans || s->covered || (e0 >= s->e[0].bias && e1 >= s->e[1].bias && e2 >= s->e[2].bias))
-                fragments += fill_pixel(s, fb, mode, greater, with_ids, interp, shade, id, r.at + (size_t)d, r.z, k,
-                                        e1, e2);
+                fragments += fill_pixel(s, fb, mode, cut, greater, with_ids, interp, shade, id, r.at + (size_t)d, r.z,
+                                        k, e1, e2);
     }
     return fragments;
 }
@@ -371,40 +373,41 @@ sr_box_cover sr_raster_classify(const setup *s, sr_raster_rect b)
 }
 
 static inline __attribute__((always_inline)) uint64_t
-raster_pixels(const setup *s, sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids, sr_interp interp,
-              const sr_shade_context *shade, uint32_t id)
+raster_pixels(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool greater, bool with_ids,
+              sr_interp interp, const sr_shade_context *shade, uint32_t id)
 {
-    return s->tiny ? tiny_loop(s, fb, mode, greater, with_ids, interp, shade, id)
-                   : raster_loop(s, fb, mode, greater, with_ids, interp, shade, id);
+    return s->tiny ? tiny_loop(s, fb, mode, cut, greater, with_ids, interp, shade, id)
+                   : raster_loop(s, fb, mode, cut, greater, with_ids, interp, shade, id);
 }
 
 static inline __attribute__((always_inline)) uint64_t
-raster_tests(const setup *s, sr_framebuffer *fb, sr_shade mode, bool with_ids, sr_interp interp,
+raster_tests(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool with_ids, sr_interp interp,
              const sr_shade_context *shade, uint32_t id)
 {
-    return fb->reversed_z ? raster_pixels(s, fb, mode, true, with_ids, interp, shade, id)
-                          : raster_pixels(s, fb, mode, false, with_ids, interp, shade, id);
+    return fb->reversed_z ? raster_pixels(s, fb, mode, cut, true, with_ids, interp, shade, id)
+                          : raster_pixels(s, fb, mode, cut, false, with_ids, interp, shade, id);
 }
 
 static inline __attribute__((always_inline)) uint64_t
-raster_interp(const setup *s, sr_framebuffer *fb, sr_shade mode, sr_interp interp, const sr_shade_context *shade,
-              uint32_t id)
+raster_interp(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, sr_interp interp,
+              const sr_shade_context *shade, uint32_t id)
 {
-    return fb->ids ? raster_tests(s, fb, mode, true, interp, shade, id)
-                   : raster_tests(s, fb, mode, false, interp, shade, id);
+    return fb->ids ? raster_tests(s, fb, mode, cut, true, interp, shade, id)
+                   : raster_tests(s, fb, mode, cut, false, interp, shade, id);
 }
 
-/* One loop per interp for the modes that read varyings. */
+/* One loop per interp for the modes that read varyings (and a cut
+ * triangle's alpha test). */
 static inline __attribute__((always_inline)) uint64_t
-raster_mode(const setup *s, sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade, uint32_t id)
+raster_mode(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, const sr_shade_context *shade, uint32_t id)
 {
     if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_FLAT_NORMAL)
-        return raster_interp(s, fb, mode, SR_INTERP_FLAT_NORMAL, shade, id);
+        return raster_interp(s, fb, mode, cut, SR_INTERP_FLAT_NORMAL, shade, id);
     if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_PERSPECTIVE_FLAT_NORMAL)
-        return raster_interp(s, fb, mode, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, shade, id);
-    if (mode_reads_varyings(mode) && !sr_interp_divides(s->interp))
-        return raster_interp(s, fb, mode, SR_INTERP_AFFINE, shade, id);
-    return raster_interp(s, fb, mode, SR_INTERP_PERSPECTIVE, shade, id);
+        return raster_interp(s, fb, mode, cut, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, shade, id);
+    if ((mode_reads_varyings(mode) || cut) && !sr_interp_divides(s->interp))
+        return raster_interp(s, fb, mode, cut, SR_INTERP_AFFINE, shade, id);
+    return raster_interp(s, fb, mode, cut, SR_INTERP_PERSPECTIVE, shade, id);
 }
 
 /* The dot product of a and b, in double, where the products of floats are
@@ -507,7 +510,7 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
  * triangle for every pixel or two, so each call there is paid per pixel
  * (docs/performance.md, "From slot to set-up"). */
 static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
-                                      int subpixel_bits, sr_shade mode, const sr_shade_context *shade,
+                                      int subpixel_bits, sr_shade mode, bool cut, const sr_shade_context *shade,
                                       bool mask_known, uint64_t mask, setup *s)
 {
     const sr_screen_vertex *v[3];
@@ -515,7 +518,8 @@ static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int6
     /* With the mask known, a mode that reads no varyings has no use for the
      * edges: the mask is the coverage (tiny_loop), and the depth plane
      * comes from the vertices. */
-    if (mask_known && !mode_reads_varyings(mode)) {
+    bool varyings = mode_reads_varyings(mode) || cut;
+    if (mask_known && !varyings) {
         s->bits = subpixel_bits;
         s->box = box;
     } else {
@@ -530,16 +534,19 @@ static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int6
     if (c == SR_COVER_NONE)
         return false;
     int64_t area2_abs = area2 > 0 ? area2 : -area2;
-    interpolants_make(v, area2_abs, mode_reads_varyings(mode) ? shade->layout.count : 0, s);
+    interpolants_make(v, area2_abs, varyings ? shade->layout.count : 0, s);
     s->covered = c == SR_COVER_ALL;
     interp_choose(s, v, area2_abs, mode, shade);
     return true;
 }
 
+/* A stored set-up serves every material's triangle: in a draw that cuts
+ * by texels (its layout has uvs in a mode that reads none), with the
+ * varyings. */
 bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box, int subpixel_bits,
                      sr_shade mode, const sr_shade_context *shade, setup *s)
 {
-    return setup_in(tri, area2, box, subpixel_bits, mode, shade, false, 0, s);
+    return setup_in(tri, area2, box, subpixel_bits, mode, shade->layout.uv >= 0, shade, false, 0, s);
 }
 
 bool sr_raster_box_is_tiny(sr_raster_rect box)
@@ -573,15 +580,47 @@ static uint64_t draw_unqueued(sr_framebuffer *fb, const setup *s, sr_shade mode,
     if (*simd)
         return kernel(s, shade, fb, triangle_id);
     if (mode == SR_RASTER_COUNT_HITS) /* past the enum's cases, so not in the switch */
-        return raster_pixels(s, fb, SR_RASTER_COUNT_HITS, false, false, SR_INTERP_PERSPECTIVE, shade, triangle_id);
+        return raster_pixels(s, fb, SR_RASTER_COUNT_HITS, false, false, false, SR_INTERP_PERSPECTIVE, shade,
+                             triangle_id);
     switch (mode) {
-    case SR_SHADE_ID:      return raster_mode(s, fb, SR_SHADE_ID, shade, triangle_id);
-    case SR_SHADE_COLOR:   return raster_mode(s, fb, SR_SHADE_COLOR, shade, triangle_id);
-    case SR_SHADE_NORMAL:  return raster_mode(s, fb, SR_SHADE_NORMAL, shade, triangle_id);
-    case SR_SHADE_TEXTURE: return raster_mode(s, fb, SR_SHADE_TEXTURE, shade, triangle_id);
-    case SR_SHADE_LAMBERT: return raster_mode(s, fb, SR_SHADE_LAMBERT, shade, triangle_id);
-    default:               return raster_mode(s, fb, SR_SHADE_DEPTH, shade, triangle_id);
+    case SR_SHADE_ID:      return raster_mode(s, fb, SR_SHADE_ID, false, shade, triangle_id);
+    case SR_SHADE_COLOR:   return raster_mode(s, fb, SR_SHADE_COLOR, false, shade, triangle_id);
+    case SR_SHADE_NORMAL:  return raster_mode(s, fb, SR_SHADE_NORMAL, false, shade, triangle_id);
+    case SR_SHADE_TEXTURE: return raster_mode(s, fb, SR_SHADE_TEXTURE, false, shade, triangle_id);
+    case SR_SHADE_LAMBERT: return raster_mode(s, fb, SR_SHADE_LAMBERT, false, shade, triangle_id);
+    default:               return raster_mode(s, fb, SR_SHADE_DEPTH, false, shade, triangle_id);
     }
+}
+
+/* A set-up triangle of a material cut by its texels in id, depth, normal
+ * or colour shading (sr_shade_context.cut): the scalar loop with the alpha
+ * test, after what the tiny queue holds (as draw_unqueued). Never a kernel
+ * or the queue, so every per-pixel loop and thread count draws it alike;
+ * out of line, so the loops of a draw without such a material are those
+ * of a draw without materials. */
+static __attribute__((noinline)) uint64_t draw_cut(sr_framebuffer *fb, const setup *s, sr_shade mode,
+                                                   const sr_shade_context *shade, uint32_t triangle_id)
+{
+    if (mode_reads_varyings(mode))
+        sr_tiny_queue_drain();
+    switch (mode) {
+    case SR_SHADE_ID:     return raster_mode(s, fb, SR_SHADE_ID, true, shade, triangle_id);
+    case SR_SHADE_COLOR:  return raster_mode(s, fb, SR_SHADE_COLOR, true, shade, triangle_id);
+    case SR_SHADE_NORMAL: return raster_mode(s, fb, SR_SHADE_NORMAL, true, shade, triangle_id);
+    default:              return raster_mode(s, fb, SR_SHADE_DEPTH, true, shade, triangle_id);
+    }
+}
+
+/* draw_cut from the vertices: set up with the varyings its alpha test reads. */
+static __attribute__((noinline)) uint64_t cut_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,
+                                                       sr_shade mode, const sr_shade_context *shade,
+                                                       const sr_screen_vertex *const tri[3], int64_t area2,
+                                                       uint32_t triangle_id, bool mask_known, uint64_t mask)
+{
+    setup s;
+    if (!setup_in(tri, area2, box, subpixel_bits, mode, true, shade, mask_known, mask, &s))
+        return 0;
+    return draw_cut(fb, &s, mode, shade, triangle_id);
 }
 
 /* sr_raster_setup_draw, inlined where a triangle is set up and drawn at
@@ -620,8 +659,10 @@ static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_r
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return 0;
     shade = sr_shade_context_of(shade, triangle_id);
-    if (shade->hidden)
-        return 0;
+    if (__builtin_expect(shade->cut != SR_CUT_NONE, 0))
+        return shade->cut == SR_CUT_TEXELS
+                   ? cut_triangle(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, mask_known, mask)
+                   : 0;
     if (fetch_rows && !box_is_tiny(box)) {
         /* In the body: gcc drops a call of a function of prefetches. */
         int rows = box.y1 - box.y0 < FETCHED_ROWS ? box.y1 - box.y0 : FETCHED_ROWS;
@@ -634,7 +675,7 @@ static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_r
             __builtin_prefetch(fb->ids + first, 1);
     }
     setup s;
-    if (!setup_in(tri, area2, box, subpixel_bits, mode, shade, mask_known, mask, &s))
+    if (!setup_in(tri, area2, box, subpixel_bits, mode, false, shade, mask_known, mask, &s))
         return 0;
     return setup_draw(fb, &s, mode, shade, triangle_id, simd);
 }
@@ -680,9 +721,9 @@ uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
                               uint32_t triangle_id, bool *simd)
 {
     shade = sr_shade_context_of(shade, triangle_id);
-    if (shade->hidden) {
+    if (__builtin_expect(shade->cut != SR_CUT_NONE, 0)) {
         *simd = false;
-        return 0;
+        return shade->cut == SR_CUT_TEXELS ? draw_cut(fb, s, mode, shade, triangle_id) : 0;
     }
     return setup_draw(fb, s, mode, shade, triangle_id, simd);
 }

@@ -774,6 +774,17 @@ static albedo lambert_albedo(const sr_shade_context *c)
     return gray && (l->count == 3 || l->count == 5 || l->count == 6) ? ALBEDO_GRAY : ALBEDO_NONE;
 }
 
+/* A layout of the mode's three varyings at 0 (color or normal, the other
+ * -1), alone or followed by the uvs a MASK material's alpha test reads in
+ * a draw that cuts (draw/materials.c: its triangles never come here), or
+ * their slots unused (a material without a texture): the kernel reads the
+ * three alone. */
+static bool three_first(const sr_varying_layout *l, int color, int normal)
+{
+    return layout_is(l, 3, color, -1, normal) ||
+           (l->count == 5 && l->color == color && l->normal == normal && (l->uv == 3 || l->uv < 0));
+}
+
 /* Only the draw's own context (no material's) in the modes without an
  * albedo; texture shading's kernel takes a material's texture untinted. */
 static bool plain(const sr_shade_context *c)
@@ -811,8 +822,8 @@ static const kernel_set *kernel_set_of(sr_shade mode, const sr_shade_context *c)
     }
     case SR_SHADE_ID:      return &id;
     case SR_SHADE_DEPTH:   return &depth;
-    case SR_SHADE_COLOR:   return layout_is(l, 3, 0, -1, -1) ? &color[c->srgb] : NULL;
-    case SR_SHADE_NORMAL:  return layout_is(l, 3, -1, -1, 0) ? &normal : NULL;
+    case SR_SHADE_COLOR:   return three_first(l, 0, -1) ? &color[c->srgb] : NULL;
+    case SR_SHADE_NORMAL:  return three_first(l, -1, 0) ? &normal : NULL;
     case SR_SHADE_TEXTURE: return layout_is(l, 2, -1, 0, -1) && plain(c) ? &texture : NULL;
     default:               return NULL;
     }
