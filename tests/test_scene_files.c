@@ -2,6 +2,7 @@
  * info`, the upright turn, textures found as people expect, a usemtl
  * without a material, mirrored meshes. Each scene is written at test time. */
 #include <cJSON.h>
+#include <math.h>
 #include <criterion/criterion.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -116,6 +117,34 @@ Test(scene_files, info_json_says_an_stl_is_guessed_z_up)
     const cJSON *world_min = cJSON_GetObjectItem(cJSON_GetObjectItem(o, "bounds_world"), "min");
     cr_assert_eq(cJSON_GetArrayItem(file_max, 2)->valuedouble, 3.0);   /* the file's frame */
     cr_assert_eq(cJSON_GetArrayItem(world_min, 2)->valuedouble, -3.0); /* softrast's: z negated */
+    cJSON_Delete(o);
+}
+
+/* A triangle in the plane z = 0 of its OBJ: its z bounds are 0 in both
+ * frames, printed and in JSON, never -0 (the file's z is the world's
+ * negated, and -(0) is -0). */
+Test(scene_files, info_prints_a_zero_bound_as_0_not_minus_0)
+{
+    write_text(temp_dir, "flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    char args[1024];
+    snprintf(args, sizeof args, "info %s/flat.obj", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+    cr_assert_not_null(strstr(r.out, "bounds: file's frame 0,0,0 to 1,1,0; softrast's world (z negated) 0,0,0 to "
+                                     "1,1,0\n"),
+                       "%s", r.out);
+    cJSON *o = info_json("flat.obj");
+    char *text = cJSON_PrintUnformatted(o);
+    cr_assert_not_null(text);
+    cr_assert_not_null(strstr(text, "\"bounds_file\":{\"min\":[0,0,0],\"max\":[1,1,0]}"), "%s", text);
+    for (int k = 0; k < 2; k++) {
+        const cJSON *box = cJSON_GetObjectItem(o, k ? "bounds_world" : "bounds_file");
+        for (int m = 0; m < 2; m++) {
+            double z = cJSON_GetArrayItem(cJSON_GetObjectItem(box, m ? "max" : "min"), 2)->valuedouble;
+            cr_assert(z == 0.0 && !signbit(z), "%s %s z is %g", k ? "world" : "file", m ? "max" : "min", z);
+        }
+    }
+    cJSON_free(text);
     cJSON_Delete(o);
 }
 

@@ -41,9 +41,9 @@ static info_bounds mesh_bounds(const sr_mesh *m)
         b.file[0][k] = b.world[0][k];
         b.file[1][k] = b.world[1][k];
     }
-    if (m->z_negated) {
-        b.file[0][2] = -b.world[1][2];
-        b.file[1][2] = -b.world[0][2];
+    if (m->z_negated) { /* 0 − z, not −z: a plane at z = 0 prints 0, not -0 */
+        b.file[0][2] = 0.0 - b.world[1][2];
+        b.file[1][2] = 0.0 - b.world[0][2];
     }
     return b;
 }
