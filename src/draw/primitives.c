@@ -336,19 +336,11 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slo
     const sr_draw_state *st = own->st;
     const char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
-    const sr_mesh *mesh = st->desc->mesh;
-    const unsigned char *outcodes = st->ws->outcodes.data;
     for (uint32_t i = 0; i < count; i++) {
         if (count - i > PREFETCH_SLOTS && span_meets(slots[i + PREFETCH_SLOTS].span, lo, hi))
-            PREFETCH_TRIANGLE(screen, stride, sr_assemble_slot_indices(mesh, slots[i + PREFETCH_SLOTS].k));
-        sr_band_span span = slots[i].span;
-        if (!span_meets(span, lo, hi))
-            continue;
-        uint32_t k = slots[i].k, idx[3];
-        sr_assemble_triangle(mesh, k, idx); /* it has a triangle: the verdict kept it */
-        /* A span of every band may be of a triangle that crosses a plane. */
-        unsigned planes =
-            sr_band_span_is_every(span) ? outcodes[idx[0]] | outcodes[idx[1]] | outcodes[idx[2]] : 0;
-        emit_kept(span.first >= lo ? own : shared, idx, planes, k, slots[i].one_pixel);
+            PREFETCH_TRIANGLE(screen, stride, slots[i + PREFETCH_SLOTS].idx);
+        const sr_band_slot *s = &slots[i];
+        if (span_meets(s->span, lo, hi))
+            emit_kept(s->span.first >= lo ? own : shared, s->idx, s->planes, s->k, s->one_pixel);
     }
 }
