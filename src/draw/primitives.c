@@ -215,17 +215,8 @@ static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st,
             taken[n++] = i;
         }
     }
-    /* The mesh and the matrix in locals: read through pointers, they were
-     * loaded again for every vertex. */
-    const sr_mesh mesh = *st->desc->mesh;
-    const sr_vertex_transform xf = *st->xf;
-    double clip_d[3 * SR_VERDICT_BATCH][4];
-    sr_screen_vertex *out[3 * SR_VERDICT_BATCH];
-    for (int k = 0; k < n; k++) {
-        sr_vertex_mesh_clip_d(&mesh, taken[k], &xf, clip_d[k]);
-        out[k] = sr_screen_at(st, taken[k]);
-    }
-    sr_viewport_map_double_n((const double(*)[4])clip_d, out, n, &st->vp);
+    sr_viewport_map_double_block(source, st->xf, taken, (uint32_t)n, &st->vp, st->shade.simd >= SR_SIMD_AVX2,
+                                 st->ws->screen.data, st->screen_stride);
 }
 
 /* The slots ahead whose screen vertices the slot lanes prefetch: the
