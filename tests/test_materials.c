@@ -334,6 +334,65 @@ Test(materials, mask_cuts_the_same_holes_in_every_shading)
     quads_free(&mesh);
 }
 
+/* The quad of mask_cuts_the_same_holes_in_every_shading as a grid of
+ * pixel cells, two triangles each: more triangles than pixels, so the
+ * draw's sub-pixel lanes find the one-pixel triangles, which id and depth
+ * shading draw by a loop of their own (raster.c, sr_raster_one_pixel). */
+static void grid_make(sr_mesh *mesh, sr_mesh_part *part, sr_material *material)
+{
+    sr_error err = { "" };
+    cr_assert(sr_mesh_alloc(mesh, (W + 1) * (H + 1), 6 * W * H, true, true, false, &err), "%s", err.message);
+    for (uint32_t y = 0; y <= H; y++)
+        for (uint32_t x = 0; x <= W; x++) {
+            uint32_t v = y * (W + 1) + x;
+            glm_vec3_copy((vec3){ (float)x, (float)y, 0.5f }, mesh->positions[v]);
+            glm_vec3_copy((vec3){ 0.0f, 0.0f, -1.0f }, mesh->normals[v]);
+            mesh->uvs[v][0] = (float)x / W;
+            mesh->uvs[v][1] = 1.0f - (float)y / H;
+        }
+    for (uint32_t y = 0; y < H; y++)
+        for (uint32_t x = 0; x < W; x++) {
+            uint32_t v = y * (W + 1) + x, *idx = mesh->indices + 6 * (y * W + x);
+            const uint32_t cell[6] = { v, v + 1, v + W + 1, v + 1, v + W + 2, v + W + 1 };
+            memcpy(idx, cell, sizeof cell);
+        }
+    *part = (sr_mesh_part){ 0, 2 * W * H, 0 };
+    mesh->parts = part;
+    mesh->part_count = 1;
+    mesh->materials = material;
+    mesh->material_count = 1;
+}
+
+Test(materials, mask_cuts_one_pixel_triangles_too)
+{
+    sr_texture tex = { .width = 2, .height = 1, .texels = cutout_texels, .alpha = true };
+    sr_material mask = { .base_color = { 1, 1, 1, 1 }, .texture = &tex, .alpha_mode = SR_ALPHA_MASK,
+                         .alpha_cutoff = 0.5f };
+    sr_mesh mesh;
+    sr_mesh_part part;
+    grid_make(&mesh, &part, &mask);
+    sr_framebuffer lit, fb;
+    scene_fb_make(&lit, W, H);
+    scene_fb_make(&fb, W, H);
+    sr_stats lit_stats = draw_everywhere(&lit, &mesh, SR_SHADE_LAMBERT, SR_FILTER_NEAREST);
+    cr_expect_eq(lit_stats.fragments, (uint64_t)W * H / 2);
+    static const sr_shade coverage[] = { SR_SHADE_ID, SR_SHADE_DEPTH };
+    for (size_t m = 0; m < sizeof coverage / sizeof *coverage; m++) {
+        sr_stats stats = draw_everywhere(&fb, &mesh, coverage[m], SR_FILTER_NEAREST);
+        cr_expect_eq(stats.fragments, lit_stats.fragments, "mode %d", coverage[m]);
+        cr_assert_eq(memcmp(fb.depth, lit.depth, W * H * sizeof *fb.depth), 0, "mode %d: not lambert's depths",
+                     coverage[m]);
+        for (int i = 0; i < W * H; i++)
+            cr_assert_eq(fb.depth[i] < SR_DEPTH_CLEAR, i % W >= 16, "mode %d: pixel (%d, %d)", coverage[m], i % W,
+                         i / W);
+    }
+    sr_framebuffer_destroy(&fb);
+    sr_framebuffer_destroy(&lit);
+    mesh.parts = NULL;
+    mesh.materials = NULL;
+    sr_mesh_free(&mesh);
+}
+
 /* A material whose alpha is below its cutoff everywhere draws nothing in
  * id and depth shading either; an opaque table's draw ignores materials. */
 Test(materials, a_hidden_material_is_hidden_in_id_and_depth_shading)

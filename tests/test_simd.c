@@ -770,7 +770,8 @@ Test(simd, kernel_calls_are_the_last_draws_alone)
  * triangles (the span kernels) and narrow ones (the tiny queue, and the
  * tiny loop for MASK); and id, depth, normal and colour shading cut the
  * same holes (the cut triangles on the scalar loop, the others on the
- * kernels and the tiny queue). */
+ * kernels and the tiny queue), so every shading writes lambert's depths
+ * and counts its fragments, one-pixel triangles included. */
 #define MATERIAL_PARTS 6
 static void materials_set(sr_mesh *mesh, sr_material materials[MATERIAL_PARTS], sr_mesh_part parts[MATERIAL_PARTS],
                           const sr_texture *tex)
@@ -807,6 +808,10 @@ Test(simd, each_part_keeps_its_material_in_every_loop)
     soup_make(&wide, SOUP_TRIANGLES, true, 0.0);
     soup_make(&narrow, NARROW_SOUP_TRIANGLES, false, 0.15);
     sr_mesh *meshes[] = { &wide, &narrow };
+    size_t pixels = (size_t)FB_SIDE * FB_SIDE;
+    float *lit_depth = malloc(2 * 3 * pixels * sizeof *lit_depth); /* lambert's, [filter][run] */
+    uint64_t lit_fragments[2][3];
+    cr_assert_not_null(lit_depth);
     for (size_t m = 0; m < 2; m++) {
         sr_mesh mesh = *meshes[m];
         materials_set(&mesh, materials, parts, &tex);
@@ -831,6 +836,16 @@ Test(simd, each_part_keeps_its_material_in_every_loop)
                     cr_assert_gt(scalar_stats.fragments, (uint64_t)FB_SIDE * FB_SIDE / 8, "%s: too little drawn",
                                  what);
                     assert_vector_loops_match(&desc, reversed, &scalar, &scalar_stats, what);
+                    float *lit = lit_depth + (size_t)(3 * filter + run) * pixels;
+                    if (shades[s] == SR_SHADE_LAMBERT) {
+                        memcpy(lit, scalar.depth, pixels * sizeof *lit);
+                        lit_fragments[filter][run] = scalar_stats.fragments;
+                    } else {
+                        cr_assert_eq(memcmp(scalar.depth, lit, pixels * sizeof *lit), 0, "%s: not lambert's depths",
+                                     what);
+                        cr_assert_eq(scalar_stats.fragments, lit_fragments[filter][run], "%s: not lambert's count",
+                                     what);
+                    }
                     scene_fb_make(&rows, FB_SIDE, FB_SIDE);
                     rows.reversed_z = reversed;
                     sr_framebuffer_clear(&rows, 0x123456);
@@ -850,6 +865,7 @@ Test(simd, each_part_keeps_its_material_in_every_loop)
                                                                "wide, vertex colours by material");
         }
     }
+    free(lit_depth);
     sr_mesh_free(&narrow);
     sr_mesh_free(&wide);
 }

@@ -237,11 +237,18 @@ typedef struct drawn {
     sr_stats stats;
 } drawn;
 
+/* The framebuffer's kinds a draw writes differently: with an ids plane,
+ * and with reversed z (clear 0, GREATER). */
+enum { PLAIN_FB = 0, IDS_PLANE = 1, REVERSED_Z = 2 };
+
 static void draw_dense(const sr_mesh *m, int width, int height, sr_shade shade, sr_cull cull, sr_front front,
-                       const sr_draw_study *study, int threads, drawn *out)
+                       const sr_draw_study *study, int threads, int fb_kind, drawn *out)
 {
     sr_error err;
     cr_assert(sr_framebuffer_create(&out->fb, width, height, &err), "%s", err.message);
+    if (fb_kind & IDS_PLANE)
+        cr_assert(sr_framebuffer_create_ids(&out->fb, &err), "%s", err.message);
+    out->fb.reversed_z = (fb_kind & REVERSED_Z) != 0;
     sr_framebuffer_clear(&out->fb, 0x123456);
     sr_draw_desc desc = { .mesh = m, .shade = shade, .cull = cull, .front = front, .threads = threads,
                           .study = study };
@@ -258,6 +265,9 @@ static void assert_same(const drawn *want, const drawn *got, const char *what)
     cr_assert_eq(memcmp(want->fb.color, got->fb.color, n * sizeof *want->fb.color), 0, "color differs: %s", what);
     cr_assert_eq(memcmp(want->fb.depth, got->fb.depth, n * sizeof *want->fb.depth), 0, "depth differs: %s", what);
     cr_assert_eq(memcmp(&want->stats, &got->stats, sizeof want->stats), 0, "counts differ: %s", what);
+    cr_assert_eq(!want->fb.ids, !got->fb.ids);
+    if (want->fb.ids)
+        cr_assert_eq(memcmp(want->fb.ids, got->fb.ids, n * sizeof *want->fb.ids), 0, "ids differ: %s", what);
 }
 
 static const sr_simd simds[] = { SR_SIMD_SCALAR, SR_SIMD_SSE2, SR_SIMD_AVX2, SR_SIMD_AVX512 };
@@ -266,19 +276,20 @@ static const sr_draw_path paths[] = { SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_ROW
 /* Every path, thread count and SIMD level with the lanes draws what one
  * thread draws without them; returns what that drew. */
 static sr_stats assert_lanes_draw_alike(const sr_mesh *m, int width, int height, sr_shade shade, sr_cull cull,
-                                    sr_front front)
+                                    sr_front front, int fb_kind, bool count_hits)
 {
-    sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
+    sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true, .count_hits = count_hits };
     drawn want;
-    draw_dense(m, width, height, shade, cull, front, &reference, 1, &want);
+    draw_dense(m, width, height, shade, cull, front, &reference, 1, fb_kind, &want);
     cr_assert_gt(want.stats.fragments, 0, "the mesh drew nothing: the comparison would prove nothing");
     static const int threads[] = { 1, 2, 3 };
     for (size_t s = 0; s < sizeof simds / sizeof *simds; s++)
         for (size_t p = 0; p < sizeof paths / sizeof *paths; p++)
             for (size_t t = 0; t < sizeof threads / sizeof *threads; t++) {
-                sr_draw_study lanes = { .path = paths[p], .simd = simds[s], .chunk_slots = t == 2 ? 5 : 0 };
+                sr_draw_study lanes = { .path = paths[p], .simd = simds[s], .chunk_slots = t == 2 ? 5 : 0,
+                                        .count_hits = count_hits };
                 drawn got;
-                draw_dense(m, width, height, shade, cull, front, &lanes, threads[t], &got);
+                draw_dense(m, width, height, shade, cull, front, &lanes, threads[t], fb_kind, &got);
                 char what[96];
                 snprintf(what, sizeof what, "simd %d, path %d, %d threads, cull %d, front %d", (int)simds[s],
                          (int)paths[p], threads[t], (int)cull, (int)front);
@@ -299,14 +310,22 @@ Test(subpixel, dense_random_meshes_draw_alike_with_and_without_the_lanes, .timeo
         sr_stats ids = { 0 };
         for (size_t c = 0; c < 3; c++) {
             sr_stats got = assert_lanes_draw_alike(&m, width, height, c == 1 ? SR_SHADE_DEPTH : SR_SHADE_ID,
-                                                     culls[c], round ? SR_FRONT_CCW : SR_FRONT_CW);
+                                                     culls[c], round ? SR_FRONT_CCW : SR_FRONT_CW, PLAIN_FB, false);
             if (c == 0)
                 ids = got;
         }
+        /* A triangle the lanes find covering its one pixel is drawn by its
+         * own loop in the modes without varyings: into an ids plane, with
+         * reversed z, and counting hits too. */
+        assert_lanes_draw_alike(&m, width, height, SR_SHADE_ID, SR_CULL_NONE, SR_FRONT_CCW,
+                                round ? IDS_PLANE | REVERSED_Z : IDS_PLANE, false);
+        assert_lanes_draw_alike(&m, width, height, SR_SHADE_DEPTH, SR_CULL_BACK, SR_FRONT_CCW, REVERSED_Z, false);
+        assert_lanes_draw_alike(&m, width, height, SR_SHADE_ID, SR_CULL_NONE, SR_FRONT_CCW, PLAIN_FB, true);
         /* The NaN and the vertex whose 1/w overflows, on the grid's edge: three triangles each refused. */
         cr_assert_geq(ids.nonfinite, 6, "%llu", (unsigned long long)ids.nonfinite);
         if (round == 1) { /* three varyings through the mapping's lanes, two of them refused */
-            sr_stats lit = assert_lanes_draw_alike(&m, width, height, SR_SHADE_COLOR, SR_CULL_NONE, SR_FRONT_CCW);
+            sr_stats lit = assert_lanes_draw_alike(&m, width, height, SR_SHADE_COLOR, SR_CULL_NONE, SR_FRONT_CCW,
+                                                   PLAIN_FB, false);
             cr_assert_gt(lit.nonfinite, ids.nonfinite, "the refused colors refused no triangle");
         }
         sr_mesh_free(&m);

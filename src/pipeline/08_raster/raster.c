@@ -702,12 +702,48 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                            triangle_id, false, 0, true, simd);
 }
 
+/* The one pixel of a box whose centre the triangle covers, in a mode
+ * without varyings: the depth plane and fill_pixel, as tiny_loop takes
+ * bit 0 of a one-bit mask, with none of the set-up and dispatch a box of
+ * several pixels needs. Half of what a dense scan draws is such a pixel. */
+static SR_ALWAYS_INLINE uint64_t plain_pixel(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,
+                                             sr_shade mode, const sr_shade_context *shade,
+                                             const sr_screen_vertex *const tri[3], int64_t area2, uint32_t id)
+{
+    const sr_screen_vertex *v[3];
+    order_clockwise(tri, area2, v);
+    setup s;
+    s.bits = subpixel_bits;
+    depth_plane(v, area2, &s);
+    size_t at = (size_t)box.y0 * (size_t)fb->width + (size_t)box.x0;
+    float z_row = sr_row_z(&s, box.y0), k = (float)(box.x0 - s.ref_x);
+    bool greater = fb->reversed_z;
+    sr_interp interp = SR_INTERP_PERSPECTIVE;
+    if (fb->ids)
+        return greater ? fill_pixel(&s, fb, mode, false, true, true, interp, shade, id, at, z_row, k, 0, 0)
+                       : fill_pixel(&s, fb, mode, false, false, true, interp, shade, id, at, z_row, k, 0, 0);
+    return greater ? fill_pixel(&s, fb, mode, false, true, false, interp, shade, id, at, z_row, k, 0, 0)
+                   : fill_pixel(&s, fb, mode, false, false, false, interp, shade, id, at, z_row, k, 0, 0);
+}
+
 uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
                              const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                              uint32_t triangle_id, bool *simd)
 {
-    return triangle_in_box(fb, scan_box(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri, area2,
-                           triangle_id, true, 1, false, simd);
+    sr_raster_rect box = scan_box(tri, rect, subpixel_bits);
+    if (mode_reads_varyings(mode) || box.x0 >= box.x1 || box.y0 >= box.y1)
+        return triangle_in_box(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, true, 1, false, simd);
+    *simd = false;
+    shade = sr_shade_context_of(shade, triangle_id);
+    if (__builtin_expect(shade->cut != SR_CUT_NONE, 0))
+        return shade->cut == SR_CUT_TEXELS
+                   ? cut_triangle(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, true, 1)
+                   : 0;
+    switch (mode) {
+    case SR_SHADE_ID:    return plain_pixel(fb, box, subpixel_bits, SR_SHADE_ID, shade, tri, area2, triangle_id);
+    case SR_SHADE_DEPTH: return plain_pixel(fb, box, subpixel_bits, SR_SHADE_DEPTH, shade, tri, area2, triangle_id);
+    default:             return plain_pixel(fb, box, subpixel_bits, SR_RASTER_COUNT_HITS, shade, tri, area2, triangle_id);
+    }
 }
 
 void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
