@@ -378,8 +378,10 @@ static sr_draw_path path_of(const sr_draw_state *st, sr_draw_path planned)
  * than the lanes hold. */
 static bool subpixel_lanes(const sr_draw_state *st)
 {
+    /* uvs in id or depth shading: a MASK material's alpha test, which their one-pixel loop does not take */
+    bool cuts = st->shade.layout.uv >= 0 && (st->mode == SR_SHADE_ID || st->mode == SR_SHADE_DEPTH);
     return !st->study.one_by_one && !st->study.observer && st->vp.subpixel_bits <= SR_SUBPIXEL_LANES_MAX_BITS &&
-           (int64_t)st->slots > pixel_count(st);
+           (int64_t)st->slots > pixel_count(st) && !cuts;
 }
 
 static sr_subpixel_rules subpixel_rules(const sr_draw_state *st)

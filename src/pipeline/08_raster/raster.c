@@ -611,11 +611,11 @@ static __attribute__((noinline)) uint64_t draw_cut(sr_framebuffer *fb, const set
     }
 }
 
-/* draw_cut from the vertices: set up with the varyings its alpha test reads. */
-static __attribute__((noinline)) uint64_t cut_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,
-                                                       sr_shade mode, const sr_shade_context *shade,
-                                                       const sr_screen_vertex *const tri[3], int64_t area2,
-                                                       uint32_t triangle_id, bool mask_known, uint64_t mask)
+/* draw_cut from the vertices: set up with the varyings its alpha test
+ * reads. Cold: kept out of the way of the entry points' usual path. */
+static __attribute__((noinline, cold)) uint64_t
+cut_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade mode, const sr_shade_context *shade,
+             const sr_screen_vertex *const tri[3], int64_t area2, uint32_t triangle_id, bool mask_known, uint64_t mask)
 {
     setup s;
     if (!setup_in(tri, area2, box, subpixel_bits, mode, true, shade, mask_known, mask, &s))
@@ -659,7 +659,7 @@ static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_r
     if (box.x0 >= box.x1 || box.y0 >= box.y1)
         return 0;
     shade = sr_shade_context_of(shade, triangle_id);
-    if (__builtin_expect(shade->cut != SR_CUT_NONE, 0))
+    if (shade->cut != SR_CUT_NONE)
         return shade->cut == SR_CUT_TEXELS
                    ? cut_triangle(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, mask_known, mask)
                    : 0;
@@ -735,10 +735,10 @@ uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpix
         return triangle_in_box(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, true, 1, false, simd);
     *simd = false;
     shade = sr_shade_context_of(shade, triangle_id);
-    if (__builtin_expect(shade->cut != SR_CUT_NONE, 0))
-        return shade->cut == SR_CUT_TEXELS
-                   ? cut_triangle(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, true, 1)
-                   : 0;
+    /* Hidden whole: a draw that cuts by texels marks no one-pixel
+     * triangles in these modes (draw.c, subpixel_lanes). */
+    if (shade->cut != SR_CUT_NONE)
+        return 0;
     switch (mode) {
     case SR_SHADE_ID:    return plain_pixel(fb, box, subpixel_bits, SR_SHADE_ID, shade, tri, area2, triangle_id);
     case SR_SHADE_DEPTH: return plain_pixel(fb, box, subpixel_bits, SR_SHADE_DEPTH, shade, tri, area2, triangle_id);
@@ -757,7 +757,7 @@ uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
                               uint32_t triangle_id, bool *simd)
 {
     shade = sr_shade_context_of(shade, triangle_id);
-    if (__builtin_expect(shade->cut != SR_CUT_NONE, 0)) {
+    if (shade->cut != SR_CUT_NONE) {
         *simd = false;
         return shade->cut == SR_CUT_TEXELS ? draw_cut(fb, s, mode, shade, triangle_id) : 0;
     }
