@@ -2,7 +2,7 @@
 # Optimised objects go to build/, sanitised ones (ASan + UBSan) to build/san/.
 
 CC      ?= cc
-PKGS    := cglm sdl2 SDL2_image libpng libcjson OpenEXR assimp
+PKGS    := cglm sdl2 SDL2_image libpng libcjson OpenEXR assimp expat
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wno-missing-field-initializers

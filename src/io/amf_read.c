@@ -1,0 +1,112 @@
+/* What an AMF file holds that Assimp 5.2 reads wrong (amf_read.h). */
+#include <ctype.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "amf_read.h"
+#include "amf_xml.h"
+#include "core/error.h"
+
+/* A placement's names, in the order of sr_amf_instance's values. */
+static const char *const PLACEMENTS[6] = { "deltax", "deltay", "deltaz", "rx", "ry", "rz" };
+
+typedef struct reader {
+    sr_amf_file *file;
+    const char *path;
+    sr_error *err;
+    sr_amf_instance instance;
+    char number[SR_AMF_MAX_NAME]; /* a placement's text, "" once too long */
+    size_t number_len;
+} reader;
+
+/* An id into a name: "" when too long to match a node. */
+static void copy_name(char name[SR_AMF_MAX_NAME], const char *id)
+{
+    const size_t len = strlen(id);
+    memcpy(name, id, len < SR_AMF_MAX_NAME ? len + 1 : 1);
+    name[len < SR_AMF_MAX_NAME ? len : 0] = '\0';
+}
+
+static void *push(reader *r, sr_array *list, size_t elem)
+{
+    void *at = list->count < SR_AMF_MAX_ENTRIES ? sr_array_push(list, elem) : NULL;
+    if (!at)
+        sr_error_set(r->err, "%s: out of memory, or more than %u AMF constellations or instances", r->path,
+                     SR_AMF_MAX_ENTRIES);
+    return at;
+}
+
+static bool on_start(void *user, sr_amf_kind kind, const char *name, const char **attributes)
+{
+    (void)name;
+    reader *r = user;
+    if (kind == SR_AMF_CONSTELLATION) {
+        sr_amf_constellation *con = push(r, &r->file->constellations, sizeof *con);
+        if (!con)
+            return false;
+        *con = (sr_amf_constellation){ .first = r->file->instances.count };
+        copy_name(con->id, sr_amf_attribute(attributes, "id"));
+    } else if (kind == SR_AMF_INSTANCE) {
+        r->instance = (sr_amf_instance){ .value = { 0 } };
+        copy_name(r->instance.objectid, sr_amf_attribute(attributes, "objectid"));
+    } else if (kind == SR_AMF_PLACEMENT) {
+        r->number[0] = '\0';
+        r->number_len = 0;
+    }
+    return true;
+}
+
+static bool on_text(void *user, sr_amf_kind kind, const char *text, size_t len)
+{
+    reader *r = user;
+    for (size_t i = 0; kind == SR_AMF_PLACEMENT && i < len; i++) {
+        if (r->number_len == 0 && isspace((unsigned char)text[i]))
+            continue;
+        if (r->number_len < SR_AMF_MAX_NAME - 1) {
+            r->number[r->number_len++] = text[i];
+            r->number[r->number_len] = '\0';
+        } else {
+            r->number_len = SR_AMF_MAX_NAME; /* too long: never grows again */
+            r->number[0] = '\0';
+        }
+    }
+    return true;
+}
+
+static bool on_end(void *user, sr_amf_kind kind, const char *name)
+{
+    reader *r = user;
+    if (kind == SR_AMF_INSTANCE) {
+        sr_amf_instance *in = push(r, &r->file->instances, sizeof *in);
+        if (!in)
+            return false;
+        *in = r->instance;
+        ((sr_amf_constellation *)r->file->constellations.data)[r->file->constellations.count - 1].count++;
+    } else if (kind == SR_AMF_PLACEMENT) {
+        char *end;
+        const double v = strtod(r->number, &end);
+        for (int i = 0; i < 6; i++)
+            if (strcmp(name, PLACEMENTS[i]) == 0 && end != r->number && isfinite(v))
+                r->instance.value[i] = v;
+    }
+    return true;
+}
+
+bool sr_amf_read(const char *path, sr_amf_file *out, sr_error *err)
+{
+    *out = (sr_amf_file){ 0 };
+    reader r = { .file = out, .path = path, .err = err };
+    const sr_amf_walk walk = { &r, on_start, on_text, on_end };
+    if (sr_amf_xml_walk(path, &walk, err))
+        return true;
+    sr_amf_file_free(out);
+    return false;
+}
+
+void sr_amf_file_free(sr_amf_file *file)
+{
+    sr_array_free(&file->constellations);
+    sr_array_free(&file->instances);
+    *file = (sr_amf_file){ 0 };
+}
