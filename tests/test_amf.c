@@ -1,11 +1,12 @@
 /* An AMF file, which softrast reads itself before Assimp does
  * (src/io/amf_import.h), refused in one line when it is bad: no crash, no
- * hang, no huge allocation. Its constellations read right are
+ * hang, no huge allocation. Its volumes and constellations read right are
  * tests/test_instances.c's. */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "amf_two_volumes.h"
 #include "cli_error.h"
 #include "run_helpers.h"
 #include "softrast/files.h"
@@ -60,6 +61,23 @@ Test(amf, a_declared_entity_is_refused)
     assert_one_error("info %s/entity.amf", "declares an entity");
 }
 
+Test(amf, a_corner_past_the_vertices_of_a_split_object_is_refused)
+{
+    char text[4096];
+    snprintf(text, sizeof text, "<amf>%s</amf>", AMF_TWO_VOLUMES("1"));
+    char *corner = strstr(text, "<v3>2</v3>");
+    cr_assert_not_null(corner);
+    memcpy(corner, "<v3>9</v3>", 10);
+    write_text(temp_dir, "corner.amf", text);
+    assert_one_error("info %s/corner.amf", "has a triangle corner \"9\", not one of its 5 vertices");
+}
+
+Test(amf, an_id_with_a_hash_in_a_file_to_split_is_refused)
+{
+    write_text(temp_dir, "hash.amf", "<amf>" AMF_TWO_VOLUMES("a#1") "</amf>");
+    assert_one_error("info %s/hash.amf", "holds '#'");
+}
+
 /* 2^20 + 1 constellations, 17 MB of them: past the reader's cap. */
 Test(amf, more_constellations_than_the_cap_are_refused)
 {
@@ -72,4 +90,22 @@ Test(amf, more_constellations_than_the_cap_are_refused)
     fputs("</amf>", f);
     fclose(f);
     assert_load_refused("many.amf", "more than 1048576 AMF constellations");
+}
+
+/* An object whose one metadata of 1 MiB would be copied into each of its
+ * 100 volumes' objects: past 8 times the file's size and 16 MiB. */
+Test(amf, a_split_past_its_cap_is_refused)
+{
+    char path[600];
+    FILE *f = fopen(temp_path(path, sizeof path, "wide.amf"), "wb");
+    cr_assert_not_null(f);
+    fputs("<amf><object id=\"1\"><metadata type=\"name\">", f);
+    for (int i = 0; i < 1 << 20; i++)
+        fputc('m', f);
+    fputs("</metadata><mesh><vertices>" AMF_VERTEX(0, 0, 0) AMF_VERTEX(1, 0, 0) AMF_VERTEX(0, 1, 0) "</vertices>", f);
+    for (int i = 0; i < 100; i++)
+        fputs("<volume>" AMF_TRIANGLE(0, 1, 2) "</volume>", f);
+    fputs("</mesh></object></amf>", f);
+    fclose(f);
+    assert_load_refused("wide.amf", "splitting its AMF objects' volumes apart would take more than");
 }

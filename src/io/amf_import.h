@@ -1,8 +1,10 @@
 /* src/io/amf_import.h — private to src/io: an AMF file through Assimp 5.2,
  * with what Assimp reads wrong put right.
  *
- * The file is read first (amf_read.h), then by Assimp; then the
- * constellations' instances are placed (amf_constellations.h).
+ * The file is read first (amf_read.h); an object of several volumes makes
+ * Assimp read a rewrite of it from memory (amf_volumes.h), any other file
+ * is read as it is; then the constellations' instances are placed
+ * (amf_constellations.h).
  */
 #ifndef SOFTRAST_IO_AMF_IMPORT_H
 #define SOFTRAST_IO_AMF_IMPORT_H
@@ -15,7 +17,7 @@
 /* Assimp's scene of the AMF file at path (flags as aiImportFile's), not
  * post-processed, into *scene: NULL when Assimp could not read it
  * (aiGetErrorString says why). False, with one line in err, when softrast
- * could not read it first (amf_read.h). */
+ * could not read it first (amf_read.h, amf_volumes.h). */
 bool sr_amf_import(const char *path, unsigned flags, const struct aiScene **scene, sr_error *err);
 
 #endif

@@ -15,6 +15,11 @@ typedef struct reader {
     sr_amf_file *file;
     const char *path;
     sr_error *err;
+    size_t objects;       /* the root's objects so far */
+    uint32_t volumes;     /* the current object's volumes with triangles */
+    uint32_t vertices;    /* the most any of its meshes lists */
+    uint32_t mesh_vertices;
+    bool volume_has_triangles;
     sr_amf_instance instance;
     char number[SR_AMF_MAX_NAME]; /* a placement's text, "" once too long */
     size_t number_len;
@@ -32,8 +37,8 @@ static void *push(reader *r, sr_array *list, size_t elem)
 {
     void *at = list->count < SR_AMF_MAX_ENTRIES ? sr_array_push(list, elem) : NULL;
     if (!at)
-        sr_error_set(r->err, "%s: out of memory, or more than %u AMF constellations or instances", r->path,
-                     SR_AMF_MAX_ENTRIES);
+        sr_error_set(r->err, "%s: out of memory, or more than %u AMF constellations, instances or objects of "
+                     "several volumes", r->path, SR_AMF_MAX_ENTRIES);
     return at;
 }
 
@@ -41,7 +46,21 @@ static bool on_start(void *user, sr_amf_kind kind, const char *name, const char 
 {
     (void)name;
     reader *r = user;
-    if (kind == SR_AMF_CONSTELLATION) {
+    if (kind == SR_AMF_OBJECT || kind == SR_AMF_CONSTELLATION)
+        r->file->hash_in_id |= strchr(sr_amf_attribute(attributes, "id"), '#') != NULL;
+    if (kind == SR_AMF_OBJECT) {
+        r->volumes = r->vertices = 0;
+    } else if (kind == SR_AMF_MESH) {
+        r->mesh_vertices = 0;
+    } else if (kind == SR_AMF_VERTEX) {
+        r->mesh_vertices += r->mesh_vertices < UINT32_MAX;
+        r->vertices = r->mesh_vertices > r->vertices ? r->mesh_vertices : r->vertices;
+    } else if (kind == SR_AMF_VOLUME) {
+        r->volume_has_triangles = false;
+    } else if (kind == SR_AMF_TRIANGLE) {
+        r->volumes += !r->volume_has_triangles;
+        r->volume_has_triangles = true;
+    } else if (kind == SR_AMF_CONSTELLATION) {
         sr_amf_constellation *con = push(r, &r->file->constellations, sizeof *con);
         if (!con)
             return false;
@@ -77,7 +96,15 @@ static bool on_text(void *user, sr_amf_kind kind, const char *text, size_t len)
 static bool on_end(void *user, sr_amf_kind kind, const char *name)
 {
     reader *r = user;
-    if (kind == SR_AMF_INSTANCE) {
+    if (kind == SR_AMF_OBJECT) {
+        if (r->volumes > 1) {
+            sr_amf_split *split = push(r, &r->file->splits, sizeof *split);
+            if (!split)
+                return false;
+            *split = (sr_amf_split){ .object = r->objects, .vertices = r->vertices };
+        }
+        r->objects++;
+    } else if (kind == SR_AMF_INSTANCE) {
         sr_amf_instance *in = push(r, &r->file->instances, sizeof *in);
         if (!in)
             return false;
@@ -98,7 +125,7 @@ bool sr_amf_read(const char *path, sr_amf_file *out, sr_error *err)
     *out = (sr_amf_file){ 0 };
     reader r = { .file = out, .path = path, .err = err };
     const sr_amf_walk walk = { &r, on_start, on_text, on_end };
-    if (sr_amf_xml_walk(path, &walk, err))
+    if (sr_amf_xml_walk(path, &walk, &out->bytes, err))
         return true;
     sr_amf_file_free(out);
     return false;
@@ -108,5 +135,6 @@ void sr_amf_file_free(sr_amf_file *file)
 {
     sr_array_free(&file->constellations);
     sr_array_free(&file->instances);
+    sr_array_free(&file->splits);
     *file = (sr_amf_file){ 0 };
 }

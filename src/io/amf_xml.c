@@ -109,7 +109,7 @@ static void XMLCALL on_entity(void *user, const XML_Char *name, int parameter, c
 }
 
 /* Feeds the open file to the parser; false with err set. */
-static bool feed(driver *d, FILE *f)
+static bool feed(driver *d, FILE *f, size_t *bytes)
 {
     for (bool first = true;; first = false) {
         char *buf = XML_GetBuffer(d->parser, CHUNK);
@@ -120,6 +120,7 @@ static bool feed(driver *d, FILE *f)
             return sr_error_set(d->err, "%s: read error", d->path);
         if (first && n >= 4 && memcmp(buf, "PK\3\4", 4) == 0)
             return sr_error_set(d->err, "%s: a zipped AMF, which Assimp 5.2 cannot read (unzip it first)", d->path);
+        *bytes += n;
         const bool last = n < CHUNK;
         if (XML_ParseBuffer(d->parser, (int)n, last) != XML_STATUS_OK) {
             if (d->stopped)
@@ -141,22 +142,25 @@ const char *sr_amf_attribute(const char **attributes, const char *name)
     return "";
 }
 
-bool sr_amf_xml_walk(const char *path, const sr_amf_walk *walk, sr_error *err)
+bool sr_amf_xml_walk(const char *path, const sr_amf_walk *walk, size_t *bytes, sr_error *err)
 {
     const char *why;
     FILE *f = sr_input_open(path, &why);
     if (!f)
         return sr_error_set(err, "%s: %s", path, why);
     driver d = { .parser = XML_ParserCreate(NULL), .walk = walk, .path = path, .err = err };
+    size_t read = 0;
     bool ok = d.parser ? true : sr_error_set(err, "%s: out of memory reading the AMF", path);
     if (ok) {
         XML_SetUserData(d.parser, &d);
         XML_SetElementHandler(d.parser, on_start, on_end);
         XML_SetCharacterDataHandler(d.parser, on_text);
         XML_SetEntityDeclHandler(d.parser, on_entity);
-        ok = feed(&d, f);
+        ok = feed(&d, f, &read);
         XML_ParserFree(d.parser);
     }
     fclose(f);
+    if (bytes)
+        *bytes = read;
     return ok;
 }

@@ -1,10 +1,11 @@
 /* src/io/amf_xml.h — private to src/io: an AMF file's XML, read by
  * libexpat, each element named by what it is in AMF.
  *
- * Elements are named as Assimp 5.2 reads them: an <instance> counts only
- * inside a <constellation> of the <amf> root, a <v1> only inside a
- * <triangle> of a <volume>, and so on. An element anywhere else is
- * SR_AMF_OTHER, as is everything below one.
+ * The reader (amf_read.h) and the volume splitter (amf_volumes.h) walk the
+ * same file and must agree on what an element is: an <instance> counts
+ * only inside a <constellation> of the <amf> root, a <v1> only inside a
+ * <triangle> of a <volume>, and so on (Assimp 5.2's reading). An element
+ * anywhere else is SR_AMF_OTHER, as is everything below one.
  *
  * Bad input is one line: a file that is not well-formed XML
  * (PATH:LINE: what expat says), a zipped AMF (Assimp 5.2 reads none), or
@@ -49,9 +50,9 @@ typedef struct sr_amf_walk {
  * when it has none. */
 const char *sr_amf_attribute(const char **attributes, const char *name);
 
-/* Walks the file at path. False, with one
+/* Walks the file at path; *bytes (may be NULL) its size. False, with one
  * line in err, when it cannot be read, is not well-formed XML, is zipped
  * or declares entities, or when a handler stops the walk. */
-bool sr_amf_xml_walk(const char *path, const sr_amf_walk *walk, sr_error *err);
+bool sr_amf_xml_walk(const char *path, const sr_amf_walk *walk, size_t *bytes, sr_error *err);
 
 #endif
