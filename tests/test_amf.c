@@ -1,6 +1,7 @@
 /* An AMF file, which softrast reads itself before Assimp does
- * (src/io/amf_import.h), refused in one line when it is bad: no crash, no
- * hang, no huge allocation. Its volumes and constellations read right are
+ * (src/io/amf_import.h): its unit read wherever its root stands, and the
+ * file refused in one line when it is bad: no crash, no hang, no huge
+ * allocation. Its volumes and constellations read right are
  * tests/test_instances.c's. */
 #include <criterion/criterion.h>
 #include <stdio.h>
@@ -21,6 +22,24 @@ static void write_bytes(const char *name, const char *bytes, size_t len)
     cr_assert_not_null(f);
     cr_assert_eq(fwrite(bytes, 1, len, f), len);
     fclose(f);
+}
+
+/* The root's unit is an attribute like any other, however long the
+ * comment before it (the head of the file alone was read for it). */
+Test(amf, the_unit_is_read_after_a_long_prologue)
+{
+    char text[8192] = "<?xml version=\"1.0\"?>\n<!-- ";
+    for (int i = 0; i < 4000; i++)
+        strcat(text, "c");
+    strcat(text, " -->\n<amf version=\"1.1\"\n     unit=\"inch\"><object id=\"1\"><mesh><vertices>" AMF_VERTEX(0, 0, 0)
+                     AMF_VERTEX(1, 0, 0) AMF_VERTEX(0, 1, 0) "</vertices><volume>" AMF_TRIANGLE(0, 1, 2)
+                         "</volume></mesh></object></amf>\n");
+    write_text(temp_dir, "unit.amf", text);
+    char args[700];
+    snprintf(args, sizeof args, "info %s/unit.amf", temp_dir);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "%s", r.err);
+    cr_assert_not_null(strstr(r.out, "units: 0.0254 m per unit (read: "), "%s", r.out);
 }
 
 /* The library's refusal of a large file, which the program would precede

@@ -7,12 +7,14 @@
 #include "amf_read.h"
 #include "amf_volumes.h"
 
-bool sr_amf_import(const char *path, unsigned flags, const struct aiScene **scene, sr_error *err)
+bool sr_amf_import(const char *path, unsigned flags, const struct aiScene **scene, double *metres_per_unit,
+                   sr_error *err)
 {
     *scene = NULL;
     sr_amf_file file;
     if (!sr_amf_read(path, &file, err))
         return false;
+    *metres_per_unit = file.metres_per_unit;
     if (file.splits.count == 0) {
         *scene = aiImportFile(path, flags);
     } else {

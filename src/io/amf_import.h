@@ -16,8 +16,10 @@
 
 /* Assimp's scene of the AMF file at path (flags as aiImportFile's), not
  * post-processed, into *scene: NULL when Assimp could not read it
- * (aiGetErrorString says why). False, with one line in err, when softrast
+ * (aiGetErrorString says why); the file's unit into *metres_per_unit (0
+ * when it states none known). False, with one line in err, when softrast
  * could not read it first (amf_read.h, amf_volumes.h). */
-bool sr_amf_import(const char *path, unsigned flags, const struct aiScene **scene, sr_error *err);
+bool sr_amf_import(const char *path, unsigned flags, const struct aiScene **scene, double *metres_per_unit,
+                   sr_error *err);
 
 #endif

@@ -3,10 +3,17 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "amf_read.h"
 #include "amf_xml.h"
 #include "core/error.h"
+
+/* The units <amf unit="..."> may state, in metres. */
+static const struct {
+    const char *name;
+    double metres;
+} UNITS[] = { { "millimeter", 0.001 }, { "inch", 0.0254 }, { "feet", 0.3048 }, { "meter", 1.0 }, { "micron", 1e-6 } };
 
 /* A placement's names, in the order of sr_amf_instance's values. */
 static const char *const PLACEMENTS[6] = { "deltax", "deltay", "deltaz", "rx", "ry", "rz" };
@@ -48,7 +55,11 @@ static bool on_start(void *user, sr_amf_kind kind, const char *name, const char 
     reader *r = user;
     if (kind == SR_AMF_OBJECT || kind == SR_AMF_CONSTELLATION)
         r->file->hash_in_id |= strchr(sr_amf_attribute(attributes, "id"), '#') != NULL;
-    if (kind == SR_AMF_OBJECT) {
+    if (kind == SR_AMF_ROOT) {
+        for (size_t i = 0; i < sizeof UNITS / sizeof *UNITS; i++)
+            if (strcasecmp(sr_amf_attribute(attributes, "unit"), UNITS[i].name) == 0)
+                r->file->metres_per_unit = UNITS[i].metres;
+    } else if (kind == SR_AMF_OBJECT) {
         r->volumes = r->vertices = 0;
     } else if (kind == SR_AMF_MESH) {
         r->mesh_vertices = 0;

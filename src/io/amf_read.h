@@ -1,9 +1,10 @@
 /* src/io/amf_read.h — private to src/io: what an AMF file holds that
  * Assimp 5.2 reads wrong, read from the file itself (amf_xml.h).
  *
- * Its constellations, whose instances Assimp misplaces
- * (amf_constellations.h), and its objects of more than one volume, of
- * which Assimp keeps the first alone (amf_volumes.h).
+ * Its unit, which Assimp does not report; its constellations, whose
+ * instances Assimp misplaces (amf_constellations.h); its objects of more
+ * than one volume, of which Assimp keeps the first alone
+ * (amf_volumes.h).
  */
 #ifndef SOFTRAST_IO_AMF_READ_H
 #define SOFTRAST_IO_AMF_READ_H
@@ -39,6 +40,7 @@ typedef struct sr_amf_split {
 
 typedef struct sr_amf_file {
     size_t bytes;
+    double metres_per_unit; /* the root's unit, 0 when it states none known */
     sr_array constellations; /* of sr_amf_constellation, in the file's order */
     sr_array instances;      /* of sr_amf_instance */
     sr_array splits;         /* of sr_amf_split, in the file's order */

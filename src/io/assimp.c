@@ -464,9 +464,10 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
 {
     *mesh = (sr_mesh){ 0 };
     const struct aiScene *sc = NULL;
+    double amf_metres = 0.0;
     if (!ends_in(path, AMF))
         sc = aiImportFile(path, 0);
-    else if (!sr_amf_import(path, 0, &sc, err))
+    else if (!sr_amf_import(path, 0, &sc, &amf_metres, err))
         return false;
     if (!sc)
         return import_error(path, err);
@@ -486,7 +487,7 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
          build_materials(sc, path, mesh, texture, err);
     if (ok && report) {
         report->mirrored_meshes = mirrored;
-        ok = sr_assimp_report(sc, &list, path, pose, report) || sr_error_set(err, "%s: out of memory", path);
+        ok = sr_assimp_report(sc, &list, path, pose, amf_metres, report) || sr_error_set(err, "%s: out of memory", path);
     }
     sr_assimp_instances_free(&list);
     free(generated);
