@@ -302,6 +302,73 @@ Test(viewport, maps_every_vertex_as_the_design_formula_says)
     cr_assert_lt(close, 100, "%d close calls left out", close);
 }
 
+/* The double half of a block of mesh vertices (sr_viewport_map_double_block:
+ * two SSE2 or four AVX2 lanes at a time, the last few one by one) writes
+ * each vertex's x_off, y_off and z with the bits sr_viewport_map_d gives
+ * it from the clip position in double of sr_vertex_mesh_clip_d, whatever
+ * the vertices' order and count, the matrix's scale and the depth model. */
+Test(viewport, the_double_half_in_lanes_maps_as_one_vertex_does)
+{
+    enum { VERTICES = 61 };
+    test_rng r = { 2727 };
+    float positions[VERTICES][3];
+    sr_mesh mesh = { .positions = positions, .vertex_count = VERTICES };
+    sr_varying_layout none = { .color = -1, .uv = -1, .normal = -1 };
+    bool avx2 = sr_raster_simd_resolve(SR_SIMD_AVX2) == SR_SIMD_AVX2;
+    int compared = 0;
+    for (int round = 0; round < 2000; round++) {
+        sr_viewport vp = random_viewport(&r);
+        /* Clip x, y and z of a few tenths of w, w near 1, all scaled by
+         * one power of ten: most vertices map, a few pass the slack. */
+        sr_dmat4 world = sr_dmat4_identity(), same = sr_dmat4_identity();
+        double scale = pow(10.0, rng_uniform(&r, -20, 20));
+        for (int c = 0; c < 4; c++)
+            for (int row = 0; row < 4; row++)
+                world.m[c][row] = scale * (row == 3 ? (c == 3 ? 1.0 : 0.1) * rng_uniform(&r, 0.5, 1.0)
+                                                    : rng_uniform(&r, -0.4, 0.4));
+        static const double no_origin[3];
+        sr_vertex_transform xf;
+        sr_vertex_make_transform_d(&world, &same, &same, no_origin, &xf);
+        for (int i = 0; i < VERTICES; i++)
+            for (int k = 0; k < 3; k++)
+                positions[i][k] = (float)rng_uniform(&r, -1.0, 1.0);
+        sr_screen_vertex want[VERTICES], got[VERTICES];
+        uint32_t index[VERTICES];
+        uint32_t n = 0;
+        for (uint32_t i = 0; i < VERTICES; i++) {
+            _Alignas(16) sr_vertex_out v;
+            double clip_d[4];
+            sr_vertex_run(&mesh, &xf, &none, i, 1, &v);
+            sr_vertex_mesh_clip_d(&mesh, i, &xf, clip_d);
+            memset(&got[i], 0x5a, sizeof got[i]);
+            if (!sr_viewport_map_d(&v, clip_d, 0, &vp, &want[i]))
+                continue;
+            got[i].x = want[i].x;
+            got[i].y = want[i].y;
+            index[n++] = i;
+        }
+        for (uint32_t k = n; k > 1; k--) { /* in no order, as a batch's vertices come */
+            uint32_t j = (uint32_t)rng_below(&r, (int)k), t = index[k - 1];
+            index[k - 1] = index[j], index[j] = t;
+        }
+        n -= (uint32_t)rng_below(&r, n < 4 ? (int)n + 1 : 4); /* every count modulo the lanes */
+        for (int lanes = 0; lanes < 1 + avx2; lanes++) {
+            sr_viewport_map_double_block(&mesh, &xf, index, n, &vp, lanes == 1, got, sizeof got[0]);
+            for (uint32_t k = 0; k < n; k++) {
+                uint32_t i = index[k];
+                cr_assert(memcmp(&got[i].x_off, &want[i].x_off, sizeof want[i].x_off) == 0 &&
+                              memcmp(&got[i].y_off, &want[i].y_off, sizeof want[i].y_off) == 0 &&
+                              memcmp(&got[i].z, &want[i].z, sizeof want[i].z) == 0,
+                          "round %d, vertex %u, %s: (%a, %a, %a), one at a time (%a, %a, %a)", round, i,
+                          lanes ? "avx2" : "sse2", got[i].x_off, got[i].y_off, got[i].z, want[i].x_off,
+                          want[i].y_off, want[i].z);
+                compared++;
+            }
+        }
+    }
+    cr_assert_gt(compared, 50000);
+}
+
 /* ---- fan: (v0, vi, vi+1) after mapping ---------------------------------- */
 
 #define FAN_TRIANGLES 4000

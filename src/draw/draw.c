@@ -153,6 +153,43 @@ static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, 
     }
 }
 
+/* The outcodes of vertices [block, block + n) from their codes, each
+ * vertex outside a plane checked for non-finite varyings and, without
+ * st->double_later, each inside mapped whole (vertex_chunk). */
+static void check_and_map(const vertex_phase *ph, uint32_t block, uint32_t n, const sr_vertex_out *verts,
+                          const unsigned char *codes, unsigned char *outcodes, unsigned *outcodes_and)
+{
+    const sr_draw_state *st = ph->st;
+    const sr_mesh *mesh = st->desc->mesh;
+    const sr_varying_layout *layout = &st->shade.layout;
+    bool double_later = st->double_later;
+    int block_finite = -1; /* not yet known */
+    for (uint32_t j = 0; j < n; j++) {
+        uint32_t i = block + j;
+        unsigned code = codes[j];
+        if (code != 0 && code != SR_OUT_NONFINITE) {
+            if (block_finite < 0)
+                block_finite = sr_vertex_block_finite(mesh, &ph->xf, layout, block, n);
+            if (!block_finite && !sr_vertex_varyings_finite(mesh, &ph->xf, layout, i))
+                code = SR_OUT_NONFINITE;
+        }
+        if (code == 0 && !double_later && !map_inside(ph, &verts[j], i, sr_screen_at(st, i)))
+            code = SR_OUT_NONFINITE;
+        outcodes[i] = (unsigned char)code;
+        *outcodes_and &= code;
+    }
+}
+
+/* Whether every code of codes[0 .. n) is 0, in words where the compiler
+ * vectorises the OR. */
+static bool all_inside(const unsigned char *codes, uint32_t n)
+{
+    unsigned char any = 0;
+    for (uint32_t j = 0; j < n; j++)
+        any |= codes[j];
+    return any == 0;
+}
+
 /* Stages 1 and 3 per unique vertex, and stage 6 for those inside every
  * plane, so an unclipped triangle maps none of its corners again. Only a
  * vertex inside gets its varyings: a clipped triangle transforms its
@@ -193,20 +230,11 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
             for (uint32_t j = 0; j < n; j++)
                 atomic_init(&double_mapped[block + j], 0);
         }
-        int block_finite = -1; /* not yet known */
-        for (uint32_t j = 0; j < n; j++) {
-            uint32_t i = block + j;
-            unsigned code = codes[j];
-            if (code != 0 && code != SR_OUT_NONFINITE) {
-                if (block_finite < 0)
-                    block_finite = sr_vertex_block_finite(mesh, &ph->xf, layout, block, n);
-                if (!block_finite && !sr_vertex_varyings_finite(mesh, &ph->xf, layout, i))
-                    code = SR_OUT_NONFINITE;
-            }
-            if (code == 0 && !double_later && !map_inside(ph, &verts[j], i, sr_screen_at(st, i)))
-                code = SR_OUT_NONFINITE;
-            outcodes[i] = (unsigned char)code;
-            *outcodes_and &= code;
+        if (double_later && all_inside(codes, n)) { /* nothing to check or map: the float half is done */
+            memcpy(outcodes + block, codes, n);
+            *outcodes_and = 0;
+        } else {
+            check_and_map(ph, block, n, verts, codes, outcodes, outcodes_and);
         }
         if (st->band_rows)
             note_row_bands(st, block, n, outcodes, bands);

@@ -301,11 +301,14 @@ typedef struct sr_band_span {
     unsigned char first, last;
 } sr_band_span;
 
-/* A slot the row bands' verdicts kept, its span, and its one_pixel
- * (sr_kept_slot). */
+/* A slot the row bands' verdicts kept, as sr_kept_slot has it, and its
+ * span. The indices and planes are kept, not found again from k: each
+ * thread walks every kept slot, and reading the mesh's indices by slot
+ * there cost a load from far away per slot. */
 typedef struct sr_band_slot {
-    uint32_t k;
+    uint32_t k, idx[3];
     sr_band_span span;
+    unsigned char planes; /* sr_slot_verdict's: below 2^8 (SR_OUT_NONFINITE's triangles are gone) */
     bool one_pixel;
 } sr_band_slot;
 

@@ -186,12 +186,15 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
  * prefetched, and only then taken: an atomic exchange waits for every
  * load before it, so taking each vertex as it was read left each flag's
  * and each position's wait on memory one after the other. One thread
- * alone takes them with plain stores. */
+ * alone takes each as it reads it, with a plain store and no branch. */
 static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept,
                                                          int count)
 {
     atomic_uchar *mapped = st->ws->double_mapped.data;
     const sr_mesh *source = st->desc->mesh;
+    const char *positions = source->clip_positions ? (const char *)source->clip_positions
+                                                   : (const char *)source->positions;
+    size_t position_size = source->clip_positions ? sizeof *source->clip_positions : sizeof *source->positions;
     uint32_t unmapped[3 * SR_VERDICT_BATCH], taken[3 * SR_VERDICT_BATCH];
     int m = 0, n = 0;
     for (int j = 0; j < count; j++) {
@@ -199,33 +202,22 @@ static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st,
             continue;
         for (int c = 0; c < 3; c++) { /* no branch on the flag: its loads overlap */
             uint32_t i = kept[j].idx[c];
-            unmapped[m] = i;
-            m += !atomic_load_explicit(&mapped[i], memory_order_relaxed);
-            __builtin_prefetch(source->clip_positions ? (const void *)source->clip_positions[i]
-                                                      : (const void *)source->positions[i]);
+            __builtin_prefetch(positions + i * position_size);
+            if (st->verdicts_alone) { /* taken at once: a vertex listed twice sees its own store */
+                taken[n] = i;
+                n += !atomic_load_explicit(&mapped[i], memory_order_relaxed);
+                atomic_store_explicit(&mapped[i], 1, memory_order_relaxed);
+            } else {
+                unmapped[m] = i;
+                m += !atomic_load_explicit(&mapped[i], memory_order_relaxed);
+            }
         }
     }
-    for (int k = 0; k < m; k++) {
-        uint32_t i = unmapped[k];
-        if (!st->verdicts_alone) {
-            if (!atomic_exchange_explicit(&mapped[i], 1, memory_order_relaxed))
-                taken[n++] = i;
-        } else if (!atomic_load_explicit(&mapped[i], memory_order_relaxed)) { /* listed twice in the batch */
-            atomic_store_explicit(&mapped[i], 1, memory_order_relaxed);
-            taken[n++] = i;
-        }
-    }
-    /* The mesh and the matrix in locals: read through pointers, they were
-     * loaded again for every vertex. */
-    const sr_mesh mesh = *st->desc->mesh;
-    const sr_vertex_transform xf = *st->xf;
-    double clip_d[3 * SR_VERDICT_BATCH][4];
-    sr_screen_vertex *out[3 * SR_VERDICT_BATCH];
-    for (int k = 0; k < n; k++) {
-        sr_vertex_mesh_clip_d(&mesh, taken[k], &xf, clip_d[k]);
-        out[k] = sr_screen_at(st, taken[k]);
-    }
-    sr_viewport_map_double_n((const double(*)[4])clip_d, out, n, &st->vp);
+    for (int k = 0; k < m; k++)
+        if (!atomic_exchange_explicit(&mapped[unmapped[k]], 1, memory_order_relaxed))
+            taken[n++] = unmapped[k];
+    sr_viewport_map_double_block(source, st->xf, taken, (uint32_t)n, &st->vp, st->shade.simd >= SR_SIMD_AVX2,
+                                 st->ws->screen.data, st->screen_stride);
 }
 
 /* The slots ahead whose screen vertices the slot lanes prefetch: the
@@ -336,19 +328,11 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slo
     const sr_draw_state *st = own->st;
     const char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
-    const sr_mesh *mesh = st->desc->mesh;
-    const unsigned char *outcodes = st->ws->outcodes.data;
     for (uint32_t i = 0; i < count; i++) {
         if (count - i > PREFETCH_SLOTS && span_meets(slots[i + PREFETCH_SLOTS].span, lo, hi))
-            PREFETCH_TRIANGLE(screen, stride, sr_assemble_slot_indices(mesh, slots[i + PREFETCH_SLOTS].k));
-        sr_band_span span = slots[i].span;
-        if (!span_meets(span, lo, hi))
-            continue;
-        uint32_t k = slots[i].k, idx[3];
-        sr_assemble_triangle(mesh, k, idx); /* it has a triangle: the verdict kept it */
-        /* A span of every band may be of a triangle that crosses a plane. */
-        unsigned planes =
-            sr_band_span_is_every(span) ? outcodes[idx[0]] | outcodes[idx[1]] | outcodes[idx[2]] : 0;
-        emit_kept(span.first >= lo ? own : shared, idx, planes, k, slots[i].one_pixel);
+            PREFETCH_TRIANGLE(screen, stride, slots[i + PREFETCH_SLOTS].idx);
+        const sr_band_slot *s = &slots[i];
+        if (span_meets(s->span, lo, hi))
+            emit_kept(s->span.first >= lo ? own : shared, s->idx, s->planes, s->k, s->one_pixel);
     }
 }

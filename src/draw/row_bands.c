@@ -64,7 +64,10 @@ static void verdicts(void *ctx, int t)
             int count = sr_draw_verdicts(st, batch, batch_end, end, &counted, kept);
             for (int j = 0; j < count; j++) {
                 sr_band_span span = span_of(bands, kept[j].idx, kept[j].planes);
-                slots[first + kept_in_chunk++] = (sr_band_slot){ kept[j].k, span, kept[j].one_pixel };
+                sr_band_slot *b = &slots[first + kept_in_chunk++];
+                *b = (sr_band_slot){ .k = kept[j].k, .span = span, .planes = (unsigned char)kept[j].planes,
+                                     .one_pixel = kept[j].one_pixel };
+                memcpy(b->idx, kept[j].idx, sizeof b->idx);
                 if (kept[j].planes == 0)
                     per_band[span.first]++;
             }

@@ -183,7 +183,7 @@ static uint32_t run_fours_inside(const sr_mesh *m, const sr_varying_layout *l, m
         _mm_store_ps(out[k + 1].v, v1);
         _mm_store_ps(out[k + 2].v, v2);
         _mm_store_ps(out[k + 3].v, v3);
-        for (int j = 0; j < 4; j++)
+        for (int j = 0; l->count > 0 && j < 4; j++) /* none at all in id and depth shading */
             if (codes[k + j] == 0)
                 write_varyings(m, l, normal_matrix, i + (uint32_t)j, out[k + j].v);
     }

@@ -155,14 +155,20 @@ bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyi
     return map_vertex(v, clip_d, false, varyings, vp, out);
 }
 
+/* The viewport's numbers for the lanes (06_viewport_lanes.h). */
+static sr_viewport_lanes lanes_of(const sr_viewport *vp, const screen_scale *scale)
+{
+    return (sr_viewport_lanes){ .guard = scale->guard, .x_units = scale->x_units, .y_units = scale->y_units,
+                                .a = vp->depth.a, .b = vp->depth.b, .depth_on = vp->depth.on,
+                                /* within_slack's bounds */
+                                .xy_lo = -1.0 - SR_NDC_SLACK, .z_lo = 0.0 - SR_NDC_SLACK, .hi = 1.0 + SR_NDC_SLACK };
+}
+
 void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport *vp, bool avx2,
                                  unsigned char *codes, void *out, size_t stride)
 {
     screen_scale scale = screen_scale_of(vp);
-    sr_viewport_lanes r = { .guard = scale.guard, .x_units = scale.x_units, .y_units = scale.y_units,
-                            .a = vp->depth.a, .b = vp->depth.b, .depth_on = vp->depth.on,
-                            /* within_slack's bounds */
-                            .xy_lo = -1.0 - SR_NDC_SLACK, .z_lo = 0.0 - SR_NDC_SLACK, .hi = 1.0 + SR_NDC_SLACK };
+    sr_viewport_lanes r = lanes_of(vp, &scale);
     uint32_t k = avx2 ? sr_viewport_float_lanes_avx2(v, n, varyings, &r, codes, out, stride)
                       : sr_viewport_float_lanes_sse2(v, n, varyings, &r, codes, out, stride);
     for (; k < n; k++) {
@@ -173,13 +179,22 @@ void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varying
     }
 }
 
-void sr_viewport_map_double_n(const double (*clip_d)[4], sr_screen_vertex *const *out, int n, const sr_viewport *vp)
+void sr_viewport_map_double_block(const sr_mesh *mesh, const sr_vertex_transform *xf, const uint32_t *index,
+                                  uint32_t n, const sr_viewport *vp, bool avx2, void *screen, size_t stride)
 {
     screen_scale scale = screen_scale_of(vp);
-    for (int k = 0; k < n; k++) {
-        double sx, sy, z;
-        map_double(clip_d[k], false, &scale, vp, &sx, &sy, &z);
-        place(sx, sy, z, out[k]);
+    uint32_t k = 0;
+    if (!mesh->clip_positions) {
+        sr_viewport_lanes r = lanes_of(vp, &scale);
+        const double(*m)[4] = (const double(*)[4])xf->clip_from_object_d.m;
+        k = avx2 ? sr_viewport_double_lanes_avx2((const float(*)[3])mesh->positions, m, index, n, &r, screen, stride)
+                 : sr_viewport_double_lanes_sse2((const float(*)[3])mesh->positions, m, index, n, &r, screen, stride);
+    }
+    for (; k < n; k++) {
+        double clip_d[4], sx, sy, z;
+        sr_vertex_mesh_clip_d(mesh, index[k], xf, clip_d);
+        map_double(clip_d, false, &scale, vp, &sx, &sy, &z);
+        place(sx, sy, z, (sr_screen_vertex *)((char *)screen + (size_t)index[k] * stride));
     }
 }
 

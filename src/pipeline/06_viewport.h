@@ -17,6 +17,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "01_vertex.h"
 #include "stages.h"
 
 /* How far past [-1, 1] a clipped vertex may land from rounding before it is
@@ -53,16 +54,18 @@ bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyi
  * is 0, into the screen vertex k·stride bytes into out: the snapped point,
  * 1/w and the varyings divided by w (x, y, inv_w, var_w), from the float
  * position; codes[k] becomes SR_OUT_NONFINITE exactly where
- * sr_viewport_map_d would refuse v[k]. Two vertices at a time in SSE2
- * lanes of double, four in AVX2 ones with avx2 (06_viewport_lanes.h), the
- * scalar map's operations in each. The double half,
- * of n mesh vertices whose float half is in *out[k]: x_off, y_off and z
- * from their clip positions in double. Neither writes a member the other
- * writes, so one thread may read a vertex's snapped point while another
- * maps its double half. */
+ * sr_viewport_map_d would refuse v[k]. The double half, of the n mesh
+ * vertices index[k] whose float half is in the screen vertex
+ * index[k]·stride bytes into screen: x_off, y_off and z from their clip
+ * positions in double (sr_vertex_mesh_clip_d under xf). Each takes two
+ * vertices at a time in SSE2 lanes of double, four in AVX2 ones with avx2
+ * (06_viewport_lanes.h), the scalar map's operations in each. Neither
+ * writes a member the other writes, so one thread may read a vertex's
+ * snapped point while another maps its double half. */
 void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport *vp, bool avx2,
                                  unsigned char *codes, void *out, size_t stride);
-void sr_viewport_map_double_n(const double (*clip_d)[4], sr_screen_vertex *const *out, int n, const sr_viewport *vp);
+void sr_viewport_map_double_block(const sr_mesh *mesh, const sr_vertex_transform *xf, const uint32_t *index,
+                                  uint32_t n, const sr_viewport *vp, bool avx2, void *screen, size_t stride);
 
 /* sr_viewport_map_d for a clip position in double that may not be of use
  * (a cut's point from its lines, which may barely meet): where it is not

@@ -2,11 +2,12 @@
  * (06_viewport_lanes.h), one source compiled at two widths like the
  * sub-pixel lanes: two lanes of double with SSE2 (06_viewport_sse2.c) and
  * four with AVX2 (06_viewport_avx2.c, built with -mavx2, never -mfma). The
- * includer defines VIEWPORT_LANES and VIEWPORT_FLOAT_LANES, the name of
- * the function it makes. Each lane takes 06_viewport.c's map_float steps
- * on the same values (a float made double, one division each for 1/w and
- * b/w, the same products and sums in the same order), so every width maps
- * the bits of the scalar map. */
+ * includer defines VIEWPORT_LANES, and VIEWPORT_FLOAT_LANES and
+ * VIEWPORT_DOUBLE_LANES, the names of the functions it makes. Each lane
+ * takes 06_viewport.c's map_float or map_double steps on the same values
+ * (a float made double, one division each for 1/w and b/w, the same
+ * products and sums in the same order), so every width maps the bits of
+ * the scalar map. */
 #include <math.h>
 #include <string.h>
 #if defined(__SSE2__)
@@ -160,6 +161,51 @@ uint32_t VIEWPORT_FLOAT_LANES(const sr_vertex_out *v, uint32_t n, int varyings, 
         unsigned refused = inside & ~map_group(&v[k], varyings, r, (char *)out + k * stride, stride);
         for (; refused; refused &= refused - 1)
             codes[k + (uint32_t)__builtin_ctz(refused)] = SR_OUT_NONFINITE;
+    }
+    return k;
+}
+
+/* The double half of the mesh vertices index[0 .. n), rounded down to
+ * whole groups of lanes (returned): each lane's clip position in double as
+ * sr_vertex_clip_d makes it (((m0·x + m1·y) + m2·z) + m3, row by row),
+ * then 06_viewport.c's map_double, unchecked, and place, into the screen
+ * vertex index[k]·stride bytes into screen, whose snapped point the float
+ * half wrote. */
+uint32_t VIEWPORT_DOUBLE_LANES(const float (*positions)[3], const double m[4][4], const uint32_t *index, uint32_t n,
+                               const sr_viewport_lanes *r, char *screen, size_t stride)
+{
+    uint32_t k = 0;
+    for (; n - k >= VIEWPORT_LANES; k += VIEWPORT_LANES) {
+        const float *p[VIEWPORT_LANES];
+        sr_screen_vertex *o[VIEWPORT_LANES];
+        for (int j = 0; j < VIEWPORT_LANES; j++) {
+            p[j] = positions[index[k + (uint32_t)j]];
+            o[j] = (sr_screen_vertex *)(screen + (size_t)index[k + (uint32_t)j] * stride);
+        }
+#if VIEWPORT_LANES == 4
+        dlanes px = { p[0][0], p[1][0], p[2][0], p[3][0] }, py = { p[0][1], p[1][1], p[2][1], p[3][1] },
+               pz = { p[0][2], p[1][2], p[2][2], p[3][2] };
+        dlanes snapped_x = { (double)o[0]->x, (double)o[1]->x, (double)o[2]->x, (double)o[3]->x },
+               snapped_y = { (double)o[0]->y, (double)o[1]->y, (double)o[2]->y, (double)o[3]->y };
+#else
+        dlanes px = { p[0][0], p[1][0] }, py = { p[0][1], p[1][1] }, pz = { p[0][2], p[1][2] };
+        dlanes snapped_x = { (double)o[0]->x, (double)o[1]->x }, snapped_y = { (double)o[0]->y, (double)o[1]->y };
+#endif
+        dlanes c[4];
+        for (int row = 0; row < 4; row++)
+            c[row] = m[0][row] * px + m[1][row] * py + m[2][row] * pz + m[3][row];
+        dlanes inv_w = 1.0 / c[SR_W], b_over_w = r->b / c[SR_W];
+        dlanes x = c[SR_X] * inv_w, y = c[SR_Y] * inv_w;
+        dlanes z = r->depth_on ? r->a + b_over_w : c[SR_Z] * inv_w;
+        flanes x_off = __builtin_convertvector((r->guard * x + 1.0) * r->x_units - snapped_x, flanes),
+               y_off = __builtin_convertvector((1.0 - r->guard * y) * r->y_units - snapped_y, flanes),
+               z_f = __builtin_convertvector(z, flanes);
+#pragma GCC unroll 4
+        for (int j = 0; j < VIEWPORT_LANES; j++) {
+            o[j]->x_off = x_off[j];
+            o[j]->y_off = y_off[j];
+            o[j]->z = z_f[j];
+        }
     }
     return k;
 }

@@ -1,5 +1,6 @@
 /* 06_viewport_lanes.h — the float half of the vertex mapping
- * (sr_viewport_map_float_block, 06_viewport.h) in lanes of double: what
+ * (sr_viewport_map_float_block, 06_viewport.h), and the double half
+ * (sr_viewport_map_double_block), in lanes of double: what
  * its two widths share (06_viewport_body.h, compiled by 06_viewport_sse2.c
  * and 06_viewport_avx2.c) and the viewport's side of it. Not public API. */
 #ifndef SOFTRAST_PIPELINE_VIEWPORT_LANES_H
@@ -31,5 +32,16 @@ uint32_t sr_viewport_float_lanes_sse2(const sr_vertex_out *v, uint32_t n, int va
                                       unsigned char *codes, void *out, size_t stride);
 uint32_t sr_viewport_float_lanes_avx2(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport_lanes *r,
                                       unsigned char *codes, void *out, size_t stride);
+
+/* The double half of the mesh vertices index[k], for k below n rounded
+ * down to whole groups of lanes (returned): their positions' clip
+ * positions in double under m (sr_vertex_transform.clip_from_object_d),
+ * mapped as 06_viewport.c's map_double and place map them, into the
+ * screen vertices index[k]·stride bytes into screen, lane by lane. Two
+ * lanes of SSE2, four of AVX2; the same bits. */
+uint32_t sr_viewport_double_lanes_sse2(const float (*positions)[3], const double m[4][4], const uint32_t *index,
+                                       uint32_t n, const sr_viewport_lanes *r, char *screen, size_t stride);
+uint32_t sr_viewport_double_lanes_avx2(const float (*positions)[3], const double m[4][4], const uint32_t *index,
+                                       uint32_t n, const sr_viewport_lanes *r, char *screen, size_t stride);
 
 #endif

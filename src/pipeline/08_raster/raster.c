@@ -75,6 +75,21 @@ static SR_ALWAYS_INLINE sr_raster_rect scan_box(const sr_screen_vertex *const v[
     };
 }
 
+/* scan_box of a triangle whose box over the framebuffer holds one pixel
+ * centre (sr_raster_one_pixel): its corner from the smallest x and y,
+ * clamped to the framebuffer's, which a triangle in a guard band may
+ * pass (the box's far side is then the framebuffer's first pixel's). */
+static SR_ALWAYS_INLINE sr_raster_rect one_pixel_box(const sr_screen_vertex *const v[3], int bits)
+{
+    int64_t one = (int64_t)1 << bits, half = one / 2;
+    int64_t lo_x = v[0]->x < v[1]->x ? v[0]->x : v[1]->x, lo_y = v[0]->y < v[1]->y ? v[0]->y : v[1]->y;
+    lo_x = v[2]->x < lo_x ? v[2]->x : lo_x;
+    lo_y = v[2]->y < lo_y ? v[2]->y : lo_y;
+    int x = clamp_int(floor_shift(lo_x - half + one - 1, bits), 0, INT32_MAX),
+        y = clamp_int(floor_shift(lo_y - half + one - 1, bits), 0, INT32_MAX);
+    return (sr_raster_rect){ x, y, x + 1, y + 1 };
+}
+
 sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_raster_rect rect, int bits)
 {
     return scan_box(v, rect, bits);
@@ -661,12 +676,50 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                            triangle_id, false, 0, true, simd);
 }
 
+/* The one pixel of a box whose centre the triangle covers, in a mode
+ * without varyings: the depth plane and fill_pixel, as tiny_loop takes
+ * bit 0 of a one-bit mask, with none of the set-up and dispatch a box of
+ * several pixels needs. Half of what a dense scan draws is such a pixel. */
+static SR_ALWAYS_INLINE uint64_t plain_pixel(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,
+                                             sr_shade mode, const sr_shade_context *shade,
+                                             const sr_screen_vertex *const tri[3], int64_t area2, uint32_t id)
+{
+    const sr_screen_vertex *v[3];
+    order_clockwise(tri, area2, v);
+    setup s;
+    s.bits = subpixel_bits;
+    depth_plane(v, area2, &s);
+    size_t at = (size_t)box.y0 * (size_t)fb->width + (size_t)box.x0;
+    float z_row = sr_row_z(&s, box.y0), k = (float)(box.x0 - s.ref_x);
+    bool greater = fb->reversed_z;
+    if (fb->ids)
+        return greater ? fill_pixel(&s, fb, mode, true, true, SR_INTERP_PERSPECTIVE, shade, id, at, z_row, k, 0, 0)
+                       : fill_pixel(&s, fb, mode, false, true, SR_INTERP_PERSPECTIVE, shade, id, at, z_row, k, 0, 0);
+    return greater ? fill_pixel(&s, fb, mode, true, false, SR_INTERP_PERSPECTIVE, shade, id, at, z_row, k, 0, 0)
+                   : fill_pixel(&s, fb, mode, false, false, SR_INTERP_PERSPECTIVE, shade, id, at, z_row, k, 0, 0);
+}
+
 uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
                              const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                              uint32_t triangle_id, bool *simd)
 {
-    return triangle_in_box(fb, scan_box(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri, area2,
-                           triangle_id, true, 1, false, simd);
+    if (mode_reads_varyings(mode))
+        return triangle_in_box(fb, scan_box(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri, area2,
+                               triangle_id, true, 1, false, simd);
+    /* The box is one pixel of the framebuffer: its corner is scan_box's,
+     * and a rect that misses it leaves scan_box's box empty. */
+    *simd = false;
+    sr_raster_rect box = one_pixel_box(tri, subpixel_bits);
+    if (box.x0 < rect.x0 || box.x0 >= rect.x1 || box.y0 < rect.y0 || box.y0 >= rect.y1)
+        return 0;
+    shade = sr_shade_context_of(shade, triangle_id);
+    if (shade->hidden)
+        return 0;
+    switch (mode) {
+    case SR_SHADE_ID:    return plain_pixel(fb, box, subpixel_bits, SR_SHADE_ID, shade, tri, area2, triangle_id);
+    case SR_SHADE_DEPTH: return plain_pixel(fb, box, subpixel_bits, SR_SHADE_DEPTH, shade, tri, area2, triangle_id);
+    default:             return plain_pixel(fb, box, subpixel_bits, SR_RASTER_COUNT_HITS, shade, tri, area2, triangle_id);
+    }
 }
 
 void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
