@@ -6,6 +6,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "amf_two_volumes.h"
 #include "gltf_square.h"
 #include "run_helpers.h"
 #include "softrast/files.h"
@@ -69,6 +70,18 @@ static const char TETRA_AMF[] =
     "</constellation>\n"
     "<constellation id=\"3\"><instance objectid=\"2\"/>"
     "<instance objectid=\"2\"><deltay>50</deltay><rx>90</rx></instance></constellation>\n</amf>\n";
+
+/* The object of two volumes (amf_two_volumes.h), alone and placed twice
+ * by a constellation: at x + 10, and turned a quarter about z then moved
+ * to y + 5. Its materials are red and blue. */
+#define TWO_MATERIALS                                                                                         \
+    "<material id=\"2\"><color><r>1</r><g>0</g><b>0</b></color></material>"                                   \
+    "<material id=\"3\"><color><r>0</r><g>0</g><b>1</b></color></material>\n"
+static const char SPLIT_AMF[] = "<?xml version=\"1.0\"?>\n<amf>\n" AMF_TWO_VOLUMES("1") TWO_MATERIALS "</amf>\n";
+static const char PLACED_AMF[] = "<?xml version=\"1.0\"?>\n<amf>\n" AMF_TWO_VOLUMES("1") TWO_MATERIALS
+                                 "<constellation id=\"2\"><instance objectid=\"1\"><deltax>10</deltax></instance>"
+                                 "<instance objectid=\"1\"><deltay>5</deltay><rz>90</rz></instance>"
+                                 "</constellation>\n</amf>\n";
 
 static void load(sr_mesh *mesh, const char *name, const char *text)
 {
@@ -160,6 +173,57 @@ Test(instances, each_amf_constellation_instance_is_placed_at_its_offset_and_turn
     assert_part_at(&m, 1, (double[]){ -12, 0, -8 }, (double[]){ -10, 1, -5 });
     assert_part_at(&m, 2, (double[]){ 10, 47, -2 }, (double[]){ 11, 50, 0 });
     assert_part_at(&m, 3, (double[]){ -12, 42, -1 }, (double[]){ -10, 45, 0 });
+    sr_mesh_free(&m);
+}
+
+/* A part's every vertex is of this colour. */
+static void assert_part_colour(const sr_mesh *m, uint32_t part, const float rgb[3])
+{
+    cr_assert_not_null(m->colors);
+    const sr_mesh_part *p = &m->parts[part];
+    for (uint32_t i = 3 * p->first_triangle; i < 3 * (p->first_triangle + p->triangle_count); i++) {
+        const float *c = m->colors[m->indices[i]];
+        cr_assert(c[0] == rgb[0] && c[1] == rgb[1] && c[2] == rgb[2], "part %u: colour %g %g %g", part, c[0], c[1],
+                  c[2]);
+    }
+}
+
+static const float RED[3] = { 1, 0, 0 }, BLUE[3] = { 0, 0, 1 };
+
+/* Assimp 5.2 reads an AMF mesh's first volume alone: the second's three
+ * triangles, and its vertex down at z = −2 (2 in softrast's world), were
+ * lost. Each volume is its own part, in its own material's colour. */
+Test(instances, every_volume_of_an_amf_object_is_a_part_in_its_material)
+{
+    sr_mesh m;
+    load(&m, "split.amf", SPLIT_AMF);
+    cr_assert_eq(sr_mesh_triangle_slots(&m), 7, "4 + 3 triangles, not %u", sr_mesh_triangle_slots(&m));
+    cr_assert_eq(m.part_count, 2);
+    assert_part_at(&m, 0, (double[]){ 0, 0, -1 }, (double[]){ 1, 1, 0 });
+    assert_part_at(&m, 1, (double[]){ 0, 0, 0 }, (double[]){ 1, 1, 2 });
+    assert_part_colour(&m, 0, RED);
+    assert_part_colour(&m, 1, BLUE);
+    cr_assert(m.bounds_lo[2] == -1.0f && m.bounds_hi[2] == 2.0f, "z bounds [%g, %g]", m.bounds_lo[2], m.bounds_hi[2]);
+    sr_mesh_free(&m);
+}
+
+Test(instances, every_volume_goes_where_its_amf_objects_instance_is_placed)
+{
+    sr_mesh m;
+    load(&m, "placed.amf", PLACED_AMF);
+    static const struct {
+        double lo[3], hi[3];
+    } want[] = {
+        { { 10, 0, -1 }, { 11, 1, 0 } }, /* the first instance's volumes */
+        { { 10, 0, 0 }, { 11, 1, 2 } },
+        { { -1, 5, -1 }, { 0, 6, 0 } }, /* the second's, turned */
+        { { -1, 5, 0 }, { 0, 6, 2 } },
+    };
+    cr_assert_eq(m.part_count, 4, "two instances of two volumes: %u parts", m.part_count);
+    for (uint32_t p = 0; p < 4; p++) {
+        assert_part_at(&m, p, want[p].lo, want[p].hi);
+        assert_part_colour(&m, p, p % 2 ? BLUE : RED);
+    }
     sr_mesh_free(&m);
 }
 

@@ -276,9 +276,10 @@ static const sr_draw_path paths[] = { SR_PATH_DIRECT, SR_PATH_TILES, SR_PATH_ROW
 /* Every path, thread count and SIMD level with the lanes draws what one
  * thread draws without them; returns what that drew. */
 static sr_stats assert_lanes_draw_alike(const sr_mesh *m, int width, int height, sr_shade shade, sr_cull cull,
-                                    sr_front front, int fb_kind, bool count_hits)
+                                    sr_front front, int fb_kind, bool count_hits, float guard_band)
 {
-    sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true, .count_hits = count_hits };
+    sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true, .count_hits = count_hits,
+                                .guard_band = guard_band };
     drawn want;
     draw_dense(m, width, height, shade, cull, front, &reference, 1, fb_kind, &want);
     cr_assert_gt(want.stats.fragments, 0, "the mesh drew nothing: the comparison would prove nothing");
@@ -287,7 +288,7 @@ static sr_stats assert_lanes_draw_alike(const sr_mesh *m, int width, int height,
         for (size_t p = 0; p < sizeof paths / sizeof *paths; p++)
             for (size_t t = 0; t < sizeof threads / sizeof *threads; t++) {
                 sr_draw_study lanes = { .path = paths[p], .simd = simds[s], .chunk_slots = t == 2 ? 5 : 0,
-                                        .count_hits = count_hits };
+                                        .count_hits = count_hits, .guard_band = guard_band };
                 drawn got;
                 draw_dense(m, width, height, shade, cull, front, &lanes, threads[t], fb_kind, &got);
                 char what[96];
@@ -310,7 +311,7 @@ Test(subpixel, dense_random_meshes_draw_alike_with_and_without_the_lanes, .timeo
         sr_stats ids = { 0 };
         for (size_t c = 0; c < 3; c++) {
             sr_stats got = assert_lanes_draw_alike(&m, width, height, c == 1 ? SR_SHADE_DEPTH : SR_SHADE_ID,
-                                                     culls[c], round ? SR_FRONT_CCW : SR_FRONT_CW, PLAIN_FB, false);
+                                                     culls[c], round ? SR_FRONT_CCW : SR_FRONT_CW, PLAIN_FB, false, 0.0f);
             if (c == 0)
                 ids = got;
         }
@@ -318,18 +319,56 @@ Test(subpixel, dense_random_meshes_draw_alike_with_and_without_the_lanes, .timeo
          * own loop in the modes without varyings: into an ids plane, with
          * reversed z, and counting hits too. */
         assert_lanes_draw_alike(&m, width, height, SR_SHADE_ID, SR_CULL_NONE, SR_FRONT_CCW,
-                                round ? IDS_PLANE | REVERSED_Z : IDS_PLANE, false);
-        assert_lanes_draw_alike(&m, width, height, SR_SHADE_DEPTH, SR_CULL_BACK, SR_FRONT_CCW, REVERSED_Z, false);
-        assert_lanes_draw_alike(&m, width, height, SR_SHADE_ID, SR_CULL_NONE, SR_FRONT_CCW, PLAIN_FB, true);
+                                round ? IDS_PLANE | REVERSED_Z : IDS_PLANE, false, 0.0f);
+        assert_lanes_draw_alike(&m, width, height, SR_SHADE_DEPTH, SR_CULL_BACK, SR_FRONT_CCW, REVERSED_Z, false,
+                                0.0f);
+        assert_lanes_draw_alike(&m, width, height, SR_SHADE_ID, SR_CULL_NONE, SR_FRONT_CCW, PLAIN_FB, true, 0.0f);
+        /* In a guard band the triangles across the framebuffer's sides are
+         * inside every plane, and a box the framebuffer cuts to one pixel
+         * takes the lanes' one-pixel draw. */
+        assert_lanes_draw_alike(&m, width, height, SR_SHADE_ID, SR_CULL_NONE, SR_FRONT_CCW, IDS_PLANE, false, 2.0f);
         /* The NaN and the vertex whose 1/w overflows, on the grid's edge: three triangles each refused. */
         cr_assert_geq(ids.nonfinite, 6, "%llu", (unsigned long long)ids.nonfinite);
         if (round == 1) { /* three varyings through the mapping's lanes, two of them refused */
             sr_stats lit = assert_lanes_draw_alike(&m, width, height, SR_SHADE_COLOR, SR_CULL_NONE, SR_FRONT_CCW,
-                                                   PLAIN_FB, false);
+                                                   PLAIN_FB, false, 0.0f);
             cr_assert_gt(lit.nonfinite, ids.nonfinite, "the refused colors refused no triangle");
         }
         sr_mesh_free(&m);
     }
+}
+
+/* Small triangles across the framebuffer's left and top sides, inside
+ * every plane of a guard band: a box the framebuffer cuts down to its
+ * first column or row holds one pixel centre there, and the lanes' one-pixel
+ * draw must find that pixel as scan_box does. */
+Test(subpixel, one_pixel_boxes_cut_by_the_framebuffers_sides_draw_alike)
+{
+    enum { SIDE = 8, TRIS = 400, GUARD = 2 };
+    test_rng rng = { 808 };
+    sr_mesh m;
+    sr_error err;
+    cr_assert(sr_mesh_alloc(&m, 3 * TRIS, 3 * TRIS, false, false, false, &err), "%s", err.message);
+    m.clip_positions = calloc(m.vertex_count, sizeof *m.clip_positions);
+    cr_assert_not_null(m.clip_positions);
+    for (uint32_t t = 0; t < TRIS; t++) {
+        /* A corner up to 1.2 px past the side (or inside), the others up to
+         * 1.6 px right of and below it: small enough for the lanes. */
+        double x = t % 3 == 1 ? rng_uniform(&rng, 1.0, SIDE - 2.0) : rng_uniform(&rng, -1.2, 0.4);
+        double y = t % 3 == 2 ? rng_uniform(&rng, 1.0, SIDE - 2.0) : rng_uniform(&rng, -1.2, 0.4);
+        for (int k = 0; k < 3; k++) {
+            double sx = x + (k ? rng_uniform(&rng, 0.0, 1.6) : 0.0), sy = y + (k ? rng_uniform(&rng, 0.0, 1.6) : 0.0);
+            float *p = m.clip_positions[3 * t + (uint32_t)k];
+            /* In clip space, which the guard band's viewport scales by GUARD. */
+            p[0] = (float)((2.0 * sx / SIDE - 1.0) / GUARD), p[1] = (float)((1.0 - 2.0 * sy / SIDE) / GUARD);
+            p[2] = (float)rng_uniform(&rng, 0.05, 0.95), p[3] = 1.0f;
+            m.indices[3 * t + (uint32_t)k] = 3 * t + (uint32_t)k;
+        }
+    }
+    sr_stats got = assert_lanes_draw_alike(&m, SIDE, SIDE, SR_SHADE_ID, SR_CULL_NONE, SR_FRONT_CCW, IDS_PLANE, false,
+                                           (float)GUARD);
+    cr_assert_eq(got.rejected, 0, "a triangle left the guard band: the lanes would not see it");
+    sr_mesh_free(&m);
 }
 
 /* The tests' dense torus seen small, lit, where the tiny queue takes the

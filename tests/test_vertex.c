@@ -216,3 +216,55 @@ Test(vertex, a_normal_the_world_takes_past_float_range_drops_its_triangle_outsid
     cr_expect(nan.rejected == 1 && nan.nonfinite == 1, "rejected %llu nonfinite %llu",
               (unsigned long long)nan.rejected, (unsigned long long)nan.nonfinite);
 }
+
+/* The classifying loop gives each vertex the clip position and outcode
+ * of the one-vertex loop, four at a time (SSE2) and eight (AVX2, where the
+ * CPU has it), over a block whose length is no multiple of either: points
+ * far outside every plane, on them, non-finite, under a perspective
+ * camera's depth model and without one. */
+Test(vertex, the_classifying_lanes_give_each_vertex_its_own_outcode)
+{
+    enum { VERTICES = 203 };
+    test_rng r = { 8181 };
+    float positions[VERTICES][3];
+    sr_mesh mesh = { .positions = positions, .vertex_count = VERTICES };
+    sr_varying_layout none = { .color = -1, .uv = -1, .normal = -1 };
+    bool avx2 = sr_raster_simd_resolve(SR_SIMD_AVX2) == SR_SIMD_AVX2;
+    int outside = 0, inside = 0;
+    for (int round = 0; round < 200; round++) {
+        mat4 view, projection, identity = GLM_MAT4_IDENTITY_INIT;
+        glm_lookat((vec3){ (float)rng_uniform(&r, -3, 3), (float)rng_uniform(&r, -3, 3), -4.0f }, (vec3){ 0, 0, 0 },
+                   (vec3){ 0, 1, 0 }, view);
+        if (round % 2)
+            glm_perspective(glm_rad(60.0f), 1.3f, 0.5f, 9.0f, projection);
+        else
+            glm_ortho(-2.0f, 2.0f, -2.0f, 2.0f, 0.5f, 9.0f, projection);
+        sr_clip_depth depth = sr_clip_depth_of((const float(*)[4])projection);
+        sr_vertex_transform xf;
+        sr_vertex_make_transform(identity, view, projection, &xf);
+        for (int i = 0; i < VERTICES; i++)
+            for (int k = 0; k < 3; k++)
+                positions[i][k] = (float)(rng_uniform(&r, -3.0, 3.0) * (rng_below(&r, 20) ? 1.0 : 1e30));
+        positions[round % VERTICES][round % 3] = round % 4 ? NAN : INFINITY;
+        uint32_t first = (uint32_t)rng_below(&r, 9), count = VERTICES - first - (uint32_t)rng_below(&r, 9);
+        _Alignas(16) sr_vertex_out want[VERTICES], got[VERTICES];
+        unsigned char want_codes[VERTICES], got_codes[VERTICES];
+        for (uint32_t k = 0; k < count; k++) {
+            sr_vertex_run(&mesh, &xf, &none, first + k, 1, &want[k]);
+            want_codes[k] = (unsigned char)sr_clip_outcode_with(want[k].v, &depth);
+            outside += want_codes[k] != 0;
+            inside += want_codes[k] == 0;
+        }
+        for (int lanes = 0; lanes < 1 + avx2; lanes++) {
+            sr_vertex_run_inside(&mesh, &xf, &none, &depth, lanes == 1, first, count, got, got_codes);
+            for (uint32_t k = 0; k < count; k++) {
+                cr_assert_eq(got_codes[k], want_codes[k], "round %d, vertex %u, %s: outcode %#x, want %#x", round,
+                             first + k, lanes ? "avx2" : "sse2", got_codes[k], want_codes[k]);
+                cr_assert(memcmp(got[k].v, want[k].v, 4 * sizeof(float)) == 0, "round %d, vertex %u, %s: clip differs",
+                          round, first + k, lanes ? "avx2" : "sse2");
+            }
+        }
+    }
+    cr_assert_gt(outside, 5000);
+    cr_assert_gt(inside, 5000);
+}

@@ -3,7 +3,7 @@
 # (or, given as arguments, the packages another target needs). As root it
 # installs what is missing; otherwise it prints the exact command and fails.
 set -eu
-PACKAGES="build-essential pkg-config python3 libcglm-dev libsdl2-dev libsdl2-image-dev libpng-dev libcjson-dev libopenexr-dev libassimp-dev assimp-testmodels libcriterion-dev libgmp-dev xvfb xauth parallel clang libclang-rt-14-dev llvm python3-dev python3-numpy python3-pytest python3-setuptools python3-venv"
+PACKAGES="build-essential pkg-config python3 libcglm-dev libsdl2-dev libsdl2-image-dev libpng-dev libcjson-dev libopenexr-dev libassimp-dev libexpat1-dev assimp-testmodels libcriterion-dev libgmp-dev xvfb xauth parallel clang libclang-rt-14-dev llvm python3-dev python3-numpy python3-pytest python3-setuptools python3-venv"
 [ $# -gt 0 ] && PACKAGES="$*"
 missing=""
 for p in $PACKAGES; do

@@ -220,7 +220,8 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
             memset(codes, 0, n);
             sr_vertex_run(mesh, &ph->xf, layout, block, n, verts);
         } else {
-            sr_vertex_run_inside(mesh, &ph->xf, layout, &st->vp.depth, block, n, verts, codes);
+            sr_vertex_run_inside(mesh, &ph->xf, layout, &st->vp.depth, st->shade.simd >= SR_SIMD_AVX2, block, n,
+                                 verts, codes);
         }
         /* Most vertices of a dense mesh at a small size are of triangles
          * the sub-pixel lanes drop, which read only the snapped point. */

@@ -163,7 +163,8 @@ static void draw_points(point_line_draw *d, uint32_t first, uint32_t end)
                 draw_point(d, k + j);
             continue;
         }
-        sr_vertex_run_inside(mesh, st->xf, &st->shade.layout, &st->vp.depth, i, n, v, codes);
+        sr_vertex_run_inside(mesh, st->xf, &st->shade.layout, &st->vp.depth, st->shade.simd >= SR_SIMD_AVX2, i,
+                             n, v, codes);
         for (uint32_t j = 0; j < n; j++) {
             if (codes[j]) {
                 draw_point(d, k + j);

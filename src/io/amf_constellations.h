@@ -9,7 +9,8 @@
  * instances land 45 units away instead of 5. Assimp does build the node
  * tree right: a node named by the constellation's id with one child node
  * per instance, in the file's order, whose transform is the instance's.
- * This reads the file's constellations itself and sets those transforms.
+ * This sets those transforms from the constellations the file holds
+ * (amf_read.h).
  */
 #ifndef SOFTRAST_IO_AMF_CONSTELLATIONS_H
 #define SOFTRAST_IO_AMF_CONSTELLATIONS_H
@@ -17,11 +18,13 @@
 #include <assimp/scene.h>
 #include <stdint.h>
 
+#include "amf_read.h"
+
 /* Before the scene is post-processed, for a file Assimp read as AMF: sets
- * the transform of each instance node of every constellation the file at
- * path holds (a node named by its id with as many children as it has
- * instances). Returns the instance nodes set; 0, the scene unchanged, when
- * the file cannot be read, is compressed, or holds no constellation. */
-uint32_t sr_amf_place_instances(const struct aiScene *sc, const char *path);
+ * the transform of each instance node of every constellation of file (a
+ * node named by its id with as many children as it has instances), whose
+ * constellations it sorts by id. Returns the instance nodes set; 0, the
+ * scene unchanged, when the file holds no constellation with an id. */
+uint32_t sr_amf_place_instances(const struct aiScene *sc, sr_amf_file *file);
 
 #endif

@@ -22,8 +22,8 @@
  * reversed before post-processing (sr_assimp_unmirror), a mesh placed both
  * ways its mirrored instances' reversed here. Morph targets are applied at
  * their default weights and skinned meshes posed by their skeletons
- * before post-processing (assimp_report.h), and an AMF file's
- * constellation instances placed as the file says (amf_constellations.h).
+ * before post-processing (assimp_report.h), and an AMF file's volumes
+ * and constellation instances read as the file says (amf_import.h).
  * 3MF and AMF meshes are shaded by their facets (mesh_facets.h). The
  * import runs in a child process (isolated_load.h): Assimp is not ours to
  * make crash- and hang-free.
@@ -48,7 +48,7 @@
 #include "mesh_loaders.h"
 #include "mesh_origin.h"
 #include "obj_parse.h"
-#include "amf_constellations.h"
+#include "amf_import.h"
 #include "assimp_instances.h"
 #include "assimp_report.h"
 #include "texture_find.h"
@@ -457,17 +457,20 @@ static const char *const AMF[] = { ".amf", NULL };
 /* Formats whose meshes are a solid's facets, shaded flat (mesh_facets.h). */
 static const char *const FACETED[] = { ".3mf", ".amf", NULL };
 
-/* In the child process: Assimp's import, AMF's constellations placed, its
+/* In the child process: Assimp's import, AMF's mended, its
  * mirrored meshes turned outward, flattened and converted; what it found
  * into report. */
 static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr_load_report *report, sr_error *err)
 {
     *mesh = (sr_mesh){ 0 };
-    const struct aiScene *sc = aiImportFile(path, 0);
+    const struct aiScene *sc = NULL;
+    double amf_metres = 0.0;
+    if (!ends_in(path, AMF))
+        sc = aiImportFile(path, 0);
+    else if (!sr_amf_import(path, 0, &sc, &amf_metres, err))
+        return false;
     if (!sc)
         return import_error(path, err);
-    if (ends_in(path, AMF))
-        sr_amf_place_instances(sc, path);
     uint32_t mirrored = sr_assimp_unmirror(sc);
     sr_assimp_pose pose = sr_assimp_static_pose(sc);
     bool *generated = NULL;
@@ -484,7 +487,7 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
          build_materials(sc, path, mesh, texture, err);
     if (ok && report) {
         report->mirrored_meshes = mirrored;
-        ok = sr_assimp_report(sc, &list, path, pose, report) || sr_error_set(err, "%s: out of memory", path);
+        ok = sr_assimp_report(sc, &list, path, pose, amf_metres, report) || sr_error_set(err, "%s: out of memory", path);
     }
     sr_assimp_instances_free(&list);
     free(generated);

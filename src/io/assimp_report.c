@@ -360,34 +360,7 @@ static bool listed(const char *endings, const char *e)
     return false;
 }
 
-/* AMF's unit attribute (<amf unit="inch">), which Assimp does not report:
- * metres per unit, 0 when the file's head states none it knows. */
-static double amf_unit(const char *path)
-{
-    static const struct {
-        const char *name;
-        double metres;
-    } UNITS[] = { { "millimeter", 0.001 }, { "inch", 0.0254 }, { "feet", 0.3048 }, { "meter", 1.0 },
-                  { "micron", 1e-6 } };
-    char head[1024];
-    FILE *f = fopen(path, "rb");
-    size_t n = f ? fread(head, 1, sizeof head - 1, f) : 0;
-    if (f)
-        fclose(f);
-    head[n] = '\0';
-    const char *amf = strstr(head, "<amf"), *unit = amf ? strstr(amf, "unit=") : NULL;
-    const char *end = amf ? strchr(amf, '>') : NULL;
-    if (!unit || !end || unit > end || (unit[5] != '"' && unit[5] != '\''))
-        return 0.0;
-    for (size_t i = 0; i < sizeof UNITS / sizeof *UNITS; i++) {
-        size_t len = strlen(UNITS[i].name);
-        if (strncasecmp(unit + 6, UNITS[i].name, len) == 0 && unit[6 + len] == unit[5])
-            return UNITS[i].metres;
-    }
-    return 0.0;
-}
-
-static void report_axes(const struct aiScene *sc, const char *path, sr_load_report *r)
+static void report_axes(const struct aiScene *sc, const char *path, double amf_metres, sr_load_report *r)
 {
     *r = (sr_load_report){ .up = SR_AXIS_PY, .front = SR_AXIS_COUNT, .up_found = SR_FOUND_GUESSED };
     sr_report_copy(r->up_why, "the format states no axis; +y up assumed");
@@ -411,9 +384,8 @@ static void report_axes(const struct aiScene *sc, const char *path, sr_load_repo
         r->up_found = SR_FOUND_READ;
         sr_report_copy(r->up_why, "the file's UpAxis and UpAxisSign");
     }
-    double metres = strcasecmp(ending(path), "amf") == 0 ? amf_unit(path) : 0.0;
-    if (metres > 0.0) {
-        r->metres_per_unit = metres;
+    if (amf_metres > 0.0) {
+        r->metres_per_unit = amf_metres;
         r->units_found = SR_FOUND_READ;
         sr_report_copy(r->units_why, "the file's <amf unit=...>");
     }
@@ -470,12 +442,12 @@ static int32_t part_texture(const struct aiScene *sc, const struct aiMaterial *m
 }
 
 bool sr_assimp_report(const struct aiScene *sc, const sr_assimp_instances *list, const char *path,
-                      sr_assimp_pose pose, sr_load_report *r)
+                      sr_assimp_pose pose, double amf_metres, sr_load_report *r)
 {
     uint32_t mirrored = r->mirrored_meshes, warnings = r->warning_count;
     char kept[SR_REPORT_MAX_WARNINGS][SR_REPORT_TEXT];
     memcpy(kept, r->warnings, sizeof kept);
-    report_axes(sc, path, r);
+    report_axes(sc, path, amf_metres, r);
     report_importer(sc, path, r);
     r->mirrored_meshes = mirrored;
     r->warning_count = warnings;

@@ -43,8 +43,10 @@ sr_assimp_pose sr_assimp_static_pose(const struct aiScene *sc);
 bool sr_assimp_material_texture(const struct aiMaterial *mat, struct aiString *name, bool *emissive);
 
 /* The scene's report, a part for each instance in list, with pose
- * (counted before post-processing); false when out of memory. */
+ * (counted before post-processing) and an AMF file's unit in metres,
+ * which Assimp does not report (amf_read.h; 0 when none is known); false
+ * when out of memory. */
 bool sr_assimp_report(const struct aiScene *sc, const sr_assimp_instances *list, const char *path,
-                      sr_assimp_pose pose, sr_load_report *report);
+                      sr_assimp_pose pose, double amf_metres, sr_load_report *report);
 
 #endif

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "01_vertex.h"
+#include "01_vertex_lanes.h"
 #include "03_classify.h"
 #include "core/dmat4.h"
 
@@ -116,10 +117,6 @@ static inline void position_w1(const float *xyz, vec4 out)
 #endif
 }
 
-/* The positions prefetched ahead where the loop also classifies: its
- * longer body let fewer loads of the position stream run ahead, and they
- * waited for memory. The normals gained nothing from it. */
-#define POSITIONS_AHEAD 32
 
 /* Vertex i's varyings into v, after its position. */
 static SR_ALWAYS_INLINE void write_varyings(const sr_mesh *m, const sr_varying_layout *l, mat3 normal_matrix,
@@ -158,8 +155,8 @@ static uint32_t run_fours_inside(const sr_mesh *m, const sr_varying_layout *l, m
     uint32_t k = 0;
     for (; count - k >= 4; k += 4) {
         uint32_t i = first + k;
-        if (k + POSITIONS_AHEAD < count)
-            __builtin_prefetch(m->positions[i + POSITIONS_AHEAD]);
+        if (k + SR_VERTEX_POSITIONS_AHEAD < count)
+            __builtin_prefetch(m->positions[i + SR_VERTEX_POSITIONS_AHEAD]);
         /* x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3 into x, y and z by lane */
         const float *p = m->positions[i];
         __m128 a = _mm_loadu_ps(p), b = _mm_loadu_ps(p + 4), c = _mm_loadu_ps(p + 8);
@@ -171,6 +168,7 @@ static uint32_t run_fours_inside(const sr_mesh *m, const sr_varying_layout *l, m
         __m128 y = _mm_shuffle_ps(xy01, xy23, _MM_SHUFFLE(3, 1, 3, 1));
         __m128 z = _mm_shuffle_ps(z01, z23, _MM_SHUFFLE(2, 0, 2, 0));
         __m128 clip[4];
+#pragma GCC unroll 4
         for (int r = 0; r < 4; r++)
             clip[r] = _mm_add_ps(_mm_add_ps(_mm_add_ps(column[3][r], _mm_mul_ps(column[2][r], z)),
                                             _mm_mul_ps(column[1][r], y)),
@@ -198,8 +196,8 @@ static uint32_t run_fours_inside(const sr_mesh *m, const sr_varying_layout *l, m
  * vertex inside every plane gets its varyings. Inlined into both callers,
  * so the one without codes tests none. */
 static SR_ALWAYS_INLINE void run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
-                                 const sr_clip_depth *depth, uint32_t first, uint32_t count, sr_vertex_out *out,
-                                 unsigned char *codes)
+                                 const sr_clip_depth *depth, bool avx2, uint32_t first, uint32_t count,
+                                 sr_vertex_out *out, unsigned char *codes)
 {
     const sr_mesh m = *mesh;
     const sr_varying_layout l = *layout;
@@ -210,8 +208,18 @@ static SR_ALWAYS_INLINE void run(const sr_mesh *mesh, const sr_vertex_transform 
     glm_mat3_copy((vec3 *)xf->normal_matrix, normal_matrix);
     uint32_t k = 0;
 #if defined(__SSE2__)
-    if (codes && !m.clip_positions)
-        k = run_fours_inside(&m, &l, clip_from_object, normal_matrix, &d, first, count, out, codes);
+    if (codes && !m.clip_positions) {
+        if (avx2) {
+            k = sr_vertex_eights_inside((const float(*)[3])(m.positions + first), (const float(*)[4])clip_from_object,
+                                        &d, count, out, codes);
+            for (uint32_t j = 0; l.count > 0 && j < k; j++)
+                if (codes[j] == 0)
+                    write_varyings(&m, &l, normal_matrix, first + j, out[j].v);
+        }
+        k += run_fours_inside(&m, &l, clip_from_object, normal_matrix, &d, first + k, count - k, out + k, codes + k);
+    }
+#else
+    (void)avx2;
 #endif
     for (; k < count; k++) {
         uint32_t i = first + k;
@@ -219,8 +227,8 @@ static SR_ALWAYS_INLINE void run(const sr_mesh *mesh, const sr_vertex_transform 
         if (m.clip_positions) {
             glm_vec4_copy(m.clip_positions[i], v);
         } else {
-            if (codes && k + POSITIONS_AHEAD < count)
-                __builtin_prefetch(m.positions[i + POSITIONS_AHEAD]);
+            if (codes && k + SR_VERTEX_POSITIONS_AHEAD < count)
+                __builtin_prefetch(m.positions[i + SR_VERTEX_POSITIONS_AHEAD]);
             CGLM_ALIGN(16) vec4 p;
             position_w1(m.positions[i], p);
             glm_mat4_mulv(clip_from_object, p, v);
@@ -237,14 +245,14 @@ static SR_ALWAYS_INLINE void run(const sr_mesh *mesh, const sr_vertex_transform 
 void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
                    uint32_t first, uint32_t count, sr_vertex_out *out)
 {
-    run(mesh, xf, layout, NULL, first, count, out, NULL);
+    run(mesh, xf, layout, NULL, false, first, count, out, NULL);
 }
 
 void sr_vertex_run_inside(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
-                          const sr_clip_depth *depth, uint32_t first, uint32_t count, sr_vertex_out *out,
+                          const sr_clip_depth *depth, bool avx2, uint32_t first, uint32_t count, sr_vertex_out *out,
                           unsigned char *codes)
 {
-    run(mesh, xf, layout, depth, first, count, out, codes);
+    run(mesh, xf, layout, depth, avx2, first, count, out, codes);
 }
 
 /* Whether |v[k]| <= bound for k < n (never for a NaN; with FLT_MAX, whether

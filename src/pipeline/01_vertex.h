@@ -73,10 +73,13 @@ void sr_vertex_run(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_
 /* The same, with each vertex's outcode under depth (sr_clip_outcode_with)
  * into codes[0 .. count), and the varyings only of the vertices inside
  * every plane (code 0): no other's screen vertex is ever drawn from, and
- * a clipped triangle transforms its corners again. */
+ * a clipped triangle transforms its corners again. Four vertices at a
+ * time in SSE2 lanes, eight in AVX2 ones with avx2 (the draw's SIMD level
+ * has it); the same bits as one at a time. */
 void sr_vertex_run_inside(const sr_mesh *mesh, const sr_vertex_transform *xf, const sr_varying_layout *layout,
-                          const sr_clip_depth *depth, uint32_t first, uint32_t count, sr_vertex_out *out,
+                          const sr_clip_depth *depth, bool avx2, uint32_t first, uint32_t count, sr_vertex_out *out,
                           unsigned char *codes);
+
 
 /* Whether every varying sr_vertex_run would write for vertex i is finite,
  * told from the mesh's values, without transforming a normal whose size

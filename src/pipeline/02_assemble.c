@@ -24,6 +24,7 @@ static bool block_valid(const uint32_t *indices, uint32_t vertex_count)
 #if defined(__GNUC__)
     typedef uint32_t four_indices __attribute__((vector_size(16)));
     four_indices limit = { vertex_count, vertex_count, vertex_count, vertex_count }, past = { 0 };
+#pragma GCC unroll 16
     for (int k = 0; k < INDEX_BLOCK; k += 4) {
         four_indices v;
         memcpy(&v, indices + k, sizeof v);

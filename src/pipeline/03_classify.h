@@ -143,6 +143,7 @@ static inline uint32_t sr_clip_lane_bytes(unsigned mask)
 static inline uint32_t sr_clip_outcodes_four(const __m128 c[4], const sr_clip_depth *depth)
 {
     __m128i exponent = _mm_set1_epi32(0x7F800000), all_ones = _mm_setzero_si128();
+#pragma GCC unroll 4
     for (int k = 0; k < 4; k++)
         all_ones = _mm_or_si128(all_ones,
                                 _mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(c[k]), exponent), exponent));
@@ -160,6 +161,7 @@ static inline uint32_t sr_clip_outcodes_four(const __m128 c[4], const sr_clip_de
         __m128d a = _mm_set1_pd((double)depth->a), b = _mm_set1_pd((double)depth->b), zero = _mm_setzero_pd();
         __m128d margin = _mm_set1_pd(4.0 * DBL_EPSILON), magnitude = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX));
         unsigned doubt = 0;
+#pragma GCC unroll 2
         for (int half = 0; half < 2; half++) {
             __m128d wd = _mm_cvtps_pd(half ? _mm_movehl_ps(w, w) : w);
             __m128d aw = _mm_mul_pd(a, wd), rest = _mm_sub_pd(wd, aw);

@@ -75,6 +75,21 @@ static SR_ALWAYS_INLINE sr_raster_rect scan_box(const sr_screen_vertex *const v[
     };
 }
 
+/* scan_box of a triangle whose box over the framebuffer holds one pixel
+ * centre (sr_raster_one_pixel): its corner from the smallest x and y,
+ * clamped to the framebuffer's, which a triangle in a guard band may
+ * pass (the box's far side is then the framebuffer's first pixel's). */
+static SR_ALWAYS_INLINE sr_raster_rect one_pixel_box(const sr_screen_vertex *const v[3], int bits)
+{
+    int64_t one = (int64_t)1 << bits, half = one / 2;
+    int64_t lo_x = v[0]->x < v[1]->x ? v[0]->x : v[1]->x, lo_y = v[0]->y < v[1]->y ? v[0]->y : v[1]->y;
+    lo_x = v[2]->x < lo_x ? v[2]->x : lo_x;
+    lo_y = v[2]->y < lo_y ? v[2]->y : lo_y;
+    int x = clamp_int(floor_shift(lo_x - half + one - 1, bits), 0, INT32_MAX),
+        y = clamp_int(floor_shift(lo_y - half + one - 1, bits), 0, INT32_MAX);
+    return (sr_raster_rect){ x, y, x + 1, y + 1 };
+}
+
 sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_raster_rect rect, int bits)
 {
     return scan_box(v, rect, bits);
@@ -730,10 +745,15 @@ uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpix
                              const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                              uint32_t triangle_id, bool *simd)
 {
-    sr_raster_rect box = scan_box(tri, rect, subpixel_bits);
-    if (mode_reads_varyings(mode) || box.x0 >= box.x1 || box.y0 >= box.y1)
-        return triangle_in_box(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, true, 1, false, simd);
+    if (mode_reads_varyings(mode))
+        return triangle_in_box(fb, scan_box(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri, area2,
+                               triangle_id, true, 1, false, simd);
+    /* The box is one pixel of the framebuffer: its corner is scan_box's,
+     * and a rect that misses it leaves scan_box's box empty. */
     *simd = false;
+    sr_raster_rect box = one_pixel_box(tri, subpixel_bits);
+    if (box.x0 < rect.x0 || box.x0 >= rect.x1 || box.y0 < rect.y0 || box.y0 >= rect.y1)
+        return 0;
     shade = sr_shade_context_of(shade, triangle_id);
     /* Hidden whole: a draw that cuts by texels marks no one-pixel
      * triangles in these modes (draw.c, subpixel_lanes). */
