@@ -153,6 +153,17 @@ static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, 
     }
 }
 
+/* The snapped point of each vertex of [first, first + n) for the slot
+ * lanes, its outcode folded in (subpixel_lanes.h). */
+static void note_snapped_points(const sr_draw_state *st, uint32_t first, uint32_t n, const unsigned char *outcodes,
+                                sr_snapped_point *points)
+{
+    for (uint32_t i = first; i < first + n; i++) {
+        const sr_screen_vertex *v = sr_screen_at(st, i);
+        points[i] = outcodes[i] ? SR_SNAPPED_OUTSIDE : sr_snapped_point_of(v->x, v->y);
+    }
+}
+
 /* The outcodes of vertices [block, block + n) from their codes, each
  * vertex outside a plane checked for non-finite varyings and, without
  * st->double_later, each inside mapped whole (vertex_chunk). */
@@ -239,6 +250,8 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
         }
         if (st->band_rows)
             note_row_bands(st, block, n, outcodes, bands);
+        if (st->slot_lanes)
+            note_snapped_points(st, block, n, outcodes, st->ws->snapped_points.data);
     }
 }
 
@@ -284,7 +297,8 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
 {
     uint32_t n = st->vertex_count;
     sr_workspace *ws = st->ws;
-    if (!sr_array_reserve(&ws->outcodes, (size_t)n + SR_OUTCODES_GATHER_SLACK, sizeof(unsigned char)) ||
+    if (!sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
+        (st->slot_lanes && !sr_array_reserve(&ws->snapped_points, n, sizeof(sr_snapped_point))) ||
         (st->band_rows && !sr_array_reserve(&ws->row_bands, n, sizeof(unsigned char))) ||
         (st->double_later && !sr_array_reserve(&ws->double_mapped, n, sizeof(atomic_uchar))) ||
         n > SIZE_MAX / st->screen_stride || !sr_array_reserve(&ws->screen, n * st->screen_stride, 1))
@@ -395,12 +409,12 @@ static sr_subpixel_rules subpixel_rules(const sr_draw_state *st)
 }
 
 /* The slot lanes (sr_subpixel_slot_group_avx2) gather a triangle list's
- * outcodes and screen vertices, at offsets of 32 bits: with the sub-pixel
- * lanes at the AVX2 level or above, where every vertex's offset fits. */
+ * snapped points by signed 32-bit indices: with the sub-pixel lanes at
+ * the AVX2 level or above, where every vertex's index fits. */
 static bool slot_lanes(const sr_draw_state *st)
 {
     return st->subpixel_lanes && st->subpixel.avx2 && st->desc->mesh->topology == SR_TRIANGLE_LIST &&
-           (uint64_t)st->vertex_count * st->screen_stride <= INT32_MAX;
+           st->vertex_count <= INT32_MAX;
 }
 
 /* A mesh outside the view: every assembled triangle is rejected, nothing

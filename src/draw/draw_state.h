@@ -140,7 +140,8 @@ typedef struct sr_band_costs {
 
 struct sr_workspace {
     sr_pool pool;
-    sr_array outcodes; /* unsigned char, and SR_OUTCODES_GATHER_SLACK bytes more for the slot lanes' reads */
+    sr_array outcodes; /* unsigned char */
+    sr_array snapped_points; /* sr_snapped_point of each vertex, when st->slot_lanes */
     sr_array screen;   /* screen vertices, sr_draw_state.screen_stride bytes apart, valid where the outcode is 0 */
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
     sr_array row_bands;    /* unsigned char: the band of rows of each vertex inside, when st->band_rows */
