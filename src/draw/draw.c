@@ -132,29 +132,10 @@ static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t 
     return sr_viewport_map_d(v, clip_d, st->shade.layout.count, &st->vp, out);
 }
 
-/* The band of rows of each vertex inside among vertices [first, first + n),
- * for the row-band path (row_bands.c): its snapped point's row, clamped to the
- * framebuffer. A pass of its own after the block is mapped: read in the
- * mapping loop, right after the mapping stored it, a vertex's row cost the
- * vertex phase more CPU than this pass does (docs/performance.md, "Row
- * bands" and "Tried and not kept"). */
-static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, const unsigned char *outcodes,
-                           unsigned char *bands)
-{
-    int shift = st->vp.subpixel_bits;
-    int64_t last_row = st->fb->height - 1;
-    unsigned band_rows = (unsigned)st->band_rows;
-    for (uint32_t i = first; i < first + n; i++) {
-        if (outcodes[i])
-            continue;
-        int64_t y = sr_screen_at(st, i)->y;
-        int64_t row = y < 0 ? 0 : y >> shift;
-        bands[i] = (unsigned char)((unsigned)(row < last_row ? row : last_row) / band_rows);
-    }
-}
-
-/* The snapped point of each vertex of [first, first + n) for the slot
- * lanes, its outcode folded in (subpixel_lanes.h). */
+/* The snapped point of each vertex of [first, first + n), its outcode
+ * folded in (subpixel_lanes.h), for the slot lanes and the row bands:
+ * 8 bytes a vertex that the verdicts gather by index, where the screen
+ * vertices are 32 or more. */
 static void note_snapped_points(const sr_draw_state *st, uint32_t first, uint32_t n, const unsigned char *outcodes,
                                 sr_snapped_point *points)
 {
@@ -220,7 +201,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
     const sr_draw_state *st = ph->st;
     const sr_mesh *mesh = st->desc->mesh;
     const sr_varying_layout *layout = &st->shade.layout;
-    unsigned char *outcodes = st->ws->outcodes.data, *bands = st->ws->row_bands.data;
+    unsigned char *outcodes = st->ws->outcodes.data;
     atomic_uchar *double_mapped = st->ws->double_mapped.data;
     bool double_later = st->double_later; /* a local: the loop's byte stores may alias *st */
     for (uint32_t block = first; block < end; block += VERTEX_BLOCK) {
@@ -248,9 +229,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
         } else {
             check_and_map(ph, block, n, verts, codes, outcodes, outcodes_and);
         }
-        if (st->band_rows)
-            note_row_bands(st, block, n, outcodes, bands);
-        if (st->slot_lanes)
+        if (st->snapped_points)
             note_snapped_points(st, block, n, outcodes, st->ws->snapped_points.data);
     }
 }
@@ -298,8 +277,7 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
     uint32_t n = st->vertex_count;
     sr_workspace *ws = st->ws;
     if (!sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
-        (st->slot_lanes && !sr_array_reserve(&ws->snapped_points, n, sizeof(sr_snapped_point))) ||
-        (st->band_rows && !sr_array_reserve(&ws->row_bands, n, sizeof(unsigned char))) ||
+        (st->snapped_points && !sr_array_reserve(&ws->snapped_points, n, sizeof(sr_snapped_point))) ||
         (st->double_later && !sr_array_reserve(&ws->double_mapped, n, sizeof(atomic_uchar))) ||
         n > SIZE_MAX / st->screen_stride || !sr_array_reserve(&ws->screen, n * st->screen_stride, 1))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
@@ -364,7 +342,7 @@ static bool direct_only(const sr_draw_state *st)
 }
 
 /* Before the vertex phase: the study's path, or the cost estimate's. The
- * row bands want the vertex phase to note each vertex's band of rows. */
+ * row bands want the vertex phase to note each vertex's snapped point. */
 static sr_draw_path planned_path(const sr_draw_state *st)
 {
     if (direct_only(st))
@@ -473,6 +451,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         st->threads = 1;
     sr_draw_path planned = planned_path(st);
     st->band_rows = planned == SR_PATH_ROWS ? sr_band_rows(st->fb->height) : 0;
+    st->snapped_points = st->slot_lanes || st->band_rows;
     /* The tiles set a triangle up in the phase that keeps it, while another
      * thread may be mapping its vertices' double half: they map all. */
     st->double_later = st->subpixel_lanes && planned != SR_PATH_TILES;
