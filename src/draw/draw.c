@@ -132,22 +132,10 @@ static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t 
     return sr_viewport_map_d(v, clip_d, st->shade.layout.count, &st->vp, out);
 }
 
-/* The snapped point of each vertex of [first, first + n), its outcode
- * folded in (subpixel_lanes.h), for the slot lanes and the row bands:
- * 8 bytes a vertex that the verdicts gather by index, where the screen
- * vertices are 32 or more. */
-static void note_snapped_points(const sr_draw_state *st, uint32_t first, uint32_t n, const unsigned char *outcodes,
-                                sr_snapped_point *points)
-{
-    for (uint32_t i = first; i < first + n; i++) {
-        const sr_screen_vertex *v = sr_screen_at(st, i);
-        points[i] = outcodes[i] ? SR_SNAPPED_OUTSIDE : sr_snapped_point_of(v->x, v->y);
-    }
-}
-
 /* The outcodes of vertices [block, block + n) from their codes, each
  * vertex outside a plane checked for non-finite varyings and, without
- * st->double_later, each inside mapped whole (vertex_chunk). */
+ * st->double_later, each inside mapped whole, its snapped point noted
+ * where the draw wants them (vertex_chunk). */
 static void check_and_map(const vertex_phase *ph, uint32_t block, uint32_t n, const sr_vertex_out *verts,
                           const unsigned char *codes, unsigned char *outcodes, unsigned *outcodes_and)
 {
@@ -155,6 +143,7 @@ static void check_and_map(const vertex_phase *ph, uint32_t block, uint32_t n, co
     const sr_mesh *mesh = st->desc->mesh;
     const sr_varying_layout *layout = &st->shade.layout;
     bool double_later = st->double_later;
+    sr_snapped_point *points = st->ws->snapped_points.data;
     int block_finite = -1; /* not yet known */
     for (uint32_t j = 0; j < n; j++) {
         uint32_t i = block + j;
@@ -165,8 +154,13 @@ static void check_and_map(const vertex_phase *ph, uint32_t block, uint32_t n, co
             if (!block_finite && !sr_vertex_varyings_finite(mesh, &ph->xf, layout, i))
                 code = SR_OUT_NONFINITE;
         }
-        if (code == 0 && !double_later && !map_inside(ph, &verts[j], i, sr_screen_at(st, i)))
-            code = SR_OUT_NONFINITE;
+        if (!double_later) {
+            sr_screen_vertex *v = sr_screen_at(st, i);
+            if (code == 0 && !map_inside(ph, &verts[j], i, v))
+                code = SR_OUT_NONFINITE;
+            if (st->snapped_points)
+                points[i] = code ? SR_SNAPPED_OUTSIDE : sr_snapped_point_of(v->x, v->y);
+        }
         outcodes[i] = (unsigned char)code;
         *outcodes_and &= code;
     }
@@ -191,11 +185,14 @@ static bool all_inside(const unsigned char *codes, uint32_t n)
  * where they are all plainly finite (01_vertex.h); inside, by the mapping,
  * whose varyings divided by w are then not finite, and which fails as well
  * where the divide does (w below 2^-128): the triangles that use such a
- * vertex are dropped and counted. For the row-band path, each vertex
- * inside gets its band of rows. With st->double_later a vertex inside gets
- * only the float half of its mapping here (06_viewport.h), which decides
- * its refusal: the verdicts map the double half of the vertices of the
- * triangles they keep (primitives.c). */
+ * vertex are dropped and counted. For the slot lanes and the row bands,
+ * each vertex gets its snapped point (stages.h). With st->double_later a
+ * vertex inside gets only the float half of its mapping here
+ * (06_viewport.h), which decides its refusal, and notes the snapped
+ * points: the verdicts map the double half of the vertices of the
+ * triangles they keep (primitives.c); the check after may only find a
+ * vertex outside a plane non-finite, whose point is the outside one
+ * already. */
 static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, unsigned *outcodes_and)
 {
     const sr_draw_state *st = ph->st;
@@ -219,7 +216,9 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
          * the sub-pixel lanes drop, which read only the snapped point. */
         if (double_later) {
             sr_viewport_map_float_block(verts, n, layout->count, &st->vp, st->shade.simd >= SR_SIMD_AVX2, codes,
-                                        sr_screen_at(st, block), st->screen_stride);
+                                        sr_screen_at(st, block), st->screen_stride,
+                                        st->snapped_points ? (sr_snapped_point *)st->ws->snapped_points.data + block
+                                                           : NULL);
             for (uint32_t j = 0; j < n; j++)
                 atomic_init(&double_mapped[block + j], 0);
         }
@@ -229,8 +228,6 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
         } else {
             check_and_map(ph, block, n, verts, codes, outcodes, outcodes_and);
         }
-        if (st->snapped_points)
-            note_snapped_points(st, block, n, outcodes, st->ws->snapped_points.data);
     }
 }
 

@@ -165,17 +165,19 @@ static sr_viewport_lanes lanes_of(const sr_viewport *vp, const screen_scale *sca
 }
 
 void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport *vp, bool avx2,
-                                 unsigned char *codes, void *out, size_t stride)
+                                 unsigned char *codes, void *out, size_t stride, sr_snapped_point *points)
 {
     screen_scale scale = screen_scale_of(vp);
     sr_viewport_lanes r = lanes_of(vp, &scale);
-    uint32_t k = avx2 ? sr_viewport_float_lanes_avx2(v, n, varyings, &r, codes, out, stride)
-                      : sr_viewport_float_lanes_sse2(v, n, varyings, &r, codes, out, stride);
+    uint32_t k = avx2 ? sr_viewport_float_lanes_avx2(v, n, varyings, &r, codes, out, stride, points)
+                      : sr_viewport_float_lanes_sse2(v, n, varyings, &r, codes, out, stride, points);
     for (; k < n; k++) {
         double sx, sy, z;
-        if (codes[k] == 0 &&
-            !map_float(&v[k], varyings, vp, &scale, (sr_screen_vertex *)((char *)out + k * stride), &sx, &sy, &z))
+        sr_screen_vertex *o = (sr_screen_vertex *)((char *)out + k * stride);
+        if (codes[k] == 0 && !map_float(&v[k], varyings, vp, &scale, o, &sx, &sy, &z))
             codes[k] = SR_OUT_NONFINITE;
+        if (points)
+            points[k] = codes[k] ? SR_SNAPPED_OUTSIDE : sr_snapped_point_of(o->x, o->y);
     }
 }
 

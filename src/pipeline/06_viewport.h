@@ -54,7 +54,9 @@ bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyi
  * is 0, into the screen vertex k·stride bytes into out: the snapped point,
  * 1/w and the varyings divided by w (x, y, inv_w, var_w), from the float
  * position; codes[k] becomes SR_OUT_NONFINITE exactly where
- * sr_viewport_map_d would refuse v[k]. The double half, of the n mesh
+ * sr_viewport_map_d would refuse v[k]; with points, every k's snapped
+ * point into points[k] (stages.h: SR_SNAPPED_OUTSIDE where codes[k] is
+ * not 0 at the end). The double half, of the n mesh
  * vertices index[k] whose float half is in the screen vertex
  * index[k]·stride bytes into screen: x_off, y_off and z from their clip
  * positions in double (sr_vertex_mesh_clip_d under xf). Each takes two
@@ -63,7 +65,7 @@ bool sr_viewport_map_d(const sr_vertex_out *v, const double clip_d[4], int varyi
  * writes a member the other writes, so one thread may read a vertex's
  * snapped point while another maps its double half. */
 void sr_viewport_map_float_block(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport *vp, bool avx2,
-                                 unsigned char *codes, void *out, size_t stride);
+                                 unsigned char *codes, void *out, size_t stride, sr_snapped_point *points);
 void sr_viewport_map_double_block(const sr_mesh *mesh, const sr_vertex_transform *xf, const uint32_t *index,
                                   uint32_t n, const sr_viewport *vp, bool avx2, void *screen, size_t stride);
 

@@ -10,9 +10,9 @@
 #include "06_viewport_lanes.h"
 
 uint32_t sr_viewport_float_lanes_avx2(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport_lanes *r,
-                                      unsigned char *codes, void *out, size_t stride)
+                                      unsigned char *codes, void *out, size_t stride, sr_snapped_point *points)
 {
-    return sr_viewport_float_lanes_sse2(v, n, varyings, r, codes, out, stride);
+    return sr_viewport_float_lanes_sse2(v, n, varyings, r, codes, out, stride, points);
 }
 
 uint32_t sr_viewport_double_lanes_avx2(const float (*positions)[3], const double m[4][4], const uint32_t *index,

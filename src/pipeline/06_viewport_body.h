@@ -113,11 +113,32 @@ static SR_ALWAYS_INLINE void store_points(ilanes sx, ilanes sy, char *out, size_
 #endif
 }
 
+/* The snapped points of the lanes into points[0 .. VIEWPORT_LANES):
+ * where `kept` is all ones, x low and y high; elsewhere SR_SNAPPED_OUTSIDE. */
+static SR_ALWAYS_INLINE void store_snapped(ilanes sx, ilanes sy, ilanes kept, sr_snapped_point *points)
+{
+    typedef uint64_t ulanes __attribute__((vector_size(VIEWPORT_LANES * sizeof(uint64_t))));
+    ilanes packed = (ilanes)(((ulanes)sx & 0xffffffffu) | ((ulanes)sy << 32));
+    ilanes outside = (ilanes){ 0 } + (int64_t)SR_SNAPPED_OUTSIDE;
+    ilanes p = (packed & kept) | (outside & ~kept);
+    memcpy(points, &p, sizeof p);
+}
+
+/* All ones in lane k where bit k of bits is set. */
+static SR_ALWAYS_INLINE ilanes lanes_of_bits(unsigned bits)
+{
+    ilanes m = { 0 };
+    for (int k = 0; k < VIEWPORT_LANES; k++)
+        m[k] = -(int64_t)((bits >> k) & 1);
+    return m;
+}
+
 /* The float half of v[0 .. VIEWPORT_LANES) into the screen vertices stride
  * bytes apart from out: the mapped lanes' bits. A refused lane's screen
- * vertex is written all the same; nothing reads it. */
+ * vertex is written all the same; nothing reads it. With points, the
+ * snapped points of the lanes in `inside` that map (store_snapped). */
 static SR_ALWAYS_INLINE unsigned map_group(const sr_vertex_out *v, int varyings, const sr_viewport_lanes *r,
-                                           char *out, size_t stride)
+                                           char *out, size_t stride, unsigned inside, sr_snapped_point *points)
 {
     dlanes x, y, z, w;
     load_positions(v, &x, &y, &z, &w);
@@ -127,8 +148,9 @@ static SR_ALWAYS_INLINE unsigned map_group(const sr_vertex_out *v, int varyings,
     y *= inv_w;
     z = r->depth_on ? r->a + b_over_w : z * inv_w;
     ok &= within(x, r->xy_lo, r->hi) & within(y, r->xy_lo, r->hi) & within(z, r->z_lo, r->hi);
-    store_points(round_to_integers((r->guard * x + 1.0) * r->x_units),
-                 round_to_integers((1.0 - r->guard * y) * r->y_units), out, stride);
+    ilanes sx = round_to_integers((r->guard * x + 1.0) * r->x_units),
+           sy = round_to_integers((1.0 - r->guard * y) * r->y_units);
+    store_points(sx, sy, out, stride);
     flanes inv_w_f = __builtin_convertvector(inv_w, flanes);
     fmask finite = finite_f(inv_w_f);
 #pragma GCC unroll 4
@@ -145,20 +167,27 @@ static SR_ALWAYS_INLINE unsigned map_group(const sr_vertex_out *v, int varyings,
         for (int k = 0; k < VIEWPORT_LANES; k++)
             ((sr_screen_vertex *)(out + (size_t)k * stride))->var_w[i] = var_w[k];
     }
-    return lane_bits(ok & __builtin_convertvector(finite, ilanes));
+    ok &= __builtin_convertvector(finite, ilanes);
+    if (points) /* most groups are inside whole */
+        store_snapped(sx, sy, inside == (1u << VIEWPORT_LANES) - 1 ? ok : ok & lanes_of_bits(inside), points);
+    return lane_bits(ok);
 }
 
 uint32_t VIEWPORT_FLOAT_LANES(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport_lanes *r,
-                              unsigned char *codes, void *out, size_t stride)
+                              unsigned char *codes, void *out, size_t stride, sr_snapped_point *points)
 {
     uint32_t k = 0;
     for (; n - k >= VIEWPORT_LANES; k += VIEWPORT_LANES) {
         unsigned inside = 0;
         for (uint32_t j = 0; j < VIEWPORT_LANES; j++)
             inside |= (unsigned)(codes[k + j] == 0) << j;
-        if (!inside)
+        if (!inside) {
+            for (uint32_t j = 0; points && j < VIEWPORT_LANES; j++)
+                points[k + j] = SR_SNAPPED_OUTSIDE;
             continue;
-        unsigned refused = inside & ~map_group(&v[k], varyings, r, (char *)out + k * stride, stride);
+        }
+        unsigned refused = inside & ~map_group(&v[k], varyings, r, (char *)out + k * stride, stride, inside,
+                                               points ? points + k : NULL);
         for (; refused; refused &= refused - 1)
             codes[k + (uint32_t)__builtin_ctz(refused)] = SR_OUT_NONFINITE;
     }

@@ -26,12 +26,14 @@ typedef struct sr_viewport_lanes {
 /* The float half of each v[k] whose codes[k] is 0, for k below n rounded
  * down to whole groups of lanes (returned): as 06_viewport.c's map_float,
  * lane by lane, into the screen vertex k·stride bytes into out, codes[k]
- * made SR_OUT_NONFINITE where refused. Two lanes of SSE2, four of AVX2
- * (only where the draw's SIMD level has it); the same bits. */
+ * made SR_OUT_NONFINITE where refused; and, with points, each k's snapped
+ * point there (SR_SNAPPED_OUTSIDE where codes[k] ends up not 0). Two lanes
+ * of SSE2, four of AVX2 (only where the draw's SIMD level has it); the
+ * same bits. */
 uint32_t sr_viewport_float_lanes_sse2(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport_lanes *r,
-                                      unsigned char *codes, void *out, size_t stride);
+                                      unsigned char *codes, void *out, size_t stride, sr_snapped_point *points);
 uint32_t sr_viewport_float_lanes_avx2(const sr_vertex_out *v, uint32_t n, int varyings, const sr_viewport_lanes *r,
-                                      unsigned char *codes, void *out, size_t stride);
+                                      unsigned char *codes, void *out, size_t stride, sr_snapped_point *points);
 
 /* The double half of the mesh vertices index[k], for k below n rounded
  * down to whole groups of lanes (returned): their positions' clip

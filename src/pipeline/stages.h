@@ -24,6 +24,20 @@
 #define SR_ALWAYS_INLINE inline
 #endif
 
+/* A vertex's snapped point as the viewport stage notes it for the
+ * sub-pixel slot lanes and the row bands, one 8-byte load a corner: for a
+ * vertex inside every plane (outcode 0), x in the low 32 bits and y in
+ * the high 32 (each below 2^30 there, so exact); for any other,
+ * SR_SNAPPED_OUTSIDE, whose x (INT32_MIN) no point inside holds. The
+ * corner's outcode rides in its point: the lanes read no outcode. */
+typedef uint64_t sr_snapped_point;
+#define SR_SNAPPED_OUTSIDE ((sr_snapped_point)0x80000000u)
+
+static inline sr_snapped_point sr_snapped_point_of(int64_t x, int64_t y)
+{
+    return (uint32_t)x | (uint64_t)(uint32_t)y << 32;
+}
+
 /* Clip-space position (x, y, z, w) then the varyings, in one float array so
  * the clipper interpolates "position and every varying" in one loop. */
 enum { SR_X = 0, SR_Y, SR_Z, SR_W, SR_VARYINGS_AT };

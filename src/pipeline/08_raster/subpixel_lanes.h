@@ -7,6 +7,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "pipeline/stages.h"
+
 /* Triangles per call: bits of a 64-bit mask. */
 #define SR_SUBPIXEL_BATCH 64
 /* The finest snap the lanes hold exactly (subpixel.h); finer draws skip them. */
@@ -36,19 +38,6 @@ typedef struct sr_subpixel_rules {
 typedef struct sr_subpixel_verdict {
     uint64_t culled, drawn, one_pixel;
 } sr_subpixel_verdict;
-
-/* A vertex's snapped point as the slot lanes read it, one 8-byte load a
- * corner: for a vertex inside every plane (outcode 0), x in the low 32
- * bits and y in the high 32 (each below 2^30 there, so exact); for any
- * other, SR_SNAPPED_OUTSIDE, whose x (INT32_MIN) no point inside holds.
- * The corner's outcode rides in its point: a group reads no outcode. */
-typedef uint64_t sr_snapped_point;
-#define SR_SNAPPED_OUTSIDE ((sr_snapped_point)0x80000000u)
-
-static inline sr_snapped_point sr_snapped_point_of(int64_t x, int64_t y)
-{
-    return (uint32_t)x | (uint64_t)(uint32_t)y << 32;
-}
 
 /* Eight slots of a triangle list decided at once from the draw's own
  * arrays (sr_subpixel_slot_group_avx2): plain when each slot's triangle
