@@ -58,10 +58,9 @@ setup(
     ext_modules=[
         Extension(
             "softrast._softrast",
-            sources=["src/module.c", "src/mesh.c", "src/renderer.c", "src/mesh_origin.c", "src/vertex_colours.c",
-                     "src/material_textures.c"],
+            sources=["src/module.c", "src/mesh.c", "src/renderer.c", "src/mesh_origin.c", "src/vertex_colours.c"],
             depends=["src/softrast_py.h"] + [os.path.join(ROOT, a) for a in ARCHIVES],
-            # src/ for io/mesh_origin.c, io/vertex_colours.c and io/material_textures.c (python/src/'s)
+            # src/ for io/mesh_origin.c and io/vertex_colours.c (python/src/'s)
             include_dirs=[os.path.join(ROOT, "include"), os.path.join(ROOT, "src"), numpy.get_include()],
             extra_compile_args=extra_compile_args,
             extra_objects=[os.path.join(ROOT, a) for a in ARCHIVES],

@@ -13,7 +13,7 @@
 #include "pipeline/07_cull.h"
 #include "draw/draw_state.h"
 #include "pipeline/08_raster/kernels.h"
-#include "pipeline/08_raster/raster_setup.h"
+#include "pipeline/08_raster/triangle_setup.h"
 #include "softrast_private.h"
 #include "scene_helpers.h"
 
@@ -276,7 +276,7 @@ Test(simd, bilinear_seams_and_narrow_textures_match_the_scalar_loop)
 
 /* Narrow triangles, 1 to about 24 pixels wide: the scalar loop tests each
  * pixel of a box narrower than its span threshold, the kernels take boxes
- * from SIMD_MIN_WIDTH up (raster.c), so both thresholds are crossed, and
+ * from SR_SIMD_MIN_WIDTH up (triangle_setup.h), so both thresholds are crossed, and
  * the vector loops defer the shading of tiny boxes to the tiny queue in
  * every mode with varyings (tiny_queue.h, sr_tiny_queue). */
 Test(simd, narrow_triangles_match_the_scalar_loop)

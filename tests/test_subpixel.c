@@ -9,11 +9,12 @@
 
 #include "pipeline/07_cull.h"
 #include "pipeline/08_raster/raster.h"
+#include "pipeline/08_raster/triangle_setup.h"
 #include "pipeline/08_raster/subpixel.h"
 #include "softrast_private.h"
 #include "test_rng.h"
 
-/* What the one-at-a-time path does with a triangle, from raster.c's own
+/* What the one-at-a-time path does with a triangle, from the set-up's own
  * functions: culled, or kept and covering no pixel centre of the
  * framebuffer (its box empty, or tiny with an empty mask), or neither; and
  * how many pixel centres its box holds. */
@@ -341,7 +342,7 @@ Test(subpixel, dense_random_meshes_draw_alike_with_and_without_the_lanes, .timeo
 /* Small triangles across the framebuffer's left and top sides, inside
  * every plane of a guard band: a box the framebuffer cuts down to its
  * first column or row holds one pixel centre there, and the lanes' one-pixel
- * draw must find that pixel as scan_box does. */
+ * draw must find that pixel as sr_raster_scan_box_of does. */
 Test(subpixel, one_pixel_boxes_cut_by_the_framebuffers_sides_draw_alike)
 {
     enum { SIDE = 8, TRIS = 400, GUARD = 2 };

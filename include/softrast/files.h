@@ -41,8 +41,9 @@
  * one a drawn mesh uses; texture may be NULL to skip it, and is left empty
  * otherwise) and its materials point at *texture (keep it where it is
  * while the mesh is drawn); one beside the file is the material's
- * texture_path for sr_texture_load (found as for an OBJ's map_Kd, below),
- * and mesh->texture_path names the first of them. Points, lines, skinning,
+ * texture_path (found as for an OBJ's map_Kd, below), which
+ * sr_material_textures_load loads, and mesh->texture_path names the first
+ * of them. Points, lines, skinning,
  * animation, lights and cameras are ignored. A mesh that a mirroring node
  * transform places (negative determinant) has its winding reversed, so its
  * outward faces stay front faces. A file over SR_MAX_MESH_VERTICES vertices,
@@ -125,6 +126,27 @@ SR_API bool sr_obj_load(sr_mesh *mesh, const char *path, sr_error *err);
  * sr_texture_free. */
 SR_API bool sr_texture_load(sr_texture *tex, const char *path, sr_error *err);
 SR_API void sr_texture_free(sr_texture *tex);
+
+/* The textures of a mesh's materials, as the softrast program and Python's
+ * Mesh.load load them: sr_material_textures_load loads the file of every
+ * material with a texture_path, each distinct path once, into out (emptied
+ * first) and points those materials at it (sr_material.texture). A file
+ * that does not load is dropped from its materials (their texture_path
+ * freed and NULL, so a draw does not give them desc's texture, which an
+ * embedded one may be: they draw their base colour), and warn, if not
+ * NULL, is called once for it with sr_texture_load's line. Keep out, and
+ * the embedded texture sr_mesh_load gave, while the mesh is drawn;
+ * sr_material_textures_free frees the textures (free the mesh too, or
+ * load again) and empties out. False only when out of memory (out is
+ * left empty). */
+typedef struct sr_material_textures {
+    sr_texture *textures;
+    uint32_t count;
+} sr_material_textures;
+typedef void sr_material_texture_warning(void *context, const sr_error *why);
+SR_API bool sr_material_textures_load(sr_mesh *mesh, sr_material_textures *out, sr_material_texture_warning *warn,
+                                      void *context, sr_error *err);
+SR_API void sr_material_textures_free(sr_material_textures *t);
 
 /* ---- images -------------------------------------------------------------
  *

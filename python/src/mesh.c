@@ -287,7 +287,8 @@ static PyObject *mesh_load(PyObject *cls, PyObject *args)
     bool ok, textures = true;
     Py_BEGIN_ALLOW_THREADS
     ok = sr_mesh_load(&self->mesh, &self->texture, PyBytes_AS_STRING(path), &err);
-    textures = !ok || sr_material_textures_load(&self->mesh, &self->material_textures, note_untextured, &missing);
+    textures =
+        !ok || sr_material_textures_load(&self->mesh, &self->material_textures, note_untextured, &missing, &err);
     Py_END_ALLOW_THREADS
     if (!ok)
         sr_py_raise(PyExc_OSError, &err);

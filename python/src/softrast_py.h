@@ -16,8 +16,7 @@
 
 #include <stdbool.h>
 
-#include "io/material_textures.h" /* the command line's loading of each material's texture */
-#include "softrast/softrast.h"
+#include "softrast/files.h"
 
 /* softrast.Mesh: an sr_mesh that owns its arrays, and its texture. */
 typedef struct sr_py_mesh {

@@ -166,8 +166,8 @@ bool sr_scene_load(const sr_scene_setup *s, bool everything, sr_scene *scene, sr
         drop_materials(&scene->mesh);
     bool materials = scene->mesh.material_count > 0;
     if (wants_texture && materials &&
-        !sr_material_textures_load(&scene->mesh, &scene->material_textures, warn_untextured, NULL))
-        return sr_error_set(err, "out of memory for %u materials' textures", scene->mesh.material_count);
+        !sr_material_textures_load(&scene->mesh, &scene->material_textures, warn_untextured, NULL, err))
+        return false;
     if (wants_texture && !materials && !scene->texture.texels && !load_texture(s, scene, err))
         return false;
     bool wants_normals = everything || shade_uses_normals((sr_shade)s->shade);

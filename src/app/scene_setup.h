@@ -4,7 +4,6 @@
 #define SOFTRAST_APP_SCENE_SETUP_H
 
 #include "io/load_report.h"
-#include "io/material_textures.h"
 #include "options.h"
 #include "softrast_private.h"
 

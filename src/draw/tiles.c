@@ -9,6 +9,7 @@
 #include "draw_state.h"
 #include "pipeline/07_cull.h"
 #include "pipeline/08_raster/raster.h"
+#include "pipeline/08_raster/triangle_setup.h"
 #include "pipeline/08_raster/tiny_queue.h"
 #include "target/framebuffer.h"
 

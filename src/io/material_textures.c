@@ -1,11 +1,11 @@
-/* A mesh's materials' texture files, each loaded once (material_textures.h).
- * The materials are sorted by path, so a thousand naming one file cost a
- * sort, not a thousand loads or searches. It calls no hidden function of
- * the library, so Python's extension compiles it in as it is (python/src/). */
+/* A mesh's materials' texture files, each loaded once
+ * (sr_material_textures_load in softrast/files.h). The materials are
+ * sorted by path, so a thousand naming one file cost a sort, not a
+ * thousand loads or searches. */
 #include <stdlib.h>
 #include <string.h>
 
-#include "material_textures.h"
+#include "core/error.h"
 #include "softrast/files.h"
 
 typedef struct by_path {
@@ -22,7 +22,7 @@ static int path_order(const void *a, const void *b)
 }
 
 bool sr_material_textures_load(sr_mesh *mesh, sr_material_textures *out, sr_material_texture_warning *warn,
-                               void *context)
+                               void *context, sr_error *err)
 {
     sr_material_textures_free(out);
     uint32_t n = 0;
@@ -36,7 +36,7 @@ bool sr_material_textures_load(sr_mesh *mesh, sr_material_textures *out, sr_mate
         free(order);
         free(out->textures);
         out->textures = NULL;
-        return false;
+        return sr_error_set(err, "out of memory for %u materials' textures", mesh->material_count);
     }
     for (uint32_t i = 0, k = 0; i < mesh->material_count; i++)
         if (mesh->materials[i].texture_path)

@@ -1,183 +1,22 @@
+/* The scalar per-pixel loop, the one-pixel loop and the dispatch of a set-up
+ * triangle to them, the SIMD kernels or the tiny queue (raster.h); the
+ * set-up itself is triangle_setup.h's, inlined into each entry point. */
 #include <stdlib.h>
 #include <string.h>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "pipeline/11_merge.h"
 #include "raster.h"
 #include "simd_select.h"
 #include "tiny_queue.h"
-
-typedef sr_edge edge;
-
-static edge edge_make(const sr_screen_vertex *p, const sr_screen_vertex *q)
-{
-    int64_t dx = q->x - p->x, dy = q->y - p->y;
-    bool top = dy == 0 && dx > 0; /* horizontal, interior below (y down) */
-    bool left = dy < 0;           /* going up on screen: interior to its right */
-    return (edge){ .a = -dy, .b = dx, .c = dy * p->x - dx * p->y, .bias = (top || left) ? 0 : 1 };
-}
-
-/* Orders the vertices clockwise (area2 > 0) so one inside test fits both windings. */
-static void order_clockwise(const sr_screen_vertex *const in[3], int64_t area2, const sr_screen_vertex *out[3])
-{
-    out[0] = in[0];
-    out[1] = in[area2 > 0 ? 1 : 2];
-    out[2] = in[area2 > 0 ? 2 : 1];
-}
-
-/* Edge k is the one opposite vertex k, so E_k / area2 is barycentric λ_k. */
-static SR_ALWAYS_INLINE void edges_make(const sr_screen_vertex *const v[3], edge e[3])
-{
-    e[0] = edge_make(v[1], v[2]);
-    e[1] = edge_make(v[2], v[0]);
-    e[2] = edge_make(v[0], v[1]);
-}
+#include "triangle_setup.h"
 
 typedef sr_tri_setup setup;
-
-/* floor(a / 2^bits): an arithmetic shift, which gcc and clang define for
- * negative a (vertices may lie a hair left of or above the framebuffer). */
-static int64_t floor_shift(int64_t a, int bits)
-{
-    return a >> bits;
-}
-
-static int clamp_int(int64_t v, int lo, int hi)
-{
-    return (int)(v < lo ? lo : v > hi ? hi : v);
-}
-
-sr_raster_rect sr_raster_scan_box(const sr_screen_vertex tri[3], sr_raster_rect rect, int subpixel_bits)
-{
-    return sr_raster_scan_box_of((const sr_screen_vertex *const[3]){ &tri[0], &tri[1], &tri[2] }, rect,
-                                 subpixel_bits);
-}
-
-/* Inlined into the one-thread path with the set-up (below), so the box
- * stays in registers. */
-static SR_ALWAYS_INLINE sr_raster_rect scan_box(const sr_screen_vertex *const v[3], sr_raster_rect rect, int bits)
-{
-    int64_t one = (int64_t)1 << bits, half = one / 2;
-    int64_t lo_x = v[0]->x, hi_x = v[0]->x, lo_y = v[0]->y, hi_y = v[0]->y;
-    for (int k = 1; k < 3; k++) {
-        lo_x = v[k]->x < lo_x ? v[k]->x : lo_x;
-        hi_x = v[k]->x > hi_x ? v[k]->x : hi_x;
-        lo_y = v[k]->y < lo_y ? v[k]->y : lo_y;
-        hi_y = v[k]->y > hi_y ? v[k]->y : hi_y;
-    }
-    return (sr_raster_rect){
-        .x0 = clamp_int(floor_shift(lo_x - half + one - 1, bits), rect.x0, rect.x1),
-        .x1 = clamp_int(floor_shift(hi_x - half, bits) + 1, rect.x0, rect.x1),
-        .y0 = clamp_int(floor_shift(lo_y - half + one - 1, bits), rect.y0, rect.y1),
-        .y1 = clamp_int(floor_shift(hi_y - half, bits) + 1, rect.y0, rect.y1),
-    };
-}
-
-/* scan_box of a triangle whose box over the framebuffer holds one pixel
- * centre (sr_raster_one_pixel): its corner from the smallest x and y,
- * clamped to the framebuffer's, which a triangle in a guard band may
- * pass (the box's far side is then the framebuffer's first pixel's). */
-static SR_ALWAYS_INLINE sr_raster_rect one_pixel_box(const sr_screen_vertex *const v[3], int bits)
-{
-    int64_t one = (int64_t)1 << bits, half = one / 2;
-    int64_t lo_x = v[0]->x < v[1]->x ? v[0]->x : v[1]->x, lo_y = v[0]->y < v[1]->y ? v[0]->y : v[1]->y;
-    lo_x = v[2]->x < lo_x ? v[2]->x : lo_x;
-    lo_y = v[2]->y < lo_y ? v[2]->y : lo_y;
-    int x = clamp_int(floor_shift(lo_x - half + one - 1, bits), 0, INT32_MAX),
-        y = clamp_int(floor_shift(lo_y - half + one - 1, bits), 0, INT32_MAX);
-    return (sr_raster_rect){ x, y, x + 1, y + 1 };
-}
-
-sr_raster_rect sr_raster_scan_box_of(const sr_screen_vertex *const v[3], sr_raster_rect rect, int bits)
-{
-    return scan_box(v, rect, bits);
-}
-
-/* The vertices relative to vertex 0's snapped point, in subpixel units,
- * before snapping (unsnapped) or after: the integer differences are exact in
- * double, the offsets add their 24 bits. Inlined, so each call is
- * specialised on `unsnapped` and pays neither a call nor a branch on it:
- * it runs for every triangle. */
-static SR_ALWAYS_INLINE void plane_points(const sr_screen_vertex *const v[3], bool unsnapped, double p[3][2])
-{
-    for (int k = 0; k < 3; k++) {
-        p[k][0] = (double)(v[k]->x - v[0]->x) + (unsnapped ? (double)v[k]->x_off : 0.0);
-        p[k][1] = (double)(v[k]->y - v[0]->y) + (unsnapped ? (double)v[k]->y_off : 0.0);
-    }
-}
-
-/* The depth plane through the unsnapped vertices, in double, and 1/area2
- * for the barycentrics: the z gradient solves a 2×2 system whose
- * determinant is the unsnapped area2 (one division gives both
- * reciprocals). Where
- * snapping turned a sliver over or grew it more than SLIVER_GROWTH times,
- * the snapped vertices give the plane, with their exact integer area2 >= 1:
- * the gradient stays far inside float range (|z| <= 1, positions below 2^35
- * subpixels), so depth stays finite. */
-#define SLIVER_GROWTH 65536.0
-static SR_ALWAYS_INLINE void depth_plane(const sr_screen_vertex *const v[3], int64_t area2, setup *s)
-{
-    double p[3][2];
-    plane_points(v, true, p);
-    double x1 = p[1][0] - p[0][0], y1 = p[1][1] - p[0][1], x2 = p[2][0] - p[0][0], y2 = p[2][1] - p[0][1];
-    double det = x1 * y2 - x2 * y1;
-    if (!(det * SLIVER_GROWTH >= (double)area2)) {
-        plane_points(v, false, p);
-        x1 = p[1][0], y1 = p[1][1], x2 = p[2][0], y2 = p[2][1];
-        det = (double)area2;
-    }
-    double dz1 = (double)v[1]->z - (double)v[0]->z, dz2 = (double)v[2]->z - (double)v[0]->z;
-    double inv_both = 1.0 / (det * (double)area2), inv_det = (double)area2 * inv_both;
-    s->inv_area2 = (float)(det * inv_both);
-    double gx = (dz1 * y2 - dz2 * y1) * inv_det, gy = (dz2 * x1 - dz1 * x2) * inv_det;
-    s->ref_x = floor_shift(v[0]->x, s->bits);
-    s->ref_y = floor_shift(v[0]->y, s->bits);
-    int64_t one = (int64_t)1 << s->bits; /* a multiply below: ref_x may be negative */
-    double ox = (double)(s->ref_x * one + one / 2 - v[0]->x) - p[0][0],
-           oy = (double)(s->ref_y * one + one / 2 - v[0]->y) - p[0][1];
-    s->z_ref = (double)v[0]->z + gx * ox + gy * oy;
-    s->dz_row = gy * (double)one;
-    s->dz_pixel = (float)(gx * (double)one);
-}
-
-/* What coverage needs: the edges within the scan box. */
-static SR_ALWAYS_INLINE void setup_make(const sr_screen_vertex *const v[3], sr_raster_rect box, int bits, setup *s)
-{
-    s->bits = bits;
-    s->box = box;
-    edges_make(v, s->e);
-    for (int k = 0; k < 3; k++)
-        s->step_x[k] = s->e[k].a * ((int64_t)1 << bits); /* a multiply: a may be negative */
-}
-
-/* What shading needs, for a box that may draw: depth, 1/w, the varyings. */
-static SR_ALWAYS_INLINE void interpolants_make(const sr_screen_vertex *const v[3], int64_t area2, int varyings,
-                                               setup *s)
-{
-    depth_plane(v, area2, s);
-    s->iw0 = v[0]->inv_w;
-    s->diw1 = v[1]->inv_w - v[0]->inv_w;
-    s->diw2 = v[2]->inv_w - v[0]->inv_w;
-    s->varyings = varyings;
-    for (int k = 0; k < varyings; k++) {
-        s->var0[k] = v[0]->var_w[k];
-        s->dvar1[k] = v[1]->var_w[k] - v[0]->var_w[k];
-        s->dvar2[k] = v[2]->var_w[k] - v[0]->var_w[k];
-    }
-}
 
 static inline void varyings_at(const setup *s, sr_interp interp, float l1, float l2, float *var)
 {
     float w = sr_interp_divides(interp) ? 1.0f / (s->iw0 + l1 * s->diw1 + l2 * s->diw2) : s->w;
     for (int k = 0; k < s->varyings; k++)
         var[k] = (s->var0[k] + l1 * s->dvar1[k] + l2 * s->dvar2[k]) * w;
-}
-
-static inline bool mode_reads_varyings(sr_shade mode)
-{
-    return mode != SR_SHADE_ID && mode != SR_SHADE_DEPTH && mode != SR_RASTER_COUNT_HITS;
 }
 
 /* The shaded colour of a fragment at var. */
@@ -206,7 +45,7 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool gre
     if (!sr_depth_passes(z, fb->depth[at], greater))
         return 0;
     float var[SR_MAX_VARYINGS];
-    if (mode_reads_varyings(mode) || cut) {
+    if (sr_mode_reads_varyings(mode) || cut) {
         varyings_at(s, interp, (float)e1 * s->inv_area2, (float)e2 * s->inv_area2, var);
         /* A MASK material's fragment under its alpha floor writes nothing. */
         if (shade->alpha_min && !sr_shade_alpha_passes(shade, var))
@@ -216,7 +55,7 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool gre
         bool coloured = mode != SR_SHADE_DEPTH;
         sr_merge_fragment(fb, shade, at, z, with_ids, id, coloured,
                           coloured ? fragment_colour(s, mode, interp, shade, var, id) : 0,
-                          coloured && mode_reads_varyings(mode) ? sr_merge_alpha(shade, var) : shade->alpha_scale);
+                          coloured && sr_mode_reads_varyings(mode) ? sr_merge_alpha(shade, var) : shade->alpha_scale);
         return 1;
     }
     fb->depth[at] = z;
@@ -247,8 +86,8 @@ tiny_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool grea
     for (uint64_t m = s->tiny; m; m &= m - 1) {
         sr_tiny_pixel p = sr_tiny_pixel_of(s, fb, __builtin_ctzll(m));
         /* The edges only for the varyings: a mode without leaves them unset
-         * when the mask came from binning (setup_in). */
-        bool edges = mode_reads_varyings(mode) || cut;
+         * when the mask came from binning (sr_setup_triangle). */
+        bool edges = sr_mode_reads_varyings(mode) || cut;
         fragments += fill_pixel(s, fb, mode, cut, greater, with_ids, interp, shade, id, p.at, p.z_row, p.k,
                                 edges ? sr_edge_at(&s->e[1], p.px, p.py) : 0,
                                 edges ? sr_edge_at(&s->e[2], p.px, p.py) : 0);
@@ -283,12 +122,6 @@ raster_loop(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool gr
  * the scan box and up to one group of lanes past its right side. An edge
  * function is linear, so its largest magnitude is at a corner. */
 #define SIMD_EDGE_LIMIT ((int64_t)1 << 52)
-/* Narrower boxes of at most SR_TINY_SIDE rows are tiny (box_is_tiny): a
- * kernel's per-row set-up costs more than it saves on a few pixels. A
- * narrower box of more rows, a sliver seen along its length, takes a
- * kernel all the same, which draws such boxes for less than the scalar
- * loop did (docs/performance.md, "The per-pixel loops"). */
-#define SIMD_MIN_WIDTH 8
 
 static bool edges_fit_double(const setup *s)
 {
@@ -299,92 +132,6 @@ static bool edges_fit_double(const setup *s)
             if (llabs(sr_edge_at(&s->e[k], xs[c & 1], ys[c >> 1])) >= SIMD_EDGE_LIMIT)
                 return false;
     return true;
-}
-
-/* Narrower than the SIMD kernels take, and at most SR_TINY_SIDE rows: of
- * the limits tried on dense meshes (boxes of at most 3 × 3, 4 × 4 and
- * 7 × 4), this one makes the tiny test and the loops run the fewest
- * instructions. */
-static bool box_is_tiny(sr_raster_rect b)
-{
-    return b.x1 - b.x0 < SIMD_MIN_WIDTH && b.y1 - b.y0 <= SR_TINY_SIDE;
-}
-_Static_assert(SIMD_MIN_WIDTH <= SR_TINY_SIDE + 1, "a tiny box's row fits its row of the mask");
-
-/* The covered pixel centres of a tiny box (sr_tri_setup.tiny), each tested
- * as the row loop tests it, E >= bias, here as E − bias >= 0 for the three
- * edges at once: the sign of their OR. The values are E − bias at pixel
- * centres of the box, stepped by the exact integer steps from an exact
- * corner value, so the same integers the per-pixel test sees (minus 0 or 1). */
-static SR_ALWAYS_INLINE uint64_t tiny_coverage(const setup *s)
-{
-    int64_t px = sr_subpixel_centre(s->box.x0, s->bits), py = sr_subpixel_centre(s->box.y0, s->bits);
-    int64_t one = (int64_t)1 << s->bits; /* a multiply below: b may be negative */
-    /* Three scalars, not arrays: gcc vectorised the arrays' row step into
-     * 16-byte loads of values just stored 8 bytes at a time, which the CPU
-     * cannot forward (a stall per row in perf). */
-    int64_t r0 = sr_edge_at(&s->e[0], px, py) - s->e[0].bias, r1 = sr_edge_at(&s->e[1], px, py) - s->e[1].bias,
-            r2 = sr_edge_at(&s->e[2], px, py) - s->e[2].bias;
-    uint64_t mask = 0;
-#if defined(__SSE2__)
-    /* Two pixels of a row at a time, each lane the sum the loop below
-     * makes; in a box of odd width, the lane past its last column is cut
-     * off (its sum, a vector add, may wrap but is never undefined).
-     * docs/performance.md, "From slot to set-up". */
-    int width = s->box.x1 - s->box.x0;
-    uint64_t row_cut = ((uint64_t)1 << width) - 1;
-    __m128i pair0 = _mm_set1_epi64x(s->step_x[0]), pair1 = _mm_set1_epi64x(s->step_x[1]),
-            pair2 = _mm_set1_epi64x(s->step_x[2]);
-    __m128i row0 = _mm_add_epi64(_mm_set1_epi64x(r0), _mm_unpacklo_epi64(_mm_setzero_si128(), pair0)),
-            row1 = _mm_add_epi64(_mm_set1_epi64x(r1), _mm_unpacklo_epi64(_mm_setzero_si128(), pair1)),
-            row2 = _mm_add_epi64(_mm_set1_epi64x(r2), _mm_unpacklo_epi64(_mm_setzero_si128(), pair2));
-    pair0 = _mm_add_epi64(pair0, pair0), pair1 = _mm_add_epi64(pair1, pair1), pair2 = _mm_add_epi64(pair2, pair2);
-    __m128i down0 = _mm_set1_epi64x(s->e[0].b * one), down1 = _mm_set1_epi64x(s->e[1].b * one),
-            down2 = _mm_set1_epi64x(s->e[2].b * one);
-    for (int j = 0; j < s->box.y1 - s->box.y0; j++) {
-        __m128i e0 = row0, e1 = row1, e2 = row2;
-        unsigned outside = 0; /* a bit per pixel of the row, set where an edge's sum is negative */
-        for (int i = 0; i < width; i += 2) {
-            __m128i any = _mm_or_si128(_mm_or_si128(e0, e1), e2);
-            outside |= (unsigned)_mm_movemask_pd(_mm_castsi128_pd(any)) << i;
-            e0 = _mm_add_epi64(e0, pair0), e1 = _mm_add_epi64(e1, pair1), e2 = _mm_add_epi64(e2, pair2);
-        }
-        mask |= (~(uint64_t)outside & row_cut) << (j * SR_TINY_SIDE);
-        row0 = _mm_add_epi64(row0, down0), row1 = _mm_add_epi64(row1, down1), row2 = _mm_add_epi64(row2, down2);
-    }
-#else
-    for (int j = 0; j < s->box.y1 - s->box.y0; j++) {
-        int64_t e0 = r0, e1 = r1, e2 = r2;
-        for (int i = 0; i < s->box.x1 - s->box.x0; i++) {
-            mask |= (uint64_t)((e0 | e1 | e2) >= 0) << (j * SR_TINY_SIDE + i);
-            e0 += s->step_x[0], e1 += s->step_x[1], e2 += s->step_x[2];
-        }
-        r0 += s->e[0].b * one, r1 += s->e[1].b * one, r2 += s->e[2].b * one;
-    }
-#endif
-    return mask;
-}
-
-/* Boxes smaller than this are not worth sr_raster_classify's twelve
- * evaluations: they count as partial. */
-#define CLASSIFY_MIN_PIXELS 64
-
-sr_box_cover sr_raster_classify(const setup *s, sr_raster_rect b)
-{
-    if ((int64_t)(b.x1 - b.x0) * (b.y1 - b.y0) < CLASSIFY_MIN_PIXELS)
-        return SR_COVER_PARTIAL;
-    int64_t xs[2] = { sr_subpixel_centre(b.x0, s->bits), sr_subpixel_centre(b.x1 - 1, s->bits) };
-    int64_t ys[2] = { sr_subpixel_centre(b.y0, s->bits), sr_subpixel_centre(b.y1 - 1, s->bits) };
-    bool covered = true;
-    for (int k = 0; k < 3; k++) {
-        int inside = 0;
-        for (int c = 0; c < 4; c++)
-            inside += sr_edge_at(&s->e[k], xs[c & 1], ys[c >> 1]) >= s->e[k].bias;
-        if (inside == 0)
-            return SR_COVER_NONE;
-        covered = covered && inside == 4;
-    }
-    return covered ? SR_COVER_ALL : SR_COVER_PARTIAL;
 }
 
 static inline __attribute__((always_inline)) uint64_t
@@ -420,87 +167,9 @@ raster_mode(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, const s
         return raster_interp(s, fb, mode, cut, SR_INTERP_FLAT_NORMAL, shade, id);
     if (mode == SR_SHADE_LAMBERT && s->interp == SR_INTERP_PERSPECTIVE_FLAT_NORMAL)
         return raster_interp(s, fb, mode, cut, SR_INTERP_PERSPECTIVE_FLAT_NORMAL, shade, id);
-    if ((mode_reads_varyings(mode) || cut) && !sr_interp_divides(s->interp))
+    if ((sr_mode_reads_varyings(mode) || cut) && !sr_interp_divides(s->interp))
         return raster_interp(s, fb, mode, cut, SR_INTERP_AFFINE, shade, id);
     return raster_interp(s, fb, mode, cut, SR_INTERP_PERSPECTIVE, shade, id);
-}
-
-/* The dot product of a and b, in double, where the products of floats are
- * exact. */
-static double dot_d(const float a[3], const float b[3])
-{
-    return (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
-}
-
-/* Normals a and b point the same way: within about 2^-20 radians, which
- * the rounding of a normal/w varying to float (2^-24 relative per
- * component) stays inside, and which no mesh's smooth normals come near (a
- * torus of 10M triangles turns hers by 2^-8 to 2^-9 from vertex to
- * vertex). A subnormal varying (w past about 1e32) rounds more coarsely
- * and may fail the test: that triangle is lit per pixel. */
-#define PARALLEL_SIN2 0x1p-40 /* the squared sine of that angle */
-
-static bool normals_parallel(const float a[3], const float b[3])
-{
-    double c[3] = { (double)a[1] * b[2] - (double)a[2] * b[1], (double)a[2] * b[0] - (double)a[0] * b[2],
-                    (double)a[0] * b[1] - (double)a[1] * b[0] };
-    double sin2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-    return dot_d(a, b) > 0.0 && sin2 <= PARALLEL_SIN2 * dot_d(a, a) * dot_d(b, b);
-}
-
-/* Under a perspective camera, only triangles of at least this many pixels
- * are tested for a flat normal. The test is two cross products and six
- * dot products in double, of the order of lighting one pixel (a dot
- * product, a square root, a division); on a dense mesh, whose smooth
- * triangles are a pixel or two and never pass, testing every triangle
- * cost a share of the frame and saved nothing; with this floor it costs
- * nothing visible, while fly's walls still pass. The triangle's area
- * decides, not its box (which a tile clips), so every path and thread
- * count decides alike; a face's triangles under the limit are lit per
- * pixel, which may differ from the once-per-triangle value by one step of
- * a channel (sr_interp). */
-#define FLAT_TEST_MIN_PIXELS 32
-
-/* What the triangle lets the loops leave out per pixel (sr_interp), from
- * its set-up, its vertices in set-up order and its area2 (positive). */
-static void interp_choose(setup *s, const sr_screen_vertex *const v[3], int64_t area2, sr_shade mode,
-                          const sr_shade_context *shade)
-{
-    s->interp = SR_INTERP_PERSPECTIVE;
-    if (s->varyings == 0)
-        return;
-    int at = shade->layout.normal;
-    bool lambert = mode == SR_SHADE_LAMBERT && at >= 0;
-    if (s->diw1 != 0.0f || s->diw2 != 0.0f) {
-        int64_t min_area2 = (int64_t)2 * FLAT_TEST_MIN_PIXELS << (2 * s->bits);
-        if (!lambert || area2 < min_area2)
-            return;
-        /* normal/w at each vertex: parallel where the normals are. */
-        const float *n0 = v[0]->var_w + at;
-        if (normals_parallel(n0, v[1]->var_w + at) && normals_parallel(n0, v[2]->var_w + at)) {
-            /* Unit length in double first: normal/w may be too long or
-             * short for its squared length in float. */
-            double length = sqrt(dot_d(n0, n0));
-            float n[3] = { (float)(n0[0] / length), (float)(n0[1] / length), (float)(n0[2] / length) };
-            s->interp = SR_INTERP_PERSPECTIVE_FLAT_NORMAL;
-            s->lambert = sr_shade_lambert_intensity(shade, n);
-        }
-        return;
-    }
-    s->interp = SR_INTERP_AFFINE;
-    s->w = 1.0f / s->iw0;
-    if (!lambert)
-        return;
-    float n[3];
-    for (int k = 0; k < 3; k++) {
-        if (s->dvar1[at + k] != 0.0f || s->dvar2[at + k] != 0.0f)
-            return;
-        /* var0 + λ1·0 + λ2·0 is var0 up to the sign of a zero, which the
-         * intensity does not see. */
-        n[k] = s->var0[at + k] * s->w;
-    }
-    s->interp = SR_INTERP_FLAT_NORMAL;
-    s->lambert = sr_shade_lambert_intensity(shade, n);
 }
 
 uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
@@ -516,69 +185,6 @@ uint64_t sr_raster_triangle(sr_framebuffer *fb, sr_raster_rect rect, int subpixe
     return fragments;
 }
 
-/* sr_raster_setup, inlined where the box was just found: passed by value
- * to a call, gcc spilled it to the stack and read it back 16 bytes at a
- * time from two 8-byte stores, a store-forwarding stall per triangle. The
- * edges and a tiny box's mask are inlined into it too, and so are the
- * depth plane, the interpolants and, after it, the branch that hands a
- * tiny triangle to the tiny queue (setup_draw): a dense mesh sets up a
- * triangle for every pixel or two, so each call there is paid per pixel
- * (docs/performance.md, "From slot to set-up"). */
-static SR_ALWAYS_INLINE bool setup_in(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
-                                      int subpixel_bits, sr_shade mode, bool cut, const sr_shade_context *shade,
-                                      bool mask_known, uint64_t mask, setup *s)
-{
-    const sr_screen_vertex *v[3];
-    order_clockwise(tri, area2, v);
-    /* With the mask known, a mode that reads no varyings has no use for the
-     * edges: the mask is the coverage (tiny_loop), and the depth plane
-     * comes from the vertices. */
-    bool varyings = mode_reads_varyings(mode) || cut;
-    if (mask_known && !varyings) {
-        s->bits = subpixel_bits;
-        s->box = box;
-    } else {
-        setup_make(v, box, subpixel_bits, s);
-    }
-    /* A tiny box's pixels are tested first, so a triangle that covers none
-     * of them (many of a dense mesh's) skips the depth plane; the
-     * binned path tests them while binning and passes the mask on. */
-    bool tiny = box_is_tiny(box);
-    s->tiny = !tiny ? 0 : mask_known ? mask : tiny_coverage(s);
-    sr_box_cover c = tiny ? (s->tiny ? SR_COVER_PARTIAL : SR_COVER_NONE) : sr_raster_classify(s, box);
-    if (c == SR_COVER_NONE)
-        return false;
-    int64_t area2_abs = area2 > 0 ? area2 : -area2;
-    interpolants_make(v, area2_abs, varyings ? shade->layout.count : 0, s);
-    s->covered = c == SR_COVER_ALL;
-    interp_choose(s, v, area2_abs, mode, shade);
-    return true;
-}
-
-/* A stored set-up serves every material's triangle: in a draw that cuts
- * by texels (its layout has uvs in a mode that reads none), with the
- * varyings. */
-bool sr_raster_setup(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box, int subpixel_bits,
-                     sr_shade mode, const sr_shade_context *shade, setup *s)
-{
-    return setup_in(tri, area2, box, subpixel_bits, mode, shade->layout.uv >= 0, shade, false, 0, s);
-}
-
-bool sr_raster_box_is_tiny(sr_raster_rect box)
-{
-    return box_is_tiny(box);
-}
-
-uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2, sr_raster_rect box,
-                             int subpixel_bits)
-{
-    const sr_screen_vertex *v[3];
-    setup s;
-    order_clockwise(tri, area2, v);
-    setup_make(v, box, subpixel_bits, &s);
-    return tiny_coverage(&s);
-}
-
 /* A set-up triangle that the tiny queue did not take: what is queued is
  * tested and shaded first (what comes later tests against it and draws
  * over it; a mode without varyings
@@ -587,10 +193,11 @@ uint64_t sr_raster_tiny_mask(const sr_screen_vertex *const tri[3], int64_t area2
 static uint64_t draw_unqueued(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,
                               uint32_t triangle_id, bool *simd)
 {
-    if (mode_reads_varyings(mode))
+    if (sr_mode_reads_varyings(mode))
         sr_tiny_queue_drain();
     int width = s->box.x1 - s->box.x0;
-    sr_span_kernel kernel = box_is_tiny(s->box) ? NULL : sr_span_kernel_for(shade, mode, fb->reversed_z, fb->ids, width);
+    sr_span_kernel kernel =
+        sr_raster_box_is_tiny(s->box) ? NULL : sr_span_kernel_for(shade, mode, fb->reversed_z, fb->ids, width);
     *simd = kernel && edges_fit_double(s);
     if (*simd)
         return kernel(s, shade, fb, triangle_id);
@@ -616,7 +223,7 @@ static uint64_t draw_unqueued(sr_framebuffer *fb, const setup *s, sr_shade mode,
 static __attribute__((noinline)) uint64_t draw_cut(sr_framebuffer *fb, const setup *s, sr_shade mode,
                                                    const sr_shade_context *shade, uint32_t triangle_id)
 {
-    if (mode_reads_varyings(mode))
+    if (sr_mode_reads_varyings(mode))
         sr_tiny_queue_drain();
     switch (mode) {
     case SR_SHADE_ID:     return raster_mode(s, fb, SR_SHADE_ID, true, shade, triangle_id);
@@ -633,7 +240,7 @@ cut_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade
              const sr_screen_vertex *const tri[3], int64_t area2, uint32_t triangle_id, bool mask_known, uint64_t mask)
 {
     setup s;
-    if (!setup_in(tri, area2, box, subpixel_bits, mode, true, shade, mask_known, mask, &s))
+    if (!sr_setup_triangle(tri, area2, box, subpixel_bits, mode, true, shade, mask_known, mask, &s))
         return 0;
     return draw_cut(fb, &s, mode, shade, triangle_id);
 }
@@ -644,7 +251,7 @@ cut_triangle(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits, sr_shade
 static SR_ALWAYS_INLINE uint64_t setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode,
                                             const sr_shade_context *shade, uint32_t triangle_id, bool *simd)
 {
-    if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && mode_reads_varyings(mode) &&
+    if (s->tiny && s->interp == SR_INTERP_PERSPECTIVE && sr_mode_reads_varyings(mode) &&
         sr_tiny_queue_push(s, fb, mode, shade, triangle_id)) {
         *simd = false; /* the queue counts its draws and fragments when it is shaded */
         return 0;
@@ -678,7 +285,7 @@ static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_r
         return shade->cut == SR_CUT_TEXELS
                    ? cut_triangle(fb, box, subpixel_bits, mode, shade, tri, area2, triangle_id, mask_known, mask)
                    : 0;
-    if (fetch_rows && !box_is_tiny(box)) {
+    if (fetch_rows && !sr_raster_box_is_tiny(box)) {
         /* In the body: gcc drops a call of a function of prefetches. */
         int rows = box.y1 - box.y0 < FETCHED_ROWS ? box.y1 - box.y0 : FETCHED_ROWS;
         size_t first = (size_t)box.y0 * (size_t)fb->width + (size_t)box.x0, at = first;
@@ -690,7 +297,7 @@ static SR_ALWAYS_INLINE uint64_t triangle_in_box(sr_framebuffer *fb, sr_raster_r
             __builtin_prefetch(fb->ids + first, 1);
     }
     setup s;
-    if (!setup_in(tri, area2, box, subpixel_bits, mode, false, shade, mask_known, mask, &s))
+    if (!sr_setup_triangle(tri, area2, box, subpixel_bits, mode, false, shade, mask_known, mask, &s))
         return 0;
     return setup_draw(fb, &s, mode, shade, triangle_id, simd);
 }
@@ -713,8 +320,8 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                                const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                                uint32_t triangle_id, bool *simd)
 {
-    return triangle_in_box(fb, scan_box(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri, area2,
-                           triangle_id, false, 0, true, simd);
+    return triangle_in_box(fb, sr_raster_scan_box_of(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri,
+                           area2, triangle_id, false, 0, true, simd);
 }
 
 /* The one pixel of a box whose centre the triangle covers, in a mode
@@ -726,10 +333,10 @@ static SR_ALWAYS_INLINE uint64_t plain_pixel(sr_framebuffer *fb, sr_raster_rect 
                                              const sr_screen_vertex *const tri[3], int64_t area2, uint32_t id)
 {
     const sr_screen_vertex *v[3];
-    order_clockwise(tri, area2, v);
+    sr_order_clockwise(tri, area2, v);
     setup s;
     s.bits = subpixel_bits;
-    depth_plane(v, area2, &s);
+    sr_depth_plane(v, area2, &s);
     size_t at = (size_t)box.y0 * (size_t)fb->width + (size_t)box.x0;
     float z_row = sr_row_z(&s, box.y0), k = (float)(box.x0 - s.ref_x);
     bool greater = fb->reversed_z;
@@ -745,13 +352,13 @@ uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpix
                              const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                              uint32_t triangle_id, bool *simd)
 {
-    if (mode_reads_varyings(mode))
-        return triangle_in_box(fb, scan_box(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri, area2,
-                               triangle_id, true, 1, false, simd);
-    /* The box is one pixel of the framebuffer: its corner is scan_box's,
-     * and a rect that misses it leaves scan_box's box empty. */
+    if (sr_mode_reads_varyings(mode))
+        return triangle_in_box(fb, sr_raster_scan_box_of(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri,
+                               area2, triangle_id, true, 1, false, simd);
+    /* The box is one pixel of the framebuffer: its corner is the scan box's,
+     * and a rect that misses it leaves the scan box empty. */
     *simd = false;
-    sr_raster_rect box = one_pixel_box(tri, subpixel_bits);
+    sr_raster_rect box = sr_one_pixel_box(tri, subpixel_bits);
     if (box.x0 < rect.x0 || box.x0 >= rect.x1 || box.y0 < rect.y0 || box.y0 >= rect.y1)
         return 0;
     shade = sr_shade_context_of(shade, triangle_id);
@@ -764,13 +371,6 @@ uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpix
     case SR_SHADE_DEPTH: return plain_pixel(fb, box, subpixel_bits, SR_SHADE_DEPTH, shade, tri, area2, triangle_id);
     default:             return plain_pixel(fb, box, subpixel_bits, SR_RASTER_COUNT_HITS, shade, tri, area2, triangle_id);
     }
-}
-
-void sr_raster_setup_share(setup *s, sr_raster_rect share, bool covered)
-{
-    s->box = share;
-    s->covered = covered;
-    s->tiny = 0; /* the mask is the whole box's */
 }
 
 uint64_t sr_raster_setup_draw(sr_framebuffer *fb, const setup *s, sr_shade mode, const sr_shade_context *shade,

@@ -61,7 +61,7 @@ typedef struct sr_line_filter {
 
 typedef struct sr_point_line_target {
     sr_framebuffer *fb;
-    sr_shade mode; /* a shading mode or SR_RASTER_COUNT_HITS (raster.h) */
+    sr_shade mode; /* a shading mode or SR_RASTER_COUNT_HITS (raster_setup.h) */
     const sr_shade_context *shade;
     int subpixel_bits;
     float depth_bias; /* >= 0, z_ndc */

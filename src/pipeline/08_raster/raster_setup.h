@@ -1,5 +1,6 @@
-/* raster_setup.h — a triangle as the per-pixel loops read it, shared by the
- * scalar loop (raster.c) and the SIMD span kernels (span_*.c). Not public API.
+/* raster_setup.h — a triangle as the per-pixel loops read it, set up by
+ * triangle_setup.h and shared by the scalar loop (raster.c) and the SIMD
+ * span kernels (span_*.c). Not public API.
  *
  * Edge k is the one opposite vertex k, so E_k / area2 is barycentric λ_k;
  * attributes are a0 + λ1·d1 + λ2·d2 with λ from the exact edge values.
@@ -25,6 +26,17 @@
 #define SR_TILE_ROWS(width) \
     ((width) <= SR_TILE_PIXELS / SR_TILE_ROWS_MAX ? SR_TILE_ROWS_MAX : SR_TILE_PIXELS / (width))
 
+/* The rasterizer's mode for sr_draw_study.count_hits, past the public
+ * shading modes: every covered pixel adds 1 to its color, with no depth test
+ * or write and no varyings. No SIMD kernel has it, so the scalar loop draws. */
+#define SR_RASTER_COUNT_HITS ((sr_shade)SR_SHADE_COUNT)
+
+/* The mode shades from the interpolated varyings (a set-up makes them). */
+static inline bool sr_mode_reads_varyings(sr_shade mode)
+{
+    return mode != SR_SHADE_ID && mode != SR_SHADE_DEPTH && mode != SR_RASTER_COUNT_HITS;
+}
+
 /* The pixels [x0, x1) × [y0, y1) a call may touch (the framebuffer, or a tile). */
 typedef struct sr_raster_rect {
     int x0, y0, x1, y1;
@@ -39,7 +51,7 @@ typedef struct sr_edge {
 } sr_edge;
 
 /* What a triangle lets the per-pixel loops leave out, chosen once per
- * triangle in its set-up (sr_raster_setup), the same choice in every loop,
+ * triangle in its set-up (sr_interp_choose), the same choice in every loop,
  * path and thread count. Each choice but SR_INTERP_PERSPECTIVE_FLAT_NORMAL
  * computes per triangle exactly the float values the general loop would
  * compute per pixel, so the image does not depend on it; that one may put
@@ -55,10 +67,10 @@ typedef enum sr_interp {
      * intensity is computed once per triangle. */
     SR_INTERP_FLAT_NORMAL,
     /* Perspective, lambert, a triangle of 32 pixels or more
-     * (FLAT_TEST_MIN_PIXELS in raster.c), and the three vertices' normals
-     * pointing the same way (their normal/w varyings parallel:
-     * normals_parallel in raster.c): the interpolated normal points that
-     * way at every pixel, and the intensity does not see its length, so it
+     * (FLAT_TEST_MIN_PIXELS in triangle_setup.c), and the three vertices'
+     * normals pointing the same way (their normal/w varyings parallel:
+     * normals_parallel in triangle_setup.c): the interpolated normal points
+     * that way at every pixel, and the intensity does not see its length, so it
      * is computed once per triangle, from vertex 0's normal/w made unit
      * length; the varyings after the normal divide by 1/w per pixel as
      * under SR_INTERP_PERSPECTIVE. A faceted mesh (face normals) seen in

@@ -17,7 +17,7 @@
  * SR_FIXED_POINT_BITS). Its signed area, its scan box over the whole
  * framebuffer and, for a box of one pixel centre, the three edge functions
  * at that centre with the top-left rule are the exact integers that stage 7
- * and the set-up compute (07_cull.h, raster.c), so the counts and pixels
+ * and the set-up compute (07_cull.h, triangle_setup.h), so the counts and pixels
  * are those of the one-at-a-time path at every SIMD level and thread count.
  * A box empty over the framebuffer is empty over any tile or band of rows
  * too, so every path may drop such a triangle. */

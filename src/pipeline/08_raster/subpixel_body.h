@@ -71,7 +71,7 @@ static SR_ALWAYS_INLINE uint64_t lane_bits(lanes m)
 
 /* E − bias for edge p → q of a clockwise triangle at the pixel centre
  * (cx, cy), >= 0 where the edge holds the centre: E = dx·(cy − py) −
- * dy·(cx − px) is raster.c's a·cx + b·cy + c, and the bias is 0 on a top
+ * dy·(cx − px) is sr_edge_make's a·cx + b·cy + c, and the bias is 0 on a top
  * (dy = 0, dx > 0) or left (dy < 0) edge and 1 otherwise (E >= bias). */
 static SR_ALWAYS_INLINE lanes edge_at(lanes px, lanes py, lanes qx, lanes qy, lanes cx, lanes cy)
 {
@@ -92,7 +92,7 @@ static SR_ALWAYS_INLINE sr_subpixel_verdict verdict_of(lanes x0, lanes y0, lanes
     lanes lo_y = min_of(min_of(y0, y1), y2), hi_y = max_of(max_of(y0, y1), y2);
     /* Within two pixels on each axis: the lanes below hold every value exactly. */
     lanes small = (hi_x - lo_x < one + one) & (hi_y - lo_y < one + one);
-    /* The scan box over the framebuffer, raster.c's scan_box. */
+    /* The scan box over the framebuffer, sr_raster_scan_box_of's. */
     lanes box_x0 = clamp_of((lo_x - half + one - 1) >> bits, zero + r->width);
     lanes box_x1 = clamp_of(((hi_x - half) >> bits) + 1, zero + r->width);
     lanes box_y0 = clamp_of((lo_y - half + one - 1) >> bits, zero + r->height);
