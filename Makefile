@@ -60,6 +60,12 @@ WIDE_SPAN_OBJ := $(patsubst %,%/src/pipeline/08_raster/span_avx2.o,build/san bui
 $(WIDE_SPAN_OBJ): SANITIZE = address
 $(WIDE_SPAN_OBJ): FUZZ_SANITIZE = address
 endif
+# The same holds for the fuzz build's scalar loop and SSE2 kernels: clang's
+# UBSan over raster.c's always-inlined per-pixel loops is several times the
+# rest of the library's compile. The fuzzers check their memory there; UBSan
+# checks them in build/san (gcc), under every Criterion test.
+FUZZ_PIXEL_OBJ := $(patsubst %,build/fuzz/src/pipeline/08_raster/%.o,raster span_sse2)
+$(FUZZ_PIXEL_OBJ): FUZZ_SANITIZE = address
 
 .PHONY: all deps run test fuzz-smoke-ci test-fast test-python test-san test-house mutate test-assets test-install install assets docs-images bench report scans stability cost-model clean
 .DEFAULT_GOAL := all
