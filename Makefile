@@ -67,6 +67,14 @@ endif
 FUZZ_PIXEL_OBJ := $(patsubst %,build/fuzz/src/pipeline/08_raster/%.o,raster span_sse2)
 $(FUZZ_PIXEL_OBJ): FUZZ_SANITIZE = address
 
+# The per-pixel files (raster.c's loops and span_kernel.h's instances) are
+# the longest compiles of every build. gcc's variable tracking for the
+# debugger over their inlined loops is a third of that; without it they keep
+# line tables (the sanitisers' stack traces, perf) and lose only some
+# variable locations in gdb.
+PIXEL_OBJ := $(foreach b,build/san build/fuzz build,$(patsubst %,$(b)/src/pipeline/08_raster/%.o,raster span_sse2 span_avx2 span_avx512))
+$(PIXEL_OBJ): ALL_CFLAGS += -fno-var-tracking
+
 .PHONY: all deps run test fuzz-smoke-ci test-fast test-python test-san test-house mutate test-assets test-install install assets docs-images bench report scans stability cost-model clean
 .DEFAULT_GOAL := all
 
