@@ -165,8 +165,10 @@ run: all
 TEST_BINS = build/softrast build/softrast-tests build/san/softrast build/san/softrast-tests \
             build/gen-assets $(PUBLIC_LIBS) $(FUZZ_BINS)
 JOBS := $(shell nproc 2>/dev/null || echo 2)
+# The per-pixel objects are asked for first, so the longest compiles start
+# first and no core waits alone on one at the end.
 test: deps
-	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) $(TEST_BINS)
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) $(PIXEL_OBJ) $(TEST_BINS)
 	@$(MAKE) --no-print-directory test-fast test-python test-san test-house test-assets test-install \
 		fuzz-regressions fuzz-smoke-ci
 
