@@ -83,13 +83,17 @@ all: deps build/softrast $(PUBLIC_LIBS)
 deps:
 	@sh tools/deps.sh
 
-# Every compile waits for the packages (order-only: it never forces a rebuild).
-build/%.o: %.c | deps
+# Every compile waits for the packages (order-only: it never forces a rebuild),
+# but in make test's own sub-makes, which run after it has checked them: a
+# goal waiting on deps is only taken up again after every later goal, which
+# would undo the order make test asks its objects in.
+DEPS := $(if $(DEPS_CHECKED),,deps)
+build/%.o: %.c | $(DEPS)
 	@mkdir -p $(@D)
 	@echo "  CC      $<"
 	@$(CC) $(ALL_CFLAGS) $(CFLAGS) $(STRICT_FP) -c $< -o $@
 
-build/san/%.o: %.c | deps
+build/san/%.o: %.c | $(DEPS)
 	@mkdir -p $(@D)
 	@echo "  CC san  $<"
 	@$(CC) $(ALL_CFLAGS) $(SAN) $(STRICT_FP) -c $< -o $@
@@ -168,8 +172,8 @@ JOBS := $(shell nproc 2>/dev/null || echo 2)
 # The per-pixel objects are asked for first, so the longest compiles start
 # first and no core waits alone on one at the end.
 test: deps
-	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) $(PIXEL_OBJ) $(TEST_BINS)
-	@$(MAKE) --no-print-directory test-fast test-python test-san test-house test-assets test-install \
+	@$(MAKE) --no-print-directory DEPS_CHECKED=1 $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) $(PIXEL_OBJ) $(TEST_BINS)
+	@$(MAKE) --no-print-directory DEPS_CHECKED=1 test-fast test-python test-san test-house test-assets test-install \
 		fuzz-regressions fuzz-smoke-ci
 
 # After the regressions: both build the fuzzers, and two makes linking one
