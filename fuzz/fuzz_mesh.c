@@ -1,8 +1,8 @@
 /* fuzz/fuzz_mesh.c — libFuzzer target for meshes through Assimp.
  *
  * Byte 0 picks the format by the file's ending (.ply .stl .gltf .glb .fbx
- * .dae .3ds .off .amf, the last read and rewritten by softrast's own AMF
- * reader before Assimp, src/io/amf_import.h); the rest is written as that
+ * .dae .3ds .off .amf .x3d, the last two read and rewritten by softrast
+ * before Assimp, src/io/amf_import.h and x3d_reuse.h); the rest is written as that
  * file in a folder of this process's own. sr_mesh_load runs Assimp in a child process with a 2 s
  * limit, so whatever Assimp does with the bytes — crash, loop, block — the
  * load must end with either a consistent mesh (a TriangleList, indices in
@@ -26,7 +26,7 @@
 #define SECONDS 2u
 #define DRAW_SIDE 16
 
-static const char *const ENDINGS[] = { "ply", "stl", "gltf", "glb", "fbx", "dae", "3ds", "off", "amf" };
+static const char *const ENDINGS[] = { "ply", "stl", "gltf", "glb", "fbx", "dae", "3ds", "off", "amf", "x3d" };
 #define ENDING_COUNT (sizeof ENDINGS / sizeof *ENDINGS)
 
 static void write_file(const char *path, const uint8_t *data, size_t size)

@@ -9,6 +9,7 @@
 
 #include "amf_two_volumes.h"
 #include "cli_error.h"
+#include "load_refused.h"
 #include "run_helpers.h"
 #include "softrast/files.h"
 #include "temp_dir.h"
@@ -40,23 +41,6 @@ Test(amf, the_unit_is_read_after_a_long_prologue)
     run_result r = run_softrast(temp_dir, args);
     cr_assert_eq(r.status, 0, "%s", r.err);
     cr_assert_not_null(strstr(r.out, "units: 0.0254 m per unit (read: "), "%s", r.out);
-}
-
-/* The library's refusal of a large file, which the program would precede
- * with its line saying that a slow load is under way: one line naming the
- * file, the mesh left empty. */
-static void assert_load_refused(const char *name, const char *needle)
-{
-    char path[600];
-    temp_path(path, sizeof path, name);
-    sr_mesh m;
-    sr_texture tex = { 0 };
-    sr_error err = { "" };
-    cr_assert_not(sr_mesh_load(&m, &tex, path, &err), "%s loaded", name);
-    cr_assert_eq(strncmp(err.message, path, strlen(path)), 0, "not naming the file: %s", err.message);
-    cr_assert_null(strchr(err.message, '\n'), "more than one line: %s", err.message);
-    cr_assert_not_null(strstr(err.message, needle), "'%s' not in: %s", needle, err.message);
-    cr_assert(m.positions == NULL && m.vertex_count == 0 && tex.texels == NULL);
 }
 
 Test(amf, a_zipped_amf_is_refused_as_such)

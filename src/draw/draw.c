@@ -132,24 +132,16 @@ static bool map_inside(const vertex_phase *ph, const sr_vertex_out *v, uint32_t 
     return sr_viewport_map_d(v, clip_d, st->shade.layout.count, &st->vp, out);
 }
 
-/* The band of rows of each vertex inside among vertices [first, first + n),
- * for the row-band path (row_bands.c): its snapped point's row, clamped to the
- * framebuffer. A pass of its own after the block is mapped: read in the
- * mapping loop, right after the mapping stored it, a vertex's row cost the
- * vertex phase more CPU than this pass does (docs/performance.md, "Row
- * bands" and "Tried and not kept"). */
-static void note_row_bands(const sr_draw_state *st, uint32_t first, uint32_t n, const unsigned char *outcodes,
-                           unsigned char *bands)
+/* The snapped point of each vertex of [first, first + n), its outcode
+ * folded in (subpixel_lanes.h), for the slot lanes and the row bands:
+ * 8 bytes a vertex that the verdicts gather by index, where the screen
+ * vertices are 32 or more. */
+static void note_snapped_points(const sr_draw_state *st, uint32_t first, uint32_t n, const unsigned char *outcodes,
+                                sr_snapped_point *points)
 {
-    int shift = st->vp.subpixel_bits;
-    int64_t last_row = st->fb->height - 1;
-    unsigned band_rows = (unsigned)st->band_rows;
     for (uint32_t i = first; i < first + n; i++) {
-        if (outcodes[i])
-            continue;
-        int64_t y = sr_screen_at(st, i)->y;
-        int64_t row = y < 0 ? 0 : y >> shift;
-        bands[i] = (unsigned char)((unsigned)(row < last_row ? row : last_row) / band_rows);
+        const sr_screen_vertex *v = sr_screen_at(st, i);
+        points[i] = outcodes[i] ? SR_SNAPPED_OUTSIDE : sr_snapped_point_of(v->x, v->y);
     }
 }
 
@@ -209,7 +201,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
     const sr_draw_state *st = ph->st;
     const sr_mesh *mesh = st->desc->mesh;
     const sr_varying_layout *layout = &st->shade.layout;
-    unsigned char *outcodes = st->ws->outcodes.data, *bands = st->ws->row_bands.data;
+    unsigned char *outcodes = st->ws->outcodes.data;
     atomic_uchar *double_mapped = st->ws->double_mapped.data;
     bool double_later = st->double_later; /* a local: the loop's byte stores may alias *st */
     for (uint32_t block = first; block < end; block += VERTEX_BLOCK) {
@@ -237,8 +229,8 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
         } else {
             check_and_map(ph, block, n, verts, codes, outcodes, outcodes_and);
         }
-        if (st->band_rows)
-            note_row_bands(st, block, n, outcodes, bands);
+        if (st->snapped_points)
+            note_snapped_points(st, block, n, outcodes, st->ws->snapped_points.data);
     }
 }
 
@@ -284,8 +276,8 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
 {
     uint32_t n = st->vertex_count;
     sr_workspace *ws = st->ws;
-    if (!sr_array_reserve(&ws->outcodes, (size_t)n + SR_OUTCODES_GATHER_SLACK, sizeof(unsigned char)) ||
-        (st->band_rows && !sr_array_reserve(&ws->row_bands, n, sizeof(unsigned char))) ||
+    if (!sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
+        (st->snapped_points && !sr_array_reserve(&ws->snapped_points, n, sizeof(sr_snapped_point))) ||
         (st->double_later && !sr_array_reserve(&ws->double_mapped, n, sizeof(atomic_uchar))) ||
         n > SIZE_MAX / st->screen_stride || !sr_array_reserve(&ws->screen, n * st->screen_stride, 1))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
@@ -350,7 +342,7 @@ static bool direct_only(const sr_draw_state *st)
 }
 
 /* Before the vertex phase: the study's path, or the cost estimate's. The
- * row bands want the vertex phase to note each vertex's band of rows. */
+ * row bands want the vertex phase to note each vertex's snapped point. */
 static sr_draw_path planned_path(const sr_draw_state *st)
 {
     if (direct_only(st))
@@ -395,12 +387,12 @@ static sr_subpixel_rules subpixel_rules(const sr_draw_state *st)
 }
 
 /* The slot lanes (sr_subpixel_slot_group_avx2) gather a triangle list's
- * outcodes and screen vertices, at offsets of 32 bits: with the sub-pixel
- * lanes at the AVX2 level or above, where every vertex's offset fits. */
+ * snapped points by signed 32-bit indices: with the sub-pixel lanes at
+ * the AVX2 level or above, where every vertex's index fits. */
 static bool slot_lanes(const sr_draw_state *st)
 {
     return st->subpixel_lanes && st->subpixel.avx2 && st->desc->mesh->topology == SR_TRIANGLE_LIST &&
-           (uint64_t)st->vertex_count * st->screen_stride <= INT32_MAX;
+           st->vertex_count <= INT32_MAX;
 }
 
 /* A mesh outside the view: every assembled triangle is rejected, nothing
@@ -459,6 +451,7 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
         st->threads = 1;
     sr_draw_path planned = planned_path(st);
     st->band_rows = planned == SR_PATH_ROWS ? sr_band_rows(st->fb->height) : 0;
+    st->snapped_points = st->slot_lanes || st->band_rows;
     /* The tiles set a triangle up in the phase that keeps it, while another
      * thread may be mapping its vertices' double half: they map all. */
     st->double_later = st->subpixel_lanes && planned != SR_PATH_TILES;

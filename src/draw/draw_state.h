@@ -140,10 +140,10 @@ typedef struct sr_band_costs {
 
 struct sr_workspace {
     sr_pool pool;
-    sr_array outcodes; /* unsigned char, and SR_OUTCODES_GATHER_SLACK bytes more for the slot lanes' reads */
+    sr_array outcodes; /* unsigned char */
+    sr_array snapped_points; /* sr_snapped_point of each vertex, when st->snapped_points */
     sr_array screen;   /* screen vertices, sr_draw_state.screen_stride bytes apart, valid where the outcode is 0 */
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
-    sr_array row_bands;    /* unsigned char: the band of rows of each vertex inside, when st->band_rows */
     sr_array double_mapped; /* atomic_uchar: whether a vertex inside has its double half, when st->double_later */
     sr_array band_slots;   /* sr_band_slot: the row-band path's kept slots, each chunk's from its first slot on */
     sr_array chunk_kept;   /* uint32_t: how many slots each chunk of the verdicts kept in band_slots */
@@ -168,9 +168,10 @@ typedef struct sr_draw_state {
     int threads;
     uint32_t vertex_count, slots;
     int tile_rows, tiles; /* the binned path's tiles: strips of whole rows */
-    int band_rows;        /* > 0: the vertex phase notes each inside vertex's band of this many rows */
+    int band_rows;        /* > 0: the row bands' rows a band, from each kept slot's snapped points */
     bool subpixel_lanes;  /* the sub-pixel lanes drop the triangles that draw nothing (primitives.c) */
     bool slot_lanes;      /* and take a triangle list's verdicts eight slots at a time (primitives.c) */
+    bool snapped_points;  /* the vertex phase notes each vertex's snapped point: for the slot lanes, the row bands */
     bool double_later;    /* the vertex phase maps the float half of the vertices inside, the verdicts
                              the double half of those of the triangles they keep (primitives.c) */
     bool verdicts_alone;  /* one thread takes every verdict: the double half's flags need no exchange */

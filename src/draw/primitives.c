@@ -195,6 +195,8 @@ static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st,
     const char *positions = source->clip_positions ? (const char *)source->clip_positions
                                                    : (const char *)source->positions;
     size_t position_size = source->clip_positions ? sizeof *source->clip_positions : sizeof *source->positions;
+    char *screen = st->ws->screen.data;
+    size_t stride = st->screen_stride;
     uint32_t unmapped[3 * SR_VERDICT_BATCH], taken[3 * SR_VERDICT_BATCH];
     int m = 0, n = 0;
     for (int j = 0; j < count; j++) {
@@ -203,6 +205,7 @@ static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st,
         for (int c = 0; c < 3; c++) { /* no branch on the flag: its loads overlap */
             uint32_t i = kept[j].idx[c];
             __builtin_prefetch(positions + i * position_size);
+            __builtin_prefetch(screen + i * stride, 1);
             if (st->verdicts_alone) { /* taken at once: a vertex listed twice sees its own store */
                 taken[n] = i;
                 n += !atomic_load_explicit(&mapped[i], memory_order_relaxed);
@@ -217,28 +220,26 @@ static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st,
         if (!atomic_exchange_explicit(&mapped[unmapped[k]], 1, memory_order_relaxed))
             taken[n++] = unmapped[k];
     sr_viewport_map_double_block(source, st->xf, taken, (uint32_t)n, &st->vp, st->shade.simd >= SR_SIMD_AVX2,
-                                 st->ws->screen.data, st->screen_stride);
+                                 screen, stride);
 }
 
-/* The slots ahead whose screen vertices the slot lanes prefetch: the
+/* The slots ahead whose snapped points the slot lanes prefetch: the
  * lanes' gathers waited on memory without it. */
-#define SCREEN_AHEAD 32
+#define POINTS_AHEAD 32
 
 /* The verdicts of slots [first, end) of a triangle list with the
  * sub-pixel lanes (st->slot_lanes), eight slots at a time straight from
- * the indices, the outcodes and the screen vertices
- * (sr_subpixel_slot_group_avx2): no kept slot is written for a triangle
- * the lanes drop, and no vertex is read twice. A group with a degenerate
- * triangle or a vertex outside a plane, and the last few slots, take the
- * verdicts one at a time and the lanes after them, as every other draw
- * does; so the kept slots and the counts are the same. */
+ * the indices and the snapped points (sr_subpixel_slot_group_avx2): no
+ * kept slot is written for a triangle the lanes drop, and no vertex is
+ * read twice. A group with a degenerate triangle or a vertex outside a
+ * plane, and the last few slots, take the verdicts one at a time and the
+ * lanes after them, as every other draw does; so the kept slots and the
+ * counts are the same. */
 static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end,
                                   sr_stats *stats, sr_kept_slot *kept)
 {
     const uint32_t *indices = st->desc->mesh->indices;
-    const unsigned char *outcodes = st->ws->outcodes.data;
-    const char *screen = st->ws->screen.data;
-    uint32_t stride = (uint32_t)st->screen_stride;
+    const sr_snapped_point *points = st->ws->snapped_points.data;
     int count = 0;
     uint64_t culled = 0, drawn = 0; /* of the slots from first on: counted once, a call of libgcc's where the
                                        build has no popcnt instruction */
@@ -249,12 +250,12 @@ static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint3
             __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD);
             __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD + SR_SUBPIXEL_SLOT_GROUP * 3 - 1);
         }
-        if (last_end - g > SCREEN_AHEAD + SR_SUBPIXEL_SLOT_GROUP)
+        if (last_end - g > POINTS_AHEAD + SR_SUBPIXEL_SLOT_GROUP)
             for (int j = 0; j < SR_SUBPIXEL_SLOT_GROUP; j++)
-                PREFETCH_TRIANGLE(screen, stride, idx + 3 * (SCREEN_AHEAD + j));
+                PREFETCH_TRIANGLE((const char *)points, sizeof *points, idx + 3 * (POINTS_AHEAD + j));
         sr_subpixel_slots v = { .plain = false };
         if (g_end - g == SR_SUBPIXEL_SLOT_GROUP)
-            v = sr_subpixel_slot_group_avx2(idx, outcodes, screen, stride, &st->subpixel);
+            v = sr_subpixel_slot_group_avx2(idx, points, &st->subpixel);
         if (!v.plain) {
             int n = take_verdicts(st, g, g_end, last_end, stats, kept + count);
             count += drop_subpixel(st, kept + count, n, stats);

@@ -3,8 +3,8 @@
  * may cover one of its rows, straight into them as the one-thread path
  * does. A first phase gives each triangle slot its verdict once (rejected
  * slots are counted there and go to no thread) and the threads whose rows
- * it may cover: from the bands of rows of its vertices, which the vertex
- * phase noted, or every thread where a vertex lies outside a plane. The
+ * it may cover: from the rows of its vertices' snapped points, which the
+ * vertex phase noted, or every thread where a vertex lies outside a plane. The
  * rows are split where the estimated cost reaches equal shares: the kept
  * triangles inside every plane, counted at their first band, each weighed
  * by the CPU time per triangle that the last draw of the mesh with the
@@ -32,24 +32,44 @@ typedef struct rows_phase {
     int first_band[SR_MAX_THREADS + 1]; /* thread t draws bands first_band[t] .. first_band[t + 1] - 1 */
 } rows_phase;
 
+/* How a snapped y finds its band: its row, clamped to the framebuffer,
+ * over the band's rows. A value, not the draw state: the verdicts' stores
+ * of kept slots could alias the state and reload it for each. */
+typedef struct band_rule {
+    int shift, last_row;
+    unsigned rows;
+} band_rule;
+
+static unsigned band_of(band_rule r, int32_t y)
+{
+    int row = y < 0 ? 0 : y >> r.shift;
+    return (unsigned)(row < r.last_row ? row : r.last_row) / r.rows;
+}
+
+static int32_t y_of(sr_snapped_point p)
+{
+    return (int32_t)(uint32_t)(p >> 32);
+}
+
 /* The bands a kept slot's triangle may cover: from its highest vertex's
  * to its lowest one's (its covered pixel centres lie between their rows),
  * or every band when a vertex lies outside a plane (its clipped polygon
  * may reach anywhere). */
-static sr_band_span span_of(const unsigned char *bands, const uint32_t idx[3], unsigned planes)
+static sr_band_span span_of(band_rule r, const sr_snapped_point *points, const uint32_t idx[3], unsigned planes)
 {
     if (planes)
         return sr_every_band();
-    unsigned a = bands[idx[0]], b = bands[idx[1]], c = bands[idx[2]];
-    unsigned lo = a < b ? a : b, hi = a < b ? b : a;
-    return (sr_band_span){ (unsigned char)(c < lo ? c : lo), (unsigned char)(c > hi ? c : hi) };
+    int32_t a = y_of(points[idx[0]]), b = y_of(points[idx[1]]), c = y_of(points[idx[2]]);
+    int32_t lo = a < b ? a : b, hi = a < b ? b : a;
+    return (sr_band_span){ (unsigned char)band_of(r, c < lo ? c : lo), (unsigned char)band_of(r, c > hi ? c : hi) };
 }
 
 static void verdicts(void *ctx, int t)
 {
     rows_phase *ph = ctx;
     const sr_draw_state *st = ph->st;
-    const unsigned char *bands = st->ws->row_bands.data;
+    const sr_snapped_point *points = st->ws->snapped_points.data;
+    band_rule rule = { st->vp.subpixel_bits, st->fb->height - 1, (unsigned)st->band_rows };
     sr_band_slot *slots = st->ws->band_slots.data;
     uint32_t *chunk_kept = st->ws->chunk_kept.data;
     /* Local: stores to the thread's would alias every pointer above. */
@@ -63,7 +83,7 @@ static void verdicts(void *ctx, int t)
             sr_kept_slot kept[SR_VERDICT_BATCH];
             int count = sr_draw_verdicts(st, batch, batch_end, end, &counted, kept);
             for (int j = 0; j < count; j++) {
-                sr_band_span span = span_of(bands, kept[j].idx, kept[j].planes);
+                sr_band_span span = span_of(rule, points, kept[j].idx, kept[j].planes);
                 sr_band_slot *b = &slots[first + kept_in_chunk++];
                 *b = (sr_band_slot){ .k = kept[j].k, .span = span, .planes = (unsigned char)kept[j].planes,
                                      .one_pixel = kept[j].one_pixel };

@@ -40,7 +40,7 @@ void sr_workspace_destroy(sr_workspace *ws)
         return;
     sr_pool_stop(&ws->pool);
     sr_array_free(&ws->outcodes);
-    sr_array_free(&ws->row_bands);
+    sr_array_free(&ws->snapped_points);
     sr_array_free(&ws->double_mapped);
     sr_array_free(&ws->band_slots);
     sr_array_free(&ws->chunk_kept);

@@ -35,6 +35,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <ctype.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -49,6 +50,7 @@
 #include "mesh_origin.h"
 #include "obj_parse.h"
 #include "amf_import.h"
+#include "x3d_reuse.h"
 #include "assimp_instances.h"
 #include "assimp_report.h"
 #include "texture_find.h"
@@ -453,11 +455,42 @@ static bool ends_in(const char *path, const char *const *endings)
 }
 
 static const char *const AMF[] = { ".amf", NULL };
+static const char *const X3D[] = { ".x3d", NULL };
+
+/* Assimp's scene of the X3D file at path, read from its rewrite when it
+ * reuses nodes (x3d_reuse.h), into *scene (NULL when Assimp could not
+ * read it); false with err set when softrast could not rewrite it. */
+static bool import_x3d(const char *path, const struct aiScene **scene, sr_error *err)
+{
+    char *text;
+    size_t size;
+    if (!sr_x3d_write_out_reuses(path, &text, &size, err))
+        return false;
+    if (!text) {
+        *scene = aiImportFile(path, 0);
+        return true;
+    }
+    *scene = size <= UINT_MAX ? aiImportFileFromMemory(text, (unsigned)size, 0, "x3d") : NULL;
+    free(text);
+    return true;
+}
+
+/* Assimp's scene of the file at path, not post-processed, AMF's and X3D's
+ * mended; false with err set when softrast could not read it first. */
+static bool import_scene(const char *path, const struct aiScene **scene, double *amf_metres, sr_error *err)
+{
+    if (ends_in(path, AMF))
+        return sr_amf_import(path, 0, scene, amf_metres, err);
+    if (ends_in(path, X3D))
+        return import_x3d(path, scene, err);
+    *scene = aiImportFile(path, 0);
+    return true;
+}
 
 /* Formats whose meshes are a solid's facets, shaded flat (mesh_facets.h). */
 static const char *const FACETED[] = { ".3mf", ".amf", NULL };
 
-/* In the child process: Assimp's import, AMF's mended, its
+/* In the child process: Assimp's import, AMF's and X3D's mended, its
  * mirrored meshes turned outward, flattened and converted; what it found
  * into report. */
 static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr_load_report *report, sr_error *err)
@@ -465,9 +498,7 @@ static bool import_here(sr_mesh *mesh, sr_texture *texture, const char *path, sr
     *mesh = (sr_mesh){ 0 };
     const struct aiScene *sc = NULL;
     double amf_metres = 0.0;
-    if (!ends_in(path, AMF))
-        sc = aiImportFile(path, 0);
-    else if (!sr_amf_import(path, 0, &sc, &amf_metres, err))
+    if (!import_scene(path, &sc, &amf_metres, err))
         return false;
     if (!sc)
         return import_error(path, err);

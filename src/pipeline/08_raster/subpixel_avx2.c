@@ -14,10 +14,10 @@ sr_subpixel_verdict sr_subpixel_groups_avx2(const sr_subpixel_batch *b, int n, c
 }
 
 /* Without AVX2 no group is taken whole: the caller decides each slot. */
-sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const unsigned char *outcodes,
-                                              const char *screen, uint32_t stride, const sr_subpixel_rules *rules)
+sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const sr_snapped_point *points,
+                                              const sr_subpixel_rules *rules)
 {
-    (void)indices, (void)outcodes, (void)screen, (void)stride, (void)rules;
+    (void)indices, (void)points, (void)rules;
     return (sr_subpixel_slots){ .plain = false };
 }
 #endif

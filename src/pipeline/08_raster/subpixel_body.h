@@ -5,7 +5,6 @@
  * function it makes: sr_subpixel_verdict SUBPIXEL_GROUPS(const
  * sr_subpixel_batch *, int n, const sr_subpixel_rules *). Every width
  * computes the same exact integers, so the same verdicts. */
-#include <stddef.h>
 #include <string.h>
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -131,41 +130,45 @@ sr_subpixel_verdict SUBPIXEL_GROUPS(const sr_subpixel_batch *b, int n, const sr_
 }
 
 #if SUBPIXEL_LANES == 8 && defined(__AVX2__)
-/* The 32-bit values at base + offsets[i] bytes, a lane each. */
-static SR_ALWAYS_INLINE lanes gather(const void *base, lanes offsets)
-{
-    return (lanes)_mm256_i32gather_epi32((const int *)base, (__m256i)offsets, 1);
-}
-
 /* Lane i from a where bit i of the blend is clear, from b where set. */
 #define BLEND(a, b, bits) _mm256_blend_epi32((a), (b), (bits))
 
-sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const unsigned char *outcodes,
-                                              const char *screen, uint32_t stride, const sr_subpixel_rules *rules)
+/* The x and the y of the points of the eight slots whose corner indices
+ * are i, in the order 0 1 4 5 2 3 6 7: two gathers of four points, whose
+ * x and y the shuffles take apart in slot order. */
+static SR_ALWAYS_INLINE void gather_points(const sr_snapped_point *points, lanes i, lanes *x, lanes *y)
 {
-    /* i0 i1 i2 of slot 0, of slot 1, ... in three loads: each corner of
-     * the eight slots into its own lanes by two blends and a permute. */
+    __m256 lo = _mm256_castsi256_ps(_mm256_i32gather_epi64((const long long *)points,
+                                                           _mm256_castsi256_si128((__m256i)i), 8));
+    __m256 hi = _mm256_castsi256_ps(_mm256_i32gather_epi64((const long long *)points,
+                                                           _mm256_extracti128_si256((__m256i)i, 1), 8));
+    *x = (lanes)_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, 0x88));
+    *y = (lanes)_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, 0xdd));
+}
+
+sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const sr_snapped_point *points,
+                                              const sr_subpixel_rules *rules)
+{
+    /* i0 i1 i2 of the slots in the order gather_points takes them, from
+     * three loads: each corner into its own lanes by two blends and a
+     * permute. */
     __m256i a = _mm256_loadu_si256((const __m256i *)indices), b = _mm256_loadu_si256((const __m256i *)(indices + 8)),
             c = _mm256_loadu_si256((const __m256i *)(indices + 16));
     lanes i0 = (lanes)_mm256_permutevar8x32_epi32(BLEND(BLEND(a, b, 0x92), c, 0x24),
-                                                  _mm256_setr_epi32(0, 3, 6, 1, 4, 7, 2, 5));
+                                                  _mm256_setr_epi32(0, 3, 4, 7, 6, 1, 2, 5));
     lanes i1 = (lanes)_mm256_permutevar8x32_epi32(BLEND(BLEND(a, b, 0x24), c, 0x49),
-                                                  _mm256_setr_epi32(1, 4, 7, 2, 5, 0, 3, 6));
+                                                  _mm256_setr_epi32(1, 4, 5, 0, 7, 2, 3, 6));
     lanes i2 = (lanes)_mm256_permutevar8x32_epi32(BLEND(BLEND(a, b, 0x49), c, 0x92),
-                                                  _mm256_setr_epi32(2, 5, 0, 3, 6, 1, 4, 7));
-    const lanes zero = { 0 };
-    /* sr_slot_verdict's triangle: three distinct indices, each vertex inside every plane (outcode 0). */
-    lanes codes = (gather(outcodes, i0) | gather(outcodes, i1) | gather(outcodes, i2)) & (zero + 0xff);
-    lanes plain = (i0 != i1) & (i1 != i2) & (i0 != i2) & (codes == zero);
+                                                  _mm256_setr_epi32(2, 5, 6, 1, 0, 3, 4, 7));
+    lanes x0, y0, x1, y1, x2, y2;
+    gather_points(points, i0, &x0, &y0);
+    gather_points(points, i1, &x1, &y1);
+    gather_points(points, i2, &x2, &y2);
+    /* sr_slot_verdict's triangle: three distinct indices, each vertex inside every plane. */
+    const lanes outside = (lanes){ 0 } + INT32_MIN; /* SR_SNAPPED_OUTSIDE's x */
+    lanes plain = (i0 != i1) & (i1 != i2) & (i0 != i2) & (x0 != outside) & (x1 != outside) & (x2 != outside);
     if (lane_bits(plain) != 0xff)
         return (sr_subpixel_slots){ .plain = false };
-    /* The low 32 bits of the screen vertices' x and y: below 2^30 inside every plane. */
-    _Static_assert(offsetof(sr_screen_vertex, x) == 0, "x is read at the screen vertex's first byte");
-    ulanes step = (ulanes){ 0 } + stride;
-    lanes o0 = (lanes)((ulanes)i0 * step), o1 = (lanes)((ulanes)i1 * step), o2 = (lanes)((ulanes)i2 * step);
-    const char *y = screen + offsetof(sr_screen_vertex, y);
-    sr_subpixel_verdict v = verdict_of(gather(screen, o0), gather(y, o0), gather(screen, o1), gather(y, o1),
-                                       gather(screen, o2), gather(y, o2), rules);
-    return (sr_subpixel_slots){ .plain = true, .verdict = v };
+    return (sr_subpixel_slots){ .plain = true, .verdict = verdict_of(x0, y0, x1, y1, x2, y2, rules) };
 }
 #endif

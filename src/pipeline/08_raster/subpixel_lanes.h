@@ -37,26 +37,37 @@ typedef struct sr_subpixel_verdict {
     uint64_t culled, drawn, one_pixel;
 } sr_subpixel_verdict;
 
+/* A vertex's snapped point as the slot lanes read it, one 8-byte load a
+ * corner: for a vertex inside every plane (outcode 0), x in the low 32
+ * bits and y in the high 32 (each below 2^30 there, so exact); for any
+ * other, SR_SNAPPED_OUTSIDE, whose x (INT32_MIN) no point inside holds.
+ * The corner's outcode rides in its point: a group reads no outcode. */
+typedef uint64_t sr_snapped_point;
+#define SR_SNAPPED_OUTSIDE ((sr_snapped_point)0x80000000u)
+
+static inline sr_snapped_point sr_snapped_point_of(int64_t x, int64_t y)
+{
+    return (uint32_t)x | (uint64_t)(uint32_t)y << 32;
+}
+
 /* Eight slots of a triangle list decided at once from the draw's own
  * arrays (sr_subpixel_slot_group_avx2): plain when each slot's triangle
- * has three distinct indices and all three vertices inside every plane
- * (outcode 0), as sr_slot_verdict would keep it with no plane to clip
- * against; then the lanes' verdict of each, bits 0 .. 7. Not plain, the
- * verdict is empty and the caller takes the slots one at a time. */
+ * has three distinct indices and all three vertices inside every plane,
+ * as sr_slot_verdict would keep it with no plane to clip against; then
+ * the lanes' verdict of each, bits 0 .. 7. Not plain, the verdict is
+ * empty and the caller takes the slots one at a time. */
 typedef struct sr_subpixel_slots {
     bool plain;
     sr_subpixel_verdict verdict;
 } sr_subpixel_slots;
 
 /* Slots whose indices start at indices[0] (24 of them, i0 i1 i2 of each),
- * against outcodes[] (3 bytes readable past the last vertex's: each is
- * read as 4) and the screen vertices stride bytes apart from screen,
- * every index times stride below 2^31. AVX2 only: the lanes gather. */
-sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const unsigned char *outcodes,
-                                              const char *screen, uint32_t stride, const sr_subpixel_rules *rules);
-/* The slots a group holds, and the bytes past outcodes[] it reads. */
+ * against the snapped points of the vertices, every index below 2^31.
+ * AVX2 only: the lanes gather. */
+sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const sr_snapped_point *points,
+                                              const sr_subpixel_rules *rules);
+/* The slots a group holds. */
 #define SR_SUBPIXEL_SLOT_GROUP 8
-#define SR_OUTCODES_GATHER_SLACK 3
 
 /* The two widths (subpixel_body.h, compiled by subpixel_sse2.c and
  * subpixel_avx2.c): the verdicts of lanes [0, n) rounded up to a group,
