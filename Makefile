@@ -60,6 +60,20 @@ WIDE_SPAN_OBJ := $(patsubst %,%/src/pipeline/08_raster/span_avx2.o,build/san bui
 $(WIDE_SPAN_OBJ): SANITIZE = address
 $(WIDE_SPAN_OBJ): FUZZ_SANITIZE = address
 endif
+# The same holds for the fuzz build's scalar loop and SSE2 kernels: clang's
+# UBSan over raster.c's always-inlined per-pixel loops is several times the
+# rest of the library's compile. The fuzzers check their memory there; UBSan
+# checks them in build/san (gcc), under every Criterion test.
+FUZZ_PIXEL_OBJ := $(patsubst %,build/fuzz/src/pipeline/08_raster/%.o,raster span_sse2)
+$(FUZZ_PIXEL_OBJ): FUZZ_SANITIZE = address
+
+# The per-pixel files (raster.c's loops and span_kernel.h's instances) are
+# the longest compiles of every build. gcc's variable tracking for the
+# debugger over their inlined loops is a third of that; without it they keep
+# line tables (the sanitisers' stack traces, perf) and lose only some
+# variable locations in gdb.
+PIXEL_OBJ := $(foreach b,build/san build/fuzz build,$(patsubst %,$(b)/src/pipeline/08_raster/%.o,raster span_sse2 span_avx2 span_avx512))
+$(PIXEL_OBJ): ALL_CFLAGS += -fno-var-tracking
 
 .PHONY: all deps run test fuzz-smoke-ci test-fast test-python test-san test-house mutate test-assets test-install install assets docs-images bench report scans stability cost-model clean
 .DEFAULT_GOAL := all
@@ -69,13 +83,17 @@ all: deps build/softrast $(PUBLIC_LIBS)
 deps:
 	@sh tools/deps.sh
 
-# Every compile waits for the packages (order-only: it never forces a rebuild).
-build/%.o: %.c | deps
+# Every compile waits for the packages (order-only: it never forces a rebuild),
+# but in make test's own sub-makes, which run after it has checked them: a
+# goal waiting on deps is only taken up again after every later goal, which
+# would undo the order make test asks its objects in.
+DEPS := $(if $(DEPS_CHECKED),,deps)
+build/%.o: %.c | $(DEPS)
 	@mkdir -p $(@D)
 	@echo "  CC      $<"
 	@$(CC) $(ALL_CFLAGS) $(CFLAGS) $(STRICT_FP) -c $< -o $@
 
-build/san/%.o: %.c | deps
+build/san/%.o: %.c | $(DEPS)
 	@mkdir -p $(@D)
 	@echo "  CC san  $<"
 	@$(CC) $(ALL_CFLAGS) $(SAN) $(STRICT_FP) -c $< -o $@
@@ -151,9 +169,11 @@ run: all
 TEST_BINS = build/softrast build/softrast-tests build/san/softrast build/san/softrast-tests \
             build/gen-assets $(PUBLIC_LIBS) $(FUZZ_BINS)
 JOBS := $(shell nproc 2>/dev/null || echo 2)
+# The per-pixel objects are asked for first, so the longest compiles start
+# first and no core waits alone on one at the end.
 test: deps
-	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) $(TEST_BINS)
-	@$(MAKE) --no-print-directory test-fast test-python test-san test-house test-assets test-install \
+	@$(MAKE) --no-print-directory DEPS_CHECKED=1 $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) $(PIXEL_OBJ) $(TEST_BINS)
+	@$(MAKE) --no-print-directory DEPS_CHECKED=1 test-fast test-python test-san test-house test-assets test-install \
 		fuzz-regressions fuzz-smoke-ci
 
 # After the regressions: both build the fuzzers, and two makes linking one
