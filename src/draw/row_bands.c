@@ -46,11 +46,6 @@ static unsigned band_of(band_rule r, int32_t y)
     return (unsigned)(row < r.last_row ? row : r.last_row) / r.rows;
 }
 
-static int32_t y_of(sr_snapped_point p)
-{
-    return (int32_t)(uint32_t)(p >> 32);
-}
-
 /* The bands a kept slot's triangle may cover: from its highest vertex's
  * to its lowest one's (its covered pixel centres lie between their rows),
  * or every band when a vertex lies outside a plane (its clipped polygon
@@ -59,7 +54,8 @@ static sr_band_span span_of(band_rule r, const sr_snapped_point *points, const u
 {
     if (planes)
         return sr_every_band();
-    int32_t a = y_of(points[idx[0]]), b = y_of(points[idx[1]]), c = y_of(points[idx[2]]);
+    int32_t a = sr_snapped_point_y(points[idx[0]]), b = sr_snapped_point_y(points[idx[1]]),
+            c = sr_snapped_point_y(points[idx[2]]);
     int32_t lo = a < b ? a : b, hi = a < b ? b : a;
     return (sr_band_span){ (unsigned char)band_of(r, c < lo ? c : lo), (unsigned char)band_of(r, c > hi ? c : hi) };
 }

@@ -38,6 +38,12 @@ static inline sr_snapped_point sr_snapped_point_of(int64_t x, int64_t y)
     return (uint32_t)x | (uint64_t)(uint32_t)y << 32;
 }
 
+/* The y of a point inside every plane. */
+static inline int32_t sr_snapped_point_y(sr_snapped_point p)
+{
+    return (int32_t)(uint32_t)(p >> 32);
+}
+
 /* Clip-space position (x, y, z, w) then the varyings, in one float array so
  * the clipper interpolates "position and every varying" in one loop. */
 enum { SR_X = 0, SR_Y, SR_Z, SR_W, SR_VARYINGS_AT };
