@@ -164,8 +164,10 @@ run: all
 # The fuzzers' regression inputs, then a short bounded round of each target
 # (tolerating the open clip_precision finding of fuzz/known/, see fuzz/README.md).
 # Every binary the tests run is built first on every core (CI runs a plain
-# `make test`, and the sanitised builds are most of its time), then the tests
-# run one after the other.
+# `make test`, and the sanitised builds are most of its time), then the two
+# Criterion runs one after the other (each on 2 jobs), then the checks that
+# run on one core, two at a time (the fuzzers' 20 s rounds beside pytest,
+# the house, the assets and the install), each one's output kept whole.
 TEST_BINS = build/softrast build/softrast-tests build/san/softrast build/san/softrast-tests \
             build/gen-assets $(PUBLIC_LIBS) $(FUZZ_BINS)
 JOBS := $(shell nproc 2>/dev/null || echo 2)
@@ -173,8 +175,9 @@ JOBS := $(shell nproc 2>/dev/null || echo 2)
 # first and no core waits alone on one at the end.
 test: deps
 	@$(MAKE) --no-print-directory DEPS_CHECKED=1 $(if $(filter -j%,$(MAKEFLAGS)),,-j$(JOBS)) $(PIXEL_OBJ) $(TEST_BINS)
-	@$(MAKE) --no-print-directory DEPS_CHECKED=1 test-fast test-python test-san test-house test-assets test-install \
-		fuzz-regressions fuzz-smoke-ci
+	@$(MAKE) --no-print-directory DEPS_CHECKED=1 test-fast test-san
+	@$(MAKE) --no-print-directory DEPS_CHECKED=1 -j2 --output-sync=target test-python test-house test-assets \
+		test-install fuzz-smoke-ci
 
 # After the regressions: both build the fuzzers, and two makes linking one
 # binary at once under -j leave it half-written.
