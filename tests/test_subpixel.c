@@ -373,9 +373,10 @@ Test(subpixel, one_pixel_boxes_cut_by_the_framebuffers_sides_draw_alike)
 }
 
 /* Slivers through a pixel centre, one of whose corners snapping carries
- * across the line of the other two (sr_depth_plane then takes the snapped
- * corners' plane), in both windings: the lanes' one-pixel draw must take
- * that plane whichever way the triangle winds, as the set-up does. */
+ * across the line of the other two, or off it (sr_depth_plane then takes
+ * the snapped corners' plane), in both windings: the lanes' one-pixel
+ * draw must take that plane whichever way the triangle winds, as the
+ * set-up does. */
 Test(subpixel, one_pixel_slivers_turned_over_by_snapping_draw_alike)
 {
     enum { SIDE = 8, TRIS = 3000, SUB = 256 };
@@ -390,10 +391,10 @@ Test(subpixel, one_pixel_slivers_turned_over_by_snapping_draw_alike)
          * through the centre, the third a fraction of a subpixel off it. */
         double cx = SUB * (rng_below(&rng, SIDE) + 0.5), cy = SUB * (rng_below(&rng, SIDE) + 0.5);
         double dx = 1 + rng_below(&rng, 3), dy = (1 + rng_below(&rng, 3)) * (rng_below(&rng, 2) ? 1 : -1);
-        double step = 20 + rng_below(&rng, 20);
+        double step = 20 + rng_below(&rng, 20), off = t % 3 == 0 ? 0.0 : 0.5; /* 0: on the line, unsnapped */
         double corner[3][2] = { { cx - dx * step, cy - dy * step },
-                                { cx + dx * step * 0.4 + rng_uniform(&rng, -0.5, 0.5),
-                                  cy + dy * step * 0.4 + rng_uniform(&rng, -0.5, 0.5) },
+                                { cx + dx * step * 0.4 + rng_uniform(&rng, -off, off),
+                                  cy + dy * step * 0.4 + rng_uniform(&rng, -off, off) },
                                 { cx + dx * step, cy + dy * step } };
         bool swap = rng_below(&rng, 2);
         for (int k = 0; k < 3; k++) {
