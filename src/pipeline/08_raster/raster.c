@@ -336,7 +336,7 @@ static SR_ALWAYS_INLINE uint64_t plain_pixel(sr_framebuffer *fb, sr_raster_rect 
     sr_order_clockwise(tri, area2, v);
     setup s;
     s.bits = subpixel_bits;
-    sr_depth_plane(v, area2, &s);
+    sr_depth_plane(v, area2 > 0 ? area2 : -area2, &s);
     size_t at = (size_t)box.y0 * (size_t)fb->width + (size_t)box.x0;
     float z_row = sr_row_z(&s, box.y0), k = (float)(box.x0 - s.ref_x);
     bool greater = fb->reversed_z;
