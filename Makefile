@@ -43,7 +43,7 @@ PUBLIC_LIBS := build/libsoftrast.a build/libsoftrast-files.a
 # The 8-lane span kernels, sub-pixel lanes, viewport and vertex lanes are built for AVX2 (chosen at
 # run time when the CPU has it); never -mfma, which would round differently from the scalar path.
 ifeq ($(shell uname -m),x86_64)
-AVX2_OBJ := $(foreach f,span_avx2 subpixel_avx2,$(patsubst %,%/src/pipeline/08_raster/$(f).o,build build/san build/fuzz)) \
+AVX2_OBJ := $(foreach f,span_avx2 subpixel_avx2 one_pixel_avx2,$(patsubst %,%/src/pipeline/08_raster/$(f).o,build build/san build/fuzz)) \
             $(foreach f,06_viewport_avx2 01_vertex_avx2,$(patsubst %,%/src/pipeline/$(f).o,build build/san build/fuzz))
 $(AVX2_OBJ): ALL_CFLAGS += -mavx2
 $(AVX2_OBJ): FUZZ_CFLAGS += -mavx2
@@ -284,8 +284,9 @@ install: build/softrast $(PUBLIC_LIBS)
 # draws links the core alone (no SDL anywhere on its link line or in the
 # binary), the one that reads a mesh file and writes a PNG links the files
 # library too, and must draw a tiny OBJ, a cube and a glTF scene of
-# hundreds of units alike (near and far fitted). Every exported symbol must
-# be declared in the headers.
+# hundreds of units alike (near and far fitted), and draw each of two
+# materials with its own texture, exactly. Every exported symbol must be
+# declared in the headers.
 INSTALL_CHECK := $(CURDIR)/build/install-check
 INSTALL_PC     = PKG_CONFIG_PATH=$(INSTALL_CHECK)/lib/pkgconfig pkg-config
 test-install:
@@ -305,6 +306,7 @@ test-install:
 	   out=$$($(INSTALL_CHECK)/render_mesh $$mesh $(INSTALL_CHECK)/render_mesh.png) || exit 1; \
 	   echo "render_mesh $$mesh: $$out"; \
 	   case "$$out" in *" 0 fragments"*) echo "render_mesh drew nothing of $$mesh"; exit 1;; esac; done
+	$(PYTHON) tools/test_install_textures.py $(INSTALL_CHECK)/render_mesh $(INSTALL_CHECK)/two-textures
 	mkdir -p $(INSTALL_CHECK)/shots && cd / && $(INSTALL_CHECK)/bin/softrast view --no-window --script $(CURDIR)/tests/flights/room_walls.txt --frames 1 \
 		--shots $(INSTALL_CHECK)/shots && test -s $(INSTALL_CHECK)/shots/frame-0000.png
 	cd / && $(INSTALL_CHECK)/bin/softrast bench --scene fly --frames 1 >/dev/null

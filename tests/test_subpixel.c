@@ -372,6 +372,43 @@ Test(subpixel, one_pixel_boxes_cut_by_the_framebuffers_sides_draw_alike)
     sr_mesh_free(&m);
 }
 
+/* Slivers through a pixel centre, one of whose corners snapping carries
+ * across the line of the other two, or off it (sr_depth_plane then takes
+ * the snapped corners' plane), in both windings: the lanes' one-pixel
+ * draw must take that plane whichever way the triangle winds, as the
+ * set-up does. */
+Test(subpixel, one_pixel_slivers_turned_over_by_snapping_draw_alike)
+{
+    enum { SIDE = 8, TRIS = 3000, SUB = 256 };
+    test_rng rng = { 4242 };
+    sr_mesh m;
+    sr_error err;
+    cr_assert(sr_mesh_alloc(&m, 3 * TRIS, 3 * TRIS, false, false, false, &err), "%s", err.message);
+    m.clip_positions = calloc(m.vertex_count, sizeof *m.clip_positions);
+    cr_assert_not_null(m.clip_positions);
+    for (uint32_t t = 0; t < TRIS; t++) {
+        /* In subpixels: two corners on a line of small integer slope
+         * through the centre, the third a fraction of a subpixel off it. */
+        double cx = SUB * (rng_below(&rng, SIDE) + 0.5), cy = SUB * (rng_below(&rng, SIDE) + 0.5);
+        double dx = 1 + rng_below(&rng, 3), dy = (1 + rng_below(&rng, 3)) * (rng_below(&rng, 2) ? 1 : -1);
+        double step = 20 + rng_below(&rng, 20), off = t % 3 == 0 ? 0.0 : 0.5; /* 0: on the line, unsnapped */
+        double corner[3][2] = { { cx - dx * step, cy - dy * step },
+                                { cx + dx * step * 0.4 + rng_uniform(&rng, -off, off),
+                                  cy + dy * step * 0.4 + rng_uniform(&rng, -off, off) },
+                                { cx + dx * step, cy + dy * step } };
+        bool swap = rng_below(&rng, 2);
+        for (int k = 0; k < 3; k++) {
+            const double *c = corner[swap && k ? 3 - k : k];
+            float *p = m.clip_positions[3 * t + (uint32_t)k];
+            p[0] = (float)(2.0 * c[0] / (SUB * SIDE) - 1.0), p[1] = (float)(1.0 - 2.0 * c[1] / (SUB * SIDE));
+            p[2] = (float)rng_uniform(&rng, 0.05, 0.95), p[3] = 1.0f;
+            m.indices[3 * t + (uint32_t)k] = 3 * t + (uint32_t)k;
+        }
+    }
+    assert_lanes_draw_alike(&m, SIDE, SIDE, SR_SHADE_DEPTH, SR_CULL_NONE, SR_FRONT_CCW, IDS_PLANE, false, 0.0f);
+    sr_mesh_free(&m);
+}
+
 /* The tests' dense torus seen small, lit, where the tiny queue takes the
  * triangles the lanes leave. */
 Test(subpixel, dense_torus_draws_alike_with_and_without_the_lanes, .timeout = 120)

@@ -26,9 +26,9 @@ static void observe(const sr_draw_state *st, const sr_screen_vertex *const tri[3
 }
 
 /* A triangle the sub-pixel lanes found covers the one pixel centre of its
- * scan box (one_pixel) is drawn from that one-bit mask, as the tiles draw
- * a tiny triangle they tested while binning: no edges in a mode without
- * varyings, no coverage test in any. */
+ * scan box (one_pixel), in a mode with varyings, is drawn from that
+ * one-bit mask, as the tiles draw a tiny triangle they tested while
+ * binning: no coverage test. */
 static void raster_now(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3],
                        int64_t area2, uint32_t id, bool clipped, bool one_pixel)
 {
@@ -48,7 +48,8 @@ sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_ras
                            sr_thread_work *pixels)
 {
     return (sr_fan_sink){ .store = store_in_place, .triangle = raster_now, .st = st, .work = work, .rect = rect,
-                          .pixels = pixels };
+                          .pixels = pixels,
+                          .one_pixel_batches = st->subpixel_lanes && !sr_mode_reads_varyings(st->mode) };
 }
 
 /* Every slot on the direct path, counted in thread 0's work. */

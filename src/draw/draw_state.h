@@ -226,6 +226,10 @@ struct sr_fan_sink {
      * drawn, and the work that counts their fragments. */
     sr_raster_rect rect;
     sr_thread_work *pixels;
+    /* And in a mode without varyings, one_pixel triangles not handed to
+     * `triangle`: their batch's pixels and depths are found together
+     * (pipeline/08_raster/one_pixel.h), then each is drawn from those. */
+    bool one_pixel_batches;
 };
 
 /* Stages 2 to 7 for triangle slots [first, end): assembly, classification,

@@ -8,7 +8,8 @@
  * whose vertices are consecutive is transformed and classified in blocks,
  * four at a time (sr_vertex_run_inside), and a point of size 1 takes its
  * pixel without the square's set-up (sr_raster_point_pixel): the same
- * arithmetic, one loop instead of many. docs/performance.md, "Points". */
+ * arithmetic, one loop instead of many. docs/performance.md, "Points and
+ * lines". */
 #include <math.h>
 #include <stdlib.h>
 

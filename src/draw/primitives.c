@@ -6,6 +6,8 @@
 #include "pipeline/07_cull.h"
 #include "pipeline/01_vertex.h"
 #include "pipeline/06_viewport.h"
+#include "pipeline/08_raster/one_pixel.h"
+#include "pipeline/08_raster/raster.h"
 
 /* Stage 7 for one fan triangle whose vertices are *tri[] (refs name them
  * for the sink). */
@@ -295,6 +297,61 @@ int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint
     return count;
 }
 
+/* The one-pixel triangles of a batch of slots that a sink draws from
+ * their pixels and depths (sr_fan_sink.one_pixel_batches): their indices
+ * and ids as the slots come, then what sr_one_pixel_depths_* found, and
+ * how far they are taken in the slots' order and drawn. */
+typedef struct one_pixel_batch {
+    uint32_t tri[SR_ONE_PIXEL_BATCH][3];
+    uint32_t id[SR_ONE_PIXEL_BATCH];
+    sr_one_pixels found;
+    int count, taken, drawn;
+} one_pixel_batch;
+
+static void one_pixel_add(one_pixel_batch *b, const uint32_t idx[3], uint32_t id)
+{
+    memcpy(b->tri[b->count], idx, sizeof b->tri[0]);
+    b->id[b->count++] = id;
+}
+
+/* The batch's pixels and depths, its pixels prefetched for the depth
+ * tests that follow: without, each test waited on memory, and a
+ * mispredicted branch on it held up the triangles behind. */
+static void one_pixel_find(const sr_fan_sink *sink, one_pixel_batch *b)
+{
+    const sr_draw_state *st = sink->st;
+    if (b->count == 0)
+        return;
+    (st->subpixel.avx2 ? sr_one_pixel_depths_avx2 : sr_one_pixel_depths_sse2)(
+        st->ws->screen.data, st->screen_stride, (const uint32_t(*)[3])b->tri, b->count, st->vp.subpixel_bits,
+        sink->rect, st->fb->width, &b->found);
+    for (int j = 0; j < b->count; j++)
+        if (b->found.at[j] != SR_ONE_PIXEL_OUTSIDE)
+            __builtin_prefetch(st->fb->depth + b->found.at[j], 1);
+}
+
+/* Stage 7 of the batch's next triangle, counted in the sink that counts
+ * it: kept, as the lanes applied its cull. Its pixel waits to be drawn
+ * with the others taken after it (one_pixel_draw). */
+static void one_pixel_take(sr_fan_sink *sink, one_pixel_batch *b)
+{
+    sink->work->stats.drawn++;
+    b->taken++;
+}
+
+/* The pixels of the triangles taken and not yet drawn, in order: before
+ * any other triangle is drawn, and at the batch's end. */
+static void one_pixel_draw(sr_fan_sink *sink, one_pixel_batch *b)
+{
+    const sr_draw_state *st = sink->st;
+    int n = b->taken - b->drawn;
+    if (n == 0)
+        return;
+    sink->pixels->stats.fragments += sr_raster_one_pixels(st->fb, st->mode, &st->shade, b->id + b->drawn,
+                                                          b->found.at + b->drawn, b->found.z + b->drawn, n);
+    b->drawn = b->taken;
+}
+
 /* A batch's verdicts, then its kept slots drawn. The verdicts' counts stay
  * in a local: a slot drawn between two verdicts made them reload what the
  * drawing might have written. */
@@ -305,8 +362,20 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
         uint32_t batch_end = end - batch > SR_VERDICT_BATCH ? batch + SR_VERDICT_BATCH : end;
         sr_kept_slot kept[SR_VERDICT_BATCH];
         int count = sr_draw_verdicts(sink->st, batch, batch_end, end, &verdicts, kept);
-        for (int j = 0; j < count; j++)
-            emit_kept(sink, kept[j].idx, kept[j].planes, kept[j].k, kept[j].one_pixel);
+        one_pixel_batch ones = { .count = 0 };
+        for (int j = 0; j < count && sink->one_pixel_batches; j++)
+            if (kept[j].one_pixel)
+                one_pixel_add(&ones, kept[j].idx, kept[j].k);
+        one_pixel_find(sink, &ones);
+        for (int j = 0; j < count; j++) {
+            if (kept[j].one_pixel && sink->one_pixel_batches) {
+                one_pixel_take(sink, &ones);
+            } else {
+                one_pixel_draw(sink, &ones);
+                emit_kept(sink, kept[j].idx, kept[j].planes, kept[j].k, kept[j].one_pixel);
+            }
+        }
+        one_pixel_draw(sink, &ones);
         batch = batch_end;
     }
     sr_stats_add(&sink->work->stats, &verdicts);
@@ -329,11 +398,29 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slo
     const sr_draw_state *st = own->st;
     const char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
-    for (uint32_t i = 0; i < count; i++) {
-        if (count - i > PREFETCH_SLOTS && span_meets(slots[i + PREFETCH_SLOTS].span, lo, hi))
-            PREFETCH_TRIANGLE(screen, stride, slots[i + PREFETCH_SLOTS].idx);
-        const sr_band_slot *s = &slots[i];
-        if (span_meets(s->span, lo, hi))
-            emit_kept(s->span.first >= lo ? own : shared, s->idx, s->planes, s->k, s->one_pixel);
+    /* A window of slots at a time: its one-pixel triangles' pixels found
+     * first (the two sinks draw the same rows), then every slot in order. */
+    for (uint32_t window = 0; window < count; window += SR_ONE_PIXEL_BATCH) {
+        uint32_t window_end = count - window > SR_ONE_PIXEL_BATCH ? window + SR_ONE_PIXEL_BATCH : count;
+        one_pixel_batch ones = { .count = 0 };
+        for (uint32_t i = window; i < window_end && own->one_pixel_batches; i++)
+            if (slots[i].one_pixel && span_meets(slots[i].span, lo, hi))
+                one_pixel_add(&ones, slots[i].idx, slots[i].k);
+        one_pixel_find(own, &ones);
+        for (uint32_t i = window; i < window_end; i++) {
+            if (count - i > PREFETCH_SLOTS && span_meets(slots[i + PREFETCH_SLOTS].span, lo, hi))
+                PREFETCH_TRIANGLE(screen, stride, slots[i + PREFETCH_SLOTS].idx);
+            const sr_band_slot *s = &slots[i];
+            if (!span_meets(s->span, lo, hi))
+                continue;
+            sr_fan_sink *sink = s->span.first >= lo ? own : shared;
+            if (s->one_pixel && own->one_pixel_batches) {
+                one_pixel_take(sink, &ones);
+            } else {
+                one_pixel_draw(own, &ones);
+                emit_kept(sink, s->idx, s->planes, s->k, s->one_pixel);
+            }
+        }
+        one_pixel_draw(own, &ones); /* both sinks count their fragments in the same work */
     }
 }

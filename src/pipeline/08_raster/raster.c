@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "pipeline/11_merge.h"
+#include "one_pixel.h"
 #include "raster.h"
 #include "simd_select.h"
 #include "tiny_queue.h"
@@ -34,14 +35,13 @@ static inline __attribute__((always_inline)) uint32_t fragment_colour(const setu
  * material cut by its texels (sr_shade_context.cut), whose varyings are
  * interpolated for the alpha test in a mode that reads none. */
 static inline __attribute__((always_inline)) uint64_t
-fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool greater, bool with_ids, sr_interp interp,
-           const sr_shade_context *shade, uint32_t id, size_t at, float z_row, float k, int64_t e1, int64_t e2)
+fill_fragment(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool greater, bool with_ids,
+              sr_interp interp, const sr_shade_context *shade, uint32_t id, size_t at, float z, int64_t e1, int64_t e2)
 {
     if (mode == SR_RASTER_COUNT_HITS) {
         fb->color[at]++;
         return 1;
     }
-    float z = sr_depth_at(s, z_row, k);
     if (!sr_depth_passes(z, fb->depth[at], greater))
         return 0;
     float var[SR_MAX_VARYINGS];
@@ -64,6 +64,16 @@ fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool gre
     if (mode != SR_SHADE_DEPTH)
         fb->color[at] = fragment_colour(s, mode, interp, shade, var, id);
     return 1;
+}
+
+/* fill_fragment at the depth the plane gives pixel k of a row whose
+ * reference pixel's depth is z_row. */
+static inline __attribute__((always_inline)) uint64_t
+fill_pixel(const setup *s, sr_framebuffer *fb, sr_shade mode, bool cut, bool greater, bool with_ids, sr_interp interp,
+           const sr_shade_context *shade, uint32_t id, size_t at, float z_row, float k, int64_t e1, int64_t e2)
+{
+    float z = mode == SR_RASTER_COUNT_HITS ? 0.0f : sr_depth_at(s, z_row, k);
+    return fill_fragment(s, fb, mode, cut, greater, with_ids, interp, shade, id, at, z, e1, e2);
 }
 
 /* In the scalar loop, triangles at least this wide in pixels find each row's
@@ -324,52 +334,53 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                            area2, triangle_id, false, 0, true, simd);
 }
 
-/* The one pixel of a box whose centre the triangle covers, in a mode
- * without varyings: the depth plane and fill_pixel, as tiny_loop takes
- * bit 0 of a one-bit mask, with none of the set-up and dispatch a box of
- * several pixels needs. Half of what a dense scan draws is such a pixel. */
-static SR_ALWAYS_INLINE uint64_t plain_pixel(sr_framebuffer *fb, sr_raster_rect box, int subpixel_bits,
-                                             sr_shade mode, const sr_shade_context *shade,
-                                             const sr_screen_vertex *const tri[3], int64_t area2, uint32_t id)
+/* The fragments of triangles the sub-pixel lanes found covering one pixel
+ * centre each, in a mode without varyings, as tiny_loop draws bit 0 of
+ * their one-bit masks: fill_fragment at the depths sr_one_pixel_depths_*
+ * found, with none of the set-up a box of several pixels needs, in one
+ * loop for the run. */
+static SR_ALWAYS_INLINE uint64_t one_pixel_run(sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids,
+                                               const sr_shade_context *shade, const uint32_t *id, const size_t *at,
+                                               const float *z, int n)
 {
-    const sr_screen_vertex *v[3];
-    sr_order_clockwise(tri, area2, v);
-    setup s;
-    s.bits = subpixel_bits;
-    sr_depth_plane(v, area2, &s);
-    size_t at = (size_t)box.y0 * (size_t)fb->width + (size_t)box.x0;
-    float z_row = sr_row_z(&s, box.y0), k = (float)(box.x0 - s.ref_x);
-    bool greater = fb->reversed_z;
-    sr_interp interp = SR_INTERP_PERSPECTIVE;
+    static const setup unused; /* read only for varyings, which these modes have none of */
+    uint64_t fragments = 0;
+    for (int i = 0; i < n; i++) {
+        const sr_shade_context *c = sr_shade_context_of(shade, id[i]);
+        /* Hidden whole: a draw that cuts by texels marks no one-pixel
+         * triangles in these modes (draw.c, subpixel_lanes). */
+        if (at[i] != SR_ONE_PIXEL_OUTSIDE && c->cut == SR_CUT_NONE)
+            fragments += fill_fragment(&unused, fb, mode, false, greater, with_ids, SR_INTERP_PERSPECTIVE, c, id[i],
+                                       at[i], z[i], 0, 0);
+    }
+    return fragments;
+}
+
+static SR_ALWAYS_INLINE uint64_t one_pixel_tests(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                                                 const uint32_t *id, const size_t *at, const float *z, int n)
+{
     if (fb->ids)
-        return greater ? fill_pixel(&s, fb, mode, false, true, true, interp, shade, id, at, z_row, k, 0, 0)
-                       : fill_pixel(&s, fb, mode, false, false, true, interp, shade, id, at, z_row, k, 0, 0);
-    return greater ? fill_pixel(&s, fb, mode, false, true, false, interp, shade, id, at, z_row, k, 0, 0)
-                   : fill_pixel(&s, fb, mode, false, false, false, interp, shade, id, at, z_row, k, 0, 0);
+        return fb->reversed_z ? one_pixel_run(fb, mode, true, true, shade, id, at, z, n)
+                              : one_pixel_run(fb, mode, false, true, shade, id, at, z, n);
+    return fb->reversed_z ? one_pixel_run(fb, mode, true, false, shade, id, at, z, n)
+                          : one_pixel_run(fb, mode, false, false, shade, id, at, z, n);
 }
 
 uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
                              const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                              uint32_t triangle_id, bool *simd)
 {
-    if (sr_mode_reads_varyings(mode))
-        return triangle_in_box(fb, sr_raster_scan_box_of(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri,
-                               area2, triangle_id, true, 1, false, simd);
-    /* The box is one pixel of the framebuffer: its corner is the scan box's,
-     * and a rect that misses it leaves the scan box empty. */
-    *simd = false;
-    sr_raster_rect box = sr_one_pixel_box(tri, subpixel_bits);
-    if (box.x0 < rect.x0 || box.x0 >= rect.x1 || box.y0 < rect.y0 || box.y0 >= rect.y1)
-        return 0;
-    shade = sr_shade_context_of(shade, triangle_id);
-    /* Hidden whole: a draw that cuts by texels marks no one-pixel
-     * triangles in these modes (draw.c, subpixel_lanes). */
-    if (shade->cut != SR_CUT_NONE)
-        return 0;
+    return triangle_in_box(fb, sr_raster_scan_box_of(tri, rect, subpixel_bits), subpixel_bits, mode, shade, tri,
+                           area2, triangle_id, true, 1, false, simd);
+}
+
+uint64_t sr_raster_one_pixels(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                              const uint32_t *triangle_id, const size_t *at, const float *z, int n)
+{
     switch (mode) {
-    case SR_SHADE_ID:    return plain_pixel(fb, box, subpixel_bits, SR_SHADE_ID, shade, tri, area2, triangle_id);
-    case SR_SHADE_DEPTH: return plain_pixel(fb, box, subpixel_bits, SR_SHADE_DEPTH, shade, tri, area2, triangle_id);
-    default:             return plain_pixel(fb, box, subpixel_bits, SR_RASTER_COUNT_HITS, shade, tri, area2, triangle_id);
+    case SR_SHADE_ID:    return one_pixel_tests(fb, SR_SHADE_ID, shade, triangle_id, at, z, n);
+    case SR_SHADE_DEPTH: return one_pixel_tests(fb, SR_SHADE_DEPTH, shade, triangle_id, at, z, n);
+    default:             return one_pixel_tests(fb, SR_RASTER_COUNT_HITS, shade, triangle_id, at, z, n);
     }
 }
 

@@ -61,11 +61,19 @@ uint64_t sr_raster_tiny_triangle(sr_framebuffer *fb, sr_raster_rect box, int sub
                                  uint64_t mask, uint32_t triangle_id, bool *simd);
 
 /* sr_raster_triangle_on for a triangle known to cover the one pixel centre
- * its scan box holds (the sub-pixel lanes' one_pixel): drawn as
- * sr_raster_tiny_triangle draws that box's one-bit mask, or not at all
- * where the box is outside rect. */
+ * its scan box holds (the sub-pixel lanes' one_pixel), in a mode with
+ * varyings: drawn as sr_raster_tiny_triangle draws that box's one-bit
+ * mask, or not at all where the box is outside rect. */
 uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
                              const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                              uint32_t triangle_id, bool *simd);
+
+/* Such triangles in a mode without varyings (ID, DEPTH or counting hits),
+ * triangle_id[i], i < n, whose pixel at[i] and depth z[i] a batch found
+ * (one_pixel.h; at[i] SR_ONE_PIXEL_OUTSIDE: none to draw): each fragment
+ * depth-tested and written in order, as the tiny loop would; returns the
+ * fragments that passed. */
+uint64_t sr_raster_one_pixels(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                              const uint32_t *triangle_id, const size_t *at, const float *z, int n);
 
 #endif

@@ -160,13 +160,18 @@ static inline float sr_row_z(const sr_tri_setup *s, int j)
     return (float)(s->z_ref + s->dz_row * (double)(j - s->ref_y));
 }
 
+/* A depth clamped to [0, 1], NaN to 0. */
+static inline float sr_depth_clamp(float z)
+{
+    return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;
+}
+
 /* z at the pixel k pixels right of the row's reference pixel, clamped: the
  * unsnapped triangle's plane may step a hair outside [0, 1] at a pixel the
  * snapped triangle covers and the unsnapped one does not, and rounding may. */
 static inline float sr_depth_at(const sr_tri_setup *s, float z_row, float k)
 {
-    float z = z_row + s->dz_pixel * k;
-    return z > 0.0f ? (z < 1.0f ? z : 1.0f) : 0.0f;
+    return sr_depth_clamp(z_row + s->dz_pixel * k);
 }
 
 /* LESS for the standard depth convention, GREATER for reversed z. */

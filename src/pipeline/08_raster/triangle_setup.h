@@ -122,7 +122,7 @@ static inline sr_raster_rect sr_raster_scan_box(const sr_screen_vertex tri[3], s
 }
 
 /* The scan box of a triangle whose box over the framebuffer holds one
- * pixel centre (sr_raster_one_pixel): its corner from the smallest x and
+ * pixel centre (one_pixel.h): its corner from the smallest x and
  * y, clamped to the framebuffer's, which a triangle in a guard band may
  * pass (the box's far side is then the framebuffer's first pixel's). */
 static SR_ALWAYS_INLINE sr_raster_rect sr_one_pixel_box(const sr_screen_vertex *const v[3], int bits)
