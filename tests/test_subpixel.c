@@ -339,6 +339,18 @@ Test(subpixel, dense_random_meshes_draw_alike_with_and_without_the_lanes, .timeo
     }
 }
 
+/* A mesh of `tris` triangles sharing no vertex, triangle t's corners
+ * vertices 3t .. 3t + 2, in clip space (the caller sets the positions). */
+static void separate_triangles(sr_mesh *m, uint32_t tris)
+{
+    sr_error err;
+    cr_assert(sr_mesh_alloc(m, 3 * tris, 3 * tris, false, false, false, &err), "%s", err.message);
+    m->clip_positions = calloc(m->vertex_count, sizeof *m->clip_positions);
+    cr_assert_not_null(m->clip_positions);
+    for (uint32_t i = 0; i < 3 * tris; i++)
+        m->indices[i] = i;
+}
+
 /* Small triangles across the framebuffer's left and top sides, inside
  * every plane of a guard band: a box the framebuffer cuts down to its
  * first column or row holds one pixel centre there, and the lanes' one-pixel
@@ -348,10 +360,7 @@ Test(subpixel, one_pixel_boxes_cut_by_the_framebuffers_sides_draw_alike)
     enum { SIDE = 8, TRIS = 400, GUARD = 2 };
     test_rng rng = { 808 };
     sr_mesh m;
-    sr_error err;
-    cr_assert(sr_mesh_alloc(&m, 3 * TRIS, 3 * TRIS, false, false, false, &err), "%s", err.message);
-    m.clip_positions = calloc(m.vertex_count, sizeof *m.clip_positions);
-    cr_assert_not_null(m.clip_positions);
+    separate_triangles(&m, TRIS);
     for (uint32_t t = 0; t < TRIS; t++) {
         /* A corner up to 1.2 px past the side (or inside), the others up to
          * 1.6 px right of and below it: small enough for the lanes. */
@@ -363,7 +372,6 @@ Test(subpixel, one_pixel_boxes_cut_by_the_framebuffers_sides_draw_alike)
             /* In clip space, which the guard band's viewport scales by GUARD. */
             p[0] = (float)((2.0 * sx / SIDE - 1.0) / GUARD), p[1] = (float)((1.0 - 2.0 * sy / SIDE) / GUARD);
             p[2] = (float)rng_uniform(&rng, 0.05, 0.95), p[3] = 1.0f;
-            m.indices[3 * t + (uint32_t)k] = 3 * t + (uint32_t)k;
         }
     }
     sr_stats got = assert_lanes_draw_alike(&m, SIDE, SIDE, SR_SHADE_ID, SR_CULL_NONE, SR_FRONT_CCW, IDS_PLANE, false,
@@ -382,10 +390,7 @@ Test(subpixel, one_pixel_slivers_turned_over_by_snapping_draw_alike)
     enum { SIDE = 8, TRIS = 3000, SUB = 256 };
     test_rng rng = { 4242 };
     sr_mesh m;
-    sr_error err;
-    cr_assert(sr_mesh_alloc(&m, 3 * TRIS, 3 * TRIS, false, false, false, &err), "%s", err.message);
-    m.clip_positions = calloc(m.vertex_count, sizeof *m.clip_positions);
-    cr_assert_not_null(m.clip_positions);
+    separate_triangles(&m, TRIS);
     for (uint32_t t = 0; t < TRIS; t++) {
         /* In subpixels: two corners on a line of small integer slope
          * through the centre, the third a fraction of a subpixel off it. */
@@ -402,7 +407,6 @@ Test(subpixel, one_pixel_slivers_turned_over_by_snapping_draw_alike)
             float *p = m.clip_positions[3 * t + (uint32_t)k];
             p[0] = (float)(2.0 * c[0] / (SUB * SIDE) - 1.0), p[1] = (float)(1.0 - 2.0 * c[1] / (SUB * SIDE));
             p[2] = (float)rng_uniform(&rng, 0.05, 0.95), p[3] = 1.0f;
-            m.indices[3 * t + (uint32_t)k] = 3 * t + (uint32_t)k;
         }
     }
     assert_lanes_draw_alike(&m, SIDE, SIDE, SR_SHADE_DEPTH, SR_CULL_NONE, SR_FRONT_CCW, IDS_PLANE, false, 0.0f);
