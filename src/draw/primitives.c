@@ -301,6 +301,7 @@ int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint
  * their pixels and depths (sr_fan_sink.one_pixel_batches): their indices
  * and ids as the slots come, then what sr_one_pixel_depths_* found, and
  * how far they are taken in the slots' order and drawn. */
+_Static_assert(SR_VERDICT_BATCH <= SR_ONE_PIXEL_BATCH, "a batch of verdicts' one-pixel triangles fit one batch");
 typedef struct one_pixel_batch {
     uint32_t tri[SR_ONE_PIXEL_BATCH][3];
     uint32_t id[SR_ONE_PIXEL_BATCH];
