@@ -391,6 +391,42 @@ Test(pinhole, a_resolve_refuses_what_is_no_draw_of_its_mesh)
     sr_mesh_free(&lacking);
 }
 
+/* An ids plane with several ids past the mesh's triangles, on rows that
+ * different threads take: the error names the first in raster order, on
+ * every thread count. */
+Test(pinhole, a_resolve_names_the_first_stranger_whatever_the_threads)
+{
+    double c2w[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } };
+    sr_error err = { "" };
+    sr_mesh mesh;
+    cr_assert(sr_mesh_alloc(&mesh, 3, 3, false, false, false, &err), "%s", err.message);
+    const float corners[3][3] = { { -0.6f, -0.6f, 2 }, { 0.6f, -0.6f, 2 }, { 0.6f, 0.6f, 2 } };
+    memcpy(mesh.positions, corners, sizeof corners);
+    for (uint32_t i = 0; i < 3; i++)
+        mesh.indices[i] = i;
+    sr_pinhole cam = camera_of(8, 8, 7.5, 7.5, c2w);
+    sr_pinhole_fit_clip(&cam, &mesh);
+    enum { W = 16, H = 96 };
+    sr_framebuffer fb;
+    cr_assert(sr_framebuffer_create(&fb, W, H, &err) && sr_framebuffer_create_ids(&fb, &err), "%s", err.message);
+    sr_framebuffer_clear(&fb, 0);
+    /* Its own triangle everywhere, then strangers: 7 at row 40, 5 and 9
+     * further down. */
+    for (int i = 0; i < W * H; i++)
+        fb.ids[i] = 1;
+    fb.ids[40 * W + 12] = 7;
+    fb.ids[41 * W + 3] = 5;
+    fb.ids[90 * W + 0] = 9;
+    float depth[W * H];
+    for (int threads = 1; threads <= 8; threads++) {
+        sr_pinhole_outputs out = { .depth = depth, .threads = threads };
+        cr_assert_not(sr_pinhole_resolve(&cam, &mesh, &fb, &out, &err), "threads %d: resolved", threads);
+        cr_assert(strstr(err.message, "holds id 7,"), "threads %d: %s", threads, err.message);
+    }
+    sr_framebuffer_destroy(&fb);
+    sr_mesh_free(&mesh);
+}
+
 /* The rigid inverse: w2c · c2w is the identity. */
 Test(pinhole, the_pose_from_c2w_inverts_it)
 {

@@ -544,8 +544,8 @@ typedef struct sr_pinhole_outputs {
  * pixel's surface point is the ray through its centre met with the plane
  * of the triangle it shows, in double, each value rounded to float once
  * (where the ray runs in that plane, the depth buffer's value gives the
- * point). The threads take equal bands of rows; every value is the same
- * for every thread count. A pixel that shows a point or a line takes the
+ * point). The threads take chunks of rows as they come; every value is
+ * the same for every thread count. A pixel that shows a point or a line takes the
  * primitive's point nearest its ray (a point's vertex; a line's closest
  * approach to the ray, clamped to the segment), its normal the vertex
  * normals there, whichever `interpolated_normals` says. False, with one

@@ -1,10 +1,12 @@
 /* pinhole.c — cameras in OpenCV's convention (softrast.h, "pinhole
  * cameras"): their checks, their clip planes, the draw's matrices, and view
- * depth and range from the triangle each pixel shows, in bands of rows on
+ * depth and range from the triangle each pixel shows, in chunks of rows on
  * threads. */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -91,15 +93,46 @@ bool sr_pinhole_pose_from_c2w(const double c2w[4][4], double w2c[4][4], sr_error
     return true;
 }
 
-/* A point of the mesh (its vertex, or a corner of its bounds, relative to
- * its origin) in the camera frame, in double. */
-static void to_camera(const sr_pinhole *cam, const sr_mesh *mesh, const float p[3], double out[3])
+/* Two lanes of doubles, SSE2's (and every 64-bit x86's): each lane rounds
+ * as its scalar does, with the same operations in the same order. */
+typedef double resolve_v2 __attribute__((vector_size(16)));
+typedef uint64_t resolve_u2 __attribute__((vector_size(16)));
+typedef float resolve_f2 __attribute__((vector_size(8)));
+
+/* How a mesh's points reach the camera frame: the pose's rows 0 and 1
+ * column by column, a lane each, and row 2; the mesh's origin; whether
+ * the loader negated the file's z. Loaded once, not per point. */
+typedef struct camera_frame {
+    resolve_v2 rows01[4];
+    double row2[4];
+    resolve_v2 origin01;
+    double origin2;
+    bool z_negated;
+} camera_frame;
+
+static camera_frame camera_frame_of(const sr_pinhole *cam, const sr_mesh *mesh)
 {
-    double file[3] = { mesh->origin[0] + p[0], mesh->origin[1] + p[1], mesh->origin[2] + p[2] };
-    if (mesh->z_negated)
-        file[2] = -file[2];
-    for (int r = 0; r < 3; r++)
-        out[r] = cam->w2c[r][0] * file[0] + cam->w2c[r][1] * file[1] + cam->w2c[r][2] * file[2] + cam->w2c[r][3];
+    camera_frame f = { .origin01 = { mesh->origin[0], mesh->origin[1] }, .origin2 = mesh->origin[2],
+                       .z_negated = mesh->z_negated };
+    for (int c = 0; c < 4; c++) {
+        f.rows01[c] = (resolve_v2){ cam->w2c[0][c], cam->w2c[1][c] };
+        f.row2[c] = cam->w2c[2][c];
+    }
+    return f;
+}
+
+/* A point of the mesh (its vertex, or a corner of its bounds, relative to
+ * its origin) in the camera frame, in double: each row's dot product
+ * summed left to right, rows 0 and 1 in two lanes. */
+static inline void to_camera(const camera_frame *f, const float p[3], double out[3])
+{
+    resolve_v2 file01 = f->origin01 + (resolve_v2){ p[0], p[1] };
+    double z = f->origin2 + p[2];
+    z = f->z_negated ? -z : z;
+    resolve_v2 out01 = f->rows01[0] * file01[0] + f->rows01[1] * file01[1] + f->rows01[2] * z + f->rows01[3];
+    out[0] = out01[0];
+    out[1] = out01[1];
+    out[2] = f->row2[0] * file01[0] + f->row2[1] * file01[1] + f->row2[2] * z + f->row2[3];
 }
 
 void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh)
@@ -108,11 +141,12 @@ void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh)
         return;
     vec3 lo, hi;
     double nearest = INFINITY, farthest = 0.0;
+    camera_frame frame = camera_frame_of(cam, mesh);
     if (sr_mesh_bounds(mesh, lo, hi))
         for (int k = 0; k < 8; k++) {
             float corner[3] = { (k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2] };
             double c[3];
-            to_camera(cam, mesh, corner, c);
+            to_camera(&frame, corner, c);
             nearest = fmin(nearest, c[2]);
             farthest = fmax(farthest, c[2]);
         }
@@ -176,6 +210,28 @@ static void normalize_into(const double v[3], float out[3])
         out[k] = length > 0.0 ? (float)(v[k] / length) : 0.0f;
 }
 
+/* The chunks of rows per thread, handed to whichever thread asks next:
+ * the pixels that show something lie anywhere in the frame, so equal
+ * bands of rows left one thread the heavier half. Few: a chunk's first
+ * two rows start with nothing prefetched. One thread takes every row at
+ * once. */
+#define RESOLVE_CHUNKS_PER_THREAD 4
+
+/* What every thread of a resolve reads, the plane of ids it reads, and
+ * the next chunk of rows to take. */
+typedef struct resolve_job {
+    const sr_pinhole *cam;
+    const sr_mesh *mesh;
+    const sr_framebuffer *fb;
+    const uint32_t *ids; /* fb's ids plane, or its color of an SR_SHADE_ID draw */
+    uint32_t slots;      /* the mesh's primitive slots: the largest id a draw of it writes */
+    const sr_pinhole_outputs *out;
+    camera_frame frame;    /* cam's, for mesh */
+    double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
+    int chunk_rows;
+    atomic_int next_row;
+} resolve_job;
+
 /* Triangle `slot` in the camera frame: its corner v0, edges e1 = v1 − v0
  * and e2 = v2 − v0, their cross product e1 × e2, and what the outputs ask
  * of it: its unit normal on the file's front side (the same for every
@@ -202,16 +258,17 @@ static uint32_t part_of(const sr_mesh *mesh, uint32_t slot)
 
 /* False for a triangle whose corners are not all the mesh's vertices: an
  * ids plane of another mesh's draw. */
-static bool resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, const sr_pinhole_outputs *out,
-                             uint32_t slot, resolved_triangle *t)
+static bool resolve_triangle(const resolve_job *job, uint32_t slot, resolved_triangle *t)
 {
+    const sr_mesh *mesh = job->mesh;
+    const sr_pinhole_outputs *out = job->out;
     uint32_t idx[3];
     double v[3][3];
     sr_assemble_triangle(mesh, slot, idx); /* drawn, so not degenerate */
     if (idx[0] >= mesh->vertex_count || idx[1] >= mesh->vertex_count || idx[2] >= mesh->vertex_count)
         return false;
     for (int k = 0; k < 3; k++)
-        to_camera(cam, mesh, mesh->positions[idx[k]], v[k]);
+        to_camera(&job->frame, mesh->positions[idx[k]], v[k]);
     for (int k = 0; k < 3; k++) {
         t->v0[k] = v[0][k];
         t->e1[k] = v[1][k] - v[0][k];
@@ -230,7 +287,7 @@ static bool resolve_triangle(const sr_pinhole *cam, const sr_mesh *mesh, const s
     for (int c = 0; out->normals && out->interpolated_normals && c < 3; c++) {
         const float *n = mesh->normals[idx[c]];
         double file[3] = { n[0], n[1], mesh->z_negated ? -(double)n[2] : n[2] };
-        rotate(cam, file, t->vertex_normals[c]);
+        rotate(job->cam, file, t->vertex_normals[c]);
     }
     t->part = out->part_ids && mesh->parts ? part_of(mesh, slot) : 1;
     t->slot = slot;
@@ -250,12 +307,6 @@ static inline bool plane_z_ok(double z)
 {
     return z > 0.0 && z <= DBL_MAX;
 }
-
-/* Two lanes of doubles, SSE2's (and every 64-bit x86's): each lane rounds
- * as plane_z does, with the same operations in the same order. */
-typedef double resolve_v2 __attribute__((vector_size(16)));
-typedef uint64_t resolve_u2 __attribute__((vector_size(16)));
-typedef float resolve_f2 __attribute__((vector_size(8)));
 
 /* plane_z_ok as bits, in the top bit of what it returns (set: not ok): z
  * is in (0, DBL_MAX] when its bits minus 1 are below DBL_MAX's bits, so
@@ -346,30 +397,49 @@ static void interpolated_normal(const resolved_triangle *t, const double p[3], d
 /* A resolve's threads at most, as a draw's (draw_state.h). */
 #define RESOLVE_MAX_THREADS 64
 
-/* What every thread of a resolve reads, and the plane of ids it reads. */
-typedef struct resolve_job {
-    const sr_pinhole *cam;
-    const sr_mesh *mesh;
-    const sr_framebuffer *fb;
-    const uint32_t *ids; /* fb's ids plane, or its color of an SR_SHADE_ID draw */
-    uint32_t slots;      /* the mesh's primitive slots: the largest id a draw of it writes */
-    const sr_pinhole_outputs *out;
-    double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
-    double *z;             /* a row of view z for each band */
-} resolve_job;
+/* A row's runs of pixels that show one primitive, left to right: run r
+ * covers columns start[r] .. start[r + 1] − 1 and shows id[r] (0:
+ * nothing); start[count] is the row's width. Found once per row, and
+ * then the prefetches and the resolve walk the runs, not the pixels. */
+typedef struct row_runs {
+    int count;
+    int *start;  /* width + 1 */
+    uint32_t *id; /* width */
+} row_runs;
+
+/* A thread's rows in flight: the runs of the row it resolves and of the
+ * two ahead whose loads it has started (indexed by row modulo 3), and a
+ * row of view z. */
+typedef struct resolve_scratch {
+    row_runs runs[3];
+    double *z;
+} resolve_scratch;
 
 /* The triangles a thread keeps resolved, by slot modulo this many: a
  * row's pixels come back to the triangles of the row above, and a
  * triangle's set-up costs many pixels' work. */
 #define TRIANGLE_CACHE 256
 
+/* value into to[0 .. n), four at a time: most of a frame's pixels may
+ * show nothing. */
+static void fill_floats(float *to, float value, int n)
+{
+    typedef float f4 __attribute__((vector_size(16)));
+    f4 four = { value, value, value, value };
+    int i = 0;
+    for (; i + 4 <= n; i += 4)
+        memcpy(to + i, &four, sizeof four);
+    for (; i < n; i++)
+        to[i] = value;
+}
+
 /* The n pixels from `at` on, where nothing is drawn. */
 static void resolve_empty(const sr_pinhole_outputs *out, size_t at, int n)
 {
-    for (int i = 0; out->depth && i < n; i++)
-        out->depth[at + i] = out->invalid;
-    for (int i = 0; out->range && i < n; i++)
-        out->range[at + i] = out->invalid;
+    if (out->depth)
+        fill_floats(&out->depth[at], out->invalid, n);
+    if (out->range)
+        fill_floats(&out->range[at], out->invalid, n);
     if (out->part_ids)
         memset(&out->part_ids[at], 0, (size_t)n * sizeof *out->part_ids);
     if (out->normals)
@@ -423,25 +493,45 @@ static void write_face_ids(const resolve_job *job, const uint32_t *ids, uint32_t
         face_ids[x] = ids[x] && ids[x] <= job->slots ? mesh->file_faces[ids[x] - 1] + 1 : 0;
 }
 
-/* Prefetches what the triangles of row y need: their indices (stage 0)
- * or, those fetched a row before, their vertices (stage 1); one fetch
- * per run. On a dense mesh nearly every pixel shows a triangle of its own,
- * far from its neighbours' in the mesh's arrays, and each set-up would
- * wait on memory twice (its indices, then its vertices and normals), one
- * triangle after the other; resolve_rows fetches the indices two rows ahead and
- * the vertices one row ahead, so a row's loads are under way at once. */
-static void prefetch_row(const resolve_job *job, int y, int stage)
+/* The runs of a row of ids: past its second pixel, a run's pixels are
+ * compared eight at a time, as four pairs against the id twice over. */
+static void find_runs(const uint32_t *ids, int width, row_runs *r)
 {
-    int width = job->fb->width;
-    const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
+    int n = 0;
+    for (int x = 0; x < width;) {
+        uint32_t id = ids[x];
+        r->start[n] = x;
+        r->id[n++] = id;
+        uint64_t twice = (uint64_t)id * 0x100000001u, pairs[4];
+        for (x++; width - x >= 8 && ids[x] == id; x += 8) {
+            memcpy(pairs, ids + x, sizeof pairs);
+            if ((pairs[0] ^ twice) | (pairs[1] ^ twice) | (pairs[2] ^ twice) | (pairs[3] ^ twice))
+                break;
+        }
+        for (; x < width && ids[x] == id;)
+            x++;
+    }
+    r->start[n] = width;
+    r->count = n;
+}
+
+/* Prefetches what the triangles of a row's runs need: their indices
+ * (stage 0) or, those fetched a row before, their vertices (stage 1). On
+ * a dense mesh nearly every pixel shows a triangle of its own, far from
+ * its neighbours' in the mesh's arrays, and each set-up would wait on
+ * memory twice (its indices, then its vertices and normals), one triangle
+ * after the other; resolve_rows fetches the indices two rows ahead and
+ * the vertices one row ahead, so a row's loads are under way at once. */
+static void prefetch_runs(const resolve_job *job, const row_runs *r, int stage)
+{
     const sr_mesh *mesh = job->mesh;
     bool file_faces = job->out->face_ids && job->out->file_faces && mesh->file_faces;
     bool vertex_normals = job->out->normals && job->out->interpolated_normals;
     if (!sr_assemble_triangles(mesh)) /* points and lines: their slots are not triples */
         return;
-    for (int x = 0; x < width; x++) {
-        uint32_t id = ids[x];
-        if (id == 0 || id > job->slots || (x > 0 && ids[x - 1] == id))
+    for (int i = 0; i < r->count; i++) {
+        uint32_t id = r->id[i];
+        if (id == 0 || id > job->slots)
             continue;
         if (stage == 0) {
             __builtin_prefetch(sr_assemble_slot_indices(mesh, id - 1));
@@ -457,6 +547,14 @@ static void prefetch_row(const resolve_job *job, int y, int stage)
                 __builtin_prefetch(mesh->normals[idx[k]]);
         }
     }
+}
+
+/* Row y's runs into the thread's ring, their indices prefetched. */
+static void start_row(const resolve_job *job, resolve_scratch *s, int y)
+{
+    row_runs *r = &s->runs[y % 3];
+    find_runs(job->ids + (size_t)y * (size_t)job->fb->width, job->fb->width, r);
+    prefetch_runs(job, r, 0);
 }
 
 /* A point or a line seen at a pixel: the primitive's point nearest the
@@ -478,7 +576,7 @@ static bool sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x,
         sp->idx[0] = sp->idx[1] = mesh->indices[slot];
         if (sp->idx[0] >= mesh->vertex_count)
             return false;
-        to_camera(job->cam, mesh, mesh->positions[sp->idx[0]], sp->p);
+        to_camera(&job->frame, mesh->positions[sp->idx[0]], sp->p);
         sp->t = 0.0;
         return true;
     }
@@ -486,8 +584,8 @@ static bool sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x,
     sr_assemble_line(mesh, slot, sp->idx); /* drawn, so not degenerate */
     if (sp->idx[0] >= mesh->vertex_count || sp->idx[1] >= mesh->vertex_count)
         return false;
-    to_camera(job->cam, mesh, mesh->positions[sp->idx[0]], a);
-    to_camera(job->cam, mesh, mesh->positions[sp->idx[1]], b);
+    to_camera(&job->frame, mesh->positions[sp->idx[0]], a);
+    to_camera(&job->frame, mesh->positions[sp->idx[1]], b);
     for (int k = 0; k < 3; k++)
         u[k] = b[k] - a[k];
     const double d[3] = { ray_x, ray_y, 1.0 };
@@ -530,73 +628,85 @@ static bool resolve_sparse_pixel(const resolve_job *job, uint32_t id, size_t at,
     return true;
 }
 
-/* Rows y0 … y1 − 1, in runs of pixels that show one triangle: a run sets
- * its triangle up once (or finds it in the cache) and each output is a
- * loop of its own over the run. Returns 0, or an id that is no primitive
- * of the mesh (or one whose vertices it lacks): the ids plane is not a
- * draw of it, and the band stops there. */
-static uint32_t resolve_rows(const resolve_job *job, int y0, int y1, double *z)
+/* Rows y0 … y1 − 1, run by run: a run sets its triangle up once (or
+ * finds it in the thread's cache) and each output is a loop of its own
+ * over the run. Returns 0, or an id that is no primitive of the mesh (or
+ * one whose vertices it lacks): the ids plane is not a draw of it, and the
+ * thread stops there. */
+static uint32_t resolve_rows(const resolve_job *job, int y0, int y1, resolve_scratch *s, resolved_triangle *cache)
 {
     const sr_pinhole_outputs *out = job->out;
     int width = job->fb->width;
-    resolved_triangle cache[TRIANGLE_CACHE];
-    for (int i = 0; i < TRIANGLE_CACHE; i++)
-        cache[i].slot = UINT32_MAX;
     for (int y = y0; y < y0 + 2 && y < y1; y++)
-        prefetch_row(job, y, 0);
+        start_row(job, s, y);
     if (y0 < y1)
-        prefetch_row(job, y0, 1);
+        prefetch_runs(job, &s->runs[y0 % 3], 1);
     for (int y = y0; y < y1; y++) {
-        const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
         if (y + 2 < y1)
-            prefetch_row(job, y + 2, 0);
+            start_row(job, s, y + 2);
         if (y + 1 < y1)
-            prefetch_row(job, y + 1, 1);
+            prefetch_runs(job, &s->runs[(y + 1) % 3], 1);
+        const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
         if (out->face_ids) /* the id + 1 each pixel shows, 0 where nothing: the plane itself */
             write_face_ids(job, ids, &out->face_ids[(size_t)y * (size_t)width]);
-        for (int x = 0, end; x < width; x = end) {
-            uint32_t id = ids[x];
-            for (end = x + 1; end < width && ids[end] == id;)
-                end++;
+        const row_runs *r = &s->runs[y % 3];
+        for (int i = 0; i < r->count; i++) {
+            uint32_t id = r->id[i];
+            int x = r->start[i], end = r->start[i + 1];
+            size_t at = (size_t)y * (size_t)width + (size_t)x;
             if (id == 0) {
-                resolve_empty(out, (size_t)y * (size_t)width + (size_t)x, end - x);
+                resolve_empty(out, at, end - x);
                 continue;
             }
             if (!sr_assemble_triangles(job->mesh)) {
                 if (id > job->slots)
                     return id;
-                for (int i = x; i < end; i++)
-                    if (!resolve_sparse_pixel(job, id, (size_t)y * (size_t)width + (size_t)i, job->ray_x[i],
-                                              job->ray_y[y]))
+                for (int k = x; k < end; k++)
+                    if (!resolve_sparse_pixel(job, id, at + (size_t)(k - x), job->ray_x[k], job->ray_y[y]))
                         return id;
                 continue;
             }
             resolved_triangle *t = &cache[(id - 1) % TRIANGLE_CACHE];
-            if (t->slot != id - 1 && (id > job->slots || !resolve_triangle(job->cam, job->mesh, out, id - 1, t))) {
+            if (t->slot != id - 1 && (id > job->slots || !resolve_triangle(job, id - 1, t))) {
                 t->slot = UINT32_MAX;
                 return id;
             }
-            resolve_run(job, t, y, x, end - x, z + x);
+            resolve_run(job, t, y, x, end - x, s->z + x);
         }
     }
     return 0;
 }
 
-/* One thread's rows: band k of `bands` equal runs of rows. */
-typedef struct resolve_band {
-    const resolve_job *job;
-    int k, bands;
+/* One thread of a resolve: chunks of rows as they come, until none is
+ * left or it meets an id that is not the mesh's (the first it meets in
+ * its rows, which it takes in order). */
+typedef struct resolve_thread {
+    resolve_job *job; /* its next_row changes */
+    resolve_scratch scratch;
     pthread_t thread;
     uint32_t stranger; /* resolve_rows' verdict */
-} resolve_band;
+    int stranger_chunk; /* the first row of the chunk it lies in */
+} resolve_thread;
 
-static void *resolve_band_run(void *arg)
+static void *resolve_thread_run(void *arg)
 {
-    resolve_band *b = arg;
-    int height = b->job->fb->height;
-    b->stranger = resolve_rows(b->job, (int)((int64_t)height * b->k / b->bands), (int)((int64_t)height * (b->k + 1) / b->bands),
-                 b->job->z + (size_t)b->k * (size_t)b->job->fb->width);
-    return NULL;
+    resolve_thread *th = arg;
+    resolve_job *job = th->job;
+    int height = job->fb->height;
+    resolved_triangle cache[TRIANGLE_CACHE];
+    for (int i = 0; i < TRIANGLE_CACHE; i++)
+        cache[i].slot = UINT32_MAX;
+    for (;;) {
+        int y0 = atomic_fetch_add_explicit(&job->next_row, job->chunk_rows, memory_order_relaxed);
+        if (y0 >= height)
+            return NULL;
+        int y1 = height - y0 > job->chunk_rows ? y0 + job->chunk_rows : height;
+        th->stranger = resolve_rows(job, y0, y1, &th->scratch, cache);
+        if (th->stranger) {
+            th->stranger_chunk = y0;
+            return NULL;
+        }
+    }
 }
 
 bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
@@ -615,43 +725,61 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
     if (ids->width < 1 || ids->height < 1 || !(ids->ids || ids->color) || !ids->depth)
         return sr_error_set(err, "the ids framebuffer has no pixels, or no ids, colour or depth plane");
     /* Each pixel's values are its own, whichever thread computes them: the
-     * bands change no bit. More threads than rows would have empty bands. */
-    int bands = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;
-    bands = bands > ids->height ? ids->height : bands;
+     * chunks change no bit. */
+    int threads = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;
+    threads = threads > ids->height ? ids->height : threads;
+    int chunks = threads == 1 ? 1 : threads * RESOLVE_CHUNKS_PER_THREAD;
     size_t width = (size_t)ids->width;
+    /* Per thread: a row of z, and three rows of runs; each thread's on
+     * cache lines of its own. */
+    size_t per_thread = (width * sizeof(double) + 3 * ((width + 1) * sizeof(int) + width * sizeof(uint32_t)) + 63) /
+                        64 * 64;
     resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color,
                         sparse ? sr_assemble_point_line_slots(mesh) : sr_assemble_slots(mesh), out,
-                        malloc(width * sizeof *job.ray_x), malloc((size_t)ids->height * sizeof *job.ray_y),
-                        malloc((size_t)bands * width * sizeof *job.z) };
-    if (!job.ray_x || !job.ray_y || !job.z) {
+                        camera_frame_of(cam, mesh), malloc(width * sizeof *job.ray_x),
+                        malloc((size_t)ids->height * sizeof *job.ray_y), (ids->height + chunks - 1) / chunks, 0 };
+    char *scratch = aligned_alloc(64, (size_t)threads * per_thread);
+    if (!job.ray_x || !job.ray_y || !scratch) {
         free(job.ray_x);
         free(job.ray_y);
-        free(job.z);
+        free(scratch);
         return sr_error_set(err, "out of memory for the rays of a %dx%d view", ids->width, ids->height);
     }
     for (int x = 0; x < ids->width; x++)
         job.ray_x[x] = (x - cam->cx) / cam->fx;
     for (int y = 0; y < ids->height; y++)
         job.ray_y[y] = (y - cam->cy) / cam->fy;
-    resolve_band band[RESOLVE_MAX_THREADS];
-    int started = 1; /* band 0 is the caller's */
-    for (int k = 0; k < bands; k++)
-        band[k] = (resolve_band){ .job = &job, .k = k, .bands = bands };
-    while (started < bands && pthread_create(&band[started].thread, NULL, resolve_band_run, &band[started]) == 0)
+    resolve_thread thread[RESOLVE_MAX_THREADS];
+    for (int t = 0; t < threads; t++) {
+        char *mine = scratch + (size_t)t * per_thread;
+        resolve_scratch *s = &thread[t].scratch;
+        s->z = (double *)mine;
+        mine += width * sizeof(double);
+        for (int k = 0; k < 3; k++) {
+            s->runs[k].start = (int *)mine;
+            s->runs[k].id = (uint32_t *)(mine + (width + 1) * sizeof(int));
+            mine += (width + 1) * sizeof(int) + width * sizeof(uint32_t);
+        }
+        thread[t].job = &job;
+        thread[t].stranger = 0;
+    }
+    int started = 1; /* thread 0 is the caller */
+    while (started < threads && pthread_create(&thread[started].thread, NULL, resolve_thread_run, &thread[started]) == 0)
         started++;
-    /* A thread that could not start: its bands run here, after band 0. */
-    for (int k = 0; k < bands; k++)
-        if (k == 0 || k >= started)
-            resolve_band_run(&band[k]);
+    resolve_thread_run(&thread[0]); /* and the rows of threads that could not start */
     uint32_t stranger = 0;
-    for (int k = 0; k < bands; k++) {
-        if (k >= 1 && k < started)
-            pthread_join(band[k].thread, NULL);
-        stranger = stranger ? stranger : band[k].stranger;
+    int stranger_chunk = INT_MAX; /* the first in raster order, whatever the threads */
+    for (int t = 0; t < started; t++) {
+        if (t >= 1)
+            pthread_join(thread[t].thread, NULL);
+        if (thread[t].stranger && thread[t].stranger_chunk < stranger_chunk) {
+            stranger = thread[t].stranger;
+            stranger_chunk = thread[t].stranger_chunk;
+        }
     }
     free(job.ray_x);
     free(job.ray_y);
-    free(job.z);
+    free(scratch);
     return !stranger || sr_error_set(err, "the ids plane holds id %u, and this mesh has %u primitives over %u "
                                           "vertices: it is not a draw of this mesh",
                                      stranger, job.slots, mesh->vertex_count);
