@@ -199,7 +199,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
     const sr_mesh *mesh = st->desc->mesh;
     const sr_varying_layout *layout = &st->shade.layout;
     unsigned char *outcodes = st->ws->outcodes.data;
-    atomic_uchar *double_mapped = st->ws->double_mapped.data;
+    atomic_uchar *double_wanted = st->ws->double_wanted.data;
     bool double_later = st->double_later; /* a local: the loop's byte stores may alias *st */
     for (uint32_t block = first; block < end; block += VERTEX_BLOCK) {
         _Alignas(16) sr_vertex_out verts[VERTEX_BLOCK];
@@ -220,7 +220,7 @@ static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, u
                                         st->snapped_points ? (sr_snapped_point *)st->ws->snapped_points.data + block
                                                            : NULL);
             for (uint32_t j = 0; j < n; j++)
-                atomic_init(&double_mapped[block + j], 0);
+                atomic_init(&double_wanted[block + j], 0);
         }
         if (double_later && all_inside(codes, n)) { /* nothing to check or map: the float half is done */
             memcpy(outcodes + block, codes, n);
@@ -275,7 +275,7 @@ static bool run_vertex_phase(const sr_draw_state *st, vertex_phase *ph, sr_error
     sr_workspace *ws = st->ws;
     if (!sr_array_reserve(&ws->outcodes, n, sizeof(unsigned char)) ||
         (st->snapped_points && !sr_array_reserve(&ws->snapped_points, n, sizeof(sr_snapped_point))) ||
-        (st->double_later && !sr_array_reserve(&ws->double_mapped, n, sizeof(atomic_uchar))) ||
+        (st->double_later && !sr_array_reserve(&ws->double_wanted, n, sizeof(atomic_uchar))) ||
         n > SIZE_MAX / st->screen_stride || !sr_array_reserve(&ws->screen, n * st->screen_stride, 1))
         return sr_error_set(err, "out of memory for %u transformed vertices", n);
     sr_draw_times *times = st->study.times;

@@ -144,7 +144,9 @@ struct sr_workspace {
     sr_array snapped_points; /* sr_snapped_point of each vertex, when st->snapped_points */
     sr_array screen;   /* screen vertices, sr_draw_state.screen_stride bytes apart, valid where the outcode is 0 */
     sr_array tile_order; /* int: the binned path's tiles in the order they are handed out */
-    sr_array double_mapped; /* atomic_uchar: whether a vertex inside has its double half, when st->double_later */
+    sr_array double_wanted; /* atomic_uchar: whether a kept triangle uses a vertex inside, which then needs its
+                               double half (mapped as the verdicts keep it on one thread, in a phase after them
+                               on several), when st->double_later */
     sr_array band_slots;   /* sr_band_slot: the row-band path's kept slots, each chunk's from its first slot on */
     sr_array chunk_kept;   /* uint32_t: how many slots each chunk of the verdicts kept in band_slots */
     sr_array material_shades; /* sr_shade_context: a mesh's materials' (materials.c) */
@@ -174,7 +176,7 @@ typedef struct sr_draw_state {
     bool snapped_points;  /* the vertex phase notes each vertex's snapped point: for the slot lanes, the row bands */
     bool double_later;    /* the vertex phase maps the float half of the vertices inside, the verdicts
                              the double half of those of the triangles they keep (primitives.c) */
-    bool verdicts_alone;  /* one thread takes every verdict: the double half's flags need no exchange */
+    bool verdicts_alone;  /* one thread takes every verdict: it maps the double halves as it keeps triangles */
     sr_subpixel_rules subpixel;
     const struct sr_line_filter *line_filter; /* a line draw's, or NULL (draw.h) */
 } sr_draw_state;
@@ -329,6 +331,11 @@ static inline bool sr_band_span_is_every(sr_band_span s)
 {
     return s.first == 0 && s.last == SR_ROW_BANDS - 1;
 }
+
+/* The double half of the vertices of [first, end) that the verdicts of
+ * several threads marked wanted (sr_draw_state.double_wanted), after
+ * them. */
+void sr_draw_double_halves(const sr_draw_state *st, uint32_t first, uint32_t end);
 
 /* Stages 4 to 7 for the kept slots[0 .. count) whose span meets bands
  * [lo, hi] (row_bands.c), in order: into `own` where the span starts

@@ -177,30 +177,25 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
 }
 
 /* The double half of the vertices of the triangles inside every plane of
- * kept[0 .. count), each vertex by the first thread to take it: the vertex
- * phase mapped their float half (st->double_later). No thread of this
- * phase reads a member the double half writes: the lanes and the row
- * bands read the snapped points, and the triangles are drawn in a later
- * phase, or by the one thread that mapped them. Out of line: its arrays
- * on the stack made every batch's verdicts of a draw without it pay for
- * them.
- * The vertices not yet mapped are listed first, their positions
- * prefetched, and only then taken: an atomic exchange waits for every
- * load before it, so taking each vertex as it was read left each flag's
- * and each position's wait on memory one after the other. One thread
- * alone takes each as it reads it, with a plain store and no branch. */
+ * kept[0 .. count), each vertex once, by the one thread that takes every
+ * verdict: the vertex phase mapped their float half (st->double_later).
+ * No one reads a member the double half writes before the triangles are
+ * drawn: the lanes read the snapped points. Out of line: its arrays on
+ * the stack made every batch's verdicts of a draw without it pay for
+ * them. The vertices are listed first, their positions prefetched, and
+ * only then mapped. */
 static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept,
                                                          int count)
 {
-    atomic_uchar *mapped = st->ws->double_mapped.data;
+    atomic_uchar *wanted = st->ws->double_wanted.data;
     const sr_mesh *source = st->desc->mesh;
     const char *positions = source->clip_positions ? (const char *)source->clip_positions
                                                    : (const char *)source->positions;
     size_t position_size = source->clip_positions ? sizeof *source->clip_positions : sizeof *source->positions;
     char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
-    uint32_t unmapped[3 * SR_VERDICT_BATCH], taken[3 * SR_VERDICT_BATCH];
-    int m = 0, n = 0;
+    uint32_t taken[3 * SR_VERDICT_BATCH];
+    int n = 0;
     for (int j = 0; j < count; j++) {
         if (kept[j].planes)
             continue;
@@ -208,21 +203,44 @@ static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st,
             uint32_t i = kept[j].idx[c];
             __builtin_prefetch(positions + i * position_size);
             __builtin_prefetch(screen + i * stride, 1);
-            if (st->verdicts_alone) { /* taken at once: a vertex listed twice sees its own store */
-                taken[n] = i;
-                n += !atomic_load_explicit(&mapped[i], memory_order_relaxed);
-                atomic_store_explicit(&mapped[i], 1, memory_order_relaxed);
-            } else {
-                unmapped[m] = i;
-                m += !atomic_load_explicit(&mapped[i], memory_order_relaxed);
-            }
+            taken[n] = i; /* a vertex listed twice sees its own store */
+            n += !atomic_load_explicit(&wanted[i], memory_order_relaxed);
+            atomic_store_explicit(&wanted[i], 1, memory_order_relaxed);
         }
     }
-    for (int k = 0; k < m; k++)
-        if (!atomic_exchange_explicit(&mapped[unmapped[k]], 1, memory_order_relaxed))
-            taken[n++] = unmapped[k];
     sr_viewport_map_double_block(source, st->xf, taken, (uint32_t)n, &st->vp, st->shade.simd >= SR_SIMD_AVX2,
                                  screen, stride);
+}
+
+/* On several threads the verdicts only mark the vertices of the kept
+ * triangles inside every plane wanted, a plain store each: taking each
+ * vertex with an atomic exchange, so that one thread alone mapped it,
+ * waited on every exchange, and the two threads' exchanges on the same
+ * lines; sr_draw_double_halves maps them in a phase after. */
+static void mark_double_halves(const sr_draw_state *st, const sr_kept_slot *kept, int count)
+{
+    atomic_uchar *wanted = st->ws->double_wanted.data;
+    for (int j = 0; j < count; j++)
+        for (int c = 0; c < 3 && !kept[j].planes; c++)
+            atomic_store_explicit(&wanted[kept[j].idx[c]], 1, memory_order_relaxed);
+}
+
+/* The vertices sr_draw_double_halves looks at for each call of the lanes. */
+#define DOUBLE_HALVES_BATCH 256
+
+void sr_draw_double_halves(const sr_draw_state *st, uint32_t first, uint32_t end)
+{
+    const atomic_uchar *wanted = st->ws->double_wanted.data;
+    uint32_t taken[DOUBLE_HALVES_BATCH];
+    for (uint32_t block = first; block < end; block += DOUBLE_HALVES_BATCH) {
+        uint32_t block_end = end - block > DOUBLE_HALVES_BATCH ? block + DOUBLE_HALVES_BATCH : end, n = 0;
+        for (uint32_t i = block; i < block_end; i++) {
+            taken[n] = i;
+            n += atomic_load_explicit(&wanted[i], memory_order_relaxed);
+        }
+        sr_viewport_map_double_block(st->desc->mesh, st->xf, taken, n, &st->vp, st->shade.simd >= SR_SIMD_AVX2,
+                                     st->ws->screen.data, st->screen_stride);
+    }
 }
 
 /* The slots ahead whose snapped points the slot lanes prefetch: the
@@ -293,7 +311,7 @@ int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint
             count = drop_subpixel(st, kept, count, stats);
     }
     if (st->double_later)
-        map_double_halves(st, kept, count);
+        (st->verdicts_alone ? map_double_halves : mark_double_halves)(st, kept, count);
     return count;
 }
 

@@ -4,7 +4,9 @@
  * does. A first phase gives each triangle slot its verdict once (rejected
  * slots are counted there and go to no thread) and the threads whose rows
  * it may cover: from the rows of its vertices' snapped points, which the
- * vertex phase noted, or every thread where a vertex lies outside a plane. The
+ * vertex phase noted, or every thread where a vertex lies outside a plane;
+ * where the vertex phase mapped only the float half, a second phase maps
+ * the double half of the vertices the verdicts marked. The
  * rows are split where the estimated cost reaches equal shares: the kept
  * triangles inside every plane, counted at their first band, each weighed
  * by the CPU time per triangle that the last draw of the mesh with the
@@ -27,7 +29,7 @@
 
 typedef struct rows_phase {
     sr_draw_state *st;
-    sr_chunks slots;
+    sr_chunks slots, vertices; /* vertices: of the double halves */
     uint32_t chunks; /* of the verdicts */
     int first_band[SR_MAX_THREADS + 1]; /* thread t draws bands first_band[t] .. first_band[t + 1] - 1 */
 } rows_phase;
@@ -94,6 +96,19 @@ static void verdicts(void *ctx, int t)
     sr_thread_work *w = &st->ws->threads[t];
     sr_stats_add(&w->stats, &counted);
     memcpy(w->band_triangles, per_band, sizeof per_band);
+}
+
+/* Vertices per chunk of the double halves. */
+#define DOUBLE_HALVES_CHUNK 16384
+
+/* The double halves the verdicts marked wanted (sr_draw_double_halves). */
+static void double_halves(void *ctx, int t)
+{
+    (void)t;
+    rows_phase *ph = ctx;
+    uint32_t first, end;
+    while (sr_chunks_take(&ph->vertices, &first, &end))
+        sr_draw_double_halves(ph->st, first, end);
 }
 
 void sr_rows_split(const double *cost, int bands, int threads, int *first_band)
@@ -194,6 +209,10 @@ bool sr_draw_rows(sr_draw_state *st)
     sr_draw_times *times = st->study.times;
     sr_chunks_init(&ph.slots, st->slots, chunk);
     sr_parallel_run(&st->ws->pool, st->threads, verdicts, &ph, times ? &times->primitives : NULL);
+    if (st->double_later && !st->verdicts_alone) {
+        sr_chunks_init(&ph.vertices, st->vertex_count, DOUBLE_HALVES_CHUNK);
+        sr_parallel_run(&st->ws->pool, st->threads, double_halves, &ph, times ? &times->primitives : NULL);
+    }
     int bands = sr_band_count(st->fb->height);
     uint64_t count[SR_ROW_BANDS] = { 0 };
     for (int t = 0; t < st->threads; t++)

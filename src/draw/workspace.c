@@ -41,7 +41,7 @@ void sr_workspace_destroy(sr_workspace *ws)
     sr_pool_stop(&ws->pool);
     sr_array_free(&ws->outcodes);
     sr_array_free(&ws->snapped_points);
-    sr_array_free(&ws->double_mapped);
+    sr_array_free(&ws->double_wanted);
     sr_array_free(&ws->band_slots);
     sr_array_free(&ws->chunk_kept);
     sr_array_free(&ws->screen);
