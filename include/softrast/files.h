@@ -36,15 +36,19 @@
  * mesh->parts gives each mesh's run of ids and its material. The file's
  * materials are mesh->materials (at least one for an Assimp format): the
  * colour factor (glTF's baseColorFactor, else the diffuse colour), glTF's
- * alphaMode and alphaCutoff, and the base-colour or diffuse texture. A
- * texture the file embeds (.glb, FBX) is decoded into *texture (the first
- * one a drawn mesh uses; texture may be NULL to skip it, and is left empty
- * otherwise) and its materials point at *texture (keep it where it is
- * while the mesh is drawn); one beside the file is the material's
+ * alphaMode and alphaCutoff, and the base-colour or diffuse texture. Of
+ * the textures a file embeds (.glb, FBX) one at most is decoded into
+ * *texture: that of the first mesh with triangles whose material has a
+ * texture, when it is embedded (texture may be NULL to skip it, and is left
+ * empty otherwise); its materials point at *texture (keep it where it is
+ * while the mesh is drawn), and a material with another embedded texture is
+ * drawn in its colour. A texture beside the file is the material's
  * texture_path (found as for an OBJ's map_Kd, below), which
  * sr_material_textures_load loads, and mesh->texture_path names the first
- * of them. Points, lines, skinning,
- * animation, lights and cameras are ignored. A mesh that a mirroring node
+ * of them. Morph targets take their default weights and a skinned mesh is
+ * posed by its skeleton as the node tree holds it; points and lines of a
+ * file with triangles, animation, lights and cameras are ignored (a file of
+ * vertices alone keeps them as points). A mesh that a mirroring node
  * transform places (negative determinant) has its winding reversed, so its
  * outward faces stay front faces. A file over SR_MAX_MESH_VERTICES vertices,
  * SR_MAX_MESH_TRIANGLES triangles or SR_MAX_MESH_MATERIALS materials is
