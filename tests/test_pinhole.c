@@ -17,18 +17,8 @@ typedef long double real;
  * quaternion, a translation within `spread`. */
 static void random_c2w(test_rng *rng, double spread, double c2w[4][4])
 {
-    double q[4], n = 0.0;
-    for (int k = 0; k < 4; k++) {
-        q[k] = rng_uniform(rng, -1.0, 1.0);
-        n += q[k] * q[k];
-    }
-    n = sqrt(n);
-    double w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
-    const double r[3][3] = {
-        { 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y) },
-        { 2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x) },
-        { 2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y) },
-    };
+    double r[3][3];
+    rng_rotation(rng, r);
     for (int i = 0; i < 3; i++) {
         for (int j = 0; j < 3; j++)
             c2w[i][j] = r[i][j];
@@ -391,9 +381,9 @@ Test(pinhole, a_resolve_refuses_what_is_no_draw_of_its_mesh)
     sr_mesh_free(&lacking);
 }
 
-/* An ids plane with several ids past the mesh's triangles, on rows that
- * different threads take: the error names the first in raster order, on
- * every thread count. */
+/* An ids plane with ids past the mesh's triangles on every row from row
+ * 40 on, so that every thread past it meets one: the error names the
+ * first in raster order, on every thread count. */
 Test(pinhole, a_resolve_names_the_first_stranger_whatever_the_threads)
 {
     double c2w[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } };
@@ -410,13 +400,13 @@ Test(pinhole, a_resolve_names_the_first_stranger_whatever_the_threads)
     sr_framebuffer fb;
     cr_assert(sr_framebuffer_create(&fb, W, H, &err) && sr_framebuffer_create_ids(&fb, &err), "%s", err.message);
     sr_framebuffer_clear(&fb, 0);
-    /* Its own triangle everywhere, then strangers: 7 at row 40, 5 and 9
-     * further down. */
+    /* Its own triangle everywhere, then strangers: 7 at row 40, and each
+     * row after one of its own, 1000 + row. */
     for (int i = 0; i < W * H; i++)
         fb.ids[i] = 1;
     fb.ids[40 * W + 12] = 7;
-    fb.ids[41 * W + 3] = 5;
-    fb.ids[90 * W + 0] = 9;
+    for (int y = 41; y < H; y++)
+        fb.ids[y * W + (y * 5) % W] = 1000 + (uint32_t)y;
     float depth[W * H];
     for (int threads = 1; threads <= 8; threads++) {
         sr_pinhole_outputs out = { .depth = depth, .threads = threads };

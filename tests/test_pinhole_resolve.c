@@ -104,7 +104,8 @@ static pixel formula(const sr_pinhole *cam, const sr_mesh *mesh, uint32_t slot, 
 #define PARTS 4
 
 /* 30 random scenes: a camera at the origin looking along +z (so a vertex
- * at the origin is the camera centre), or one at a random pose; triangles
+ * at the origin is the camera centre), or one at a random rotation, the
+ * mesh's origin a million units away; triangles
  * in front of it, a third of them with a corner at the origin and a third
  * in the plane x = 1 (the camera's cx then a whole pixel); an ids
  * plane of random runs and a random depth buffer; resolved on 1 to 4
@@ -141,11 +142,21 @@ Test(pinhole_resolve, runs_and_loops_per_output_give_the_per_pixel_formulas_bits
                            .near = 0.25, .far = 12.0 };
         for (int k = 0; k < 4; k++)
             cam.w2c[k][k] = 1.0;
-        if (centred)
+        if (centred) {
             cam.cx = rng_below(&rng, 60);
-        else
-            for (int r = 0; r < 3; r++)
-                cam.w2c[r][3] = rng_uniform(&rng, -1.0, 1.0);
+        } else { /* a random rotation and a mesh far from the world's origin: no product exact */
+            double rotation[3][3];
+            rng_rotation(&rng, rotation);
+            for (int r = 0; r < 3; r++) {
+                mesh.origin[r] = rng_uniform(&rng, -1e6, 1e6);
+                for (int c = 0; c < 3; c++)
+                    cam.w2c[r][c] = rotation[r][c];
+            }
+            for (int r = 0; r < 3; r++) /* the camera near the mesh, along its rotated positions */
+                cam.w2c[r][3] = -(cam.w2c[r][0] * mesh.origin[0] + cam.w2c[r][1] * mesh.origin[1] +
+                                  cam.w2c[r][2] * (mesh.z_negated ? -mesh.origin[2] : mesh.origin[2])) +
+                                rng_uniform(&rng, -1.0, 1.0);
+        }
         int width = 1 + rng_below(&rng, SIDE_MAX), height = 1 + rng_below(&rng, SIDE_MAX);
         sr_framebuffer fb;
         cr_assert(sr_framebuffer_create(&fb, width, height, &err) && sr_framebuffer_create_ids(&fb, &err), "%s",

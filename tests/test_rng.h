@@ -6,6 +6,7 @@
 #ifndef SOFTRAST_TESTS_TEST_RNG_H
 #define SOFTRAST_TESTS_TEST_RNG_H
 
+#include <math.h>
 #include <stdint.h>
 
 typedef struct test_rng {
@@ -42,6 +43,26 @@ static inline int rng_below(test_rng *r, int n)
 static inline int64_t rng_range(test_rng *r, int64_t lo, int64_t hi)
 {
     return lo + (int64_t)(rng_next(r) % (uint64_t)(hi - lo + 1));
+}
+
+/* A random rotation, from a random unit quaternion. */
+static inline void rng_rotation(test_rng *r, double out[3][3])
+{
+    double q[4], n = 0.0;
+    for (int k = 0; k < 4; k++) {
+        q[k] = rng_uniform(r, -1.0, 1.0);
+        n += q[k] * q[k];
+    }
+    n = sqrt(n);
+    double w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+    const double m[3][3] = {
+        { 1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y) },
+        { 2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x) },
+        { 2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y) },
+    };
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            out[i][j] = m[i][j];
 }
 
 #endif

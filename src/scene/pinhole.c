@@ -229,7 +229,7 @@ typedef struct resolve_job {
     camera_frame frame;    /* cam's, for mesh */
     double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
     int chunk_rows;
-    atomic_int next_row;
+    atomic_int next_chunk; /* chunks, not rows: a row count past the last row could wrap */
 } resolve_job;
 
 /* Triangle `slot` in the camera frame: its corner v0, edges e1 = v1 − v0
@@ -493,7 +493,7 @@ static void write_face_ids(const resolve_job *job, const uint32_t *ids, uint32_t
         face_ids[x] = ids[x] && ids[x] <= job->slots ? mesh->file_faces[ids[x] - 1] + 1 : 0;
 }
 
-/* The runs of a row of ids: past its second pixel, a run's pixels are
+/* The runs of a row of ids: from its second pixel on, a run's pixels are
  * compared eight at a time, as four pairs against the id twice over. */
 static void find_runs(const uint32_t *ids, int width, row_runs *r)
 {
@@ -697,10 +697,11 @@ static void *resolve_thread_run(void *arg)
     for (int i = 0; i < TRIANGLE_CACHE; i++)
         cache[i].slot = UINT32_MAX;
     for (;;) {
-        int y0 = atomic_fetch_add_explicit(&job->next_row, job->chunk_rows, memory_order_relaxed);
-        if (y0 >= height)
+        int64_t chunk = atomic_fetch_add_explicit(&job->next_chunk, 1, memory_order_relaxed),
+                first = chunk * job->chunk_rows;
+        if (first >= height)
             return NULL;
-        int y1 = height - y0 > job->chunk_rows ? y0 + job->chunk_rows : height;
+        int y0 = (int)first, y1 = height - y0 > job->chunk_rows ? y0 + job->chunk_rows : height;
         th->stranger = resolve_rows(job, y0, y1, &th->scratch, cache);
         if (th->stranger) {
             th->stranger_chunk = y0;
@@ -737,13 +738,14 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
     resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color,
                         sparse ? sr_assemble_point_line_slots(mesh) : sr_assemble_slots(mesh), out,
                         camera_frame_of(cam, mesh), malloc(width * sizeof *job.ray_x),
-                        malloc((size_t)ids->height * sizeof *job.ray_y), (ids->height + chunks - 1) / chunks, 0 };
+                        malloc((size_t)ids->height * sizeof *job.ray_y),
+                        (int)(((int64_t)ids->height + chunks - 1) / chunks), 0 };
     char *scratch = aligned_alloc(64, (size_t)threads * per_thread);
     if (!job.ray_x || !job.ray_y || !scratch) {
         free(job.ray_x);
         free(job.ray_y);
         free(scratch);
-        return sr_error_set(err, "out of memory for the rays of a %dx%d view", ids->width, ids->height);
+        return sr_error_set(err, "out of memory for the rays and rows of a %dx%d view", ids->width, ids->height);
     }
     for (int x = 0; x < ids->width; x++)
         job.ray_x[x] = (x - cam->cx) / cam->fx;
