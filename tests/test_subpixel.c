@@ -415,6 +415,20 @@ Test(subpixel, one_pixel_slivers_turned_over_by_snapping_draw_alike)
 
 /* The tests' dense torus seen small, lit, where the tiny queue takes the
  * triangles the lanes leave. */
+/* desc drawn with study on `threads` threads (and workspace ws, or a
+ * fresh one) into a new 96×64 framebuffer cleared to 0. */
+static void draw_96x64(sr_draw_desc desc, const sr_draw_study *study, int threads, sr_workspace *ws, drawn *out)
+{
+    sr_error err;
+    desc.study = study;
+    desc.threads = threads;
+    desc.workspace = ws;
+    cr_assert(sr_framebuffer_create(&out->fb, 96, 64, &err), "%s", err.message);
+    sr_framebuffer_clear(&out->fb, 0);
+    out->stats = (sr_stats){ 0 };
+    cr_assert(sr_draw(&out->fb, &desc, &out->stats, &err), "%s", err.message);
+}
+
 Test(subpixel, dense_torus_draws_alike_with_and_without_the_lanes, .timeout = 120)
 {
     sr_mesh torus;
@@ -430,25 +444,54 @@ Test(subpixel, dense_torus_draws_alike_with_and_without_the_lanes, .timeout = 12
         glm_mat4_identity(desc.world);
         drawn want;
         sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
-        desc.study = &reference;
-        cr_assert(sr_framebuffer_create(&want.fb, 96, 64, &err), "%s", err.message);
-        sr_framebuffer_clear(&want.fb, 0);
-        want.stats = (sr_stats){ 0 };
-        cr_assert(sr_draw(&want.fb, &desc, &want.stats, &err), "%s", err.message);
+        draw_96x64(desc, &reference, 1, NULL, &want);
         for (size_t p = 0; p < sizeof paths / sizeof *paths; p++)
             for (int threads = 1; threads <= 2; threads++) {
                 sr_draw_study lanes = { .path = paths[p] };
-                desc.study = &lanes;
-                desc.threads = threads;
                 drawn got;
-                cr_assert(sr_framebuffer_create(&got.fb, 96, 64, &err), "%s", err.message);
-                sr_framebuffer_clear(&got.fb, 0);
-                got.stats = (sr_stats){ 0 };
-                cr_assert(sr_draw(&got.fb, &desc, &got.stats, &err), "%s", err.message);
+                draw_96x64(desc, &lanes, threads, NULL, &got);
                 assert_same(&want, &got, lit ? "lit torus" : "torus ids");
                 sr_framebuffer_destroy(&got.fb);
             }
         sr_framebuffer_destroy(&want.fb);
     }
+    sr_mesh_free(&torus);
+}
+
+/* One workspace kept across draws of a torus of more vertices than a
+ * chunk of the double halves' phase, from two views, on one thread (the
+ * verdicts map each vertex's double half as they keep it) and on two and
+ * three (they mark it, and the phase maps it, chunks to any thread): each
+ * draw is what a fresh one-by-one draw gives, so no draw keeps the last
+ * one's flags or offsets. */
+Test(subpixel, a_kept_workspace_maps_every_draws_double_halves, .timeout = 120)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 200, 100, &err), "%s", err.message);
+    cr_assert_gt(torus.vertex_count, 16384u, "one chunk of the double halves would hold every vertex");
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    static const float eyes[2][3] = { { 0, 1.1f, -1.9f }, { 1.3f, -0.6f, 1.4f } };
+    static const int threads[] = { 2, 1, 3, 1, 2 };
+    for (size_t d = 0; d < sizeof threads / sizeof *threads; d++) {
+        sr_camera cam = sr_camera_default();
+        glm_vec3_copy((float *)eyes[d % 2], cam.eye);
+        sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE };
+        sr_camera_view(&cam, desc.view);
+        sr_camera_projection(&cam, 96.0f / 64.0f, desc.projection);
+        glm_mat4_identity(desc.world);
+        drawn want, got;
+        sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
+        draw_96x64(desc, &reference, 1, NULL, &want);
+        sr_draw_study kept = { .path = threads[d] > 1 ? SR_PATH_ROWS : SR_PATH_DIRECT };
+        draw_96x64(desc, &kept, threads[d], ws, &got);
+        char what[64];
+        snprintf(what, sizeof what, "draw %zu, %d threads", d, threads[d]);
+        assert_same(&want, &got, what);
+        sr_framebuffer_destroy(&want.fb);
+        sr_framebuffer_destroy(&got.fb);
+    }
+    sr_workspace_destroy(ws);
     sr_mesh_free(&torus);
 }

@@ -190,7 +190,8 @@ static bool all_inside(const unsigned char *codes, uint32_t n)
  * vertex inside gets only the float half of its mapping here
  * (06_viewport.h), which decides its refusal, and notes the snapped
  * points: the verdicts map the double half of the vertices of the
- * triangles they keep (primitives.c); the check after may only find a
+ * triangles they keep, or on several threads mark them for a phase after
+ * theirs (primitives.c, sr_draw_double_halves); the check after may only find a
  * vertex outside a plane non-finite, whose point is the outside one
  * already. */
 static void vertex_chunk(const vertex_phase *ph, uint32_t first, uint32_t end, unsigned *outcodes_and)
@@ -461,7 +462,11 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     if (st->study.times)
         st->study.times->path = path;
     bool direct = path == SR_PATH_DIRECT;
-    st->verdicts_alone = direct || st->threads == 1;
+    /* double_later holds only for the direct path and the row bands (the
+     * planned path, or direct in its place): on one thread the verdicts
+     * map the double halves as they go, on the row bands' several a
+     * phase after them maps what they mark. */
+    st->double_phase = st->double_later && path == SR_PATH_ROWS && st->threads > 1;
     /* Nothing is written before every check has passed; the tiles and the
      * row bands clear the rows they draw, as they draw them. */
     if (st->desc->clear && direct)

@@ -175,8 +175,11 @@ typedef struct sr_draw_state {
     bool slot_lanes;      /* and take a triangle list's verdicts eight slots at a time (primitives.c) */
     bool snapped_points;  /* the vertex phase notes each vertex's snapped point: for the slot lanes, the row bands */
     bool double_later;    /* the vertex phase maps the float half of the vertices inside, the verdicts
-                             the double half of those of the triangles they keep (primitives.c) */
-    bool verdicts_alone;  /* one thread takes every verdict: it maps the double halves as it keeps triangles */
+                             the double half of those of the triangles they keep, or a phase after
+                             them (double_phase; primitives.c) */
+    bool double_phase;    /* with double_later, the row bands' several threads: the verdicts mark the
+                             vertices wanted and a phase after them maps them (sr_draw_double_halves);
+                             else the one thread that takes every verdict maps them as it keeps triangles */
     sr_subpixel_rules subpixel;
     const struct sr_line_filter *line_filter; /* a line draw's, or NULL (draw.h) */
 } sr_draw_state;

@@ -311,7 +311,7 @@ int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint
             count = drop_subpixel(st, kept, count, stats);
     }
     if (st->double_later)
-        (st->verdicts_alone ? map_double_halves : mark_double_halves)(st, kept, count);
+        (st->double_phase ? mark_double_halves : map_double_halves)(st, kept, count);
     return count;
 }
 

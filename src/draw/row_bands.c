@@ -6,7 +6,8 @@
  * it may cover: from the rows of its vertices' snapped points, which the
  * vertex phase noted, or every thread where a vertex lies outside a plane;
  * where the vertex phase mapped only the float half, a second phase maps
- * the double half of the vertices the verdicts marked. The
+ * the double half of the vertices the verdicts marked (on one thread the
+ * verdicts map them as they go). The
  * rows are split where the estimated cost reaches equal shares: the kept
  * triangles inside every plane, counted at their first band, each weighed
  * by the CPU time per triangle that the last draw of the mesh with the
@@ -209,7 +210,7 @@ bool sr_draw_rows(sr_draw_state *st)
     sr_draw_times *times = st->study.times;
     sr_chunks_init(&ph.slots, st->slots, chunk);
     sr_parallel_run(&st->ws->pool, st->threads, verdicts, &ph, times ? &times->primitives : NULL);
-    if (st->double_later && !st->verdicts_alone) {
+    if (st->double_phase) {
         sr_chunks_init(&ph.vertices, st->vertex_count, DOUBLE_HALVES_CHUNK);
         sr_parallel_run(&st->ws->pool, st->threads, double_halves, &ph, times ? &times->primitives : NULL);
     }
