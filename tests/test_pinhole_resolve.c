@@ -201,3 +201,58 @@ Test(pinhole_resolve, runs_and_loops_per_output_give_the_per_pixel_formulas_bits
     }
     cr_assert_gt(edge_on, 1000, "too few pixels of triangles through the camera centre to test the fallback");
 }
+
+/* Frames one pixel wide or tall, one 16384 pixels wide and one of fewer
+ * rows than threads, resolved on 2 to 100 threads: every output the
+ * same bits as on one thread (the chunks of rows and the runs of a row
+ * at their extremes). */
+Test(pinhole_resolve, any_thread_count_gives_one_threads_bits_on_thin_and_wide_frames)
+{
+    test_rng rng = { 0x7A11u };
+    sr_error err = { "" };
+    sr_mesh mesh;
+    cr_assert(sr_mesh_alloc(&mesh, 3 * TRIANGLES, 3 * TRIANGLES, true, false, false, &err), "%s", err.message);
+    for (uint32_t v = 0; v < 3 * TRIANGLES; v++) {
+        mesh.indices[v] = v;
+        for (int k = 0; k < 3; k++) {
+            mesh.positions[v][k] = (float)rng_uniform(&rng, -3.0, 3.0);
+            mesh.normals[v][k] = (float)rng_uniform(&rng, -1.0, 1.0);
+        }
+        mesh.positions[v][2] = (float)rng_uniform(&rng, 0.5, 9.0);
+    }
+    static const int sizes[][2] = { { 1, 97 }, { 97, 1 }, { 16384, 2 }, { 5, 3 } };
+    static const int threads[] = { 2, 3, 64, 100 };
+    for (size_t s = 0; s < sizeof sizes / sizeof *sizes; s++) {
+        int width = sizes[s][0], height = sizes[s][1];
+        size_t n = (size_t)width * (size_t)height;
+        sr_pinhole cam = { .fx = 40.0, .fy = 40.0, .cx = (width - 1) / 2.0, .cy = (height - 1) / 2.0,
+                           .near = 0.25, .far = 12.0 };
+        for (int k = 0; k < 4; k++)
+            cam.w2c[k][k] = 1.0;
+        sr_framebuffer fb;
+        cr_assert(sr_framebuffer_create(&fb, width, height, &err) && sr_framebuffer_create_ids(&fb, &err), "%s",
+                  err.message);
+        for (size_t i = 0; i < n;) {
+            uint32_t id = rng_below(&rng, 4) == 0 ? 0 : 1 + (uint32_t)rng_below(&rng, TRIANGLES);
+            for (int run = 1 + rng_below(&rng, 40); run > 0 && i < n; run--, i++) {
+                fb.ids[i] = id;
+                fb.depth[i] = (float)rng_uniform(&rng, 0.0, 1.0);
+            }
+        }
+        float *one = calloc(8 * n, sizeof(float)), *many = calloc(8 * n, sizeof(float));
+        cr_assert(one && many);
+        for (int t = 0; t <= (int)(sizeof threads / sizeof *threads); t++) {
+            float *into = t == 0 ? one : many;
+            sr_pinhole_outputs out = { into, into + n, (uint32_t *)(into + 2 * n), (uint32_t *)(into + 3 * n),
+                                       into + 4 * n, false, NAN, t == 0 ? 1 : threads[t - 1] };
+            cr_assert(sr_pinhole_resolve(&cam, &mesh, &fb, &out, &err), "%s", err.message);
+            if (t > 0)
+                cr_assert_eq(memcmp(one, many, 7 * n * sizeof(float)), 0, "%dx%d on %d threads: bits differ", width,
+                             height, threads[t - 1]);
+        }
+        free(one);
+        free(many);
+        sr_framebuffer_destroy(&fb);
+    }
+    sr_mesh_free(&mesh);
+}
