@@ -9,6 +9,9 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "pipeline/02_assemble.h"
 #include "softrast/softrast.h"
@@ -359,8 +362,9 @@ static void run_depth(const double *z, int n, float *depth)
 
 /* The run's ranges |z·ray|, the ray's third coordinate 1 so the point's
  * z: its squares summed in dot product order, two at a time; the square
- * root lane by lane (vector extensions have none), each rounded as
- * sqrt() rounds. */
+ * root of both lanes in one SSE2 instruction (vector extensions have
+ * none, and sqrt() of a lane is a branch for errno besides), IEEE's, so
+ * rounded as sqrt() rounds. */
 static void run_range(const double *z, const double *ray_x, double ray_y, int n, float *range)
 {
     int i = 0;
@@ -369,7 +373,11 @@ static void run_range(const double *z, const double *ray_x, double ray_y, int n,
         memcpy(&zv, z + i, sizeof zv);
         memcpy(&rx, ray_x + i, sizeof rx);
         resolve_v2 px = zv * rx, py = zv * ray_y, squared = px * px + py * py + zv * zv;
+#if defined(__SSE2__)
+        resolve_v2 length = (resolve_v2)_mm_sqrt_pd((__m128d)squared);
+#else
         resolve_v2 length = { sqrt(squared[0]), sqrt(squared[1]) };
+#endif
         resolve_f2 f = __builtin_convertvector(length, resolve_f2);
         memcpy(range + i, &f, sizeof f);
     }
