@@ -689,7 +689,7 @@ static uint32_t resolve_rows(const resolve_job *job, int y0, int y1, resolve_scr
  * left or it meets an id that is not the mesh's (the first it meets in
  * its rows, which it takes in order). */
 typedef struct resolve_thread {
-    resolve_job *job; /* its next_row changes */
+    resolve_job *job; /* its next_chunk changes */
     resolve_scratch scratch;
     pthread_t thread;
     uint32_t stranger; /* resolve_rows' verdict */
