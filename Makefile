@@ -74,6 +74,12 @@ $(FUZZ_PIXEL_OBJ): FUZZ_SANITIZE = address
 # variable locations in gdb.
 PIXEL_OBJ := $(foreach b,build/san build/fuzz build,$(patsubst %,$(b)/src/pipeline/08_raster/%.o,raster span_sse2 span_avx2 span_avx512))
 $(PIXEL_OBJ): ALL_CFLAGS += -fno-var-tracking
+# The fuzzers draw with the loop the CPU picks, which on a CPU with AVX2 is
+# never the SSE2 one: the fuzz build there leaves the SSE2 kernels out
+# (span_sse2.c), and fuzzes the AVX2 and AVX-512 ones the CPU runs.
+ifneq ($(shell grep -qw avx2 /proc/cpuinfo 2>/dev/null && echo avx2),)
+build/fuzz/src/pipeline/08_raster/span_sse2.o: FUZZ_CFLAGS += -DSR_SPAN_SSE2_UNUSED
+endif
 
 .PHONY: all deps run test fuzz-smoke-ci test-fast test-python test-san test-house mutate test-assets test-install install assets docs-images bench report scans stability cost-model clean
 .DEFAULT_GOAL := all
