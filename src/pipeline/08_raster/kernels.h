@@ -11,15 +11,22 @@
  * (sr_framebuffer.ids) and context: its varying layout (each kernel is
  * compiled for one, so its varyings stay in registers) and a material's
  * tint and alpha test. NULL where the instruction set is not built in
- * (AVX2 and AVX-512 off x86-64) or the layout is not one sr_vertex_layout
- * makes (the scalar loop draws those). */
+ * (AVX2 and AVX-512 off x86-64; SSE2 in the fuzz build on a CPU with AVX2,
+ * the Makefile) or the layout is not one sr_vertex_layout makes (the
+ * scalar loop draws those). */
 sr_span_kernel sr_span_kernel_sse2(sr_shade mode, bool greater, bool with_ids, const sr_shade_context *c);
 
-/* The getter of a kernel file built without its instruction set. */
+/* The getters of a kernel file built without its kernels. */
 #define SR_SPAN_KERNEL_ABSENT(getter)                                                                         \
     sr_span_kernel getter(sr_shade mode, bool greater, bool with_ids, const sr_shade_context *c)             \
     {                                                                                                         \
         (void)mode, (void)greater, (void)with_ids, (void)c;                                                   \
+        return NULL;                                                                                          \
+    }
+#define SR_TINY_SHADER_ABSENT(getter)                                                                         \
+    sr_tiny_shader getter(sr_shade mode, const sr_shade_context *c)                                           \
+    {                                                                                                         \
+        (void)mode, (void)c;                                                                                  \
         return NULL;                                                                                          \
     }
 

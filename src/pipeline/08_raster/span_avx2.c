@@ -19,10 +19,5 @@
 #include "span_kernel.h"
 #else
 SR_SPAN_KERNEL_ABSENT(sr_span_kernel_avx2)
-
-sr_tiny_shader sr_tiny_shader_avx2(sr_shade mode, const sr_shade_context *c)
-{
-    (void)mode, (void)c;
-    return NULL;
-}
+SR_TINY_SHADER_ABSENT(sr_tiny_shader_avx2)
 #endif
