@@ -50,7 +50,7 @@ AVX2_OBJ := $(foreach f,span_avx2 subpixel_avx2 one_pixel_avx2,$(patsubst %,%/sr
             $(foreach f,06_viewport_avx2 01_vertex_avx2,$(patsubst %,%/src/pipeline/$(f).o,build build/san build/fuzz))
 $(AVX2_OBJ): ALL_CFLAGS += -mavx2
 $(AVX2_OBJ): FUZZ_CFLAGS += -mavx2
-AVX512_OBJ := $(patsubst %,%/src/pipeline/08_raster/span_avx512.o,build build/san build/fuzz)
+AVX512_OBJ := $(foreach f,span_avx512 subpixel_avx512,$(patsubst %,%/src/pipeline/08_raster/$(f).o,build build/san build/fuzz))
 AVX512_FLAGS := -mavx512f -mavx512dq -mavx512bw -mavx512vl
 $(AVX512_OBJ): ALL_CFLAGS += $(AVX512_FLAGS)
 $(AVX512_OBJ): FUZZ_CFLAGS += $(AVX512_FLAGS)

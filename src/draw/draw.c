@@ -381,7 +381,7 @@ static sr_subpixel_rules subpixel_rules(const sr_draw_state *st)
     return (sr_subpixel_rules){ .bits = st->vp.subpixel_bits, .width = st->fb->width, .height = st->fb->height,
                                 .keep_cw = sr_cull_keeps(1, d->cull, d->front),
                                 .keep_ccw = sr_cull_keeps(-1, d->cull, d->front),
-                                .avx2 = st->shade.simd >= SR_SIMD_AVX2 };
+                                .avx2 = st->shade.simd >= SR_SIMD_AVX2, .avx512 = st->shade.simd >= SR_SIMD_AVX512 };
 }
 
 /* The slot lanes (sr_subpixel_slot_group_avx2) gather a triangle list's

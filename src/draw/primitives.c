@@ -248,7 +248,8 @@ void sr_draw_double_halves(const sr_draw_state *st, uint32_t first, uint32_t end
 #define POINTS_AHEAD 32
 
 /* The verdicts of slots [first, end) of a triangle list with the
- * sub-pixel lanes (st->slot_lanes), eight slots at a time straight from
+ * sub-pixel lanes (st->slot_lanes), eight slots at a time (sixteen with
+ * AVX-512: sr_subpixel_slot_group_avx512) straight from
  * the indices and the snapped points (sr_subpixel_slot_group_avx2): no
  * kept slot is written for a triangle the lanes drop, and no vertex is
  * read twice. A group with a degenerate triangle or a vertex outside a
@@ -263,28 +264,31 @@ static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint3
     int count = 0;
     uint64_t culled = 0, drawn = 0; /* of the slots from first on: counted once, a call of libgcc's where the
                                        build has no popcnt instruction */
-    for (uint32_t g = first; g < end; g += SR_SUBPIXEL_SLOT_GROUP) {
-        uint32_t g_end = end - g > SR_SUBPIXEL_SLOT_GROUP ? g + SR_SUBPIXEL_SLOT_GROUP : end;
+    uint32_t group = st->subpixel.avx512 ? SR_SUBPIXEL_SLOT_GROUP_AVX512 : SR_SUBPIXEL_SLOT_GROUP;
+    for (uint32_t g = first; g < end; g += group) {
+        uint32_t g_end = end - g > group ? g + group : end;
         const uint32_t *idx = indices + 3 * (size_t)g;
-        if (last_end - g > SR_INDICES_AHEAD + SR_SUBPIXEL_SLOT_GROUP) { /* a group's 96 bytes span two lines */
-            __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD);
-            __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD + SR_SUBPIXEL_SLOT_GROUP * 3 - 1);
+        if (last_end - g > SR_INDICES_AHEAD + group) { /* a group's 96 or 192 bytes span two to four lines */
+            for (uint32_t at = 0; at + 16 <= 3 * group; at += 16)
+                __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD + at);
+            __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD + 3 * group - 1);
         }
-        if (last_end - g > POINTS_AHEAD + SR_SUBPIXEL_SLOT_GROUP)
-            for (int j = 0; j < SR_SUBPIXEL_SLOT_GROUP; j++)
+        if (last_end - g > POINTS_AHEAD + group)
+            for (uint32_t j = 0; j < group; j++)
                 PREFETCH_TRIANGLE((const char *)points, sizeof *points, idx + 3 * (POINTS_AHEAD + j));
         sr_subpixel_slots v = { .plain = false };
-        if (g_end - g == SR_SUBPIXEL_SLOT_GROUP)
-            v = sr_subpixel_slot_group_avx2(idx, points, &st->subpixel);
+        if (g_end - g == group)
+            v = (group == SR_SUBPIXEL_SLOT_GROUP_AVX512 ? sr_subpixel_slot_group_avx512
+                                                       : sr_subpixel_slot_group_avx2)(idx, points, &st->subpixel);
         if (!v.plain) {
             int n = take_verdicts(st, g, g_end, last_end, stats, kept + count);
             count += drop_subpixel(st, kept + count, n, stats);
             continue;
         }
-        stats->triangles += SR_SUBPIXEL_SLOT_GROUP;
+        stats->triangles += group;
         culled |= v.verdict.culled << (g - first);
         drawn |= v.verdict.drawn << (g - first);
-        uint64_t left = ~(v.verdict.culled | v.verdict.drawn) & ((1u << SR_SUBPIXEL_SLOT_GROUP) - 1);
+        uint64_t left = ~(v.verdict.culled | v.verdict.drawn) & ((1u << group) - 1);
         for (; left; left &= left - 1) {
             int j = __builtin_ctzll(left);
             sr_kept_slot *s = &kept[count++];

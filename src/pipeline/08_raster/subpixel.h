@@ -5,7 +5,7 @@
  * pixel: their scan box (sr_raster_scan_box) holds no pixel centre, or one
  * that they miss. Each such triangle changes nothing but the draw's counts,
  * culled or drawn as stage 7 counts it, yet one at a time it paid for a
- * call into the rasterizer, its box and its edges. Here four or eight
+ * call into the rasterizer, its box and its edges. Here four, eight or sixteen
  * triangles go through those tests at once, a triangle per lane of 32-bit integers (as
  * Intel's Masked Occlusion Culling rejects many triangles per instruction),
  * and the caller sends only the others on to the per-triangle set-up.

@@ -57,7 +57,9 @@ static SR_ALWAYS_INLINE ulanes minus(lanes a, lanes b)
 /* Bit i set where lane i of m is all ones. */
 static SR_ALWAYS_INLINE uint64_t lane_bits(lanes m)
 {
-#if defined(__AVX2__) && SUBPIXEL_LANES == 8
+#if defined(__AVX512F__) && SUBPIXEL_LANES == 16
+    return (uint64_t)_mm512_movepi32_mask((__m512i)m);
+#elif defined(__AVX2__) && SUBPIXEL_LANES == 8
     return (uint64_t)_mm256_movemask_ps((__m256)m);
 #elif defined(__SSE2__) && SUBPIXEL_LANES == 4
     return (uint64_t)_mm_movemask_ps((__m128)m);
@@ -146,6 +148,62 @@ static SR_ALWAYS_INLINE void gather_points(const sr_snapped_point *points, lanes
     *y = (lanes)_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, 0xdd));
 }
 
+#endif
+
+#if SUBPIXEL_LANES == 16 && defined(__AVX512F__)
+/* The x and the y of the points of the sixteen slots whose corner indices
+ * are i, in slot order: two gathers of eight points, whose x and y two
+ * permutes take apart. */
+static SR_ALWAYS_INLINE void gather_points(const sr_snapped_point *points, lanes i, lanes *x, lanes *y)
+{
+    __m512i lo = _mm512_i32gather_epi64(_mm512_castsi512_si256((__m512i)i), (const long long *)points, 8);
+    __m512i hi = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64((__m512i)i, 1), (const long long *)points, 8);
+    const __m512i evens = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    const __m512i odds = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+    *x = (lanes)_mm512_permutex2var_epi32(lo, evens, hi);
+    *y = (lanes)_mm512_permutex2var_epi32(lo, odds, hi);
+}
+
+/* Corner k of the sixteen slots whose 48 indices are a, b, c: index
+ * 3j + k in lane j, from the first 32 (a and b) where it lies there,
+ * then from c. */
+static SR_ALWAYS_INLINE lanes corner(__m512i a, __m512i b, __m512i c, int k)
+{
+    static const int32_t from_ab[3][16] = {
+        { 0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0, 0, 0 },
+        { 1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 0, 0, 0, 0, 0 },
+        { 2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0, 0, 0, 0, 0, 0 },
+    };
+    static const int32_t then_c[3][16] = { /* l: lane l so far; 16 + m: c's m */
+        { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 20, 23, 26, 29 },
+        { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30 },
+        { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31 },
+    };
+    __m512i t = _mm512_permutex2var_epi32(a, _mm512_loadu_si512(from_ab[k]), b);
+    return (lanes)_mm512_permutex2var_epi32(t, _mm512_loadu_si512(then_c[k]), c);
+}
+#endif
+
+#if (SUBPIXEL_LANES == 8 && defined(__AVX2__)) || (SUBPIXEL_LANES == 16 && defined(__AVX512F__))
+/* The slots whose corner indices are i0, i1, i2, their points gathered:
+ * plain when each is sr_slot_verdict's triangle inside every plane (three
+ * distinct indices, each vertex inside), then the lanes' verdicts. */
+static SR_ALWAYS_INLINE sr_subpixel_slots slots_of(const sr_snapped_point *points, lanes i0, lanes i1, lanes i2,
+                                                   const sr_subpixel_rules *rules)
+{
+    lanes x0, y0, x1, y1, x2, y2;
+    gather_points(points, i0, &x0, &y0);
+    gather_points(points, i1, &x1, &y1);
+    gather_points(points, i2, &x2, &y2);
+    const lanes outside = (lanes){ 0 } + INT32_MIN; /* SR_SNAPPED_OUTSIDE's x */
+    lanes plain = (i0 != i1) & (i1 != i2) & (i0 != i2) & (x0 != outside) & (x1 != outside) & (x2 != outside);
+    if (lane_bits(plain) != ((uint64_t)1 << SUBPIXEL_LANES) - 1)
+        return (sr_subpixel_slots){ .plain = false };
+    return (sr_subpixel_slots){ .plain = true, .verdict = verdict_of(x0, y0, x1, y1, x2, y2, rules) };
+}
+#endif
+
+#if SUBPIXEL_LANES == 8 && defined(__AVX2__)
 sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const sr_snapped_point *points,
                                               const sr_subpixel_rules *rules)
 {
@@ -160,15 +218,17 @@ sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const sr_
                                                   _mm256_setr_epi32(1, 4, 5, 0, 7, 2, 3, 6));
     lanes i2 = (lanes)_mm256_permutevar8x32_epi32(BLEND(BLEND(a, b, 0x49), c, 0x92),
                                                   _mm256_setr_epi32(2, 5, 6, 1, 0, 3, 4, 7));
-    lanes x0, y0, x1, y1, x2, y2;
-    gather_points(points, i0, &x0, &y0);
-    gather_points(points, i1, &x1, &y1);
-    gather_points(points, i2, &x2, &y2);
-    /* sr_slot_verdict's triangle: three distinct indices, each vertex inside every plane. */
-    const lanes outside = (lanes){ 0 } + INT32_MIN; /* SR_SNAPPED_OUTSIDE's x */
-    lanes plain = (i0 != i1) & (i1 != i2) & (i0 != i2) & (x0 != outside) & (x1 != outside) & (x2 != outside);
-    if (lane_bits(plain) != 0xff)
-        return (sr_subpixel_slots){ .plain = false };
-    return (sr_subpixel_slots){ .plain = true, .verdict = verdict_of(x0, y0, x1, y1, x2, y2, rules) };
+    return slots_of(points, i0, i1, i2, rules);
+}
+#endif
+
+#if SUBPIXEL_LANES == 16 && defined(__AVX512F__)
+sr_subpixel_slots sr_subpixel_slot_group_avx512(const uint32_t *indices, const sr_snapped_point *points,
+                                                const sr_subpixel_rules *rules)
+{
+    __m512i a = _mm512_loadu_si512(indices), b = _mm512_loadu_si512(indices + 16),
+            c = _mm512_loadu_si512(indices + 32);
+    lanes i0 = corner(a, b, c, 0), i1 = corner(a, b, c, 1), i2 = corner(a, b, c, 2);
+    return slots_of(points, i0, i1, i2, rules);
 }
 #endif

@@ -27,7 +27,7 @@ typedef struct sr_subpixel_batch {
 typedef struct sr_subpixel_rules {
     int bits, width, height;
     bool keep_cw, keep_ccw;
-    bool avx2;
+    bool avx2, avx512; /* avx512: and the slot lanes sixteen slots a group */
 } sr_subpixel_rules;
 
 /* The lanes of the triangles that draw no pixel, by how stage 7 counts
@@ -58,10 +58,16 @@ sr_subpixel_slots sr_subpixel_slot_group_avx2(const uint32_t *indices, const sr_
 /* The slots a group holds. */
 #define SR_SUBPIXEL_SLOT_GROUP 8
 
+/* The same for sixteen slots (48 indices) at once, AVX-512 only. */
+sr_subpixel_slots sr_subpixel_slot_group_avx512(const uint32_t *indices, const sr_snapped_point *points,
+                                                const sr_subpixel_rules *rules);
+#define SR_SUBPIXEL_SLOT_GROUP_AVX512 16
+
 /* The two widths (subpixel_body.h, compiled by subpixel_sse2.c and
  * subpixel_avx2.c): the verdicts of lanes [0, n) rounded up to a group,
  * lanes past n included. */
 sr_subpixel_verdict sr_subpixel_groups_sse2(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules);
 sr_subpixel_verdict sr_subpixel_groups_avx2(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules);
+sr_subpixel_verdict sr_subpixel_groups_avx512(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules);
 
 #endif
