@@ -1,0 +1,628 @@
+/* pinhole_resolve.c — a pinhole view's depth, range, ids and normals
+ * from the primitive each pixel shows (sr_pinhole_resolve, softrast.h),
+ * in chunks of rows on threads. */
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "pinhole_frame.h"
+#include "pipeline/02_assemble.h"
+#include "softrast/softrast.h"
+#include "core/dmat4.h"
+#include "core/error.h"
+
+/* Two lanes of doubles (camera_v2's), and their bits and floats. */
+typedef camera_v2 resolve_v2;
+typedef uint64_t resolve_u2 __attribute__((vector_size(16)));
+typedef float resolve_f2 __attribute__((vector_size(8)));
+
+/* The view z a depth-buffer value stands for, under cam's reversed
+ * projection: z_ndc = (fn/Z − n)/(f − n). */
+static double z_of_depth(const sr_pinhole *cam, float z_ndc)
+{
+    double n = cam->near, f = cam->far;
+    return f * n / ((double)z_ndc * (f - n) + n);
+}
+
+/* A file-frame direction (a normal) in the camera frame: the pose's rotation. */
+static void rotate(const sr_pinhole *cam, const double d[3], double out[3])
+{
+    for (int r = 0; r < 3; r++)
+        out[r] = cam->w2c[r][0] * d[0] + cam->w2c[r][1] * d[1] + cam->w2c[r][2] * d[2];
+}
+
+static void normalize_into(const double v[3], float out[3])
+{
+    double length = sqrt(sr_dvec3_dot(v, v));
+    for (int k = 0; k < 3; k++)
+        out[k] = length > 0.0 ? (float)(v[k] / length) : 0.0f;
+}
+
+/* The chunks of rows per thread, handed to whichever thread asks next:
+ * the pixels that show something lie anywhere in the frame, so equal
+ * bands of rows left one thread the heavier half. Few: a chunk's first
+ * two rows start with nothing prefetched. One thread takes every row at
+ * once. */
+#define RESOLVE_CHUNKS_PER_THREAD 4
+
+/* What every thread of a resolve reads, the plane of ids it reads, and
+ * the next chunk of rows to take. */
+typedef struct resolve_job {
+    const sr_pinhole *cam;
+    const sr_mesh *mesh;
+    const sr_framebuffer *fb;
+    const uint32_t *ids; /* fb's ids plane, or its color of an SR_SHADE_ID draw */
+    uint32_t slots;      /* the mesh's primitive slots: the largest id a draw of it writes */
+    const sr_pinhole_outputs *out;
+    camera_frame frame;    /* cam's, for mesh */
+    double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
+    int chunk_rows;
+    atomic_int next_chunk; /* chunks, not rows: a row count past the last row could wrap */
+} resolve_job;
+
+/* Triangle `slot` in the camera frame: its corner v0, edges e1 = v1 − v0
+ * and e2 = v2 − v0, their cross product e1 × e2, and what the outputs ask
+ * of it: its unit normal on the file's front side (the same for every
+ * pixel, so rounded once), its part, its vertex normals. */
+typedef struct resolved_triangle {
+    uint32_t slot, part;
+    double v0[3], e1[3], e2[3], cross[3], cross_squared, offset; /* offset: cross · v0 */
+    float front[3];
+    double vertex_normals[3][3];
+} resolved_triangle;
+
+static uint32_t part_of(const sr_mesh *mesh, uint32_t slot)
+{
+    uint32_t lo = 0, hi = mesh->part_count;
+    while (hi - lo > 1) { /* the last part whose first triangle is at or before slot */
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (mesh->parts[mid].first_triangle <= slot)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return mesh->part_count ? lo + 1 : 1;
+}
+
+/* False for a triangle whose corners are not all the mesh's vertices: an
+ * ids plane of another mesh's draw. */
+static bool resolve_triangle(const resolve_job *job, uint32_t slot, resolved_triangle *t)
+{
+    const sr_mesh *mesh = job->mesh;
+    const sr_pinhole_outputs *out = job->out;
+    uint32_t idx[3];
+    double v[3][3];
+    sr_assemble_triangle(mesh, slot, idx); /* drawn, so not degenerate */
+    if (idx[0] >= mesh->vertex_count || idx[1] >= mesh->vertex_count || idx[2] >= mesh->vertex_count)
+        return false;
+    for (int k = 0; k < 3; k++)
+        to_camera(&job->frame, mesh->positions[idx[k]], v[k]);
+    for (int k = 0; k < 3; k++) {
+        t->v0[k] = v[0][k];
+        t->e1[k] = v[1][k] - v[0][k];
+        t->e2[k] = v[2][k] - v[0][k];
+    }
+    sr_dvec3_cross(t->e1, t->e2, t->cross);
+    t->cross_squared = sr_dvec3_dot(t->cross, t->cross);
+    t->offset = sr_dvec3_dot(t->cross, t->v0);
+    if (out->normals && !out->interpolated_normals) {
+        /* The loader reversed a z-negated file's winding: its front side is the other one. */
+        double front[3];
+        for (int k = 0; k < 3; k++)
+            front[k] = mesh->z_negated ? -t->cross[k] : t->cross[k];
+        normalize_into(front, t->front);
+    }
+    for (int c = 0; out->normals && out->interpolated_normals && c < 3; c++) {
+        const float *n = mesh->normals[idx[c]];
+        double file[3] = { n[0], n[1], mesh->z_negated ? -(double)n[2] : n[2] };
+        rotate(job->cam, file, t->vertex_normals[c]);
+    }
+    t->part = out->part_ids && mesh->parts ? part_of(mesh, slot) : 1;
+    t->slot = slot;
+    return true;
+}
+
+/* The view z of the ray through a pixel centre, ((x − cx)/fx, (y − cy)/fy, 1),
+ * met with t's plane: (c·v0) / (c·ray), c = e1 × e2, the dot product summed
+ * in its usual order (c0·rx + c1·ry) + c2·1, where c1·ry (cross_y) is the
+ * row's and c2·1 is c2. NAN, ±inf or z ≤ 0 where the ray runs in the plane. */
+static inline double plane_z(const resolved_triangle *t, double cross_y, double ray_x)
+{
+    return t->offset / (t->cross[0] * ray_x + cross_y + t->cross[2]);
+}
+
+static inline bool plane_z_ok(double z)
+{
+    return z > 0.0 && z <= DBL_MAX;
+}
+
+/* plane_z_ok as bits, in the top bit of what it returns (set: not ok): z
+ * is in (0, DBL_MAX] when its bits minus 1 are below DBL_MAX's bits, so
+ * below 2^63 once DBL_MAX's distance to 2^63 is added. Integer adds and
+ * ors, which SSE2 has for 64-bit lanes: GCC lowers a test of a double
+ * comparison's lanes to scalar code. */
+#define RESOLVE_OK_BIAS 0x0010000000000001u /* 2^63 − the bits of DBL_MAX */
+
+static inline resolve_u2 plane_z_bad(resolve_v2 z)
+{
+    resolve_u2 below = (resolve_u2)z - 1u;
+    return below | (below + RESOLVE_OK_BIAS);
+}
+
+/* z[i] for the run's n pixels, whose rays' x are ray_x[i]; false if any is
+ * not plane_z_ok (an edge-on triangle), which the caller then mends. */
+static bool run_z(const resolved_triangle *t, double ray_y, const double *ray_x, int n, double *z)
+{
+    double cross_y = t->cross[1] * ray_y;
+    int i = 0;
+    resolve_u2 bad = { 0, 0 };
+    for (; i + 2 <= n; i += 2) {
+        resolve_v2 rx, zv;
+        memcpy(&rx, ray_x + i, sizeof rx);
+        zv = t->offset / (t->cross[0] * rx + cross_y + t->cross[2]);
+        bad |= plane_z_bad(zv);
+        memcpy(z + i, &zv, sizeof zv);
+    }
+    bool all = ((bad[0] | bad[1]) >> 63) == 0;
+    if (i < n) {
+        z[i] = plane_z(t, cross_y, ray_x[i]);
+        all = all && plane_z_ok(z[i]);
+    }
+    return all;
+}
+
+/* The run's view z rounded to float, two at a time. */
+static void run_depth(const double *z, int n, float *depth)
+{
+    int i = 0;
+    for (; i + 2 <= n; i += 2) {
+        resolve_v2 zv;
+        memcpy(&zv, z + i, sizeof zv);
+        resolve_f2 f = __builtin_convertvector(zv, resolve_f2);
+        memcpy(depth + i, &f, sizeof f);
+    }
+    if (i < n)
+        depth[i] = (float)z[i];
+}
+
+/* The run's ranges |z·ray|, the ray's third coordinate 1 so the point's
+ * z: its squares summed in dot product order, two at a time; the square
+ * root of both lanes in one SSE2 instruction (vector extensions have
+ * none, and sqrt() of a lane is a branch for errno besides), IEEE's, so
+ * rounded as sqrt() rounds. */
+static void run_range(const double *z, const double *ray_x, double ray_y, int n, float *range)
+{
+    int i = 0;
+    for (; i + 2 <= n; i += 2) {
+        resolve_v2 zv, rx;
+        memcpy(&zv, z + i, sizeof zv);
+        memcpy(&rx, ray_x + i, sizeof rx);
+        resolve_v2 px = zv * rx, py = zv * ray_y, squared = px * px + py * py + zv * zv;
+#if defined(__SSE2__)
+        resolve_v2 length = (resolve_v2)_mm_sqrt_pd((__m128d)squared);
+#else
+        resolve_v2 length = { sqrt(squared[0]), sqrt(squared[1]) };
+#endif
+        resolve_f2 f = __builtin_convertvector(length, resolve_f2);
+        memcpy(range + i, &f, sizeof f);
+    }
+    if (i < n) {
+        double px = z[i] * ray_x[i], py = z[i] * ray_y;
+        range[i] = (float)sqrt(px * px + py * py + z[i] * z[i]);
+    }
+}
+
+/* The vertex normals at point p of t, weighted by its barycentrics:
+ * λ1 = c·((p − v0) × e2) / c·c and λ2 = c·(e1 × (p − v0)) / c·c, c = e1 × e2. */
+static void interpolated_normal(const resolved_triangle *t, const double p[3], double out[3])
+{
+    double w[3], a[3], b[3];
+    for (int k = 0; k < 3; k++)
+        w[k] = p[k] - t->v0[k];
+    sr_dvec3_cross(w, t->e2, a);
+    sr_dvec3_cross(t->e1, w, b);
+    double l1 = sr_dvec3_dot(t->cross, a) / t->cross_squared, l2 = sr_dvec3_dot(t->cross, b) / t->cross_squared;
+    for (int k = 0; k < 3; k++)
+        out[k] = (1.0 - l1 - l2) * t->vertex_normals[0][k] + l1 * t->vertex_normals[1][k] +
+                 l2 * t->vertex_normals[2][k];
+}
+
+/* A resolve's threads at most, as a draw's (draw_state.h). */
+#define RESOLVE_MAX_THREADS 64
+
+/* A row's runs of pixels that show one primitive, left to right: run r
+ * covers columns start[r] .. start[r + 1] − 1 and shows id[r] (0:
+ * nothing); start[count] is the row's width. Found once per row, and
+ * then the prefetches and the resolve walk the runs, not the pixels. */
+typedef struct row_runs {
+    int count;
+    int *start;  /* width + 1 */
+    uint32_t *id; /* width */
+} row_runs;
+
+/* A thread's rows in flight: the runs of the row it resolves and of the
+ * two ahead whose loads it has started (indexed by row modulo 3), and a
+ * row of view z. */
+typedef struct resolve_scratch {
+    row_runs runs[3];
+    double *z;
+} resolve_scratch;
+
+/* The triangles a thread keeps resolved, by slot modulo this many: a
+ * row's pixels come back to the triangles of the row above, and a
+ * triangle's set-up costs many pixels' work. */
+#define TRIANGLE_CACHE 256
+
+/* value into to[0 .. n), four at a time: most of a frame's pixels may
+ * show nothing. */
+static void fill_floats(float *to, float value, int n)
+{
+    typedef float f4 __attribute__((vector_size(16)));
+    f4 four = { value, value, value, value };
+    int i = 0;
+    for (; i + 4 <= n; i += 4)
+        memcpy(to + i, &four, sizeof four);
+    for (; i < n; i++)
+        to[i] = value;
+}
+
+/* The n pixels from `at` on, where nothing is drawn. */
+static void resolve_empty(const sr_pinhole_outputs *out, size_t at, int n)
+{
+    if (out->depth)
+        fill_floats(&out->depth[at], out->invalid, n);
+    if (out->range)
+        fill_floats(&out->range[at], out->invalid, n);
+    if (out->part_ids)
+        memset(&out->part_ids[at], 0, (size_t)n * sizeof *out->part_ids);
+    if (out->normals)
+        memset(&out->normals[3 * at], 0, 3 * (size_t)n * sizeof *out->normals);
+}
+
+/* A run of n pixels of row y from column x that show triangle t: its view
+ * z into z[0..n), each output from it. */
+static void resolve_run(const resolve_job *job, const resolved_triangle *t, int y, int x, int n, double *z)
+{
+    const sr_pinhole_outputs *out = job->out;
+    size_t at = (size_t)y * (size_t)job->fb->width + (size_t)x;
+    double ray_y = job->ray_y[y];
+    const double *ray_x = job->ray_x + x;
+    if (!run_z(t, ray_y, ray_x, n, z))
+        for (int i = 0; i < n; i++)
+            if (!plane_z_ok(z[i])) /* the ray runs in the plane: an edge-on triangle */
+                z[i] = z_of_depth(job->cam, job->fb->depth[at + i]);
+    if (out->depth)
+        run_depth(z, n, &out->depth[at]);
+    if (out->range)
+        run_range(z, ray_x, ray_y, n, &out->range[at]);
+    for (int i = 0; out->part_ids && i < n; i++)
+        out->part_ids[at + i] = t->part;
+    if (!out->normals)
+        return;
+    float *normals = &out->normals[3 * at];
+    if (!out->interpolated_normals)
+        for (int i = 0; i < n; i++)
+            memcpy(&normals[3 * i], t->front, sizeof t->front);
+    else
+        for (int i = 0; i < n; i++) {
+            const double p[3] = { z[i] * ray_x[i], z[i] * ray_y, z[i] };
+            double normal[3];
+            interpolated_normal(t, p, normal);
+            normalize_into(normal, &normals[3 * i]);
+        }
+}
+
+/* A row of face ids from its ids: the plane itself, or each triangle's
+ * file face + 1 where the file's faces are asked for and the mesh has them. */
+static void write_face_ids(const resolve_job *job, const uint32_t *ids, uint32_t *face_ids)
+{
+    const sr_mesh *mesh = job->mesh;
+    int width = job->fb->width;
+    if (!job->out->file_faces || !mesh->file_faces) {
+        memcpy(face_ids, ids, (size_t)width * sizeof *ids);
+        return;
+    }
+    for (int x = 0; x < width; x++) /* an id past the mesh's stops the resolve after this row */
+        face_ids[x] = ids[x] && ids[x] <= job->slots ? mesh->file_faces[ids[x] - 1] + 1 : 0;
+}
+
+/* The runs of a row of ids: from its second pixel on, a run's pixels are
+ * compared eight at a time, as four pairs against the id twice over. */
+static void find_runs(const uint32_t *ids, int width, row_runs *r)
+{
+    int n = 0;
+    for (int x = 0; x < width;) {
+        uint32_t id = ids[x];
+        r->start[n] = x;
+        r->id[n++] = id;
+        uint64_t twice = (uint64_t)id * 0x100000001u, pairs[4];
+        for (x++; width - x >= 8 && ids[x] == id; x += 8) {
+            memcpy(pairs, ids + x, sizeof pairs);
+            if ((pairs[0] ^ twice) | (pairs[1] ^ twice) | (pairs[2] ^ twice) | (pairs[3] ^ twice))
+                break;
+        }
+        for (; x < width && ids[x] == id;)
+            x++;
+    }
+    r->start[n] = width;
+    r->count = n;
+}
+
+/* Prefetches what the triangles of a row's runs need: their indices
+ * (stage 0) or, those fetched a row before, their vertices (stage 1). On
+ * a dense mesh nearly every pixel shows a triangle of its own, far from
+ * its neighbours' in the mesh's arrays, and each set-up would wait on
+ * memory twice (its indices, then its vertices and normals), one triangle
+ * after the other; resolve_rows fetches the indices two rows ahead and
+ * the vertices one row ahead, so a row's loads are under way at once. */
+static void prefetch_runs(const resolve_job *job, const row_runs *r, int stage)
+{
+    const sr_mesh *mesh = job->mesh;
+    bool file_faces = job->out->face_ids && job->out->file_faces && mesh->file_faces;
+    bool vertex_normals = job->out->normals && job->out->interpolated_normals;
+    if (!sr_assemble_triangles(mesh)) /* points and lines: their slots are not triples */
+        return;
+    for (int i = 0; i < r->count; i++) {
+        uint32_t id = r->id[i];
+        if (id == 0 || id > job->slots)
+            continue;
+        if (stage == 0) {
+            __builtin_prefetch(sr_assemble_slot_indices(mesh, id - 1));
+            if (file_faces)
+                __builtin_prefetch(&mesh->file_faces[id - 1]);
+            continue;
+        }
+        uint32_t idx[3];
+        sr_assemble_triangle(mesh, id - 1, idx);
+        for (int k = 0; k < 3; k++) {
+            __builtin_prefetch(mesh->positions[idx[k]]);
+            if (vertex_normals)
+                __builtin_prefetch(mesh->normals[idx[k]]);
+        }
+    }
+}
+
+/* Row y's runs into the thread's ring, their indices prefetched. */
+static void start_row(const resolve_job *job, resolve_scratch *s, int y)
+{
+    row_runs *r = &s->runs[y % 3];
+    find_runs(job->ids + (size_t)y * (size_t)job->fb->width, job->fb->width, r);
+    prefetch_runs(job, r, 0);
+}
+
+/* A point or a line seen at a pixel: the primitive's point nearest the
+ * pixel's ray, in the camera frame, and where it lies between the line's
+ * ends (t, 0 for a point). A point is its vertex. A line A + t·u, u = B − A,
+ * is |(A + t·u) × d| / |d| from the ray along d = (ray_x, ray_y, 1), least
+ * at t = −(A × d)·(u × d) / |u × d|², clamped to the segment: cross
+ * products, so a segment nearly along the ray loses no digits to
+ * cancellation; one exactly along it shows its nearer end. */
+typedef struct sparse_point {
+    double p[3], t;
+    uint32_t idx[2];
+} sparse_point;
+
+static bool sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x, double ray_y, sparse_point *sp)
+{
+    const sr_mesh *mesh = job->mesh;
+    if (mesh->topology == SR_POINT_LIST) {
+        sp->idx[0] = sp->idx[1] = mesh->indices[slot];
+        if (sp->idx[0] >= mesh->vertex_count)
+            return false;
+        to_camera(&job->frame, mesh->positions[sp->idx[0]], sp->p);
+        sp->t = 0.0;
+        return true;
+    }
+    double a[3], b[3], u[3], a_d[3], u_d[3];
+    sr_assemble_line(mesh, slot, sp->idx); /* drawn, so not degenerate */
+    if (sp->idx[0] >= mesh->vertex_count || sp->idx[1] >= mesh->vertex_count)
+        return false;
+    to_camera(&job->frame, mesh->positions[sp->idx[0]], a);
+    to_camera(&job->frame, mesh->positions[sp->idx[1]], b);
+    for (int k = 0; k < 3; k++)
+        u[k] = b[k] - a[k];
+    const double d[3] = { ray_x, ray_y, 1.0 };
+    sr_dvec3_cross(a, d, a_d);
+    sr_dvec3_cross(u, d, u_d);
+    double along = sr_dvec3_dot(u_d, u_d);
+    double t = along > 0.0 ? -sr_dvec3_dot(a_d, u_d) / along : (b[2] < a[2] ? 1.0 : 0.0);
+    sp->t = t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; /* NaN (an overflow) takes the first end */
+    for (int k = 0; k < 3; k++)
+        sp->p[k] = a[k] + sp->t * u[k];
+    return true;
+}
+
+/* Pixel `at` showing point or line slot id − 1: each output from the
+ * primitive's point nearest its ray. Per pixel: a point cloud's pixels
+ * rarely share a primitive with their neighbours for long. */
+static bool resolve_sparse_pixel(const resolve_job *job, uint32_t id, size_t at, double ray_x, double ray_y)
+{
+    const sr_pinhole_outputs *out = job->out;
+    sparse_point sp;
+    if (!sparse_point_at(job, id - 1, ray_x, ray_y, &sp))
+        return false;
+    if (out->depth)
+        out->depth[at] = (float)sp.p[2];
+    if (out->range)
+        out->range[at] = (float)sqrt(sr_dvec3_dot(sp.p, sp.p));
+    if (out->part_ids)
+        out->part_ids[at] = job->mesh->parts ? part_of(job->mesh, id - 1) : 1;
+    if (!out->normals)
+        return true;
+    double normal[3];
+    for (int k = 0; k < 3; k++) {
+        const float *n0 = job->mesh->normals[sp.idx[0]], *n1 = job->mesh->normals[sp.idx[1]];
+        double z_sign = job->mesh->z_negated && k == 2 ? -1.0 : 1.0;
+        normal[k] = z_sign * ((1.0 - sp.t) * n0[k] + sp.t * n1[k]);
+    }
+    double camera[3];
+    rotate(job->cam, normal, camera);
+    normalize_into(camera, &out->normals[3 * at]);
+    return true;
+}
+
+/* Rows y0 … y1 − 1, run by run: a run sets its triangle up once (or
+ * finds it in the thread's cache) and each output is a loop of its own
+ * over the run. Returns 0, or an id that is no primitive of the mesh (or
+ * one whose vertices it lacks): the ids plane is not a draw of it, and the
+ * thread stops there. */
+static uint32_t resolve_rows(const resolve_job *job, int y0, int y1, resolve_scratch *s, resolved_triangle *cache)
+{
+    const sr_pinhole_outputs *out = job->out;
+    int width = job->fb->width;
+    for (int y = y0; y < y0 + 2 && y < y1; y++)
+        start_row(job, s, y);
+    if (y0 < y1)
+        prefetch_runs(job, &s->runs[y0 % 3], 1);
+    for (int y = y0; y < y1; y++) {
+        if (y + 2 < y1)
+            start_row(job, s, y + 2);
+        if (y + 1 < y1)
+            prefetch_runs(job, &s->runs[(y + 1) % 3], 1);
+        const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
+        if (out->face_ids) /* the id + 1 each pixel shows, 0 where nothing: the plane itself */
+            write_face_ids(job, ids, &out->face_ids[(size_t)y * (size_t)width]);
+        const row_runs *r = &s->runs[y % 3];
+        for (int i = 0; i < r->count; i++) {
+            uint32_t id = r->id[i];
+            int x = r->start[i], end = r->start[i + 1];
+            size_t at = (size_t)y * (size_t)width + (size_t)x;
+            if (id == 0) {
+                resolve_empty(out, at, end - x);
+                continue;
+            }
+            if (!sr_assemble_triangles(job->mesh)) {
+                if (id > job->slots)
+                    return id;
+                for (int k = x; k < end; k++)
+                    if (!resolve_sparse_pixel(job, id, at + (size_t)(k - x), job->ray_x[k], job->ray_y[y]))
+                        return id;
+                continue;
+            }
+            resolved_triangle *t = &cache[(id - 1) % TRIANGLE_CACHE];
+            if (t->slot != id - 1 && (id > job->slots || !resolve_triangle(job, id - 1, t))) {
+                t->slot = UINT32_MAX;
+                return id;
+            }
+            resolve_run(job, t, y, x, end - x, s->z + x);
+        }
+    }
+    return 0;
+}
+
+/* One thread of a resolve: chunks of rows as they come, until none is
+ * left or it meets an id that is not the mesh's (the first it meets in
+ * its rows, which it takes in order). */
+typedef struct resolve_thread {
+    resolve_job *job; /* its next_chunk changes */
+    resolve_scratch scratch;
+    pthread_t thread;
+    uint32_t stranger; /* resolve_rows' verdict */
+    int stranger_chunk; /* the first row of the chunk it lies in */
+} resolve_thread;
+
+static void *resolve_thread_run(void *arg)
+{
+    resolve_thread *th = arg;
+    resolve_job *job = th->job;
+    int height = job->fb->height;
+    resolved_triangle cache[TRIANGLE_CACHE];
+    for (int i = 0; i < TRIANGLE_CACHE; i++)
+        cache[i].slot = UINT32_MAX;
+    for (;;) {
+        int64_t chunk = atomic_fetch_add_explicit(&job->next_chunk, 1, memory_order_relaxed),
+                first = chunk * job->chunk_rows;
+        if (first >= height)
+            return NULL;
+        int y0 = (int)first, y1 = height - y0 > job->chunk_rows ? y0 + job->chunk_rows : height;
+        th->stranger = resolve_rows(job, y0, y1, &th->scratch, cache);
+        if (th->stranger) {
+            th->stranger_chunk = y0;
+            return NULL;
+        }
+    }
+}
+
+bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_framebuffer *ids,
+                        const sr_pinhole_outputs *out, sr_error *err)
+{
+    if (!mesh->positions)
+        return sr_error_set(err, "view depth needs the mesh's positions (not clip-space ones)");
+    bool sparse = !sr_assemble_triangles(mesh);
+    if (out->normals && (out->interpolated_normals || sparse) && !mesh->normals)
+        return sr_error_set(err, sparse ? "normals of points or lines are their vertex normals, which the mesh lacks"
+                                        : "interpolated normals need the mesh's vertex normals");
+    if (!sr_pinhole_check(cam, err))
+        return false;
+    if (cam->near == 0.0)
+        return sr_error_set(err, "the camera's clip planes are unset: fit them (sr_pinhole_fit_clip) as for its draw");
+    if (ids->width < 1 || ids->height < 1 || !(ids->ids || ids->color) || !ids->depth)
+        return sr_error_set(err, "the ids framebuffer has no pixels, or no ids, colour or depth plane");
+    /* Each pixel's values are its own, whichever thread computes them: the
+     * chunks change no bit. */
+    int threads = out->threads < 1 ? 1 : out->threads > RESOLVE_MAX_THREADS ? RESOLVE_MAX_THREADS : out->threads;
+    threads = threads > ids->height ? ids->height : threads;
+    int chunks = threads == 1 ? 1 : threads * RESOLVE_CHUNKS_PER_THREAD;
+    size_t width = (size_t)ids->width;
+    /* Per thread: a row of z, and three rows of runs; each thread's on
+     * cache lines of its own. */
+    size_t per_thread = (width * sizeof(double) + 3 * ((width + 1) * sizeof(int) + width * sizeof(uint32_t)) + 63) /
+                        64 * 64;
+    resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color,
+                        sparse ? sr_assemble_point_line_slots(mesh) : sr_assemble_slots(mesh), out,
+                        camera_frame_of(cam, mesh), malloc(width * sizeof *job.ray_x),
+                        malloc((size_t)ids->height * sizeof *job.ray_y),
+                        (int)(((int64_t)ids->height + chunks - 1) / chunks), 0 };
+    char *scratch = aligned_alloc(64, (size_t)threads * per_thread);
+    if (!job.ray_x || !job.ray_y || !scratch) {
+        free(job.ray_x);
+        free(job.ray_y);
+        free(scratch);
+        return sr_error_set(err, "out of memory for the rays and rows of a %dx%d view", ids->width, ids->height);
+    }
+    for (int x = 0; x < ids->width; x++)
+        job.ray_x[x] = (x - cam->cx) / cam->fx;
+    for (int y = 0; y < ids->height; y++)
+        job.ray_y[y] = (y - cam->cy) / cam->fy;
+    resolve_thread thread[RESOLVE_MAX_THREADS];
+    for (int t = 0; t < threads; t++) {
+        char *mine = scratch + (size_t)t * per_thread;
+        resolve_scratch *s = &thread[t].scratch;
+        s->z = (double *)mine;
+        mine += width * sizeof(double);
+        for (int k = 0; k < 3; k++) {
+            s->runs[k].start = (int *)mine;
+            s->runs[k].id = (uint32_t *)(mine + (width + 1) * sizeof(int));
+            mine += (width + 1) * sizeof(int) + width * sizeof(uint32_t);
+        }
+        thread[t].job = &job;
+        thread[t].stranger = 0;
+    }
+    int started = 1; /* thread 0 is the caller */
+    while (started < threads && pthread_create(&thread[started].thread, NULL, resolve_thread_run, &thread[started]) == 0)
+        started++;
+    resolve_thread_run(&thread[0]); /* and the rows of threads that could not start */
+    uint32_t stranger = 0;
+    int stranger_chunk = INT_MAX; /* the first in raster order, whatever the threads */
+    for (int t = 0; t < started; t++) {
+        if (t >= 1)
+            pthread_join(thread[t].thread, NULL);
+        if (thread[t].stranger && thread[t].stranger_chunk < stranger_chunk) {
+            stranger = thread[t].stranger;
+            stranger_chunk = thread[t].stranger_chunk;
+        }
+    }
+    free(job.ray_x);
+    free(job.ray_y);
+    free(scratch);
+    return !stranger || sr_error_set(err, "the ids plane holds id %u, and this mesh has %u primitives over %u "
+                                          "vertices: it is not a draw of this mesh",
+                                     stranger, job.slots, mesh->vertex_count);
+}
