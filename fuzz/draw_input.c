@@ -196,10 +196,14 @@ static void take_projection(reader *r, mat4 m, int mode, int width, int height)
     }
 }
 
+/* By value, as sr_draw tests it (core/dmat4.c): -0 is zero too. */
 bool matrix_is_zero(const mat4 m)
 {
-    static const mat4 zero;
-    return memcmp(m, zero, sizeof zero) == 0;
+    for (int c = 0; c < 4; c++)
+        for (int k = 0; k < 4; k++)
+            if (m[c][k] != 0.0f)
+                return false;
+    return true;
 }
 
 static bool matrix_is_finite(const mat4 m)
