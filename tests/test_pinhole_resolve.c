@@ -2,12 +2,14 @@
  * with a loop per output, gives bit for bit what the per-pixel formula
  * gives: each pixel's ray ((x − cx)/fx, (y − cy)/fy, 1) met with the plane
  * of its triangle's camera-frame corners in double, the depth buffer's
- * value where the ray runs in that plane. The formula is written out here
+ * value where the ray runs in that plane or meets it outside the clip
+ * planes (by more than 1/256 of them). The formula is written out here
  * pixel by pixel; the ids planes are random runs (any length, gaps of
  * nothing), so every run length and alignment is met, on random meshes
  * (parts, z negated or not) and poses, with triangles through the camera
- * centre, whose rays all run in their planes, and in a plane x = 1 that the
- * rays of column cx meet at infinity. */
+ * centre, whose rays all run in their planes, with a corner 2^-140 from it,
+ * whose planes rays meet next to it, and in a plane x = 1 that the rays of
+ * column cx meet at infinity. */
 #include <criterion/criterion.h>
 #include <float.h>
 #include <math.h>
@@ -68,7 +70,7 @@ static pixel formula(const sr_pinhole *cam, const sr_mesh *mesh, uint32_t slot, 
     cross(e1, e2, c);
     const double ray[3] = { (x - cam->cx) / cam->fx, (y - cam->cy) / cam->fy, 1.0 };
     double z = dot(c, v[0]) / dot(c, ray);
-    if (!(z > 0.0 && z <= DBL_MAX))
+    if (!(z >= cam->near * (1.0 - 0x1p-8) && z <= cam->far * (1.0 + 0x1p-8))) /* met outside the clip planes */
         z = cam->far * cam->near / ((double)stored * (cam->far - cam->near) + cam->near);
     double p[3] = { z * ray[0], z * ray[1], z * ray[2] };
     px.depth = (float)z;
@@ -133,6 +135,10 @@ Test(pinhole_resolve, runs_and_loops_per_output_give_the_per_pixel_formulas_bits
                 mesh.positions[v][0] = mesh.positions[v][1] = mesh.positions[v][2] = 0.0f;
             if (centred && v % 9 >= 3 && v % 9 < 6) /* the plane x = 1: column cx's rays meet it at infinity */
                 mesh.positions[v][0] = 1.0f;
+            if (centred && v % 9 == 6) { /* a plane by the eye: rays meet it next to the camera centre */
+                mesh.positions[v][0] = 0x1p-140f;
+                mesh.positions[v][1] = mesh.positions[v][2] = 0.0f;
+            }
         }
         sr_mesh_part parts[PARTS] = { { 0, 7 }, { 7, 13 }, { 20, 1 }, { 21, TRIANGLES - 21 } };
         mesh.parts = parts;

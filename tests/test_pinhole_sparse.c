@@ -1,7 +1,7 @@
 /* View depth, range, ids and normals of points and lines seen by a pinhole
  * camera: a point's pixels carry its vertex, a line's pixels the segment's
  * point nearest their ray, held to oracles written independently of
- * src/scene/pinhole.c (in long double, in the camera frame: a point's own
+ * src/scene/pinhole_resolve.c (in long double, in the camera frame: a point's own
  * coordinates, and a golden-section search along the segment for its
  * point nearest the ray). */
 #include <criterion/criterion.h>
@@ -134,9 +134,11 @@ static real distance_to_ray(const real a[3], const real u[3], real t, const real
     return sqrtl(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
 }
 
-/* The camera z of the segment's point nearest the ray through pixel
- * (x, y): a golden-section search for t in [0, 1] (the distance is convex
- * in t), to far below a float step. */
+/* The camera z of the point nearest the ray through pixel (x, y) of the
+ * segment's part between the clip planes (a_f's end in front of the near
+ * one): a golden-section search for t in that part (the distance is
+ * convex in t), to far below a float step. From a_f's end, so a far end
+ * 1e30 away costs the point no digits. */
 static real nearest_z(const sr_pinhole *cam, const float a_f[3], const float b_f[3], int x, int y)
 {
     real a[3], u[3], d[3] = { (x - cam->cx) / cam->fx, (y - cam->cy) / cam->fy, 1.0L };
@@ -146,6 +148,10 @@ static real nearest_z(const sr_pinhole *cam, const float a_f[3], const float b_f
     }
     const real g = (sqrtl(5.0L) - 1.0L) / 2.0L;
     real lo = 0.0L, hi = 1.0L;
+    if (a[2] + u[2] < cam->near)
+        hi = (cam->near - a[2]) / u[2];
+    if (a[2] + u[2] > cam->far)
+        hi = (cam->far - a[2]) / u[2];
     for (int i = 0; i < 120; i++) {
         real m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
         if (distance_to_ray(a, u, m1, d) <= distance_to_ray(a, u, m2, d))
@@ -243,6 +249,65 @@ Test(pinhole_sparse, a_line_nearly_along_a_ray_keeps_its_depth)
         cr_assert(drawn >= 1 && drawn <= 4, "order %d: %d pixels drawn", order, drawn);
         sr_framebuffer_destroy(&r.fb);
     }
+    sr_mesh_free(&mesh);
+}
+
+/* Segments from a point in front of the camera to one behind it, 10 to
+ * 1e30 away: a pixel shows the point nearest its ray of the part drawn,
+ * in front of the near plane, as the oracle finds it from the end in
+ * front; never a point behind the camera, nor one whose digits went with
+ * the far end's. */
+Test(pinhole_sparse, a_line_through_the_near_plane_shows_the_part_drawn)
+{
+    test_rng rng = { 5 };
+    sr_error err = { "" };
+    sr_mesh mesh;
+    cr_assert(sr_mesh_alloc(&mesh, 2, 2, true, false, false, &err), "%s", err.message);
+    mesh.topology = SR_LINE_LIST;
+    mesh.indices[0] = 0;
+    mesh.indices[1] = 1;
+    sr_pinhole cam = camera(45.0, 52.0, 33.5, 20.25);
+    const float lengths[] = { 10.0f, 1e3f, 1e10f, 1e30f };
+    int checked = 0;
+    for (int trial = 0; trial < 32; trial++) {
+        float z = (float)rng_uniform(&rng, 0.5, 20.0), length = lengths[trial % 4];
+        int front = trial / 4 % 2; /* the index of the end in front: both orders */
+        float *a = mesh.positions[front], *b = mesh.positions[1 - front];
+        a[0] = (float)(rng_uniform(&rng, 8.0, W - 8.0) - cam.cx) * z / (float)cam.fx;
+        a[1] = (float)(rng_uniform(&rng, 8.0, H - 8.0) - cam.cy) * z / (float)cam.fy;
+        a[2] = z;
+        real dir[3] = { rng_uniform(&rng, -1, 1), rng_uniform(&rng, -1, 1), rng_uniform(&rng, -1.0, -0.2) };
+        unit(dir);
+        for (int k = 0; k < 3; k++)
+            b[k] = (float)(a[k] + length * dir[k]);
+        glm_vec3_copy((vec3){ 0.0f, 0.0f, -1.0f }, mesh.normals[0]);
+        glm_vec3_copy((vec3){ 1.0f, 0.0f, 0.0f }, mesh.normals[1]);
+        static resolved r;
+        cam.near = cam.far = 0.0;
+        draw_and_resolve(&cam, &mesh, 1 + trial % 2, &r);
+        int drawn = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                size_t at = (size_t)y * W + (size_t)x;
+                if (r.face_ids[at] == 0)
+                    continue;
+                drawn++;
+                real want = nearest_z(&cam, a, b, x, y);
+                cr_assert(fabsl(r.depth[at] - want) <= 1e-6L * want, "trial %d, (%d, %d): depth %.9g, want %.9Lg",
+                          trial, x, y, r.depth[at], want);
+                cr_assert(r.depth[at] >= (float)cam.near * (1.0f - 1e-6f) && r.depth[at] <= z,
+                          "trial %d: depth %.9g outside near %g .. %g", trial, r.depth[at], cam.near, z);
+                cr_assert(r.range[at] >= r.depth[at], "trial %d: range %.9g below depth", trial, r.range[at]);
+                real n = sqrtl((real)r.normals[3 * at] * r.normals[3 * at] +
+                               (real)r.normals[3 * at + 1] * r.normals[3 * at + 1] +
+                               (real)r.normals[3 * at + 2] * r.normals[3 * at + 2]);
+                cr_assert(fabsl(n - 1.0L) < 1e-6L, "trial %d: normal of length %.9Lg", trial, n);
+            }
+        cr_assert(drawn >= 1, "trial %d: nothing drawn", trial);
+        checked += drawn;
+        sr_framebuffer_destroy(&r.fb);
+    }
+    cr_assert(checked > 200, "only %d line pixels checked", checked);
     sr_mesh_free(&mesh);
 }
 

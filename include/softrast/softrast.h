@@ -543,12 +543,13 @@ typedef struct sr_pinhole_outputs {
  * at once) or, without one, in its color (an SR_SHADE_ID draw). Each
  * pixel's surface point is the ray through its centre met with the plane
  * of the triangle it shows, in double, each value rounded to float once
- * (where the ray runs in that plane, the depth buffer's value gives the
- * point). The threads take chunks of rows as they come; every value is
+ * (where the ray runs in that plane, or so nearly that it meets it
+ * outside the clip planes, the depth buffer's value gives the point). The threads take chunks of rows as they come; every value is
  * the same for every thread count. A pixel that shows a point or a line takes the
  * primitive's point nearest its ray (a point's vertex; a line's closest
- * approach to the ray, clamped to the segment), its normal the vertex
- * normals there, whichever `interpolated_normals` says. False, with one
+ * approach to the ray, clamped to the part of the segment drawn, between
+ * the clip planes), its normal the vertex normals there, whichever
+ * `interpolated_normals` says. False, with one
  * line in err, for a mesh without positions, normals asked of a mesh
  * without vertex normals where they are needed, a camera sr_pinhole_check
  * refuses or whose clip planes are unset, or an ids plane that is no draw

@@ -45,6 +45,33 @@ static void normalize_into(const double v[3], float out[3])
         out[k] = length > 0.0 ? (float)(v[k] / length) : 0.0f;
 }
 
+/* The view z a drawn pixel's ray may meet its triangle's plane at: between
+ * the clip planes, give or take 1/256 of them for the draw's rounding.
+ * Elsewhere (NaN, ±inf, behind the camera, or a plane through the eye met
+ * next to it) the ray runs in the plane, or so nearly that its z is
+ * rounding alone: an edge-on triangle, whose depth buffer value gives the
+ * point. As bits too: a z of bits b lies in [lo, hi] when
+ * b − bits(lo), unsigned, is at most bits(hi) − bits(lo) =: span, which
+ * plane_z_bad tests with integer adds and ors, as SSE2 has them for
+ * 64-bit lanes (GCC lowers a test of a double comparison's lanes to
+ * scalar code). */
+#define RESOLVE_Z_SLACK 0x1p-8
+
+typedef struct z_window {
+    double lo, hi;
+    uint64_t lo_bits, bias; /* bias: 2^63 − 1 − span, which carries into the top bit past span */
+} z_window;
+
+static z_window z_window_of(const sr_pinhole *cam)
+{
+    z_window w = { cam->near * (1.0 - RESOLVE_Z_SLACK), fmin(cam->far * (1.0 + RESOLVE_Z_SLACK), DBL_MAX), 0, 0 };
+    uint64_t hi_bits;
+    memcpy(&w.lo_bits, &w.lo, sizeof w.lo_bits);
+    memcpy(&hi_bits, &w.hi, sizeof hi_bits);
+    w.bias = (UINT64_C(1) << 63) - 1 - (hi_bits - w.lo_bits);
+    return w;
+}
+
 /* The chunks of rows per thread, handed to whichever thread asks next:
  * the pixels that show something lie anywhere in the frame, so equal
  * bands of rows left one thread the heavier half. Few: a chunk's first
@@ -62,6 +89,7 @@ typedef struct resolve_job {
     uint32_t slots;      /* the mesh's primitive slots: the largest id a draw of it writes */
     const sr_pinhole_outputs *out;
     camera_frame frame;    /* cam's, for mesh */
+    z_window window;       /* cam's */
     double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
     int chunk_rows;
     atomic_int next_chunk; /* chunks, not rows: a row count past the last row could wrap */
@@ -132,33 +160,28 @@ static bool resolve_triangle(const resolve_job *job, uint32_t slot, resolved_tri
 /* The view z of the ray through a pixel centre, ((x − cx)/fx, (y − cy)/fy, 1),
  * met with t's plane: (c·v0) / (c·ray), c = e1 × e2, the dot product summed
  * in its usual order (c0·rx + c1·ry) + c2·1, where c1·ry (cross_y) is the
- * row's and c2·1 is c2. NAN, ±inf or z ≤ 0 where the ray runs in the plane. */
+ * row's and c2·1 is c2. */
 static inline double plane_z(const resolved_triangle *t, double cross_y, double ray_x)
 {
     return t->offset / (t->cross[0] * ray_x + cross_y + t->cross[2]);
 }
 
-static inline bool plane_z_ok(double z)
+static inline bool plane_z_ok(const z_window *w, double z)
 {
-    return z > 0.0 && z <= DBL_MAX;
+    return z >= w->lo && z <= w->hi;
 }
 
-/* plane_z_ok as bits, in the top bit of what it returns (set: not ok): z
- * is in (0, DBL_MAX] when its bits minus 1 are below DBL_MAX's bits, so
- * below 2^63 once DBL_MAX's distance to 2^63 is added. Integer adds and
- * ors, which SSE2 has for 64-bit lanes: GCC lowers a test of a double
- * comparison's lanes to scalar code. */
-#define RESOLVE_OK_BIAS 0x0010000000000001u /* 2^63 − the bits of DBL_MAX */
-
-static inline resolve_u2 plane_z_bad(resolve_v2 z)
+/* plane_z_ok's negation, in each lane's top bit. */
+static inline resolve_u2 plane_z_bad(const z_window *w, resolve_v2 z)
 {
-    resolve_u2 below = (resolve_u2)z - 1u;
-    return below | (below + RESOLVE_OK_BIAS);
+    resolve_u2 above_lo = (resolve_u2)z - w->lo_bits;
+    return above_lo | (above_lo + w->bias);
 }
 
 /* z[i] for the run's n pixels, whose rays' x are ray_x[i]; false if any is
  * not plane_z_ok (an edge-on triangle), which the caller then mends. */
-static bool run_z(const resolved_triangle *t, double ray_y, const double *ray_x, int n, double *z)
+static bool run_z(const resolved_triangle *t, const z_window *w, double ray_y, const double *ray_x, int n,
+                  double *z)
 {
     double cross_y = t->cross[1] * ray_y;
     int i = 0;
@@ -167,13 +190,13 @@ static bool run_z(const resolved_triangle *t, double ray_y, const double *ray_x,
         resolve_v2 rx, zv;
         memcpy(&rx, ray_x + i, sizeof rx);
         zv = t->offset / (t->cross[0] * rx + cross_y + t->cross[2]);
-        bad |= plane_z_bad(zv);
+        bad |= plane_z_bad(w, zv);
         memcpy(z + i, &zv, sizeof zv);
     }
     bool all = ((bad[0] | bad[1]) >> 63) == 0;
     if (i < n) {
         z[i] = plane_z(t, cross_y, ray_x[i]);
-        all = all && plane_z_ok(z[i]);
+        all = all && plane_z_ok(w, z[i]);
     }
     return all;
 }
@@ -294,9 +317,9 @@ static void resolve_run(const resolve_job *job, const resolved_triangle *t, int 
     size_t at = (size_t)y * (size_t)job->fb->width + (size_t)x;
     double ray_y = job->ray_y[y];
     const double *ray_x = job->ray_x + x;
-    if (!run_z(t, ray_y, ray_x, n, z))
+    if (!run_z(t, &job->window, ray_y, ray_x, n, z))
         for (int i = 0; i < n; i++)
-            if (!plane_z_ok(z[i])) /* the ray runs in the plane: an edge-on triangle */
+            if (!plane_z_ok(&job->window, z[i])) /* the ray runs in the plane: an edge-on triangle */
                 z[i] = z_of_depth(job->cam, job->fb->depth[at + i]);
     if (out->depth)
         run_depth(z, n, &out->depth[at]);
@@ -399,15 +422,55 @@ static void start_row(const resolve_job *job, resolve_scratch *s, int y)
 
 /* A point or a line seen at a pixel: the primitive's point nearest the
  * pixel's ray, in the camera frame, and where it lies between the line's
- * ends (t, 0 for a point). A point is its vertex. A line A + t·u, u = B − A,
- * is |(A + t·u) × d| / |d| from the ray along d = (ray_x, ray_y, 1), least
- * at t = −(A × d)·(u × d) / |u × d|², clamped to the segment: cross
- * products, so a segment nearly along the ray loses no digits to
- * cancellation; one exactly along it shows its nearer end. */
+ * ends (t, 0 for a point). A point is its vertex. For a line see
+ * nearest_from. */
 typedef struct sparse_point {
     double p[3], t;
     uint32_t idx[2];
 } sparse_point;
+
+/* The part of a segment from `base` towards `other`, base + r·(other −
+ * base) for r in [*lo, *hi] ⊆ [0, 1], whose view z lies between the clip
+ * planes: the part a draw shows. The whole segment if no part does (an
+ * id that is no draw of it). */
+static void visible_part(const sr_pinhole *cam, double base_z, double other_z, double *lo, double *hi)
+{
+    const double plane[2] = { cam->near, cam->far }, side[2] = { 1.0, -1.0 }; /* in front of near, behind far */
+    double dz = other_z - base_z, from = 0.0, to = 1.0;
+    for (int k = 0; k < 2; k++) {
+        double base_in = side[k] * (base_z - plane[k]), other_in = side[k] * (other_z - plane[k]);
+        if (base_in < 0.0 && other_in >= 0.0)
+            from = fmax(from, (plane[k] - base_z) / dz);
+        else if (base_in >= 0.0 && other_in < 0.0)
+            to = fmin(to, (plane[k] - base_z) / dz);
+        else if (base_in < 0.0)
+            from = 2.0; /* wholly outside */
+    }
+    *lo = from <= to ? from : 0.0;
+    *hi = from <= to ? to : 1.0;
+}
+
+/* The point of the visible part of segment base → other nearest the ray
+ * along d = (ray_x, ray_y, 1), as r from base: |(A + r·u) × d| / |d|, u =
+ * other − A, is least at r = −(A × d)·(u × d) / |u × d|², clamped. Cross
+ * products, so a segment nearly along the ray loses no digits to
+ * cancellation; one exactly along it shows its nearer end. */
+static double nearest_from(const sr_pinhole *cam, const double base[3], const double other[3], const double d[3],
+                           double p[3])
+{
+    double u[3], a_d[3], u_d[3], lo, hi;
+    for (int k = 0; k < 3; k++)
+        u[k] = other[k] - base[k];
+    sr_dvec3_cross(base, d, a_d);
+    sr_dvec3_cross(u, d, u_d);
+    double along = sr_dvec3_dot(u_d, u_d);
+    double r = along > 0.0 ? -sr_dvec3_dot(a_d, u_d) / along : (other[2] < base[2] ? 1.0 : 0.0);
+    visible_part(cam, base[2], other[2], &lo, &hi);
+    r = r > lo ? (r < hi ? r : hi) : lo; /* NaN (an overflow) takes the visible part's first point */
+    for (int k = 0; k < 3; k++)
+        p[k] = base[k] + r * u[k];
+    return r;
+}
 
 static bool sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x, double ray_y, sparse_point *sp)
 {
@@ -420,22 +483,23 @@ static bool sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x,
         sp->t = 0.0;
         return true;
     }
-    double a[3], b[3], u[3], a_d[3], u_d[3];
+    double a[3], b[3], from_b[3];
     sr_assemble_line(mesh, slot, sp->idx); /* drawn, so not degenerate */
     if (sp->idx[0] >= mesh->vertex_count || sp->idx[1] >= mesh->vertex_count)
         return false;
     to_camera(&job->frame, mesh->positions[sp->idx[0]], a);
     to_camera(&job->frame, mesh->positions[sp->idx[1]], b);
-    for (int k = 0; k < 3; k++)
-        u[k] = b[k] - a[k];
+    /* From each end, and the point from the nearer: b − a rounds away the
+     * digits of the smaller end when the other lies far off (behind the
+     * camera, say, outside the part drawn), and from the far end they would
+     * be lost again in a + r·u. */
     const double d[3] = { ray_x, ray_y, 1.0 };
-    sr_dvec3_cross(a, d, a_d);
-    sr_dvec3_cross(u, d, u_d);
-    double along = sr_dvec3_dot(u_d, u_d);
-    double t = along > 0.0 ? -sr_dvec3_dot(a_d, u_d) / along : (b[2] < a[2] ? 1.0 : 0.0);
-    sp->t = t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; /* NaN (an overflow) takes the first end */
-    for (int k = 0; k < 3; k++)
-        sp->p[k] = a[k] + sp->t * u[k];
+    double r_a = nearest_from(job->cam, a, b, d, sp->p), r_b = nearest_from(job->cam, b, a, d, from_b);
+    sp->t = r_a;
+    if (r_b < r_a) {
+        memcpy(sp->p, from_b, sizeof from_b);
+        sp->t = 1.0 - r_b;
+    }
     return true;
 }
 
@@ -577,7 +641,7 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
                         64 * 64;
     resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color,
                         sparse ? sr_assemble_point_line_slots(mesh) : sr_assemble_slots(mesh), out,
-                        camera_frame_of(cam, mesh), malloc(width * sizeof *job.ray_x),
+                        camera_frame_of(cam, mesh), z_window_of(cam), malloc(width * sizeof *job.ray_x),
                         malloc((size_t)ids->height * sizeof *job.ray_y),
                         (int)(((int64_t)ids->height + chunks - 1) / chunks), 0 };
     char *scratch = aligned_alloc(64, (size_t)threads * per_thread);
