@@ -261,6 +261,29 @@ Test(texture, jpeg_and_tga_headers_over_the_texel_limit_are_refused_before_decod
     expect_refused_from_header(write_huge_tga_header, "huge.tga", 16384, 16384, "more than 67108864 texels");
 }
 
+/* An SVG is refused before SDL_image sees it: it would rasterize one of
+ * 100000² px whole before the size limits apply, and its loader leaked on
+ * a file it could not parse (the fuzzer's find: an MTL whose map_Kd is
+ * itself, holding "<svg"). */
+Test(texture, svg_is_refused_before_decoding)
+{
+    static const struct {
+        const char *name, *text;
+    } svgs[] = {
+        { "huge.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100000\" height=\"100000\">"
+                      "<rect width=\"100000\" height=\"100000\" fill=\"red\"/></svg>" },
+        { "small.png", "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"4\" height=\"4\"></svg>" },
+        { "broken.mtl", "newmtl a\n<svg map_Kd a.mtl\n" },
+    };
+    for (size_t i = 0; i < sizeof svgs / sizeof *svgs; i++) {
+        char path[512];
+        sr_error err = { "" };
+        write_bytes(temp_path(path, sizeof path, svgs[i].name), svgs[i].text, strlen(svgs[i].text));
+        expect_load_fails(path, &err);
+        cr_expect_not_null(strstr(err.message, "SVG"), "%s: message: %s", svgs[i].name, err.message);
+    }
+}
+
 /* What the header reader lets through still decodes: a JPEG SDL_image wrote
  * and a hand-made 2x1 TGA (bottom-up, BGR). */
 Test(texture, small_jpeg_and_tga_still_load)

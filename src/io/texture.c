@@ -81,13 +81,21 @@ static bool load_png(sr_texture *tex, FILE *f, const char *path, sr_error *err)
 }
 
 /* Any other format through SDL_image (which prints nothing of its own for
- * them). Closes f. */
+ * them) but SVG: a vector image has no pixel size a mesh's texture means,
+ * SDL_image rasterizes it at whatever size the file names before the size
+ * limits could apply, and its SVG loader leaks on a file it fails to
+ * parse. Closes f. */
 static SDL_Surface *load_surface(FILE *f, const char *path, sr_error *err)
 {
     SDL_RWops *rw = SDL_RWFromFP(f, SDL_TRUE);
     if (!rw) {
         fclose(f);
         sr_error_set(err, "%s: cannot open: %s", path, SDL_GetError());
+        return NULL;
+    }
+    if (IMG_isSVG(rw)) {
+        SDL_RWclose(rw);
+        sr_error_set(err, "%s: an SVG (vector) image; a texture must be a raster image (PNG, JPEG, ...)", path);
         return NULL;
     }
     SDL_Surface *s = IMG_LoadTyped_RW(rw, 1, file_extension(path));
