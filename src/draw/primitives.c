@@ -184,17 +184,15 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
  * the stack made every batch's verdicts of a draw without it pay for
  * them. The vertices are listed first, their positions prefetched, and
  * only then mapped. */
-static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept,
-                                                         int count)
+static int take_double_halves(const sr_draw_state *st, const sr_kept_slot *kept, int count, uint32_t *taken)
 {
     atomic_uchar *wanted = st->ws->double_wanted.data;
     const sr_mesh *source = st->desc->mesh;
     const char *positions = source->clip_positions ? (const char *)source->clip_positions
                                                    : (const char *)source->positions;
     size_t position_size = source->clip_positions ? sizeof *source->clip_positions : sizeof *source->positions;
-    char *screen = st->ws->screen.data;
+    const char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
-    uint32_t taken[3 * SR_VERDICT_BATCH];
     int n = 0;
     for (int j = 0; j < count; j++) {
         if (kept[j].planes)
@@ -208,8 +206,20 @@ static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st,
             atomic_store_explicit(&wanted[i], 1, memory_order_relaxed);
         }
     }
-    sr_viewport_map_double_block(source, st->xf, taken, (uint32_t)n, &st->vp, st->shade.simd >= SR_SIMD_AVX2,
-                                 screen, stride);
+    return n;
+}
+
+static void map_taken(const sr_draw_state *st, const uint32_t *taken, int n)
+{
+    sr_viewport_map_double_block(st->desc->mesh, st->xf, taken, (uint32_t)n, &st->vp, st->shade.simd >= SR_SIMD_AVX2,
+                                 st->ws->screen.data, st->screen_stride);
+}
+
+static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept,
+                                                         int count)
+{
+    uint32_t taken[3 * SR_VERDICT_BATCH];
+    map_taken(st, taken, take_double_halves(st, kept, count, taken));
 }
 
 /* On several threads the verdicts only mark the vertices of the kept
@@ -303,17 +313,19 @@ static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint3
     return count;
 }
 
+static int verdicts_of(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end, sr_stats *stats,
+                       sr_kept_slot *kept)
+{
+    if (st->slot_lanes)
+        return take_verdicts_in_lanes(st, first, end, last_end, stats, kept);
+    int count = take_verdicts(st, first, end, last_end, stats, kept);
+    return st->subpixel_lanes ? drop_subpixel(st, kept, count, stats) : count;
+}
+
 int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end, sr_stats *stats,
                      sr_kept_slot *kept)
 {
-    int count;
-    if (st->slot_lanes) {
-        count = take_verdicts_in_lanes(st, first, end, last_end, stats, kept);
-    } else {
-        count = take_verdicts(st, first, end, last_end, stats, kept);
-        if (st->subpixel_lanes)
-            count = drop_subpixel(st, kept, count, stats);
-    }
+    int count = verdicts_of(st, first, end, last_end, stats, kept);
     if (st->double_later)
         (st->double_phase ? mark_double_halves : map_double_halves)(st, kept, count);
     return count;
@@ -375,22 +387,26 @@ static void one_pixel_draw(sr_fan_sink *sink, one_pixel_batch *b)
     b->drawn = b->taken;
 }
 
-/* A batch's verdicts, then its kept slots drawn. The verdicts' counts stay
- * in a local: a slot drawn between two verdicts made them reload what the
- * drawing might have written. */
-void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
+/* The kept slots a window of verdicts holds: the verdicts of batches of
+ * SR_VERDICT_BATCH slots while a whole batch's room is left, then their
+ * double halves, then the slots drawn. A dense mesh keeps a few slots a
+ * batch: a window of several batches maps their vertices' double halves
+ * long after the verdicts prefetched them, and finds their one-pixel
+ * triangles' depths in full lanes. */
+#define KEPT_WINDOW (4 * SR_VERDICT_BATCH)
+
+/* Kept slots [0, count) drawn in order, their one-pixel triangles' pixels
+ * and depths found a batch at a time. */
+static void draw_kept(sr_fan_sink *sink, const sr_kept_slot *kept, int count)
 {
-    sr_stats verdicts = { 0 };
-    for (uint32_t batch = first; batch < end;) {
-        uint32_t batch_end = end - batch > SR_VERDICT_BATCH ? batch + SR_VERDICT_BATCH : end;
-        sr_kept_slot kept[SR_VERDICT_BATCH];
-        int count = sr_draw_verdicts(sink->st, batch, batch_end, end, &verdicts, kept);
+    for (int window = 0; window < count; window += SR_ONE_PIXEL_BATCH) {
+        int window_end = count - window > SR_ONE_PIXEL_BATCH ? window + SR_ONE_PIXEL_BATCH : count;
         one_pixel_batch ones = { .count = 0 };
-        for (int j = 0; j < count && sink->one_pixel_batches; j++)
+        for (int j = window; j < window_end && sink->one_pixel_batches; j++)
             if (kept[j].one_pixel)
                 one_pixel_add(&ones, kept[j].idx, kept[j].k);
         one_pixel_find(sink, &ones);
-        for (int j = 0; j < count; j++) {
+        for (int j = window; j < window_end; j++) {
             if (kept[j].one_pixel && sink->one_pixel_batches) {
                 one_pixel_take(sink, &ones);
             } else {
@@ -399,7 +415,31 @@ void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
             }
         }
         one_pixel_draw(sink, &ones);
-        batch = batch_end;
+    }
+}
+
+/* Windows of verdicts, each then drawn. The verdicts' counts stay in a
+ * local: a slot drawn between two verdicts made them reload what the
+ * drawing might have written. */
+void sr_draw_primitives(sr_fan_sink *sink, uint32_t first, uint32_t end)
+{
+    const sr_draw_state *st = sink->st;
+    sr_stats verdicts = { 0 };
+    for (uint32_t batch = first; batch < end;) {
+        sr_kept_slot kept[KEPT_WINDOW];
+        uint32_t taken[3 * KEPT_WINDOW];
+        int count = 0, n = 0;
+        while (batch < end && count + SR_VERDICT_BATCH <= KEPT_WINDOW) {
+            uint32_t batch_end = end - batch > SR_VERDICT_BATCH ? batch + SR_VERDICT_BATCH : end;
+            int got = verdicts_of(st, batch, batch_end, end, &verdicts, kept + count);
+            if (st->double_later)
+                n += take_double_halves(st, kept + count, got, taken + n);
+            count += got;
+            batch = batch_end;
+        }
+        if (st->double_later)
+            map_taken(st, taken, n);
+        draw_kept(sink, kept, count);
     }
     sr_stats_add(&sink->work->stats, &verdicts);
 }
