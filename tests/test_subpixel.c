@@ -458,6 +458,47 @@ Test(subpixel, dense_torus_draws_alike_with_and_without_the_lanes, .timeout = 12
     sr_mesh_free(&torus);
 }
 
+/* A torus of 65536 triangles in a frame of more pixels than that: seen
+ * whole in a corner, most of its triangles (back faces too, culling off)
+ * are smaller than a pixel, and the draw's sampled estimate takes the
+ * lanes, which draw what the one-by-one path draws; seen close, filling
+ * the frame with triangles of several pixels, it does not. */
+Test(subpixel, a_dense_mesh_small_in_a_larger_frame_takes_the_lanes, .timeout = 120)
+{
+    sr_mesh torus;
+    sr_error err;
+    cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 256, 128, &err), "%s", err.message);
+    cr_assert_eq(sr_assemble_slots(&torus), 65536u);
+    const float distance[2] = { 9.0f, 1.6f }; /* whole in a corner; close, over the frame */
+    for (int close = 0; close < 2; close++) {
+        sr_camera cam = sr_camera_default();
+        glm_vec3_copy((vec3){ 0, 0.6f * distance[close], -distance[close] }, cam.eye);
+        sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE };
+        sr_camera_view(&cam, desc.view);
+        sr_camera_projection(&cam, 320.0f / 240.0f, desc.projection);
+        glm_mat4_identity(desc.world);
+        sr_draw_times times = { 0 };
+        sr_draw_study by_cost = { .times = &times }, reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
+        drawn want, got;
+        for (int k = 0; k < 2; k++) {
+            drawn *out = k ? &got : &want;
+            desc.study = k ? &by_cost : &reference;
+            cr_assert(sr_framebuffer_create(&out->fb, 320, 240, &err), "%s", err.message);
+            sr_framebuffer_clear(&out->fb, 0);
+            out->stats = (sr_stats){ 0 };
+            cr_assert(sr_draw(&out->fb, &desc, &out->stats, &err), "%s", err.message);
+        }
+        cr_assert_gt(want.stats.fragments, close ? 40000u : 1000u, "the torus drew %llu fragments",
+                     (unsigned long long)want.stats.fragments);
+        cr_assert_eq(times.subpixel_lanes, !close, "seen %s, the lanes %s taken", close ? "close" : "whole",
+                     times.subpixel_lanes ? "were" : "were not");
+        assert_same(&want, &got, close ? "torus close" : "torus whole");
+        sr_framebuffer_destroy(&want.fb);
+        sr_framebuffer_destroy(&got.fb);
+    }
+    sr_mesh_free(&torus);
+}
+
 /* One workspace kept across draws of a torus of more vertices than a
  * chunk of the double halves' phase, from two views, on one thread (the
  * verdicts map each vertex's double half as they keep it) and on two and

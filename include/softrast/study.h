@@ -108,6 +108,7 @@ typedef struct sr_draw_times {
     sr_phase_time raster; /* tiled path (at any thread count): the tiles; row bands: stages 4-10 */
     double total;         /* wall ms of the whole sr_draw, its serial checks and set-up included */
     sr_draw_path path;    /* the path the last draw took (SR_PATH_DIRECT for a mesh out of view) */
+    bool subpixel_lanes;  /* whether it dropped triangles that cover no pixel centre in lanes (below) */
 } sr_draw_times;
 
 typedef struct sr_draw_study {

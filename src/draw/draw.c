@@ -361,18 +361,66 @@ static sr_draw_path path_of(const sr_draw_state *st, sr_draw_path planned)
     return planned;
 }
 
+/* Triangles the sub-pixel lanes' estimate looks at: evenly spaced slots,
+ * a few microseconds of a draw the lanes would matter to. */
+#define SUBPIXEL_SAMPLES 256
+#define SUBPIXEL_SAMPLED_MIN_SLOTS 65536
+
+/* A triangle's corner on screen, in pixels, from its clip position; false
+ * behind the eye or not finite. */
+static bool screen_point_of(const sr_draw_state *st, const double clip[4], double out[2])
+{
+    if (!(clip[SR_W] > 0.0) || !isfinite(clip[SR_X]) || !isfinite(clip[SR_Y]) || !isfinite(clip[SR_W]))
+        return false;
+    out[0] = (st->vp.guard * clip[SR_X] / clip[SR_W] + 1.0) * 0.5 * st->fb->width;
+    out[1] = (st->vp.guard * clip[SR_Y] / clip[SR_W] + 1.0) * 0.5 * st->fb->height;
+    return isfinite(out[0]) && isfinite(out[1]);
+}
+
+/* Whether most of the sampled triangles in front of the eye have less than
+ * a pixel's area on screen: most then cover no pixel centre. */
+static bool mostly_subpixel(const sr_draw_state *st, const sr_vertex_transform *xf)
+{
+    const sr_mesh *mesh = st->desc->mesh;
+    int seen = 0, tiny = 0;
+    for (uint32_t i = 0; i < SUBPIXEL_SAMPLES; i++) {
+        uint32_t idx[3];
+        if (!sr_assemble_triangle(mesh, (uint32_t)((uint64_t)st->slots * i / SUBPIXEL_SAMPLES), idx) ||
+            idx[0] >= mesh->vertex_count || idx[1] >= mesh->vertex_count || idx[2] >= mesh->vertex_count)
+            continue;
+        double p[3][2];
+        bool front = true;
+        for (int c = 0; c < 3 && front; c++) {
+            double clip[4];
+            sr_vertex_mesh_clip_d(mesh, idx[c], xf, clip);
+            front = screen_point_of(st, clip, p[c]);
+        }
+        if (!front)
+            continue;
+        double area2 = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+        seen++;
+        tiny += fabs(area2) < 2.0;
+    }
+    return 2 * tiny > seen;
+}
+
 /* The sub-pixel lanes (pipeline/08_raster/subpixel.h) pay where most
  * triangles cover no pixel centre: a draw of more triangle slots than
- * pixels. With two pixels a slot (the dense torus at 1920x1080) too few
- * drop out to pay for the lanes. The observer sees every triangle that
+ * pixels, or of many slots most of which, sampled, are smaller than a
+ * pixel (a scan seen whole in a third of the frame, with culling off, its
+ * back faces as small as its front). With two pixels a front-facing
+ * triangle (the dense torus at 1920x1080, back faces culled) too few drop
+ * out to pay for the lanes. The observer sees every triangle that
  * survives culling, so a draw with one sets each up, as does a snap finer
  * than the lanes hold. */
-static bool subpixel_lanes(const sr_draw_state *st)
+static bool subpixel_lanes(const sr_draw_state *st, const sr_vertex_transform *xf)
 {
     /* uvs in id or depth shading: a MASK material's alpha test, which their one-pixel loop does not take */
     bool cuts = st->shade.layout.uv >= 0 && (st->mode == SR_SHADE_ID || st->mode == SR_SHADE_DEPTH);
-    return !st->study.one_by_one && !st->study.observer && st->vp.subpixel_bits <= SR_SUBPIXEL_LANES_MAX_BITS &&
-           (int64_t)st->slots > pixel_count(st) && !cuts;
+    if (st->study.one_by_one || st->study.observer || st->vp.subpixel_bits > SR_SUBPIXEL_LANES_MAX_BITS || cuts)
+        return false;
+    return (int64_t)st->slots > pixel_count(st) ||
+           (st->slots >= SUBPIXEL_SAMPLED_MIN_SLOTS && sr_assemble_triangles(st->desc->mesh) && mostly_subpixel(st, xf));
 }
 
 static sr_subpixel_rules subpixel_rules(const sr_draw_state *st)
@@ -429,6 +477,8 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     vertex_phase ph = { .st = st };
     make_transform(st, &ph.xf);
     st->xf = &ph.xf;
+    st->subpixel_lanes = subpixel_lanes(st, &ph.xf);
+    st->slot_lanes = slot_lanes(st);
     const sr_mesh *mesh = st->desc->mesh;
     if (!sr_assemble_triangles(mesh)) {
         bool drawn = sr_draw_points_lines(st, err);
@@ -459,8 +509,10 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
             return false;
     }
     sr_draw_path path = draws ? path_of(st, planned) : SR_PATH_DIRECT;
-    if (st->study.times)
+    if (st->study.times) {
         st->study.times->path = path;
+        st->study.times->subpixel_lanes = st->subpixel_lanes;
+    }
     bool direct = path == SR_PATH_DIRECT;
     /* double_later holds only for the direct path and the row bands (the
      * planned path, or direct in its place): on one thread the verdicts
@@ -549,9 +601,7 @@ static bool draw(sr_framebuffer *fb, const sr_draw_desc *desc, const sr_line_fil
     st.clip_tolerance = 1.0 / ((double)((int64_t)1 << st.vp.subpixel_bits) * side * st.vp.guard);
     shade_context_make(desc, study.simd, &layout, &st.shade);
     st.screen_stride = sr_screen_stride(layout.count);
-    st.subpixel_lanes = subpixel_lanes(&st);
     st.subpixel = subpixel_rules(&st);
-    st.slot_lanes = slot_lanes(&st);
     sr_stats scratch = { 0 };
     bool ok = sr_materials_make(&st, err) && draw_with(&st, stats ? stats : &scratch, err);
     if (!desc->workspace)
