@@ -126,6 +126,22 @@ Test(pinhole_sparse, a_point_shows_its_vertex_depth_range_and_normal)
     sr_mesh_free(&mesh);
 }
 
+/* A mesh of one segment, vertex 0 to vertex 1, with normals. */
+static void one_segment(sr_mesh *mesh, sr_topology topology)
+{
+    sr_error err = { "" };
+    cr_assert(sr_mesh_alloc(mesh, 2, 2, true, false, false, &err), "%s", err.message);
+    mesh->topology = topology;
+    mesh->indices[0] = 0;
+    mesh->indices[1] = 1;
+}
+
+static real normal_length(const resolved *r, size_t at)
+{
+    const float *n = &r->normals[3 * at];
+    return sqrtl((real)n[0] * n[0] + (real)n[1] * n[1] + (real)n[2] * n[2]);
+}
+
 /* The distance from point a + t·u to the line through the origin along d. */
 static real distance_to_ray(const real a[3], const real u[3], real t, const real d[3])
 {
@@ -169,12 +185,8 @@ static real nearest_z(const sr_pinhole *cam, const float a_f[3], const float b_f
 Test(pinhole_sparse, a_line_shows_its_point_nearest_each_pixels_ray)
 {
     test_rng rng = { 77 };
-    sr_error err = { "" };
     sr_mesh mesh;
-    cr_assert(sr_mesh_alloc(&mesh, 2, 2, true, false, false, &err), "%s", err.message);
-    mesh.topology = SR_LINE_LIST;
-    mesh.indices[0] = 0;
-    mesh.indices[1] = 1;
+    one_segment(&mesh, SR_LINE_LIST);
     sr_pinhole cam = camera(45.0, 52.0, 33.5, 20.25);
     int checked = 0;
     for (int trial = 0; trial < 60; trial++) {
@@ -202,9 +214,7 @@ Test(pinhole_sparse, a_line_shows_its_point_nearest_each_pixels_ray)
                 cr_assert(r.depth[at] >= zmin && r.depth[at] <= zmax, "trial %d: depth %.9g outside the ends' %g..%g",
                           trial, r.depth[at], zmin, zmax);
                 cr_assert(r.range[at] >= r.depth[at], "trial %d: range %.9g below depth", trial, r.range[at]);
-                real n = sqrtl((real)r.normals[3 * at] * r.normals[3 * at] +
-                               (real)r.normals[3 * at + 1] * r.normals[3 * at + 1] +
-                               (real)r.normals[3 * at + 2] * r.normals[3 * at + 2]);
+                real n = normal_length(&r, at);
                 cr_assert(fabsl(n - 1.0L) < 1e-6L, "trial %d: normal of length %.9Lg", trial, n);
                 checked++;
             }
@@ -219,12 +229,8 @@ Test(pinhole_sparse, a_line_shows_its_point_nearest_each_pixels_ray)
  * every pixel drawn still carries the oracle's depth. */
 Test(pinhole_sparse, a_line_nearly_along_a_ray_keeps_its_depth)
 {
-    sr_error err = { "" };
     sr_mesh mesh;
-    cr_assert(sr_mesh_alloc(&mesh, 2, 2, true, false, false, &err), "%s", err.message);
-    mesh.topology = SR_LINE_STRIP;
-    mesh.indices[0] = 0;
-    mesh.indices[1] = 1;
+    one_segment(&mesh, SR_LINE_STRIP);
     sr_pinhole cam = camera(40.0, 40.0, 31.5, 23.5);
     const float d[3] = { 0.25f, -0.125f, 1.0f }, off[3] = { 0.03f, 0.01f, 0.0f };
     for (int order = 0; order < 2; order++) {
@@ -260,12 +266,8 @@ Test(pinhole_sparse, a_line_nearly_along_a_ray_keeps_its_depth)
 Test(pinhole_sparse, a_line_through_the_near_plane_shows_the_part_drawn)
 {
     test_rng rng = { 5 };
-    sr_error err = { "" };
     sr_mesh mesh;
-    cr_assert(sr_mesh_alloc(&mesh, 2, 2, true, false, false, &err), "%s", err.message);
-    mesh.topology = SR_LINE_LIST;
-    mesh.indices[0] = 0;
-    mesh.indices[1] = 1;
+    one_segment(&mesh, SR_LINE_LIST);
     sr_pinhole cam = camera(45.0, 52.0, 33.5, 20.25);
     const float lengths[] = { 10.0f, 1e3f, 1e10f, 1e30f };
     int checked = 0;
@@ -298,9 +300,7 @@ Test(pinhole_sparse, a_line_through_the_near_plane_shows_the_part_drawn)
                 cr_assert(r.depth[at] >= (float)cam.near * (1.0f - 1e-6f) && r.depth[at] <= z,
                           "trial %d: depth %.9g outside near %g .. %g", trial, r.depth[at], cam.near, z);
                 cr_assert(r.range[at] >= r.depth[at], "trial %d: range %.9g below depth", trial, r.range[at]);
-                real n = sqrtl((real)r.normals[3 * at] * r.normals[3 * at] +
-                               (real)r.normals[3 * at + 1] * r.normals[3 * at + 1] +
-                               (real)r.normals[3 * at + 2] * r.normals[3 * at + 2]);
+                real n = normal_length(&r, at);
                 cr_assert(fabsl(n - 1.0L) < 1e-6L, "trial %d: normal of length %.9Lg", trial, n);
             }
         cr_assert(drawn >= 1, "trial %d: nothing drawn", trial);
