@@ -177,13 +177,13 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
 }
 
 /* The double half of the vertices of the triangles inside every plane of
- * kept[0 .. count), each vertex once, by the one thread that takes every
+ * kept slots, each vertex once, by the one thread that takes every
  * verdict: the vertex phase mapped their float half (st->double_later).
  * No one reads a member the double half writes before the triangles are
- * drawn: the lanes read the snapped points. Out of line: its arrays on
- * the stack made every batch's verdicts of a draw without it pay for
- * them. The vertices are listed first, their positions prefetched, and
- * only then mapped. */
+ * drawn: the lanes read the snapped points. The vertices are listed first
+ * (take_double_halves: those of kept[0 .. count) no one has taken into
+ * taken[], marked and their positions prefetched) and only then mapped
+ * (map_taken). */
 static int take_double_halves(const sr_draw_state *st, const sr_kept_slot *kept, int count, uint32_t *taken)
 {
     atomic_uchar *wanted = st->ws->double_wanted.data;
@@ -215,6 +215,9 @@ static void map_taken(const sr_draw_state *st, const uint32_t *taken, int n)
                                  st->ws->screen.data, st->screen_stride);
 }
 
+/* Both, for a batch of verdicts (the row bands on one thread). Out of
+ * line: its array on the stack made every batch's verdicts of a draw
+ * without it pay for it. */
 static __attribute__((noinline)) void map_double_halves(const sr_draw_state *st, const sr_kept_slot *kept,
                                                          int count)
 {
