@@ -413,47 +413,66 @@ Test(subpixel, one_pixel_slivers_turned_over_by_snapping_draw_alike)
     sr_mesh_free(&m);
 }
 
-/* The tests' dense torus seen small, lit, where the tiny queue takes the
- * triangles the lanes leave. */
+/* The tests' toruses as a default camera at eye sees them, for a frame of
+ * width × height. */
+static sr_draw_desc seen_from(const sr_mesh *torus, const float eye[3], int width, int height, sr_shade shade,
+                              sr_cull cull)
+{
+    sr_camera cam = sr_camera_default();
+    glm_vec3_copy((float *)eye, cam.eye);
+    sr_draw_desc desc = { .mesh = torus, .shade = shade, .cull = cull };
+    sr_camera_view(&cam, desc.view);
+    sr_camera_projection(&cam, (float)width / (float)height, desc.projection);
+    glm_mat4_identity(desc.world);
+    return desc;
+}
+
 /* desc drawn with study on `threads` threads (and workspace ws, or a
- * fresh one) into a new 96×64 framebuffer cleared to 0. */
-static void draw_96x64(sr_draw_desc desc, const sr_draw_study *study, int threads, sr_workspace *ws, drawn *out)
+ * fresh one) into a new width × height framebuffer cleared to 0. */
+static void draw_view(sr_draw_desc desc, const sr_draw_study *study, int threads, sr_workspace *ws, int width,
+                      int height, drawn *out)
 {
     sr_error err;
     desc.study = study;
     desc.threads = threads;
     desc.workspace = ws;
-    cr_assert(sr_framebuffer_create(&out->fb, 96, 64, &err), "%s", err.message);
+    cr_assert(sr_framebuffer_create(&out->fb, width, height, &err), "%s", err.message);
     sr_framebuffer_clear(&out->fb, 0);
     out->stats = (sr_stats){ 0 };
     cr_assert(sr_draw(&out->fb, &desc, &out->stats, &err), "%s", err.message);
 }
 
+/* desc drawn with study on `threads` threads, as the one-by-one reference
+ * draws it on one: the same color, depth and counts; returns the
+ * reference's counts. */
+static sr_stats draws_as_one_by_one(sr_draw_desc desc, const sr_draw_study *study, int threads, sr_workspace *ws,
+                                    int width, int height, const char *what)
+{
+    static const sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
+    drawn want, got;
+    draw_view(desc, &reference, 1, NULL, width, height, &want);
+    draw_view(desc, study, threads, ws, width, height, &got);
+    assert_same(&want, &got, what);
+    sr_framebuffer_destroy(&want.fb);
+    sr_framebuffer_destroy(&got.fb);
+    return want.stats;
+}
+
+/* The dense torus seen small, lit, where the tiny queue takes the
+ * triangles the lanes leave, and in ids. */
 Test(subpixel, dense_torus_draws_alike_with_and_without_the_lanes, .timeout = 120)
 {
     sr_mesh torus;
     sr_error err;
     cr_assert(sr_shape_torus(&torus, 1.0f, 0.4f, 120, 60, &err), "%s", err.message);
-    sr_camera cam = sr_camera_default();
-    glm_vec3_copy((vec3){ 0, 1.1f, -1.9f }, cam.eye);
     for (int lit = 0; lit < 2; lit++) {
-        sr_draw_desc desc = { .mesh = &torus, .shade = lit ? SR_SHADE_LAMBERT : SR_SHADE_ID,
-                              .cull = lit ? SR_CULL_BACK : SR_CULL_NONE };
-        sr_camera_view(&cam, desc.view);
-        sr_camera_projection(&cam, 96.0f / 64.0f, desc.projection);
-        glm_mat4_identity(desc.world);
-        drawn want;
-        sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
-        draw_96x64(desc, &reference, 1, NULL, &want);
+        sr_draw_desc desc = seen_from(&torus, (vec3){ 0, 1.1f, -1.9f }, 96, 64, lit ? SR_SHADE_LAMBERT : SR_SHADE_ID,
+                                      lit ? SR_CULL_BACK : SR_CULL_NONE);
         for (size_t p = 0; p < sizeof paths / sizeof *paths; p++)
             for (int threads = 1; threads <= 2; threads++) {
                 sr_draw_study lanes = { .path = paths[p] };
-                drawn got;
-                draw_96x64(desc, &lanes, threads, NULL, &got);
-                assert_same(&want, &got, lit ? "lit torus" : "torus ids");
-                sr_framebuffer_destroy(&got.fb);
+                draws_as_one_by_one(desc, &lanes, threads, NULL, 96, 64, lit ? "lit torus" : "torus ids");
             }
-        sr_framebuffer_destroy(&want.fb);
     }
     sr_mesh_free(&torus);
 }
@@ -471,30 +490,16 @@ Test(subpixel, a_dense_mesh_small_in_a_larger_frame_takes_the_lanes, .timeout = 
     cr_assert_eq(sr_assemble_slots(&torus), 65536u);
     const float distance[2] = { 9.0f, 1.6f }; /* whole in a corner; close, over the frame */
     for (int close = 0; close < 2; close++) {
-        sr_camera cam = sr_camera_default();
-        glm_vec3_copy((vec3){ 0, 0.6f * distance[close], -distance[close] }, cam.eye);
-        sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE };
-        sr_camera_view(&cam, desc.view);
-        sr_camera_projection(&cam, 320.0f / 240.0f, desc.projection);
-        glm_mat4_identity(desc.world);
+        sr_draw_desc desc = seen_from(&torus, (vec3){ 0, 0.6f * distance[close], -distance[close] }, 320, 240,
+                                      SR_SHADE_ID, SR_CULL_NONE);
         sr_draw_times times = { 0 };
-        sr_draw_study by_cost = { .times = &times }, reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
-        drawn want, got;
-        for (int k = 0; k < 2; k++) {
-            drawn *out = k ? &got : &want;
-            desc.study = k ? &by_cost : &reference;
-            cr_assert(sr_framebuffer_create(&out->fb, 320, 240, &err), "%s", err.message);
-            sr_framebuffer_clear(&out->fb, 0);
-            out->stats = (sr_stats){ 0 };
-            cr_assert(sr_draw(&out->fb, &desc, &out->stats, &err), "%s", err.message);
-        }
-        cr_assert_gt(want.stats.fragments, close ? 40000u : 1000u, "the torus drew %llu fragments",
-                     (unsigned long long)want.stats.fragments);
+        sr_draw_study by_cost = { .times = &times };
+        sr_stats want = draws_as_one_by_one(desc, &by_cost, 0, NULL, 320, 240, /* the default threads */
+                                            close ? "torus close" : "torus whole");
+        cr_assert_gt(want.fragments, close ? 40000u : 1000u, "the torus drew %llu fragments",
+                     (unsigned long long)want.fragments);
         cr_assert_eq(times.subpixel_lanes, !close, "seen %s, the lanes %s taken", close ? "close" : "whole",
                      times.subpixel_lanes ? "were" : "were not");
-        assert_same(&want, &got, close ? "torus close" : "torus whole");
-        sr_framebuffer_destroy(&want.fb);
-        sr_framebuffer_destroy(&got.fb);
     }
     sr_mesh_free(&torus);
 }
@@ -516,22 +521,11 @@ Test(subpixel, a_kept_workspace_maps_every_draws_double_halves, .timeout = 120)
     static const float eyes[2][3] = { { 0, 1.1f, -1.9f }, { 1.3f, -0.6f, 1.4f } };
     static const int threads[] = { 2, 1, 3, 1, 2 };
     for (size_t d = 0; d < sizeof threads / sizeof *threads; d++) {
-        sr_camera cam = sr_camera_default();
-        glm_vec3_copy((float *)eyes[d % 2], cam.eye);
-        sr_draw_desc desc = { .mesh = &torus, .shade = SR_SHADE_ID, .cull = SR_CULL_NONE };
-        sr_camera_view(&cam, desc.view);
-        sr_camera_projection(&cam, 96.0f / 64.0f, desc.projection);
-        glm_mat4_identity(desc.world);
-        drawn want, got;
-        sr_draw_study reference = { .path = SR_PATH_DIRECT, .one_by_one = true };
-        draw_96x64(desc, &reference, 1, NULL, &want);
+        sr_draw_desc desc = seen_from(&torus, eyes[d % 2], 96, 64, SR_SHADE_ID, SR_CULL_NONE);
         sr_draw_study kept = { .path = threads[d] > 1 ? SR_PATH_ROWS : SR_PATH_DIRECT };
-        draw_96x64(desc, &kept, threads[d], ws, &got);
         char what[64];
         snprintf(what, sizeof what, "draw %zu, %d threads", d, threads[d]);
-        assert_same(&want, &got, what);
-        sr_framebuffer_destroy(&want.fb);
-        sr_framebuffer_destroy(&got.fb);
+        draws_as_one_by_one(desc, &kept, threads[d], ws, 96, 64, what);
     }
     sr_workspace_destroy(ws);
     sr_mesh_free(&torus);

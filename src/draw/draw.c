@@ -366,40 +366,34 @@ static sr_draw_path path_of(const sr_draw_state *st, sr_draw_path planned)
 #define SUBPIXEL_SAMPLES 256
 #define SUBPIXEL_SAMPLED_MIN_SLOTS 65536
 
-/* A triangle's corner on screen, in pixels, from its clip position; false
- * behind the eye or not finite. */
-static bool screen_point_of(const sr_draw_state *st, const double clip[4], double out[2])
-{
-    if (!(clip[SR_W] > 0.0) || !isfinite(clip[SR_X]) || !isfinite(clip[SR_Y]) || !isfinite(clip[SR_W]))
-        return false;
-    out[0] = (st->vp.guard * clip[SR_X] / clip[SR_W] + 1.0) * 0.5 * st->fb->width;
-    out[1] = (st->vp.guard * clip[SR_Y] / clip[SR_W] + 1.0) * 0.5 * st->fb->height;
-    return isfinite(out[0]) && isfinite(out[1]);
-}
-
 /* Whether most of the sampled triangles in front of the eye have less than
- * a pixel's area on screen: most then cover no pixel centre. */
+ * a pixel's area on screen: most then cover no pixel centre. Areas in
+ * NDC, where a pixel is 2/(guard·width) wide and 2/(guard·height) high. */
 static bool mostly_subpixel(const sr_draw_state *st, const sr_vertex_transform *xf)
 {
     const sr_mesh *mesh = st->desc->mesh;
+    double pixel_area2 = 8.0 / (st->vp.guard * st->vp.guard * st->fb->width * st->fb->height);
     int seen = 0, tiny = 0;
     for (uint32_t i = 0; i < SUBPIXEL_SAMPLES; i++) {
         uint32_t idx[3];
         if (!sr_assemble_triangle(mesh, (uint32_t)((uint64_t)st->slots * i / SUBPIXEL_SAMPLES), idx) ||
             idx[0] >= mesh->vertex_count || idx[1] >= mesh->vertex_count || idx[2] >= mesh->vertex_count)
             continue;
-        double p[3][2];
+        double ndc[3][2];
         bool front = true;
         for (int c = 0; c < 3 && front; c++) {
             double clip[4];
             sr_vertex_mesh_clip_d(mesh, idx[c], xf, clip);
-            front = screen_point_of(st, clip, p[c]);
+            ndc[c][0] = clip[SR_X] / clip[SR_W];
+            ndc[c][1] = clip[SR_Y] / clip[SR_W];
+            front = clip[SR_W] > 0.0 && isfinite(ndc[c][0]) && isfinite(ndc[c][1]);
         }
         if (!front)
             continue;
-        double area2 = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+        double area2 = (ndc[1][0] - ndc[0][0]) * (ndc[2][1] - ndc[0][1]) -
+                       (ndc[1][1] - ndc[0][1]) * (ndc[2][0] - ndc[0][0]);
         seen++;
-        tiny += fabs(area2) < 2.0;
+        tiny += fabs(area2) < pixel_area2;
     }
     return 2 * tiny > seen;
 }

@@ -277,7 +277,10 @@ static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint3
     int count = 0;
     uint64_t culled = 0, drawn = 0; /* of the slots from first on: counted once, a call of libgcc's where the
                                        build has no popcnt instruction */
-    uint32_t group = st->subpixel.avx512 ? SR_SUBPIXEL_SLOT_GROUP_AVX512 : SR_SUBPIXEL_SLOT_GROUP;
+    bool wide = st->subpixel.avx512;
+    uint32_t group = wide ? SR_SUBPIXEL_SLOT_GROUP_AVX512 : SR_SUBPIXEL_SLOT_GROUP;
+    sr_subpixel_slots (*slot_group)(const uint32_t *, const sr_snapped_point *, const sr_subpixel_rules *) =
+        wide ? sr_subpixel_slot_group_avx512 : sr_subpixel_slot_group_avx2;
     for (uint32_t g = first; g < end; g += group) {
         uint32_t g_end = end - g > group ? g + group : end;
         const uint32_t *idx = indices + 3 * (size_t)g;
@@ -291,8 +294,7 @@ static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint3
                 PREFETCH_TRIANGLE((const char *)points, sizeof *points, idx + 3 * (POINTS_AHEAD + j));
         sr_subpixel_slots v = { .plain = false };
         if (g_end - g == group)
-            v = (group == SR_SUBPIXEL_SLOT_GROUP_AVX512 ? sr_subpixel_slot_group_avx512
-                                                       : sr_subpixel_slot_group_avx2)(idx, points, &st->subpixel);
+            v = slot_group(idx, points, &st->subpixel);
         if (!v.plain) {
             int n = take_verdicts(st, g, g_end, last_end, stats, kept + count);
             count += drop_subpixel(st, kept + count, n, stats);

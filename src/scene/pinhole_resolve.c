@@ -489,16 +489,20 @@ static bool sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x,
         return false;
     to_camera(&job->frame, mesh->positions[sp->idx[0]], a);
     to_camera(&job->frame, mesh->positions[sp->idx[1]], b);
-    /* From each end, and the point from the nearer: b − a rounds away the
-     * digits of the smaller end when the other lies far off (behind the
-     * camera, say, outside the part drawn), and from the far end they would
-     * be lost again in a + r·u. */
+    /* From the nearer end: b − a rounds away the digits of the smaller end
+     * when the other lies far off (behind the camera, say, outside the part
+     * drawn), and from the far end they would be lost again in a + r·u. A
+     * point in a's half is found well from a; past it, from b too, and the
+     * nearer end's taken. */
     const double d[3] = { ray_x, ray_y, 1.0 };
-    double r_a = nearest_from(job->cam, a, b, d, sp->p), r_b = nearest_from(job->cam, b, a, d, from_b);
+    double r_a = nearest_from(job->cam, a, b, d, sp->p);
     sp->t = r_a;
-    if (r_b < r_a) {
-        memcpy(sp->p, from_b, sizeof from_b);
-        sp->t = 1.0 - r_b;
+    if (r_a > 0.5) {
+        double r_b = nearest_from(job->cam, b, a, d, from_b);
+        if (r_b < r_a) {
+            memcpy(sp->p, from_b, sizeof from_b);
+            sp->t = 1.0 - r_b;
+        }
     }
     return true;
 }

@@ -1,6 +1,7 @@
 /* subpixel_body.h — the body of the sub-pixel lanes (subpixel.h), one
- * source compiled at two widths like the span kernels: four lanes of SSE2
- * (subpixel_sse2.c) and eight of AVX2 (subpixel_avx2.c, built with -mavx2). The
+ * source compiled at three widths like the span kernels: four lanes of SSE2
+ * (subpixel_sse2.c), eight of AVX2 (subpixel_avx2.c, built with -mavx2) and
+ * sixteen of AVX-512 (subpixel_avx512.c). The
  * includer defines SUBPIXEL_LANES and SUBPIXEL_GROUPS, the name of the
  * function it makes: sr_subpixel_verdict SUBPIXEL_GROUPS(const
  * sr_subpixel_batch *, int n, const sr_subpixel_rules *). Every width

@@ -1,5 +1,5 @@
 /* subpixel_lanes.h — what the sub-pixel lanes (subpixel.h) read and say,
- * shared by their two widths (subpixel_body.h) and the choice between them
+ * shared by their widths (subpixel_body.h) and the choice between them
  * (subpixel.c). Not public API. */
 #ifndef SOFTRAST_PIPELINE_SUBPIXEL_LANES_H
 #define SOFTRAST_PIPELINE_SUBPIXEL_LANES_H
@@ -63,9 +63,9 @@ sr_subpixel_slots sr_subpixel_slot_group_avx512(const uint32_t *indices, const s
                                                 const sr_subpixel_rules *rules);
 #define SR_SUBPIXEL_SLOT_GROUP_AVX512 16
 
-/* The two widths (subpixel_body.h, compiled by subpixel_sse2.c and
- * subpixel_avx2.c): the verdicts of lanes [0, n) rounded up to a group,
- * lanes past n included. */
+/* The three widths (subpixel_body.h, compiled by subpixel_sse2.c,
+ * subpixel_avx2.c and subpixel_avx512.c): the verdicts of lanes [0, n)
+ * rounded up to a group, lanes past n included. */
 sr_subpixel_verdict sr_subpixel_groups_sse2(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules);
 sr_subpixel_verdict sr_subpixel_groups_avx2(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules);
 sr_subpixel_verdict sr_subpixel_groups_avx512(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules);
