@@ -46,7 +46,7 @@ PUBLIC_LIBS := build/libsoftrast.a build/libsoftrast-files.a
 # The 8-lane span kernels, sub-pixel lanes, viewport and vertex lanes are built for AVX2 (chosen at
 # run time when the CPU has it); never -mfma, which would round differently from the scalar path.
 ifeq ($(shell uname -m),x86_64)
-AVX2_OBJ := $(foreach f,span_avx2 subpixel_avx2 one_pixel_avx2,$(patsubst %,%/src/pipeline/08_raster/$(f).o,build build/san build/fuzz)) \
+AVX2_OBJ := $(foreach f,span_avx2 subpixel_avx2 lane_pixels_avx2,$(patsubst %,%/src/pipeline/08_raster/$(f).o,build build/san build/fuzz)) \
             $(foreach f,06_viewport_avx2 01_vertex_avx2,$(patsubst %,%/src/pipeline/$(f).o,build build/san build/fuzz))
 $(AVX2_OBJ): ALL_CFLAGS += -mavx2
 $(AVX2_OBJ): FUZZ_CFLAGS += -mavx2

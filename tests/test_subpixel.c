@@ -10,6 +10,7 @@
 #include "pipeline/07_cull.h"
 #include "pipeline/08_raster/raster.h"
 #include "pipeline/08_raster/triangle_setup.h"
+#include "pipeline/08_raster/lane_pixels.h"
 #include "pipeline/08_raster/subpixel.h"
 #include "softrast_private.h"
 #include "test_rng.h"
@@ -40,21 +41,24 @@ static fate fate_of(const sr_screen_vertex tri[3], const sr_subpixel_rules *r, s
     return sr_raster_tiny_mask(v, area2, box, r->bits) ? FATE_MAY_DRAW : FATE_DRAWS_NOTHING;
 }
 
-/* Within two pixels on each axis: what the lanes promise to decide. */
+/* Within SR_SUBPIXEL_SPAN pixels on each axis: what the lanes promise to
+ * decide. */
 static bool small(const sr_screen_vertex tri[3], int bits)
 {
-    int64_t two = (int64_t)2 << bits;
+    int64_t span = (int64_t)SR_SUBPIXEL_SPAN << bits;
     for (int k = 0; k < 3; k++)
         for (int j = 0; j < 3; j++)
-            if (llabs(tri[k].x - tri[j].x) >= two || llabs(tri[k].y - tri[j].y) >= two)
+            if (llabs(tri[k].x - tri[j].x) >= span || llabs(tri[k].y - tri[j].y) >= span)
                 return false;
     return true;
 }
 
 /* Lane by lane: a lane says culled only of a culled triangle and draws
  * nothing only of one that draws nothing; of a small triangle culled, or
- * whose box holds at most one pixel centre, it says which, exactly; of any
- * other it says nothing. Returns how many lanes dropped their triangle. */
+ * whose box holds at most one pixel centre, it says which, exactly, and
+ * one_pixel of such a box it covers; of a small triangle kept whose box
+ * holds more, small_box; of any other it says nothing. Returns how many
+ * lanes dropped their triangle. */
 static int check_lanes(const sr_screen_vertex (*tris)[3], int n, const sr_subpixel_rules *r, sr_cull cull,
                        sr_front front)
 {
@@ -66,18 +70,27 @@ static int check_lanes(const sr_screen_vertex (*tris)[3], int n, const sr_subpix
         }
     sr_subpixel_verdict v = sr_subpixel_reject(&b, n, r);
     cr_assert_eq(v.culled & v.drawn, 0, "a lane both culled and drawn");
+    cr_assert_eq((v.culled | v.drawn) & (v.one_pixel | v.small_box), 0, "a lane dropped a triangle it kept");
+    cr_assert_eq(v.one_pixel & v.small_box, 0, "a lane said two boxes");
     int dropped = 0;
     for (int i = 0; i < n; i++) {
         fate f = fate_of(tris[i], r, cull, front);
-        bool culled = v.culled >> i & 1, drawn = v.drawn >> i & 1;
+        bool culled = v.culled >> i & 1, drawn = v.drawn >> i & 1, one_pixel = v.one_pixel >> i & 1,
+             small_box = v.small_box >> i & 1;
+        int64_t centres = box_centres(tris[i], r);
         dropped += culled || drawn;
         cr_assert(!culled || f == FATE_CULLED, "lane %d culled a triangle stage 7 keeps", i);
         cr_assert(!drawn || f == FATE_DRAWS_NOTHING, "lane %d dropped a triangle that draws", i);
-        if (small(tris[i], r->bits) && (f == FATE_CULLED || box_centres(tris[i], r) <= 1))
+        if (!small(tris[i], r->bits)) {
+            cr_assert(!culled && !drawn && !one_pixel && !small_box, "lane %d decided a triangle too large", i);
+        } else if (f == FATE_CULLED || centres <= 1) {
             cr_assert(culled == (f == FATE_CULLED) && drawn == (f == FATE_DRAWS_NOTHING),
                       "lane %d left a small triangle it decides (fate %d)", i, (int)f);
-        else if (!small(tris[i], r->bits))
-            cr_assert(!culled && !drawn, "lane %d decided a triangle too large for its lanes", i);
+            cr_assert_eq(one_pixel, f == FATE_MAY_DRAW, "lane %d: one pixel, fate %d", i, (int)f);
+        } else {
+            cr_assert(small_box && !culled && !drawn, "lane %d: a kept box of %lld centres", i, (long long)centres);
+            cr_assert_leq(centres, SR_LANE_PIXELS_CENTRES);
+        }
     }
     return dropped;
 }
@@ -94,7 +107,7 @@ static sr_screen_vertex at(int64_t x, int64_t y)
     return (sr_screen_vertex){ .x = x, .y = y };
 }
 
-/* Random triangles of up to 3 pixels a side around the framebuffer, their
+/* Random triangles of up to 5 pixels a side around the framebuffer, their
  * vertices on a grid of quarter pixels or finer, so edges run through
  * pixel centres and vertices sit on them (the top-left rule decides). */
 Test(subpixel, lanes_agree_with_the_box_mask_and_cull_of_each_triangle)
@@ -109,8 +122,8 @@ Test(subpixel, lanes_agree_with_the_box_mask_and_cull_of_each_triangle)
             for (int i = 0; i < n; i++) {
                 int64_t cx = rng_below(&rng, 20) - 2, cy = rng_below(&rng, 14) - 2;
                 for (int k = 0; k < 3; k++)
-                    tris[i][k] = at(cx * one + step * rng_below(&rng, (int)(3 * one / step) + 1),
-                                    cy * one + step * rng_below(&rng, (int)(3 * one / step) + 1));
+                    tris[i][k] = at(cx * one + step * rng_below(&rng, (int)(5 * one / step) + 1),
+                                    cy * one + step * rng_below(&rng, (int)(5 * one / step) + 1));
             }
             sr_cull cull = culls[rng_below(&rng, 3)];
             sr_front front = rng_below(&rng, 2) ? SR_FRONT_CW : SR_FRONT_CCW;
@@ -164,6 +177,114 @@ Test(subpixel, lanes_at_the_edges_of_the_rules)
     sr_subpixel_rules none = rules_of(bits, 16, 10, SR_CULL_NONE, SR_FRONT_CW);
     cr_assert_eq(fate_of(tris[0], &none, SR_CULL_NONE, SR_FRONT_CW), FATE_MAY_DRAW);
     cr_assert_eq(fate_of(tris[1], &none, SR_CULL_NONE, SR_FRONT_CW), FATE_DRAWS_NOTHING);
+}
+
+static const sr_shade_context depth_shade = { .layout = { .count = 0, .color = -1, .uv = -1, .normal = -1 } };
+
+/* Pixel (i, j) of a framebuffer `width` wide, covered at depth z. */
+typedef struct covered_pixel {
+    int i, j;
+    float z;
+} covered_pixel;
+
+/* What the set-up finds of triangle v within rect: the pixels its tiny
+ * mask covers, in the mask's order, and their depths by sr_row_z and
+ * sr_depth_at; returns how many. */
+static int setup_pixels(const sr_screen_vertex v[3], sr_raster_rect rect, int bits, covered_pixel *out)
+{
+    const sr_screen_vertex *tri[3] = { &v[0], &v[1], &v[2] };
+    int64_t area2 = sr_cull_area2(tri[0], tri[1], tri[2]);
+    sr_raster_rect box = sr_raster_scan_box_of(tri, rect, bits);
+    sr_tri_setup s;
+    if (box.x0 >= box.x1 || box.y0 >= box.y1 ||
+        !sr_raster_setup(tri, area2, box, bits, SR_SHADE_DEPTH, &depth_shade, &s))
+        return 0;
+    cr_assert(sr_raster_box_is_tiny(box));
+    int n = 0;
+    for (uint64_t m = sr_raster_tiny_mask(tri, area2, box, bits); m; m &= m - 1) {
+        int bit = __builtin_ctzll(m), i = box.x0 + bit % SR_TINY_SIDE, j = box.y0 + bit / SR_TINY_SIDE;
+        out[n++] = (covered_pixel){ i, j, sr_depth_at(&s, sr_row_z(&s, j), (float)(i - s.ref_x)) };
+    }
+    return n;
+}
+
+/* Random triangles of less than SR_SUBPIXEL_SPAN pixels a side, some on
+ * the framebuffer's sides, with random snap offsets (slivers turned over
+ * by them too) and depths: the lane pixels of each within a rectangle
+ * (the framebuffer, or a band of it) are the set-up's pixels and depths,
+ * bit for bit, at both widths; among them groups of one-pixel triangles,
+ * told so, which the lanes do not test. */
+Test(subpixel, lane_pixels_are_the_setups_pixels_and_depths)
+{
+    enum { WIDTH = 16, HEIGHT = 10 };
+    test_rng rng = { 53 };
+    int fragments = 0, told = 0;
+    for (int round = 0; round < 400; round++) {
+        int bits = 2 + 2 * rng_below(&rng, (SR_SUBPIXEL_LANES_MAX_BITS - 2) / 2 + 1);
+        int64_t one = (int64_t)1 << bits, step = one >> rng_below(&rng, bits + 1);
+        sr_raster_rect rect = { 0, 0, WIDTH, HEIGHT };
+        if (rng_below(&rng, 2)) /* a band of rows, as a thread draws */
+            rect.y0 = rng_below(&rng, HEIGHT), rect.y1 = rect.y0 + 1 + rng_below(&rng, HEIGHT - rect.y0);
+        sr_screen_vertex v[SR_LANE_PIXELS_BATCH][3];
+        uint32_t tri[SR_LANE_PIXELS_BATCH][3];
+        uint64_t one_pixel = 0;
+        int n = 1 + rng_below(&rng, SR_LANE_PIXELS_BATCH);
+        bool ones_only = rng_below(&rng, 3) == 0;
+        for (int t = 0; t < n;) {
+            int64_t cx = rng_below(&rng, WIDTH + 2) - 2, cy = rng_below(&rng, HEIGHT + 2) - 2;
+            for (int k = 0; k < 3; k++) {
+                v[t][k] = at(cx * one + step * rng_below(&rng, (int)(SR_SUBPIXEL_SPAN * one / step)),
+                             cy * one + step * rng_below(&rng, (int)(SR_SUBPIXEL_SPAN * one / step)));
+                v[t][k].x_off = (float)rng_uniform(&rng, -0.5, 0.5);
+                v[t][k].y_off = (float)rng_uniform(&rng, -0.5, 0.5);
+                v[t][k].z = (float)rng_uniform(&rng, -0.1, 1.1);
+                tri[t][k] = (uint32_t)(3 * t + k);
+            }
+            if (rng_below(&rng, 4) == 0) { /* a sliver: the offsets may turn it over */
+                v[t][2].x = (v[t][0].x + v[t][1].x) / 2 + rng_below(&rng, 2);
+                v[t][2].y = (v[t][0].y + v[t][1].y) / 2 + rng_below(&rng, 2);
+            }
+            if (sr_cull_area2(&v[t][0], &v[t][1], &v[t][2]) == 0)
+                continue;
+            /* A box of one centre of the framebuffer, covered: the lanes' one_pixel. */
+            covered_pixel whole[SR_LANE_PIXELS_CENTRES];
+            sr_subpixel_rules r = rules_of(bits, WIDTH, HEIGHT, SR_CULL_NONE, SR_FRONT_CCW);
+            bool single = box_centres(v[t], &r) == 1 &&
+                          setup_pixels(v[t], (sr_raster_rect){ 0, 0, WIDTH, HEIGHT }, bits, whole) == 1;
+            if (ones_only && !single)
+                continue;
+            one_pixel |= (uint64_t)(single && rng_below(&rng, 4)) << t;
+            t++;
+        }
+        told += __builtin_popcountll(one_pixel);
+        for (int wide = 0; wide < 2; wide++) {
+            if (wide && !__builtin_cpu_supports("avx2"))
+                continue;
+            sr_lane_pixels got;
+            (wide ? sr_lane_pixels_avx2 : sr_lane_pixels_sse2)((const char *)v, sizeof(sr_screen_vertex), tri, n,
+                                                               one_pixel, bits, rect, WIDTH, &got);
+            for (int t = 0; t < n; t++) {
+                covered_pixel want[SR_LANE_PIXELS_CENTRES];
+                int count = setup_pixels(v[t], rect, bits, want), k = 0;
+                cr_assert_eq(__builtin_popcount(got.covered[t]), count, "round %d, triangle %d: %d centres, not %d",
+                             round, t, __builtin_popcount(got.covered[t]), count);
+                for (uint32_t m = got.covered[t]; m; m &= m - 1, k++) {
+                    unsigned c = (unsigned)__builtin_ctz(m);
+                    size_t pixel = sr_lane_pixel_at(&got, t, c, WIDTH);
+                    float z = k < 2 ? got.z[k][t] : sr_lane_pixel_z(&got, t, c);
+                    cr_assert_eq(pixel, (size_t)want[k].j * WIDTH + (size_t)want[k].i, "round %d, triangle %d", round,
+                                 t);
+                    cr_assert(k >= 2 || got.at[k][t] == pixel, "round %d, triangle %d: fragment %d", round, t, k);
+                    cr_assert(memcmp(&z, &want[k].z, sizeof z) == 0, "round %d, triangle %d: z %a, not %a", round,
+                              t, (double)z, (double)want[k].z);
+                    cr_assert(memcmp(&z, (float[]){ sr_lane_pixel_z(&got, t, c) }, sizeof z) == 0);
+                    fragments++;
+                }
+            }
+        }
+    }
+    cr_assert_gt(fragments, 10000, "only %d fragments", fragments);
+    cr_assert_gt(told, 1000, "only %d one-pixel triangles told", told);
 }
 
 /* A dense mesh in clip space over a small framebuffer: vertices on a

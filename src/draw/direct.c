@@ -49,7 +49,7 @@ sr_fan_sink sr_direct_sink(const sr_draw_state *st, sr_thread_work *work, sr_ras
 {
     return (sr_fan_sink){ .store = store_in_place, .triangle = raster_now, .st = st, .work = work, .rect = rect,
                           .pixels = pixels,
-                          .one_pixel_batches = st->subpixel_lanes && !sr_mode_reads_varyings(st->mode) };
+                          .lane_pixels = st->subpixel_lanes && !sr_mode_reads_varyings(st->mode) };
 }
 
 /* Every slot on the direct path, counted in thread 0's work. */

@@ -409,7 +409,7 @@ static bool mostly_subpixel(const sr_draw_state *st, const sr_vertex_transform *
  * than the lanes hold. */
 static bool subpixel_lanes(const sr_draw_state *st, const sr_vertex_transform *xf)
 {
-    /* uvs in id or depth shading: a MASK material's alpha test, which their one-pixel loop does not take */
+    /* uvs in id or depth shading: a MASK material's alpha test, which the lane pixels' loop does not take */
     bool cuts = st->shade.layout.uv >= 0 && (st->mode == SR_SHADE_ID || st->mode == SR_SHADE_DEPTH);
     if (st->study.one_by_one || st->study.observer || st->vp.subpixel_bits > SR_SUBPIXEL_LANES_MAX_BITS || cuts)
         return false;

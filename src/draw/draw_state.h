@@ -221,7 +221,7 @@ typedef struct sr_fan_sink sr_fan_sink;
 struct sr_fan_sink {
     uint32_t (*store)(sr_fan_sink *sink, const sr_screen_vertex *v, int n);
     /* one_pixel: the sub-pixel lanes found its scan box holds one pixel
-     * centre, which it covers (sr_kept_slot), so its edges need not be
+     * centre, which it covers (sr_kept_slot.box), so its edges need not be
      * tested again. */
     void (*triangle)(sr_fan_sink *sink, const sr_screen_vertex *const tri[3], const uint32_t ref[3], int64_t area2,
                      uint32_t id, bool clipped, bool one_pixel);
@@ -231,10 +231,11 @@ struct sr_fan_sink {
      * drawn, and the work that counts their fragments. */
     sr_raster_rect rect;
     sr_thread_work *pixels;
-    /* And in a mode without varyings, one_pixel triangles not handed to
-     * `triangle`: their batch's pixels and depths are found together
-     * (pipeline/08_raster/one_pixel.h), then each is drawn from those. */
-    bool one_pixel_batches;
+    /* And in a mode without varyings, the triangles the sub-pixel lanes
+     * found small (sr_kept_slot.box) are not handed to `triangle`: their
+     * batch's pixels and depths are found together
+     * (pipeline/08_raster/lane_pixels.h), then each is drawn from those. */
+    bool lane_pixels;
 };
 
 /* Stages 2 to 7 for triangle slots [first, end): assembly, classification,
@@ -265,13 +266,27 @@ static inline unsigned sr_slot_verdict(const sr_mesh *mesh, const unsigned char 
     return any;
 }
 
+/* What the sub-pixel lanes found of a kept triangle's scan box
+ * (sr_subpixel_verdict): nothing (they did not decide it), one pixel
+ * centre, which it covers (one_pixel), or two to SR_SUBPIXEL_SPAN ×
+ * SR_SUBPIXEL_SPAN centres (small_box). */
+typedef enum sr_lane_box { SR_LANE_BOX_UNKNOWN, SR_LANE_BOX_ONE_PIXEL, SR_LANE_BOX_SMALL } sr_lane_box;
+
+/* The box a lane's verdict gives triangle j of its batch. */
+static inline unsigned char sr_lane_box_of(const sr_subpixel_verdict *v, int j)
+{
+    return (v->one_pixel >> j & 1) ? SR_LANE_BOX_ONE_PIXEL
+           : (v->small_box >> j & 1) ? SR_LANE_BOX_SMALL
+                                      : SR_LANE_BOX_UNKNOWN;
+}
+
 /* A slot the verdicts kept: its triangle's indices, the OR of their
- * outcodes (sr_slot_verdict), and whether the sub-pixel lanes found it
- * covers the one pixel centre of its scan box (sr_subpixel_verdict). */
+ * outcodes (sr_slot_verdict), and what the sub-pixel lanes found of its
+ * scan box (sr_lane_box). */
 typedef struct sr_kept_slot {
     uint32_t k, idx[3];
     unsigned planes;
-    bool one_pixel;
+    unsigned char box;
 } sr_kept_slot;
 
 /* The slots whose verdicts are taken at a time: the sub-pixel lanes' batch. */
@@ -319,7 +334,7 @@ typedef struct sr_band_slot {
     uint32_t k, idx[3];
     sr_band_span span;
     unsigned char planes; /* sr_slot_verdict's: below 2^8 (SR_OUT_NONFINITE's triangles are gone) */
-    bool one_pixel;
+    unsigned char box;
 } sr_band_slot;
 
 /* The span of a triangle that crosses a plane (its clipped polygon may

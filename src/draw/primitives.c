@@ -6,7 +6,7 @@
 #include "pipeline/07_cull.h"
 #include "pipeline/01_vertex.h"
 #include "pipeline/06_viewport.h"
-#include "pipeline/08_raster/one_pixel.h"
+#include "pipeline/08_raster/lane_pixels.h"
 #include "pipeline/08_raster/raster.h"
 
 /* Stage 7 for one fan triangle whose vertices are *tri[] (refs name them
@@ -128,7 +128,7 @@ static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, 
         if (!s->planes)
             PREFETCH_TRIANGLE(screen, stride, s->idx);
         s->k = k;
-        s->one_pixel = false;
+        s->box = SR_LANE_BOX_UNKNOWN;
         count++;
     }
     return count;
@@ -136,9 +136,9 @@ static int take_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, 
 
 /* The triangles of kept[0 .. count) inside every plane that the sub-pixel
  * lanes find draw no pixel (subpixel.h) are counted in stats as stage 7
- * counts them and dropped; the others stay, in order, marked one_pixel
- * where the lanes found they cover the one centre of their box, and their
- * count is returned. */
+ * counts them and dropped; the others stay, in order, marked with what
+ * the lanes found of their box (sr_lane_box), and their count is
+ * returned. */
 static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count, sr_stats *stats)
 {
     if (count == 0)
@@ -163,7 +163,9 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
         inside |= (uint64_t)in << j;
     }
     sr_subpixel_verdict v = sr_subpixel_reject(&b, count, &st->subpixel);
-    uint64_t culled = v.culled & inside, drawn = v.drawn & inside, one_pixel = v.one_pixel & inside;
+    uint64_t culled = v.culled & inside, drawn = v.drawn & inside;
+    v.one_pixel &= inside;
+    v.small_box &= inside;
     stats->culled += (uint64_t)__builtin_popcountll(culled);
     stats->drawn += (uint64_t)__builtin_popcountll(drawn);
     int n = 0;
@@ -171,7 +173,7 @@ static int drop_subpixel(const sr_draw_state *st, sr_kept_slot *kept, int count,
     for (uint64_t m = ~(culled | drawn) & used; m; m &= m - 1) {
         int j = __builtin_ctzll(m);
         kept[n] = kept[j];
-        kept[n++].one_pixel = (one_pixel >> j) & 1;
+        kept[n++].box = sr_lane_box_of(&v, j);
     }
     return n;
 }
@@ -310,7 +312,7 @@ static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint3
             s->k = g + (uint32_t)j;
             memcpy(s->idx, idx + 3 * j, sizeof s->idx);
             s->planes = 0;
-            s->one_pixel = (v.verdict.one_pixel >> j) & 1;
+            s->box = sr_lane_box_of(&v.verdict, j);
         }
     }
     stats->culled += (uint64_t)__builtin_popcountll(culled);
@@ -336,60 +338,102 @@ int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint
     return count;
 }
 
-/* The one-pixel triangles of a batch of slots that a sink draws from
- * their pixels and depths (sr_fan_sink.one_pixel_batches): their indices
- * and ids as the slots come, then what sr_one_pixel_depths_* found, and
- * how far they are taken in the slots' order and drawn. */
-_Static_assert(SR_VERDICT_BATCH <= SR_ONE_PIXEL_BATCH, "a batch of verdicts' one-pixel triangles fit one batch");
-typedef struct one_pixel_batch {
-    uint32_t tri[SR_ONE_PIXEL_BATCH][3];
-    uint32_t id[SR_ONE_PIXEL_BATCH];
-    sr_one_pixels found;
+/* The triangles of a window of kept slots that a sink draws from their
+ * pixels and depths (sr_fan_sink.lane_pixels): their indices and ids as
+ * the slots come, what sr_lane_pixels_* found, and their fragments in
+ * order, fragments [first[t], first[t + 1]) triangle t's; then how far
+ * they are taken in the slots' order and drawn. Not zeroed: a window sets
+ * what it reads. */
+_Static_assert(SR_VERDICT_BATCH <= SR_LANE_PIXELS_BATCH, "a batch of verdicts' small triangles fit one list");
+#define LANE_FRAGMENTS (SR_LANE_PIXELS_BATCH * SR_LANE_PIXELS_CENTRES)
+typedef struct lane_batch {
+    uint32_t tri[SR_LANE_PIXELS_BATCH][3];
+    uint32_t id[SR_LANE_PIXELS_BATCH];
     int count, taken, drawn;
-} one_pixel_batch;
+    uint64_t one_pixel; /* bit t: tri[t] is a one_pixel triangle (sr_lane_box) */
+    sr_lane_pixels found;
+    int first[SR_LANE_PIXELS_BATCH + 1];
+    /* Two past the most a window has: list_fragments writes two of each
+     * triangle's, and keeps only as many as it covers. */
+    size_t at[LANE_FRAGMENTS + 2];
+    float z[LANE_FRAGMENTS + 2];
+    uint32_t fragment_id[LANE_FRAGMENTS + 2];
+} lane_batch;
 
-static void one_pixel_add(one_pixel_batch *b, const uint32_t idx[3], uint32_t id)
+static void lane_add(lane_batch *b, unsigned char box, const uint32_t idx[3], uint32_t id)
 {
     memcpy(b->tri[b->count], idx, sizeof b->tri[0]);
+    b->one_pixel |= (uint64_t)(box == SR_LANE_BOX_ONE_PIXEL) << b->count;
     b->id[b->count++] = id;
 }
 
-/* The batch's pixels and depths, its pixels prefetched for the depth
- * tests that follow: without, each test waited on memory, and a
- * mispredicted branch on it held up the triangles behind. */
-static void one_pixel_find(const sr_fan_sink *sink, one_pixel_batch *b)
+static void lanes_start(lane_batch *b)
 {
-    const sr_draw_state *st = sink->st;
-    if (b->count == 0)
-        return;
-    (st->subpixel.avx2 ? sr_one_pixel_depths_avx2 : sr_one_pixel_depths_sse2)(
-        st->ws->screen.data, st->screen_stride, (const uint32_t(*)[3])b->tri, b->count, st->vp.subpixel_bits,
-        sink->rect, st->fb->width, &b->found);
-    for (int j = 0; j < b->count; j++)
-        if (b->found.at[j] != SR_ONE_PIXEL_OUTSIDE)
-            __builtin_prefetch(st->fb->depth + b->found.at[j], 1);
+    b->count = 0;
+    b->one_pixel = 0;
 }
 
-/* Stage 7 of the batch's next triangle, counted in the sink that counts
- * it: kept, as the lanes applied its cull. Its pixel waits to be drawn
- * with the others taken after it (one_pixel_draw). */
-static void one_pixel_take(sr_fan_sink *sink, one_pixel_batch *b)
+/* The covered centres of every triangle, in order. Most cover none, one or
+ * two: the lanes found those two, which are written whether covered or
+ * not, and the count moves on by those covered, so no branch waits on
+ * the coverage. */
+static void list_fragments(lane_batch *b, size_t width)
+{
+    const sr_lane_pixels *p = &b->found;
+    int n = 0;
+    for (int t = 0; t < b->count; t++) {
+        b->first[t] = n;
+        uint32_t m = p->covered[t];
+        for (int k = 0; k < 2; k++) {
+            b->at[n] = p->at[k][t], b->z[n] = p->z[k][t], b->fragment_id[n] = b->id[t];
+            n += m != 0;
+            m &= m - 1;
+        }
+        for (; m; m &= m - 1, n++) {
+            unsigned c = (unsigned)__builtin_ctz(m);
+            b->at[n] = sr_lane_pixel_at(p, t, c, width), b->z[n] = sr_lane_pixel_z(p, t, c);
+            b->fragment_id[n] = b->id[t];
+        }
+    }
+    b->first[b->count] = n;
+}
+
+/* The window's pixels, depths and fragments. The depth lines are not
+ * prefetched: the tests follow too soon for the lines to arrive, and a
+ * window's prefetches held up the loads of the lanes. */
+static void lanes_find(const sr_fan_sink *sink, lane_batch *b)
+{
+    const sr_draw_state *st = sink->st;
+    b->taken = b->drawn = b->first[0] = 0;
+    if (b->count == 0)
+        return;
+    (st->subpixel.avx2 ? sr_lane_pixels_avx2 : sr_lane_pixels_sse2)(st->ws->screen.data, st->screen_stride,
+                                                                      (const uint32_t(*)[3])b->tri, b->count,
+                                                                      b->one_pixel, st->vp.subpixel_bits, sink->rect,
+                                                                      st->fb->width, &b->found);
+    list_fragments(b, (size_t)st->fb->width);
+}
+
+/* Stage 7 of the window's next triangle with such a box, counted in
+ * `sink`: kept, as the lanes applied its cull. Its fragments wait to be
+ * drawn with the others taken after it (lanes_draw). */
+static void lane_take(sr_fan_sink *sink, lane_batch *b)
 {
     sink->work->stats.drawn++;
     b->taken++;
 }
 
-/* The pixels of the triangles taken and not yet drawn, in order: before
- * any other triangle is drawn, and at the batch's end. */
-static void one_pixel_draw(sr_fan_sink *sink, one_pixel_batch *b)
+/* The fragments of the triangles taken and not yet drawn, in order:
+ * before any other triangle is drawn, and at the window's end. */
+static void lanes_draw(const sr_fan_sink *own, lane_batch *b)
 {
-    const sr_draw_state *st = sink->st;
-    int n = b->taken - b->drawn;
-    if (n == 0)
+    const sr_draw_state *st = own->st;
+    int from = b->drawn, to = b->first[b->taken];
+    if (to == from)
         return;
-    sink->pixels->stats.fragments += sr_raster_one_pixels(st->fb, st->mode, &st->shade, b->id + b->drawn,
-                                                          b->found.at + b->drawn, b->found.z + b->drawn, n);
-    b->drawn = b->taken;
+    own->pixels->stats.fragments += sr_raster_lane_fragments(st->fb, st->mode, &st->shade, b->fragment_id + from,
+                                                             b->at + from, b->z + from, to - from);
+    b->drawn = to;
 }
 
 /* The kept slots a window of verdicts holds: the verdicts of batches of
@@ -400,26 +444,27 @@ static void one_pixel_draw(sr_fan_sink *sink, one_pixel_batch *b)
  * triangles' depths in full lanes. */
 #define KEPT_WINDOW (4 * SR_VERDICT_BATCH)
 
-/* Kept slots [0, count) drawn in order, their one-pixel triangles' pixels
- * and depths found a batch at a time. */
+/* Kept slots [0, count) drawn in order, the pixels and depths of their
+ * triangles the lanes found small found a batch at a time. */
 static void draw_kept(sr_fan_sink *sink, const sr_kept_slot *kept, int count)
 {
-    for (int window = 0; window < count; window += SR_ONE_PIXEL_BATCH) {
-        int window_end = count - window > SR_ONE_PIXEL_BATCH ? window + SR_ONE_PIXEL_BATCH : count;
-        one_pixel_batch ones = { .count = 0 };
-        for (int j = window; j < window_end && sink->one_pixel_batches; j++)
-            if (kept[j].one_pixel)
-                one_pixel_add(&ones, kept[j].idx, kept[j].k);
-        one_pixel_find(sink, &ones);
+    lane_batch lanes;
+    for (int window = 0; window < count; window += SR_LANE_PIXELS_BATCH) {
+        int window_end = count - window > SR_LANE_PIXELS_BATCH ? window + SR_LANE_PIXELS_BATCH : count;
+        lanes_start(&lanes);
+        for (int j = window; j < window_end && sink->lane_pixels; j++)
+            if (kept[j].box)
+                lane_add(&lanes, kept[j].box, kept[j].idx, kept[j].k);
+        lanes_find(sink, &lanes);
         for (int j = window; j < window_end; j++) {
-            if (kept[j].one_pixel && sink->one_pixel_batches) {
-                one_pixel_take(sink, &ones);
+            if (kept[j].box && sink->lane_pixels) {
+                lane_take(sink, &lanes);
             } else {
-                one_pixel_draw(sink, &ones);
-                emit_kept(sink, kept[j].idx, kept[j].planes, kept[j].k, kept[j].one_pixel);
+                lanes_draw(sink, &lanes);
+                emit_kept(sink, kept[j].idx, kept[j].planes, kept[j].k, kept[j].box == SR_LANE_BOX_ONE_PIXEL);
             }
         }
-        one_pixel_draw(sink, &ones);
+        lanes_draw(sink, &lanes);
     }
 }
 
@@ -466,15 +511,17 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slo
     const sr_draw_state *st = own->st;
     const char *screen = st->ws->screen.data;
     size_t stride = st->screen_stride;
-    /* A window of slots at a time: its one-pixel triangles' pixels found
-     * first (the two sinks draw the same rows), then every slot in order. */
-    for (uint32_t window = 0; window < count; window += SR_ONE_PIXEL_BATCH) {
-        uint32_t window_end = count - window > SR_ONE_PIXEL_BATCH ? window + SR_ONE_PIXEL_BATCH : count;
-        one_pixel_batch ones = { .count = 0 };
-        for (uint32_t i = window; i < window_end && own->one_pixel_batches; i++)
-            if (slots[i].one_pixel && span_meets(slots[i].span, lo, hi))
-                one_pixel_add(&ones, slots[i].idx, slots[i].k);
-        one_pixel_find(own, &ones);
+    /* A window of slots at a time: the pixels of its triangles the lanes
+     * found small found first (the two sinks draw the same rows), then
+     * every slot in order. */
+    lane_batch lanes;
+    for (uint32_t window = 0; window < count; window += SR_LANE_PIXELS_BATCH) {
+        uint32_t window_end = count - window > SR_LANE_PIXELS_BATCH ? window + SR_LANE_PIXELS_BATCH : count;
+        lanes_start(&lanes);
+        for (uint32_t i = window; i < window_end && own->lane_pixels; i++)
+            if (slots[i].box && span_meets(slots[i].span, lo, hi))
+                lane_add(&lanes, slots[i].box, slots[i].idx, slots[i].k);
+        lanes_find(own, &lanes);
         for (uint32_t i = window; i < window_end; i++) {
             if (count - i > PREFETCH_SLOTS && span_meets(slots[i + PREFETCH_SLOTS].span, lo, hi))
                 PREFETCH_TRIANGLE(screen, stride, slots[i + PREFETCH_SLOTS].idx);
@@ -482,13 +529,13 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slo
             if (!span_meets(s->span, lo, hi))
                 continue;
             sr_fan_sink *sink = s->span.first >= lo ? own : shared;
-            if (s->one_pixel && own->one_pixel_batches) {
-                one_pixel_take(sink, &ones);
+            if (s->box && own->lane_pixels) {
+                lane_take(sink, &lanes);
             } else {
-                one_pixel_draw(own, &ones);
-                emit_kept(sink, s->idx, s->planes, s->k, s->one_pixel);
+                lanes_draw(own, &lanes);
+                emit_kept(sink, s->idx, s->planes, s->k, s->box == SR_LANE_BOX_ONE_PIXEL);
             }
         }
-        one_pixel_draw(own, &ones); /* both sinks count their fragments in the same work */
+        lanes_draw(own, &lanes); /* both sinks count their fragments in the same work */
     }
 }

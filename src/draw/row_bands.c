@@ -85,7 +85,7 @@ static void verdicts(void *ctx, int t)
                 sr_band_span span = span_of(rule, points, kept[j].idx, kept[j].planes);
                 sr_band_slot *b = &slots[first + kept_in_chunk++];
                 *b = (sr_band_slot){ .k = kept[j].k, .span = span, .planes = (unsigned char)kept[j].planes,
-                                     .one_pixel = kept[j].one_pixel };
+                                     .box = kept[j].box };
                 memcpy(b->idx, kept[j].idx, sizeof b->idx);
                 if (kept[j].planes == 0)
                     per_band[span.first]++;

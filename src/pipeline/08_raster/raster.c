@@ -1,11 +1,10 @@
-/* The scalar per-pixel loop, the one-pixel loop and the dispatch of a set-up
+/* The scalar per-pixel loop, the lane fragments' loop and the dispatch of a set-up
  * triangle to them, the SIMD kernels or the tiny queue (raster.h); the
  * set-up itself is triangle_setup.h's, inlined into each entry point. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "pipeline/11_merge.h"
-#include "one_pixel.h"
 #include "raster.h"
 #include "simd_select.h"
 #include "tiny_queue.h"
@@ -334,36 +333,35 @@ uint64_t sr_raster_triangle_on(sr_framebuffer *fb, sr_raster_rect rect, int subp
                            area2, triangle_id, false, 0, true, simd);
 }
 
-/* The fragments of triangles the sub-pixel lanes found covering one pixel
- * centre each, in a mode without varyings, as tiny_loop draws bit 0 of
- * their one-bit masks: fill_fragment at the depths sr_one_pixel_depths_*
- * found, with none of the set-up a box of several pixels needs, in one
- * loop for the run. */
-static SR_ALWAYS_INLINE uint64_t one_pixel_run(sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids,
-                                               const sr_shade_context *shade, const uint32_t *id, const size_t *at,
-                                               const float *z, int n)
+/* The fragments of triangles the sub-pixel lanes found small, in a mode
+ * without varyings, as tiny_loop draws their masks: fill_fragment at the
+ * pixels and depths sr_lane_pixels_* found, with none of the set-up a
+ * triangle needs, in one loop for the run. */
+static SR_ALWAYS_INLINE uint64_t fragment_run(sr_framebuffer *fb, sr_shade mode, bool greater, bool with_ids,
+                                              const sr_shade_context *shade, const uint32_t *id, const size_t *at,
+                                              const float *z, int n)
 {
     static const setup unused; /* read only for varyings, which these modes have none of */
     uint64_t fragments = 0;
     for (int i = 0; i < n; i++) {
         const sr_shade_context *c = sr_shade_context_of(shade, id[i]);
-        /* Hidden whole: a draw that cuts by texels marks no one-pixel
+        /* Hidden whole: a draw that cuts by texels marks no small
          * triangles in these modes (draw.c, subpixel_lanes). */
-        if (at[i] != SR_ONE_PIXEL_OUTSIDE && c->cut == SR_CUT_NONE)
+        if (c->cut == SR_CUT_NONE)
             fragments += fill_fragment(&unused, fb, mode, false, greater, with_ids, SR_INTERP_PERSPECTIVE, c, id[i],
                                        at[i], z[i], 0, 0);
     }
     return fragments;
 }
 
-static SR_ALWAYS_INLINE uint64_t one_pixel_tests(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
-                                                 const uint32_t *id, const size_t *at, const float *z, int n)
+static SR_ALWAYS_INLINE uint64_t fragment_tests(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                                                const uint32_t *id, const size_t *at, const float *z, int n)
 {
     if (fb->ids)
-        return fb->reversed_z ? one_pixel_run(fb, mode, true, true, shade, id, at, z, n)
-                              : one_pixel_run(fb, mode, false, true, shade, id, at, z, n);
-    return fb->reversed_z ? one_pixel_run(fb, mode, true, false, shade, id, at, z, n)
-                          : one_pixel_run(fb, mode, false, false, shade, id, at, z, n);
+        return fb->reversed_z ? fragment_run(fb, mode, true, true, shade, id, at, z, n)
+                              : fragment_run(fb, mode, false, true, shade, id, at, z, n);
+    return fb->reversed_z ? fragment_run(fb, mode, true, false, shade, id, at, z, n)
+                          : fragment_run(fb, mode, false, false, shade, id, at, z, n);
 }
 
 uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpixel_bits, sr_shade mode,
@@ -374,13 +372,13 @@ uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpix
                            area2, triangle_id, true, 1, false, simd);
 }
 
-uint64_t sr_raster_one_pixels(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
-                              const uint32_t *triangle_id, const size_t *at, const float *z, int n)
+uint64_t sr_raster_lane_fragments(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                             const uint32_t *triangle_id, const size_t *at, const float *z, int n)
 {
     switch (mode) {
-    case SR_SHADE_ID:    return one_pixel_tests(fb, SR_SHADE_ID, shade, triangle_id, at, z, n);
-    case SR_SHADE_DEPTH: return one_pixel_tests(fb, SR_SHADE_DEPTH, shade, triangle_id, at, z, n);
-    default:             return one_pixel_tests(fb, SR_RASTER_COUNT_HITS, shade, triangle_id, at, z, n);
+    case SR_SHADE_ID:    return fragment_tests(fb, SR_SHADE_ID, shade, triangle_id, at, z, n);
+    case SR_SHADE_DEPTH: return fragment_tests(fb, SR_SHADE_DEPTH, shade, triangle_id, at, z, n);
+    default:             return fragment_tests(fb, SR_RASTER_COUNT_HITS, shade, triangle_id, at, z, n);
     }
 }
 

@@ -68,12 +68,12 @@ uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpix
                              const sr_shade_context *shade, const sr_screen_vertex *const tri[3], int64_t area2,
                              uint32_t triangle_id, bool *simd);
 
-/* Such triangles in a mode without varyings (ID, DEPTH or counting hits),
- * triangle_id[i], i < n, whose pixel at[i] and depth z[i] a batch found
- * (one_pixel.h; at[i] SR_ONE_PIXEL_OUTSIDE: none to draw): each fragment
- * depth-tested and written in order, as the tiny loop would; returns the
- * fragments that passed. */
-uint64_t sr_raster_one_pixels(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
-                              const uint32_t *triangle_id, const size_t *at, const float *z, int n);
+/* The fragments of triangles the sub-pixel lanes found small, in a mode
+ * without varyings (ID, DEPTH or counting hits), of triangle_id[i] at
+ * pixel at[i] and depth z[i], i < n, as a batch found them
+ * (lane_pixels.h): each depth-tested and written in order, as the tiny
+ * loop would; returns the fragments that passed. */
+uint64_t sr_raster_lane_fragments(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
+                                  const uint32_t *triangle_id, const size_t *at, const float *z, int n);
 
 #endif

@@ -11,5 +11,6 @@ sr_subpixel_verdict sr_subpixel_reject(const sr_subpixel_batch *b, int n, const 
     v.culled &= used;
     v.drawn &= used;
     v.one_pixel &= used;
+    v.small_box &= used;
     return v;
 }

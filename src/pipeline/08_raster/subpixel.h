@@ -11,10 +11,13 @@
  * and the caller sends only the others on to the per-triangle set-up.
  *
  * Exactness: a lane decides only a triangle whose vertices span less than
- * two pixels on each axis (so every difference of coordinates, and every
- * product of two, fits a 32-bit integer at up to SR_SUBPIXEL_LANES_MAX_BITS
- * subpixel bits) inside every plane (its coordinates below 2^30:
- * SR_FIXED_POINT_BITS). Its signed area, its scan box over the whole
+ * SR_SUBPIXEL_SPAN (four) pixels on each axis, inside every plane (its
+ * coordinates below 2^30: SR_FIXED_POINT_BITS). Every difference of its
+ * coordinates, and of a pixel centre of its box and a vertex (the box's
+ * centres lie within the vertices' extent), is below 2^14 at up to
+ * SR_SUBPIXEL_LANES_MAX_BITS subpixel bits, so every product of two is
+ * below 2^28 and every sum of two products fits a 32-bit integer. Its
+ * signed area, its scan box over the whole
  * framebuffer and, for a box of one pixel centre, the three edge functions
  * at that centre with the top-left rule are the exact integers that stage 7
  * and the set-up compute (07_cull.h, triangle_setup.h), so the counts and pixels

@@ -20,6 +20,7 @@ typedef int32_t lanes __attribute__((vector_size(SUBPIXEL_LANES * sizeof(int32_t
  * test): unsigned, whose wrap is defined. Every other value is a
  * difference of coordinates below 2^30, or of pixel indices. */
 typedef uint32_t ulanes __attribute__((vector_size(SUBPIXEL_LANES * sizeof(uint32_t))));
+#include "lane_edges.h"
 
 /* a where m is all ones, b where it is 0. */
 static SR_ALWAYS_INLINE lanes pick(lanes m, lanes a, lanes b)
@@ -49,12 +50,6 @@ static SR_ALWAYS_INLINE lanes load(const int32_t *p)
     return v;
 }
 
-/* a − b, wrapping. */
-static SR_ALWAYS_INLINE ulanes minus(lanes a, lanes b)
-{
-    return (ulanes)a - (ulanes)b;
-}
-
 /* Bit i set where lane i of m is all ones. */
 static SR_ALWAYS_INLINE uint64_t lane_bits(lanes m)
 {
@@ -72,17 +67,6 @@ static SR_ALWAYS_INLINE uint64_t lane_bits(lanes m)
 #endif
 }
 
-/* E − bias for edge p → q of a clockwise triangle at the pixel centre
- * (cx, cy), >= 0 where the edge holds the centre: E = dx·(cy − py) −
- * dy·(cx − px) is sr_edge_make's a·cx + b·cy + c, and the bias is 0 on a top
- * (dy = 0, dx > 0) or left (dy < 0) edge and 1 otherwise (E >= bias). */
-static SR_ALWAYS_INLINE lanes edge_at(lanes px, lanes py, lanes qx, lanes qy, lanes cx, lanes cy)
-{
-    lanes dx = qx - px, dy = qy - py, zero = { 0 };
-    lanes top_left = ((dy == zero) & (dx > zero)) | (dy < zero); /* all ones where the bias is 0 */
-    return (lanes)((ulanes)dx * minus(cy, py) - (ulanes)dy * minus(cx, px) - (ulanes)(top_left + 1));
-}
-
 /* The verdicts of the triangles (x0, y0) (x1, y1) (x2, y2), one a lane. */
 static SR_ALWAYS_INLINE sr_subpixel_verdict verdict_of(lanes x0, lanes y0, lanes x1, lanes y1, lanes x2, lanes y2,
                                                        const sr_subpixel_rules *r)
@@ -93,8 +77,10 @@ static SR_ALWAYS_INLINE sr_subpixel_verdict verdict_of(lanes x0, lanes y0, lanes
     lanes one = zero + one_s, half = zero + one_s / 2;
     lanes lo_x = min_of(min_of(x0, x1), x2), hi_x = max_of(max_of(x0, x1), x2);
     lanes lo_y = min_of(min_of(y0, y1), y2), hi_y = max_of(max_of(y0, y1), y2);
-    /* Within two pixels on each axis: the lanes below hold every value exactly. */
-    lanes small = (hi_x - lo_x < one + one) & (hi_y - lo_y < one + one);
+    /* Within SR_SUBPIXEL_SPAN pixels on each axis: the lanes below hold
+     * every value exactly. */
+    lanes span = zero + (SR_SUBPIXEL_SPAN << bits);
+    lanes small = (hi_x - lo_x < span) & (hi_y - lo_y < span);
     /* The scan box over the framebuffer, sr_raster_scan_box_of's. */
     lanes box_x0 = clamp_of((lo_x - half + one - 1) >> bits, zero + r->width);
     lanes box_x1 = clamp_of(((hi_x - half) >> bits) + 1, zero + r->width);
@@ -116,18 +102,20 @@ static SR_ALWAYS_INLINE sr_subpixel_verdict verdict_of(lanes x0, lanes y0, lanes
     lanes misses = empty | (one_centre & outside);
     return (sr_subpixel_verdict){ .culled = lane_bits(small & ~keeps),
                                   .drawn = lane_bits(small & keeps & misses),
-                                  .one_pixel = lane_bits(small & keeps & one_centre & ~outside) };
+                                  .one_pixel = lane_bits(small & keeps & one_centre & ~outside),
+                                  .small_box = lane_bits(small & keeps & ~empty & ~one_centre) };
 }
 
 sr_subpixel_verdict SUBPIXEL_GROUPS(const sr_subpixel_batch *b, int n, const sr_subpixel_rules *rules)
 {
-    sr_subpixel_verdict v = { 0, 0, 0 };
+    sr_subpixel_verdict v = { 0, 0, 0, 0 };
     for (int at = 0; at < n; at += SUBPIXEL_LANES) {
         sr_subpixel_verdict g = verdict_of(load(b->x[0] + at), load(b->y[0] + at), load(b->x[1] + at),
                                            load(b->y[1] + at), load(b->x[2] + at), load(b->y[2] + at), rules);
         v.culled |= g.culled << at;
         v.drawn |= g.drawn << at;
         v.one_pixel |= g.one_pixel << at;
+        v.small_box |= g.small_box << at;
     }
     return v;
 }

@@ -30,13 +30,19 @@ typedef struct sr_subpixel_rules {
     bool avx2, avx512; /* avx512: and the slot lanes sixteen slots a group */
 } sr_subpixel_rules;
 
+/* The most pixels a triangle the lanes decide spans on each axis (subpixel.h). */
+#define SR_SUBPIXEL_SPAN 4
+
 /* The lanes of the triangles that draw no pixel, by how stage 7 counts
  * them: culled (its area or winding), or drawn (kept, but no centre
- * covered). Every other lane goes on to the per-triangle path, and of
- * those, one_pixel are the kept triangles whose scan box holds one pixel
- * centre, which they cover: their coverage is known, a one-bit mask. */
+ * covered). Every other lane is kept and may draw, and of those, one_pixel
+ * are the triangles whose scan box holds one pixel centre, which they
+ * cover (their coverage is known, a one-bit mask), and small_box those
+ * whose scan box holds two to SR_SUBPIXEL_SPAN × SR_SUBPIXEL_SPAN centres
+ * (lane_pixels.h finds which they cover). The rest go on to the
+ * per-triangle path as they are. */
 typedef struct sr_subpixel_verdict {
-    uint64_t culled, drawn, one_pixel;
+    uint64_t culled, drawn, one_pixel, small_box;
 } sr_subpixel_verdict;
 
 /* Eight slots of a triangle list decided at once from the draw's own

@@ -121,21 +121,6 @@ static inline sr_raster_rect sr_raster_scan_box(const sr_screen_vertex tri[3], s
                                  subpixel_bits);
 }
 
-/* The scan box of a triangle whose box over the framebuffer holds one
- * pixel centre (one_pixel.h): its corner from the smallest x and
- * y, clamped to the framebuffer's, which a triangle in a guard band may
- * pass (the box's far side is then the framebuffer's first pixel's). */
-static SR_ALWAYS_INLINE sr_raster_rect sr_one_pixel_box(const sr_screen_vertex *const v[3], int bits)
-{
-    int64_t one = (int64_t)1 << bits, half = one / 2;
-    int64_t lo_x = v[0]->x < v[1]->x ? v[0]->x : v[1]->x, lo_y = v[0]->y < v[1]->y ? v[0]->y : v[1]->y;
-    lo_x = v[2]->x < lo_x ? v[2]->x : lo_x;
-    lo_y = v[2]->y < lo_y ? v[2]->y : lo_y;
-    int x = sr_clamp_int(sr_floor_shift(lo_x - half + one - 1, bits), 0, INT32_MAX),
-        y = sr_clamp_int(sr_floor_shift(lo_y - half + one - 1, bits), 0, INT32_MAX);
-    return (sr_raster_rect){ x, y, x + 1, y + 1 };
-}
-
 /* The vertices relative to vertex 0's snapped point, in subpixel units,
  * before snapping (unsnapped) or after: the integer differences are exact in
  * double, the offsets add their 24 bits. Inlined, so each call is
