@@ -258,10 +258,6 @@ void sr_draw_double_halves(const sr_draw_state *st, uint32_t first, uint32_t end
     }
 }
 
-/* The slots ahead whose snapped points the slot lanes prefetch: the
- * lanes' gathers waited on memory without it. */
-#define POINTS_AHEAD 32
-
 /* The verdicts of slots [first, end) of a triangle list with the
  * sub-pixel lanes (st->slot_lanes), eight slots at a time (sixteen with
  * AVX-512: sr_subpixel_slot_group_avx512) straight from
@@ -270,7 +266,9 @@ void sr_draw_double_halves(const sr_draw_state *st, uint32_t first, uint32_t end
  * read twice. A group with a degenerate triangle or a vertex outside a
  * plane, and the last few slots, take the verdicts one at a time and the
  * lanes after them, as every other draw does; so the kept slots and the
- * counts are the same. */
+ * counts are the same. The snapped points are not prefetched: a mesh's
+ * vertices numbered in first use lie near those the groups before read,
+ * and three prefetches a slot cost more than the gathers waited. */
 static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint32_t end, uint32_t last_end,
                                   sr_stats *stats, sr_kept_slot *kept)
 {
@@ -291,9 +289,6 @@ static int take_verdicts_in_lanes(const sr_draw_state *st, uint32_t first, uint3
                 __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD + at);
             __builtin_prefetch(idx + 3 * SR_INDICES_AHEAD + 3 * group - 1);
         }
-        if (last_end - g > POINTS_AHEAD + group)
-            for (uint32_t j = 0; j < group; j++)
-                PREFETCH_TRIANGLE((const char *)points, sizeof *points, idx + 3 * (POINTS_AHEAD + j));
         sr_subpixel_slots v = { .plain = false };
         if (g_end - g == group)
             v = slot_group(idx, points, &st->subpixel);
