@@ -337,7 +337,7 @@ Test(materials, mask_cuts_the_same_holes_in_every_shading)
 /* The quad of mask_cuts_the_same_holes_in_every_shading as a grid of
  * pixel cells, two triangles each: more triangles than pixels, so the
  * draw's sub-pixel lanes find the one-pixel triangles, which id and depth
- * shading draw by a loop of their own (raster.c, sr_raster_one_pixel). */
+ * shading draw by a loop of their own (raster.c, sr_raster_lane_fragments). */
 static void grid_make(sr_mesh *mesh, sr_mesh_part *part, sr_material *material)
 {
     sr_error err = { "" };

@@ -58,9 +58,10 @@ static bool small(const sr_screen_vertex tri[3], int bits)
  * whose box holds at most one pixel centre, it says which, exactly, and
  * one_pixel of such a box it covers; of a small triangle kept whose box
  * holds more, small_box; of any other it says nothing. Returns how many
- * lanes dropped their triangle. */
+ * lanes dropped their triangle, and adds to *small_boxes how many said
+ * small_box. */
 static int check_lanes(const sr_screen_vertex (*tris)[3], int n, const sr_subpixel_rules *r, sr_cull cull,
-                       sr_front front)
+                       sr_front front, int *small_boxes)
 {
     sr_subpixel_batch b = { { { 0 } } };
     for (int i = 0; i < n; i++)
@@ -79,6 +80,7 @@ static int check_lanes(const sr_screen_vertex (*tris)[3], int n, const sr_subpix
              small_box = v.small_box >> i & 1;
         int64_t centres = box_centres(tris[i], r);
         dropped += culled || drawn;
+        *small_boxes += small_box;
         cr_assert(!culled || f == FATE_CULLED, "lane %d culled a triangle stage 7 keeps", i);
         cr_assert(!drawn || f == FATE_DRAWS_NOTHING, "lane %d dropped a triangle that draws", i);
         if (!small(tris[i], r->bits)) {
@@ -113,9 +115,9 @@ static sr_screen_vertex at(int64_t x, int64_t y)
 Test(subpixel, lanes_agree_with_the_box_mask_and_cull_of_each_triangle)
 {
     test_rng rng = { 35 };
-    int dropped = 0, lanes = 0;
-    for (int bits = 2; bits <= SR_SUBPIXEL_LANES_MAX_BITS; bits += 2)
-        for (int round = 0; round < 200; round++) {
+    int dropped = 0, lanes = 0, small_boxes = 0;
+    for (int bits = 2; bits <= SR_SUBPIXEL_LANES_MAX_BITS; bits++)
+        for (int round = 0; round < 120; round++) {
             sr_screen_vertex tris[SR_SUBPIXEL_BATCH][3];
             int n = 1 + rng_below(&rng, SR_SUBPIXEL_BATCH);
             int64_t one = (int64_t)1 << bits, step = one >> rng_below(&rng, bits + 1);
@@ -128,10 +130,11 @@ Test(subpixel, lanes_agree_with_the_box_mask_and_cull_of_each_triangle)
             sr_cull cull = culls[rng_below(&rng, 3)];
             sr_front front = rng_below(&rng, 2) ? SR_FRONT_CW : SR_FRONT_CCW;
             sr_subpixel_rules r = rules_of(bits, 16, 10, cull, front);
-            dropped += check_lanes(tris, n, &r, cull, front);
+            dropped += check_lanes(tris, n, &r, cull, front, &small_boxes);
             lanes += n;
         }
     cr_assert_gt(dropped, lanes / 4, "the lanes dropped only %d of %d triangles", dropped, lanes);
+    cr_assert_gt(small_boxes, lanes / 10, "the lanes kept only %d small boxes of %d triangles", small_boxes, lanes);
 }
 
 Test(subpixel, lanes_at_the_edges_of_the_rules)
@@ -158,12 +161,12 @@ Test(subpixel, lanes_at_the_edges_of_the_rules)
         { at(-(1 << 29), 2 * one + 10), at(1 << 29, 2 * one + 20), at(0, 2 * one + 30) },
         { at(-(1 << 29), -(1 << 29)), at(1 << 29, 0), at(0, 1 << 29) },
     };
-    int n = (int)(sizeof tris / sizeof *tris);
+    int n = (int)(sizeof tris / sizeof *tris), small_boxes = 0;
     for (size_t c = 0; c < 3; c++)
         for (int f = 0; f < 2; f++) {
             sr_front front = f ? SR_FRONT_CW : SR_FRONT_CCW;
             sr_subpixel_rules r = rules_of(bits, 16, 10, culls[c], front);
-            check_lanes(tris, n, &r, culls[c], front);
+            check_lanes(tris, n, &r, culls[c], front, &small_boxes);
             /* Every triangle wound the other way as well. */
             sr_screen_vertex flipped[sizeof tris / sizeof *tris][3];
             for (int i = 0; i < n; i++) {
@@ -171,7 +174,7 @@ Test(subpixel, lanes_at_the_edges_of_the_rules)
                 flipped[i][1] = tris[i][2];
                 flipped[i][2] = tris[i][1];
             }
-            check_lanes(flipped, n, &r, culls[c], front);
+            check_lanes(flipped, n, &r, culls[c], front, &small_boxes);
         }
     /* The first one's left edge holds the centre, the second's right edge not. */
     sr_subpixel_rules none = rules_of(bits, 16, 10, SR_CULL_NONE, SR_FRONT_CW);
@@ -216,22 +219,24 @@ static int setup_pixels(const sr_screen_vertex v[3], sr_raster_rect rect, int bi
  * told so, which the lanes do not test. */
 Test(subpixel, lane_pixels_are_the_setups_pixels_and_depths)
 {
-    enum { WIDTH = 16, HEIGHT = 10 };
+    enum { SIDE = 16, HEIGHT = 10 };
     test_rng rng = { 53 };
-    int fragments = 0, told = 0;
+    int fragments = 0, past_two = 0, told = 0;
     for (int round = 0; round < 400; round++) {
-        int bits = 2 + 2 * rng_below(&rng, (SR_SUBPIXEL_LANES_MAX_BITS - 2) / 2 + 1);
+        int bits = 2 + rng_below(&rng, SR_SUBPIXEL_LANES_MAX_BITS - 1);
         int64_t one = (int64_t)1 << bits, step = one >> rng_below(&rng, bits + 1);
-        sr_raster_rect rect = { 0, 0, WIDTH, HEIGHT };
+        /* One round in eight at the far side of a framebuffer as wide as
+         * coordinates inside every plane reach (2^29 subpixels). */
+        int width = rng_below(&rng, 8) ? SIDE : 1 << (29 - bits), first = width - SIDE;
+        sr_raster_rect rect = { first, 0, width, HEIGHT };
         if (rng_below(&rng, 2)) /* a band of rows, as a thread draws */
             rect.y0 = rng_below(&rng, HEIGHT), rect.y1 = rect.y0 + 1 + rng_below(&rng, HEIGHT - rect.y0);
         sr_screen_vertex v[SR_LANE_PIXELS_BATCH][3];
         uint32_t tri[SR_LANE_PIXELS_BATCH][3];
-        uint64_t one_pixel = 0;
         int n = 1 + rng_below(&rng, SR_LANE_PIXELS_BATCH);
-        bool ones_only = rng_below(&rng, 3) == 0;
+        bool one_pixel = rng_below(&rng, 3) == 0;
         for (int t = 0; t < n;) {
-            int64_t cx = rng_below(&rng, WIDTH + 2) - 2, cy = rng_below(&rng, HEIGHT + 2) - 2;
+            int64_t cx = first + rng_below(&rng, SIDE + 2) - 2, cy = rng_below(&rng, HEIGHT + 2) - 2;
             for (int k = 0; k < 3; k++) {
                 v[t][k] = at(cx * one + step * rng_below(&rng, (int)(SR_SUBPIXEL_SPAN * one / step)),
                              cy * one + step * rng_below(&rng, (int)(SR_SUBPIXEL_SPAN * one / step)));
@@ -246,23 +251,22 @@ Test(subpixel, lane_pixels_are_the_setups_pixels_and_depths)
             }
             if (sr_cull_area2(&v[t][0], &v[t][1], &v[t][2]) == 0)
                 continue;
-            /* A box of one centre of the framebuffer, covered: the lanes' one_pixel. */
+            /* A list told one_pixel holds the lanes' one_pixel triangles:
+             * a box of one centre of the framebuffer, covered. */
             covered_pixel whole[SR_LANE_PIXELS_CENTRES];
-            sr_subpixel_rules r = rules_of(bits, WIDTH, HEIGHT, SR_CULL_NONE, SR_FRONT_CCW);
-            bool single = box_centres(v[t], &r) == 1 &&
-                          setup_pixels(v[t], (sr_raster_rect){ 0, 0, WIDTH, HEIGHT }, bits, whole) == 1;
-            if (ones_only && !single)
+            sr_subpixel_rules r = rules_of(bits, width, HEIGHT, SR_CULL_NONE, SR_FRONT_CCW);
+            if (one_pixel && !(box_centres(v[t], &r) == 1 &&
+                               setup_pixels(v[t], (sr_raster_rect){ 0, 0, width, HEIGHT }, bits, whole) == 1))
                 continue;
-            one_pixel |= (uint64_t)(single && rng_below(&rng, 4)) << t;
             t++;
         }
-        told += __builtin_popcountll(one_pixel);
+        told += one_pixel ? n : 0;
         for (int wide = 0; wide < 2; wide++) {
             if (wide && !__builtin_cpu_supports("avx2"))
                 continue;
             sr_lane_pixels got;
             (wide ? sr_lane_pixels_avx2 : sr_lane_pixels_sse2)((const char *)v, sizeof(sr_screen_vertex), tri, n,
-                                                               one_pixel, bits, rect, WIDTH, &got);
+                                                               one_pixel, bits, rect, width, &got);
             for (int t = 0; t < n; t++) {
                 covered_pixel want[SR_LANE_PIXELS_CENTRES];
                 int count = setup_pixels(v[t], rect, bits, want), k = 0;
@@ -270,20 +274,22 @@ Test(subpixel, lane_pixels_are_the_setups_pixels_and_depths)
                              round, t, __builtin_popcount(got.covered[t]), count);
                 for (uint32_t m = got.covered[t]; m; m &= m - 1, k++) {
                     unsigned c = (unsigned)__builtin_ctz(m);
-                    size_t pixel = sr_lane_pixel_at(&got, t, c, WIDTH);
+                    size_t pixel = sr_lane_pixel_at(&got, t, c, (size_t)width);
                     float z = k < 2 ? got.z[k][t] : sr_lane_pixel_z(&got, t, c);
-                    cr_assert_eq(pixel, (size_t)want[k].j * WIDTH + (size_t)want[k].i, "round %d, triangle %d", round,
-                                 t);
+                    cr_assert_eq(pixel, (size_t)want[k].j * (size_t)width + (size_t)want[k].i,
+                                 "round %d, triangle %d", round, t);
                     cr_assert(k >= 2 || got.at[k][t] == pixel, "round %d, triangle %d: fragment %d", round, t, k);
                     cr_assert(memcmp(&z, &want[k].z, sizeof z) == 0, "round %d, triangle %d: z %a, not %a", round,
                               t, (double)z, (double)want[k].z);
                     cr_assert(memcmp(&z, (float[]){ sr_lane_pixel_z(&got, t, c) }, sizeof z) == 0);
                     fragments++;
+                    past_two += k >= 2;
                 }
             }
         }
     }
     cr_assert_gt(fragments, 10000, "only %d fragments", fragments);
+    cr_assert_gt(past_two, 300, "only %d third or later centres", past_two);
     cr_assert_gt(told, 1000, "only %d one-pixel triangles told", told);
 }
 

@@ -339,12 +339,11 @@ int sr_draw_verdicts(const sr_draw_state *st, uint32_t first, uint32_t end, uint
  * order, fragments [first[t], first[t + 1]) triangle t's; then how far
  * they are taken in the slots' order and drawn. Not zeroed: a window sets
  * what it reads. */
-_Static_assert(SR_VERDICT_BATCH <= SR_LANE_PIXELS_BATCH, "a batch of verdicts' small triangles fit one list");
 #define LANE_FRAGMENTS (SR_LANE_PIXELS_BATCH * SR_LANE_PIXELS_CENTRES)
 typedef struct lane_batch {
     uint32_t tri[SR_LANE_PIXELS_BATCH][3];
     uint32_t id[SR_LANE_PIXELS_BATCH];
-    int count, taken, drawn;
+    int count, taken, fragments_drawn;
     uint64_t one_pixel; /* bit t: tri[t] is a one_pixel triangle (sr_lane_box) */
     sr_lane_pixels found;
     int first[SR_LANE_PIXELS_BATCH + 1];
@@ -399,7 +398,7 @@ static void list_fragments(lane_batch *b, size_t width)
 static void lanes_find(const sr_fan_sink *sink, lane_batch *b)
 {
     const sr_draw_state *st = sink->st;
-    b->taken = b->drawn = b->first[0] = 0;
+    b->taken = b->fragments_drawn = b->first[0] = 0;
     if (b->count == 0)
         return;
     (st->subpixel.avx2 ? sr_lane_pixels_avx2 : sr_lane_pixels_sse2)(st->ws->screen.data, st->screen_stride,
@@ -423,24 +422,24 @@ static void lane_take(sr_fan_sink *sink, lane_batch *b)
 static void lanes_draw(const sr_fan_sink *own, lane_batch *b)
 {
     const sr_draw_state *st = own->st;
-    int from = b->drawn, to = b->first[b->taken];
+    int from = b->fragments_drawn, to = b->first[b->taken];
     if (to == from)
         return;
     own->pixels->stats.fragments += sr_raster_lane_fragments(st->fb, st->mode, &st->shade, b->fragment_id + from,
                                                              b->at + from, b->z + from, to - from);
-    b->drawn = to;
+    b->fragments_drawn = to;
 }
 
 /* The kept slots a window of verdicts holds: the verdicts of batches of
  * SR_VERDICT_BATCH slots while a whole batch's room is left, then their
  * double halves, then the slots drawn. A dense mesh keeps a few slots a
  * batch: a window of several batches maps their vertices' double halves
- * long after the verdicts prefetched them, and finds their one-pixel
- * triangles' depths in full lanes. */
+ * long after the verdicts prefetched them, and finds their small
+ * triangles' pixels and depths in full lanes. */
 #define KEPT_WINDOW (4 * SR_VERDICT_BATCH)
 
 /* Kept slots [0, count) drawn in order, the pixels and depths of their
- * triangles the lanes found small found a batch at a time. */
+ * triangles the lanes found small found a window at a time. */
 static void draw_kept(sr_fan_sink *sink, const sr_kept_slot *kept, int count)
 {
     lane_batch lanes;
@@ -448,11 +447,11 @@ static void draw_kept(sr_fan_sink *sink, const sr_kept_slot *kept, int count)
         int window_end = count - window > SR_LANE_PIXELS_BATCH ? window + SR_LANE_PIXELS_BATCH : count;
         lanes_start(&lanes);
         for (int j = window; j < window_end && sink->lane_pixels; j++)
-            if (kept[j].box)
+            if (kept[j].box != SR_LANE_BOX_UNKNOWN)
                 lane_add(&lanes, kept[j].box, kept[j].idx, kept[j].k);
         lanes_find(sink, &lanes);
         for (int j = window; j < window_end; j++) {
-            if (kept[j].box && sink->lane_pixels) {
+            if (kept[j].box != SR_LANE_BOX_UNKNOWN && sink->lane_pixels) {
                 lane_take(sink, &lanes);
             } else {
                 lanes_draw(sink, &lanes);
@@ -514,7 +513,7 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slo
         uint32_t window_end = count - window > SR_LANE_PIXELS_BATCH ? window + SR_LANE_PIXELS_BATCH : count;
         lanes_start(&lanes);
         for (uint32_t i = window; i < window_end && own->lane_pixels; i++)
-            if (slots[i].box && span_meets(slots[i].span, lo, hi))
+            if (slots[i].box != SR_LANE_BOX_UNKNOWN && span_meets(slots[i].span, lo, hi))
                 lane_add(&lanes, slots[i].box, slots[i].idx, slots[i].k);
         lanes_find(own, &lanes);
         for (uint32_t i = window; i < window_end; i++) {
@@ -524,7 +523,7 @@ void sr_draw_kept_slots(sr_fan_sink *own, sr_fan_sink *shared, const sr_band_slo
             if (!span_meets(s->span, lo, hi))
                 continue;
             sr_fan_sink *sink = s->span.first >= lo ? own : shared;
-            if (s->box && own->lane_pixels) {
+            if (s->box != SR_LANE_BOX_UNKNOWN && own->lane_pixels) {
                 lane_take(sink, &lanes);
             } else {
                 lanes_draw(own, &lanes);

@@ -1,7 +1,7 @@
 /* lane_pixels.h — the pixels and depths of the triangles whose scan box
  * the sub-pixel lanes found small (sr_subpixel_verdict: one_pixel, a box
  * of one centre they cover; small_box, up to SR_SUBPIXEL_SPAN ×
- * SR_SUBPIXEL_SPAN centres), drawn in a mode without varyings: a batch's
+ * SR_SUBPIXEL_SPAN centres), drawn in a mode without varyings: a window's
  * found four at a time, a triangle a lane, before any is drawn; then
  * they are depth-tested and written in submission order, each run between
  * two other triangles in one loop (sr_raster_lane_fragments, raster.h). Not
@@ -13,9 +13,8 @@
  * into the rasterizer, its edges and mask, a depth plane fitted in scalar
  * double with its division, and its depth loads' misses with the branches
  * on them. Here four planes share each division, the edges are tested at
- * a box's centres in lanes, and a batch's pixels are known before its
- * first test, so the caller can prefetch them (docs/performance.md,
- * "Sub-pixel triangles").
+ * a box's centres in lanes, and a window's fragments are tested in one
+ * loop (docs/performance.md, "Sub-pixel triangles").
  *
  * Exactness: a lane takes triangle_setup.h's steps (sr_order_clockwise,
  * sr_raster_scan_box_of, the edge functions with the top-left rule,
@@ -33,7 +32,7 @@
 #include "raster_setup.h"
 #include "subpixel_lanes.h"
 
-/* The triangles a call takes at most: a batch of the verdicts. */
+/* The triangles a call takes at most: those of a window of kept slots. */
 #define SR_LANE_PIXELS_BATCH 64
 /* The centres of a box, row by row: bit r · SR_SUBPIXEL_SPAN + c is the
  * centre c pixels right of the box's first and r rows down. */

@@ -26,7 +26,7 @@ typedef uint32_t ulanes __attribute__((vector_size(LANES * sizeof(uint32_t))));
 typedef float flanes __attribute__((vector_size(LANES * sizeof(float))));
 typedef double dlanes __attribute__((vector_size(LANES * sizeof(double))));
 typedef int64_t dmask __attribute__((vector_size(LANES * sizeof(int64_t))));
-#include "lane_edges.h"
+#include "lane_boxes.h"
 
 /* A group's triangles as the vertex phase mapped them: each vertex's
  * snapped point (inside every plane, so its coordinates fit 32 bits) and
@@ -57,35 +57,15 @@ static SR_ALWAYS_INLINE void read_group(const char *screen, size_t stride, const
     }
 }
 
-/* a where m is all ones, b where it is 0. */
-static SR_ALWAYS_INLINE lanes pick_i(lanes m, lanes a, lanes b)
-{
-    return (a & m) | (b & ~m);
-}
-
+/* pick on floats and doubles: a where m is all ones, b where it is 0. */
 static SR_ALWAYS_INLINE flanes pick_f(lanes m, flanes a, flanes b)
 {
-    return (flanes)pick_i(m, (lanes)a, (lanes)b);
+    return (flanes)pick(m, (lanes)a, (lanes)b);
 }
 
 static SR_ALWAYS_INLINE dlanes pick_d(dmask m, dlanes a, dlanes b)
 {
     return (dlanes)(((dmask)a & m) | ((dmask)b & ~m));
-}
-
-static SR_ALWAYS_INLINE lanes min_i(lanes a, lanes b)
-{
-    return pick_i(a < b, a, b);
-}
-
-static SR_ALWAYS_INLINE lanes max_i(lanes a, lanes b)
-{
-    return pick_i(a > b, a, b);
-}
-
-static SR_ALWAYS_INLINE lanes clamp_i(lanes v, int lo, int hi)
-{
-    return min_i(max_i(v, (lanes){ 0 } + lo), (lanes){ 0 } + hi);
 }
 
 /* The largest lane, or 0. */
@@ -221,23 +201,24 @@ void LANE_PIXELS(const char *screen, size_t stride, const uint32_t (*tri)[3], in
          * where it is negative (never 0: stage 7 drops those). */
         lanes area2 = (r.x[1] - r.x[0]) * (r.y[2] - r.y[0]) - (r.y[1] - r.y[0]) * (r.x[2] - r.x[0]);
         lanes cw = area2 > zero_i;
-        lanes x1 = pick_i(cw, r.x[1], r.x[2]), y1 = pick_i(cw, r.y[1], r.y[2]);
-        lanes x2 = pick_i(cw, r.x[2], r.x[1]), y2 = pick_i(cw, r.y[2], r.y[1]);
+        lanes x1 = pick(cw, r.x[1], r.x[2]), y1 = pick(cw, r.y[1], r.y[2]);
+        lanes x2 = pick(cw, r.x[2], r.x[1]), y2 = pick(cw, r.y[2], r.y[1]);
         flanes ox1 = pick_f(cw, r.off_x[1], r.off_x[2]), oy1 = pick_f(cw, r.off_y[1], r.off_y[2]);
         flanes ox2 = pick_f(cw, r.off_x[2], r.off_x[1]), oy2 = pick_f(cw, r.off_y[2], r.off_y[1]);
         flanes z1 = pick_f(cw, r.z[1], r.z[2]), z2 = pick_f(cw, r.z[2], r.z[1]);
-        /* sr_raster_scan_box_of over rect. */
-        lanes box_x0 = clamp_i((min_i(min_i(r.x[0], x1), x2) - half_i + one_i - 1) >> bits, rect.x0, rect.x1),
-              box_x1 = clamp_i(((max_i(max_i(r.x[0], x1), x2) - half_i) >> bits) + 1, rect.x0, rect.x1),
-              box_y0 = clamp_i((min_i(min_i(r.y[0], y1), y2) - half_i + one_i - 1) >> bits, rect.y0, rect.y1),
-              box_y1 = clamp_i(((max_i(max_i(r.y[0], y1), y2) - half_i) >> bits) + 1, rect.y0, rect.y1);
+        /* The scan box over rect. */
+        lanes box_x0, box_x1, box_y0, box_y1;
+        scan_span(min_of(min_of(r.x[0], x1), x2), max_of(max_of(r.x[0], x1), x2), bits, rect.x0, rect.x1, &box_x0,
+                  &box_x1);
+        scan_span(min_of(min_of(r.y[0], y1), y2), max_of(max_of(r.y[0], y1), y2), bits, rect.y0, rect.y1, &box_y0,
+                  &box_y1);
         lanes ref_x = r.x[0] >> bits, ref_y = r.y[0] >> bits;
         /* sr_depth_plane: sr_plane_points unsnapped, and where the snap
          * turned a sliver over or grew it too much, the snapped points
          * (their differences plus 0, the same doubles); the reference
          * pixel is vertex 0's, and ref·one + half − x0 its low bits. */
         dlanes sx1 = to_double(x1 - r.x[0]), sy1 = to_double(y1 - r.y[0]), sx2 = to_double(x2 - r.x[0]),
-               sy2 = to_double(y2 - r.y[0]), area = to_double(pick_i(cw, area2, -area2));
+               sy2 = to_double(y2 - r.y[0]), area = to_double(pick(cw, area2, -area2));
         dlanes p0x = zero + widen(r.off_x[0]), p0y = zero + widen(r.off_y[0]);
         dlanes px1 = (sx1 + widen(ox1)) - p0x, py1 = (sy1 + widen(oy1)) - p0y, px2 = (sx2 + widen(ox2)) - p0x,
                py2 = (sy2 + widen(oy2)) - p0y;

@@ -373,7 +373,7 @@ uint64_t sr_raster_one_pixel(sr_framebuffer *fb, sr_raster_rect rect, int subpix
 }
 
 uint64_t sr_raster_lane_fragments(sr_framebuffer *fb, sr_shade mode, const sr_shade_context *shade,
-                             const uint32_t *triangle_id, const size_t *at, const float *z, int n)
+                                  const uint32_t *triangle_id, const size_t *at, const float *z, int n)
 {
     switch (mode) {
     case SR_SHADE_ID:    return fragment_tests(fb, SR_SHADE_ID, shade, triangle_id, at, z, n);

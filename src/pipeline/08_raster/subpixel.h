@@ -8,7 +8,9 @@
  * call into the rasterizer, its box and its edges. Here four, eight or sixteen
  * triangles go through those tests at once, a triangle per lane of 32-bit integers (as
  * Intel's Masked Occlusion Culling rejects many triangles per instruction),
- * and the caller sends only the others on to the per-triangle set-up.
+ * and the caller sends only the others on, those a mode without varyings
+ * draws from their boxes' centres (lane_pixels.h) aside, to the
+ * per-triangle set-up.
  *
  * Exactness: a lane decides only a triangle whose vertices span less than
  * SR_SUBPIXEL_SPAN (four) pixels on each axis, inside every plane (its

@@ -20,28 +20,7 @@ typedef int32_t lanes __attribute__((vector_size(SUBPIXEL_LANES * sizeof(int32_t
  * test): unsigned, whose wrap is defined. Every other value is a
  * difference of coordinates below 2^30, or of pixel indices. */
 typedef uint32_t ulanes __attribute__((vector_size(SUBPIXEL_LANES * sizeof(uint32_t))));
-#include "lane_edges.h"
-
-/* a where m is all ones, b where it is 0. */
-static SR_ALWAYS_INLINE lanes pick(lanes m, lanes a, lanes b)
-{
-    return (a & m) | (b & ~m);
-}
-
-static SR_ALWAYS_INLINE lanes min_of(lanes a, lanes b)
-{
-    return pick(a < b, a, b);
-}
-
-static SR_ALWAYS_INLINE lanes max_of(lanes a, lanes b)
-{
-    return pick(a > b, a, b);
-}
-
-static SR_ALWAYS_INLINE lanes clamp_of(lanes v, lanes hi)
-{
-    return min_of(max_of(v, (lanes){ 0 }), hi);
-}
+#include "lane_boxes.h"
 
 static SR_ALWAYS_INLINE lanes load(const int32_t *p)
 {
@@ -73,19 +52,17 @@ static SR_ALWAYS_INLINE sr_subpixel_verdict verdict_of(lanes x0, lanes y0, lanes
 {
     const lanes zero = { 0 };
     int bits = r->bits;
-    int32_t one_s = (int32_t)1 << bits;
-    lanes one = zero + one_s, half = zero + one_s / 2;
+    lanes half = zero + ((int32_t)1 << bits) / 2;
     lanes lo_x = min_of(min_of(x0, x1), x2), hi_x = max_of(max_of(x0, x1), x2);
     lanes lo_y = min_of(min_of(y0, y1), y2), hi_y = max_of(max_of(y0, y1), y2);
     /* Within SR_SUBPIXEL_SPAN pixels on each axis: the lanes below hold
      * every value exactly. */
     lanes span = zero + (SR_SUBPIXEL_SPAN << bits);
     lanes small = (hi_x - lo_x < span) & (hi_y - lo_y < span);
-    /* The scan box over the framebuffer, sr_raster_scan_box_of's. */
-    lanes box_x0 = clamp_of((lo_x - half + one - 1) >> bits, zero + r->width);
-    lanes box_x1 = clamp_of(((hi_x - half) >> bits) + 1, zero + r->width);
-    lanes box_y0 = clamp_of((lo_y - half + one - 1) >> bits, zero + r->height);
-    lanes box_y1 = clamp_of(((hi_y - half) >> bits) + 1, zero + r->height);
+    /* The scan box over the framebuffer. */
+    lanes box_x0, box_x1, box_y0, box_y1;
+    scan_span(lo_x, hi_x, bits, 0, r->width, &box_x0, &box_x1);
+    scan_span(lo_y, hi_y, bits, 0, r->height, &box_y0, &box_y1);
     lanes empty = (box_x0 >= box_x1) | (box_y0 >= box_y1);
     lanes one_centre = (box_x1 - box_x0 == 1) & (box_y1 - box_y0 == 1);
     /* Stage 7's area and verdict (07_cull.h). */
