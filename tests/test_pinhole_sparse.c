@@ -311,6 +311,55 @@ Test(pinhole_sparse, a_line_through_the_near_plane_shows_the_part_drawn)
     sr_mesh_free(&mesh);
 }
 
+/* Vertex normals that give no direction resolve to a normal of 0, never
+ * NaN: a segment across the view whose first end's normal is infinite
+ * (every point of it but the other end then has an infinite component),
+ * or zero at both ends. The camera is turned at random, so that no entry
+ * of its rotation is 0 (0 · inf would make the rotated normal NaN, which
+ * resolves to 0 anyway). */
+Test(pinhole_sparse, normals_without_a_direction_resolve_to_zero)
+{
+    test_rng rng = { 8 };
+    double rot[3][3];
+    rng_rotation(&rng, rot);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            cr_assert(rot[i][j] != 0.0);
+    sr_pinhole cam = camera(40.0, 40.0, 31.5, 23.5);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            cam.w2c[i][j] = rot[i][j];
+    /* The ends in the camera frame, placed in the file's: Rᵀ · c. */
+    const double in_view[2][3] = { { -3.0, 0.4, 5.0 }, { 3.0, -0.3, 7.0 } };
+    float ends[2][3];
+    for (int e = 0; e < 2; e++)
+        for (int j = 0; j < 3; j++)
+            ends[e][j] = (float)(rot[0][j] * in_view[e][0] + rot[1][j] * in_view[e][1] + rot[2][j] * in_view[e][2]);
+    static const float normal_pairs[][2][3] = { { { INFINITY, 0, 0 }, { 0, 1, 0 } },
+                                                { { 0, -INFINITY, 0 }, { 0, 0, -1 } },
+                                                { { 0, 0, 0 }, { 0, 0, 0 } } };
+    for (size_t p = 0; p < sizeof normal_pairs / sizeof *normal_pairs; p++) {
+        sr_mesh mesh;
+        one_segment(&mesh, SR_LINE_LIST);
+        memcpy(mesh.positions, ends, sizeof ends);
+        memcpy(mesh.normals, normal_pairs[p], sizeof normal_pairs[p]);
+        static resolved r;
+        draw_and_resolve(&cam, &mesh, 1, &r);
+        int drawn = 0;
+        for (size_t at = 0; at < (size_t)W * H; at++) {
+            if (r.face_ids[at] == 0)
+                continue;
+            drawn++;
+            for (int c = 0; c < 3; c++)
+                cr_assert(r.normals[3 * at + c] == 0.0f, "pair %zu, pixel %zu: normal[%d] %g", p, at, c,
+                          r.normals[3 * at + c]);
+        }
+        cr_assert_gt(drawn, W / 2, "pair %zu: the segment drew %d pixels", p, drawn);
+        sr_framebuffer_destroy(&r.fb);
+        sr_mesh_free(&mesh);
+    }
+}
+
 Test(pinhole_sparse, normals_of_points_without_vertex_normals_are_refused)
 {
     sr_error err = { "" };

@@ -529,7 +529,8 @@ typedef struct sr_pinhole_outputs {
     float *range;     /* distance from the camera centre to the surface point */
     uint32_t *face_ids; /* triangle id + 1, or the file's face + 1 (0: nothing drawn) */
     uint32_t *part_ids; /* sr_mesh.parts index + 1, 1 for a mesh of one part (0: nothing drawn) */
-    float *normals;   /* unit normal in the camera frame (x right, y down, z forward); 0 where nothing */
+    float *normals;   /* unit normal in the camera frame (x right, y down, z forward); 0 where nothing,
+                         or where the vertex normals give no direction (zero, or not finite) */
     bool interpolated_normals; /* the vertex normals interpolated at the surface point; false: the
                                   triangle's own, by its winding (the file's front side) */
     float invalid;    /* depth and range where nothing is drawn: 0, or NAN */

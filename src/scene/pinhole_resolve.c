@@ -38,11 +38,15 @@ static void rotate(const sr_pinhole *cam, const double d[3], double out[3])
         out[r] = cam->w2c[r][0] * d[0] + cam->w2c[r][1] * d[1] + cam->w2c[r][2] * d[2];
 }
 
+/* v made unit length; 0 where it has no direction: zero, NaN, or an
+ * infinite component (vertex normals that are not finite), whose length
+ * is infinite and would make a component inf/inf. */
 static void normalize_into(const double v[3], float out[3])
 {
     double length = sqrt(sr_dvec3_dot(v, v));
+    bool direction = length > 0.0 && length < INFINITY;
     for (int k = 0; k < 3; k++)
-        out[k] = length > 0.0 ? (float)(v[k] / length) : 0.0f;
+        out[k] = direction ? (float)(v[k] / length) : 0.0f;
 }
 
 /* The view z a drawn pixel's ray may meet its triangle's plane at: between
