@@ -43,11 +43,12 @@ ALL_SRC     := $(LIB_SRC) $(STUDIES_SRC) $(APP_SRC) src/app/main.c $(TEST_SRC)
 APP_LIBS = $(1)/rooms/libapp.a $(1)/rooms/libstudies.a $(1)/rooms/libfiles.a $(1)/rooms/libcore.a
 PUBLIC_LIBS := build/libsoftrast.a build/libsoftrast-files.a
 
-# The 8-lane span kernels, sub-pixel lanes, viewport and vertex lanes are built for AVX2 (chosen at
+# The 8-lane span kernels, sub-pixel lanes, viewport, vertex and resolve lanes are built for AVX2 (chosen at
 # run time when the CPU has it); never -mfma, which would round differently from the scalar path.
 ifeq ($(shell uname -m),x86_64)
 AVX2_OBJ := $(foreach f,span_avx2 subpixel_avx2 lane_pixels_avx2,$(patsubst %,%/src/pipeline/08_raster/$(f).o,build build/san build/fuzz)) \
-            $(foreach f,06_viewport_avx2 01_vertex_avx2,$(patsubst %,%/src/pipeline/$(f).o,build build/san build/fuzz))
+            $(foreach f,06_viewport_avx2 01_vertex_avx2,$(patsubst %,%/src/pipeline/$(f).o,build build/san build/fuzz)) \
+            $(patsubst %,%/src/scene/pinhole_triangles_avx2.o,build build/san build/fuzz)
 $(AVX2_OBJ): ALL_CFLAGS += -mavx2
 $(AVX2_OBJ): FUZZ_CFLAGS += -mavx2
 AVX512_OBJ := $(foreach f,span_avx512 subpixel_avx512,$(patsubst %,%/src/pipeline/08_raster/$(f).o,build build/san build/fuzz))

@@ -16,6 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "pipeline/08_raster/simd_select.h"
+#include "scene/pinhole_triangles.h"
 #include "softrast_private.h"
 #include "test_rng.h"
 
@@ -101,8 +103,21 @@ static pixel formula(const sr_pinhole *cam, const sr_mesh *mesh, uint32_t slot, 
     return px;
 }
 
+/* A random rotation into cam's pose, and the mesh's origin a million
+ * units from the world's: no product exact. */
+static void turn_and_move_away(test_rng *rng, sr_pinhole *cam, sr_mesh *mesh)
+{
+    double rotation[3][3];
+    rng_rotation(rng, rotation);
+    for (int r = 0; r < 3; r++) {
+        mesh->origin[r] = rng_uniform(rng, -1e6, 1e6);
+        for (int c = 0; c < 3; c++)
+            cam->w2c[r][c] = rotation[r][c];
+    }
+}
+
 #define SIDE_MAX 70
-#define TRIANGLES 40
+#define TRIANGLES 300 /* past the resolve's cache of 256, whose entries two triangles then share */
 #define PARTS 4
 
 /* 30 random scenes: a camera at the origin looking along +z (so a vertex
@@ -110,15 +125,17 @@ static pixel formula(const sr_pinhole *cam, const sr_mesh *mesh, uint32_t slot, 
  * mesh's origin a million units away; triangles
  * in front of it, a third of them with a corner at the origin and a third
  * in the plane x = 1 (the camera's cx then a whole pixel); an ids
- * plane of random runs and a random depth buffer; resolved on 1 to 4
- * threads, both normal kinds, and held to the formula bit for bit. */
+ * plane of random runs and a random depth buffer, half its runs showing
+ * triangles 256 apart, which share an entry of the resolve's cache, so
+ * rows hold both; resolved on 1 to 4 threads, both normal kinds, and held
+ * to the formula bit for bit. */
 Test(pinhole_resolve, runs_and_loops_per_output_give_the_per_pixel_formulas_bits)
 {
     test_rng rng = { 0x5EED0034u };
     sr_error err = { "" };
     static float depth[SIDE_MAX * SIDE_MAX], range[SIDE_MAX * SIDE_MAX], normals[3 * SIDE_MAX * SIDE_MAX];
     static uint32_t face_ids[SIDE_MAX * SIDE_MAX], part_ids[SIDE_MAX * SIDE_MAX];
-    size_t edge_on = 0;
+    size_t edge_on = 0, sharing_rows = 0;
     for (int scene = 0; scene < 30; scene++) {
         sr_mesh mesh;
         cr_assert(sr_mesh_alloc(&mesh, 3 * TRIANGLES, 3 * TRIANGLES, true, false, false, &err), "%s", err.message);
@@ -150,14 +167,8 @@ Test(pinhole_resolve, runs_and_loops_per_output_give_the_per_pixel_formulas_bits
             cam.w2c[k][k] = 1.0;
         if (centred) {
             cam.cx = rng_below(&rng, 60);
-        } else { /* a random rotation and a mesh far from the world's origin: no product exact */
-            double rotation[3][3];
-            rng_rotation(&rng, rotation);
-            for (int r = 0; r < 3; r++) {
-                mesh.origin[r] = rng_uniform(&rng, -1e6, 1e6);
-                for (int c = 0; c < 3; c++)
-                    cam.w2c[r][c] = rotation[r][c];
-            }
+        } else {
+            turn_and_move_away(&rng, &cam, &mesh);
             for (int r = 0; r < 3; r++) /* the camera near the mesh, along its rotated positions */
                 cam.w2c[r][3] = -(cam.w2c[r][0] * mesh.origin[0] + cam.w2c[r][1] * mesh.origin[1] +
                                   cam.w2c[r][2] * (mesh.z_negated ? -mesh.origin[2] : mesh.origin[2])) +
@@ -168,11 +179,22 @@ Test(pinhole_resolve, runs_and_loops_per_output_give_the_per_pixel_formulas_bits
         cr_assert(sr_framebuffer_create(&fb, width, height, &err) && sr_framebuffer_create_ids(&fb, &err), "%s",
                   err.message);
         for (int i = 0; i < width * height;) {
-            uint32_t id = rng_below(&rng, 4) == 0 ? 0 : 1 + (uint32_t)rng_below(&rng, TRIANGLES);
+            uint32_t id = rng_below(&rng, 4) == 0 ? 0
+                          : rng_below(&rng, 2)    ? 1 + (uint32_t)rng_below(&rng, TRIANGLES)
+                                                  : 1 + (uint32_t)rng_below(&rng, 4) + 256u * (uint32_t)rng_below(&rng, 2);
             for (int n = 1 + rng_below(&rng, 1 + rng_below(&rng, 24)); n > 0 && i < width * height; n--, i++) {
                 fb.ids[i] = id;
                 fb.depth[i] = (float)rng_uniform(&rng, 0.0, 1.0);
             }
+        }
+        for (int y = 0; y < height; y++) { /* rows where two triangles that share an entry both show */
+            bool shared = false;
+            for (int a = 0; a < width && !shared; a++)
+                for (int b = a + 1; b < width && !shared; b++) {
+                    uint32_t ia = fb.ids[y * width + a], ib = fb.ids[y * width + b];
+                    shared = ia && ib && ia != ib && (ia - 1) % 256 == (ib - 1) % 256;
+                }
+            sharing_rows += shared;
         }
         for (int interpolated = 0; interpolated < 2; interpolated++) {
             sr_pinhole_outputs out = { depth, range, face_ids, part_ids, normals, interpolated, NAN,
@@ -206,6 +228,7 @@ Test(pinhole_resolve, runs_and_loops_per_output_give_the_per_pixel_formulas_bits
         sr_mesh_free(&mesh);
     }
     cr_assert_gt(edge_on, 1000, "too few pixels of triangles through the camera centre to test the fallback");
+    cr_assert_gt(sharing_rows, 100, "too few rows showing two triangles of one cache entry");
 }
 
 /* Frames one pixel wide or tall, one 16384 pixels wide and one of fewer
@@ -261,4 +284,72 @@ Test(pinhole_resolve, any_thread_count_gives_one_threads_bits_on_thin_and_wide_f
         sr_framebuffer_destroy(&fb);
     }
     sr_mesh_free(&mesh);
+}
+
+/* The resolve's triangle lanes (pinhole_triangles.h), SSE2 and, where the
+ * CPU has it, AVX2: 1 to 9 triangles (so a last group of fewer), of
+ * random corners of a mesh far from the world's origin, z negated or not,
+ * some coordinates tiny or huge, under a random pose, into entries in a
+ * random order. Each entry's geometry has the bits of to_camera and
+ * the scalar products, and no byte else of it or of another entry
+ * changes. */
+Test(pinhole_resolve, triangle_lanes_give_the_scalar_set_ups_bits)
+{
+    enum { VERTICES = 40, MOST = 9 };
+    test_rng rng = { 0x1A7E5u };
+    static float positions[VERTICES][3];
+    bool avx2 = sr_raster_simd_resolve(SR_SIMD_AUTO) >= SR_SIMD_AVX2;
+    for (int round = 0; round < 400; round++) {
+        sr_mesh mesh = { .vertex_count = VERTICES, .positions = (vec3 *)positions, .z_negated = round % 2 };
+        for (int v = 0; v < VERTICES; v++)
+            for (int k = 0; k < 3; k++) {
+                double scale = rng_below(&rng, 8) == 0 ? (rng_below(&rng, 2) ? 0x1p-100 : 1e18) : 3.0;
+                positions[v][k] = (float)rng_uniform(&rng, -scale, scale);
+            }
+        sr_pinhole cam = { .fx = 50.0, .fy = 50.0 };
+        turn_and_move_away(&rng, &cam, &mesh);
+        for (int r = 0; r < 3; r++)
+            cam.w2c[r][3] = rng_uniform(&rng, -1e6, 1e6);
+        cam.w2c[3][3] = 1.0;
+        camera_frame frame = camera_frame_of(&cam, &mesh);
+        uint32_t n = 1 + (uint32_t)rng_below(&rng, MOST), corners[MOST][3];
+        resolved_triangle entries[MOST], before[MOST], *to[MOST];
+        memset(entries, 0xA5, sizeof entries);
+        memcpy(before, entries, sizeof entries);
+        for (uint32_t k = 0; k < MOST; k++)
+            to[k] = &entries[k];
+        for (uint32_t k = MOST - 1; k > 0; k--) { /* the entries in a random order */
+            uint32_t j = (uint32_t)rng_below(&rng, (int)k + 1);
+            resolved_triangle *swap = to[k];
+            to[k] = to[j];
+            to[j] = swap;
+        }
+        for (uint32_t k = 0; k < n; k++)
+            for (int c = 0; c < 3; c++)
+                corners[k][c] = (uint32_t)rng_below(&rng, VERTICES);
+        for (int width = 0; width < 1 + avx2; width++) {
+            memcpy(entries, before, sizeof entries);
+            (width ? sr_pinhole_triangles_avx2 : sr_pinhole_triangles_sse2)(&frame, (const float(*)[3])positions,
+                                                                             (const uint32_t(*)[3])corners, to, n);
+            for (uint32_t k = 0; k < MOST; k++) {
+                resolved_triangle want; /* copied bytewise: padding included */
+                memcpy(&want, &before[to[k] - entries], sizeof want);
+                if (k < n) {
+                    double v[3][3];
+                    for (int c = 0; c < 3; c++)
+                        to_camera(&frame, positions[corners[k][c]], v[c]);
+                    for (int i = 0; i < 3; i++) {
+                        want.v0[i] = v[0][i];
+                        want.e1[i] = v[1][i] - v[0][i];
+                        want.e2[i] = v[2][i] - v[0][i];
+                    }
+                    cross(want.e1, want.e2, want.cross);
+                    want.cross_squared = dot(want.cross, want.cross);
+                    want.offset = dot(want.cross, want.v0);
+                }
+                cr_assert(memcmp(to[k], &want, sizeof want) == 0, "round %d, %s lanes, triangle %u of %u: bits differ",
+                          round, width ? "AVX2" : "SSE2", k, n);
+            }
+        }
+    }
 }

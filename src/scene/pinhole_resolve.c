@@ -12,8 +12,9 @@
 #include <emmintrin.h>
 #endif
 
-#include "pinhole_frame.h"
+#include "pinhole_triangles.h"
 #include "pipeline/02_assemble.h"
+#include "pipeline/08_raster/simd_select.h"
 #include "softrast/softrast.h"
 #include "core/dmat4.h"
 #include "core/error.h"
@@ -93,22 +94,12 @@ typedef struct resolve_job {
     uint32_t slots;      /* the mesh's primitive slots: the largest id a draw of it writes */
     const sr_pinhole_outputs *out;
     camera_frame frame;    /* cam's, for mesh */
+    bool avx2;             /* the triangles set up in AVX2 lanes (the CPU has them) */
     z_window window;       /* cam's */
     double *ray_x, *ray_y; /* (x − cx)/fx of each column, (y − cy)/fy of each row */
     int chunk_rows;
     atomic_int next_chunk; /* chunks, not rows: a row count past the last row could wrap */
 } resolve_job;
-
-/* Triangle `slot` in the camera frame: its corner v0, edges e1 = v1 − v0
- * and e2 = v2 − v0, their cross product e1 × e2, and what the outputs ask
- * of it: its unit normal on the file's front side (the same for every
- * pixel, so rounded once), its part, its vertex normals. */
-typedef struct resolved_triangle {
-    uint32_t slot, part;
-    double v0[3], e1[3], e2[3], cross[3], cross_squared, offset; /* offset: cross · v0 */
-    float front[3];
-    double vertex_normals[3][3];
-} resolved_triangle;
 
 static uint32_t part_of(const sr_mesh *mesh, uint32_t slot)
 {
@@ -123,27 +114,13 @@ static uint32_t part_of(const sr_mesh *mesh, uint32_t slot)
     return mesh->part_count ? lo + 1 : 1;
 }
 
-/* False for a triangle whose corners are not all the mesh's vertices: an
- * ids plane of another mesh's draw. */
-static bool resolve_triangle(const resolve_job *job, uint32_t slot, resolved_triangle *t)
+/* What the outputs ask of triangle `slot`, whose corners are the mesh
+ * vertices idx and whose geometry t holds (pinhole_triangles.h): its
+ * front normal, vertex normals and part. */
+static void finish_triangle(const resolve_job *job, uint32_t slot, const uint32_t idx[3], resolved_triangle *t)
 {
     const sr_mesh *mesh = job->mesh;
     const sr_pinhole_outputs *out = job->out;
-    uint32_t idx[3];
-    double v[3][3];
-    sr_assemble_triangle(mesh, slot, idx); /* drawn, so not degenerate */
-    if (idx[0] >= mesh->vertex_count || idx[1] >= mesh->vertex_count || idx[2] >= mesh->vertex_count)
-        return false;
-    for (int k = 0; k < 3; k++)
-        to_camera(&job->frame, mesh->positions[idx[k]], v[k]);
-    for (int k = 0; k < 3; k++) {
-        t->v0[k] = v[0][k];
-        t->e1[k] = v[1][k] - v[0][k];
-        t->e2[k] = v[2][k] - v[0][k];
-    }
-    sr_dvec3_cross(t->e1, t->e2, t->cross);
-    t->cross_squared = sr_dvec3_dot(t->cross, t->cross);
-    t->offset = sr_dvec3_dot(t->cross, t->v0);
     if (out->normals && !out->interpolated_normals) {
         /* The loader reversed a z-negated file's winding: its front side is the other one. */
         double front[3];
@@ -157,8 +134,6 @@ static bool resolve_triangle(const resolve_job *job, uint32_t slot, resolved_tri
         rotate(job->cam, file, t->vertex_normals[c]);
     }
     t->part = out->part_ids && mesh->parts ? part_of(mesh, slot) : 1;
-    t->slot = slot;
-    return true;
 }
 
 /* The view z of the ray through a pixel centre, ((x − cx)/fx, (y − cy)/fy, 1),
@@ -187,13 +162,14 @@ static inline resolve_u2 plane_z_bad(const z_window *w, resolve_v2 z)
 static bool run_z(const resolved_triangle *t, const z_window *w, double ray_y, const double *ray_x, int n,
                   double *z)
 {
-    double cross_y = t->cross[1] * ray_y;
+    /* Locals: the stores to z may alias t, and would reload them. */
+    double cross_y = t->cross[1] * ray_y, cross_x = t->cross[0], cross_z = t->cross[2], offset = t->offset;
     int i = 0;
     resolve_u2 bad = { 0, 0 };
     for (; i + 2 <= n; i += 2) {
         resolve_v2 rx, zv;
         memcpy(&rx, ray_x + i, sizeof rx);
-        zv = t->offset / (t->cross[0] * rx + cross_y + t->cross[2]);
+        zv = offset / (cross_x * rx + cross_y + cross_z);
         bad |= plane_z_bad(w, zv);
         memcpy(z + i, &zv, sizeof zv);
     }
@@ -267,11 +243,14 @@ static void interpolated_normal(const resolved_triangle *t, const double p[3], d
 /* A row's runs of pixels that show one primitive, left to right: run r
  * covers columns start[r] .. start[r + 1] − 1 and shows id[r] (0:
  * nothing); start[count] is the row's width. Found once per row, and
- * then the prefetches and the resolve walk the runs, not the pixels. */
+ * then the prefetches and the resolve walk the runs, not the pixels.
+ * corners[r]: the mesh vertices of triangle id[r] − 1, noted as its
+ * vertices are prefetched (where id[r] is a triangle of the mesh's). */
 typedef struct row_runs {
     int count;
     int *start;  /* width + 1 */
     uint32_t *id; /* width */
+    uint32_t (*corners)[3]; /* width */
 } row_runs;
 
 /* A thread's rows in flight: the runs of the row it resolves and of the
@@ -383,13 +362,14 @@ static void find_runs(const uint32_t *ids, int width, row_runs *r)
 }
 
 /* Prefetches what the triangles of a row's runs need: their indices
- * (stage 0) or, those fetched a row before, their vertices (stage 1). On
+ * (stage 0) or, those fetched a row before, their vertices (stage 1),
+ * noting each triangle's corners (row_runs.corners). On
  * a dense mesh nearly every pixel shows a triangle of its own, far from
  * its neighbours' in the mesh's arrays, and each set-up would wait on
  * memory twice (its indices, then its vertices and normals), one triangle
  * after the other; resolve_rows fetches the indices two rows ahead and
  * the vertices one row ahead, so a row's loads are under way at once. */
-static void prefetch_runs(const resolve_job *job, const row_runs *r, int stage)
+static void prefetch_runs(const resolve_job *job, row_runs *r, int stage)
 {
     const sr_mesh *mesh = job->mesh;
     bool file_faces = job->out->face_ids && job->out->file_faces && mesh->file_faces;
@@ -406,8 +386,8 @@ static void prefetch_runs(const resolve_job *job, const row_runs *r, int stage)
                 __builtin_prefetch(&mesh->file_faces[id - 1]);
             continue;
         }
-        uint32_t idx[3];
-        sr_assemble_triangle(mesh, id - 1, idx);
+        uint32_t *idx = r->corners[i];
+        sr_assemble_triangle(mesh, id - 1, idx); /* drawn, so not degenerate */
         for (int k = 0; k < 3; k++) {
             __builtin_prefetch(mesh->positions[idx[k]]);
             if (vertex_normals)
@@ -540,12 +520,112 @@ static bool resolve_sparse_pixel(const resolve_job *job, uint32_t id, size_t at,
     return true;
 }
 
-/* Rows y0 … y1 − 1, run by run: a run sets its triangle up once (or
- * finds it in the thread's cache) and each output is a loop of its own
- * over the run. Returns 0, or an id that is no primitive of the mesh (or
- * one whose vertices it lacks): the ids plane is not a draw of it, and the
- * thread stops there. */
-static uint32_t resolve_rows(const resolve_job *job, int y0, int y1, resolve_scratch *s, resolved_triangle *cache)
+/* The triangles one batch sets up in lanes at most. */
+#define TRIANGLE_BATCH 64
+
+/* A thread's triangles: entry[slot % TRIANGLE_CACHE] holds triangle slot
+ * once set up, and `batch` counts the batches it has gathered. */
+typedef struct triangle_cache {
+    resolved_triangle entry[TRIANGLE_CACHE];
+    uint64_t batch;
+} triangle_cache;
+
+/* The runs from *next on that one batch serves: each run's triangle
+ * found in the cache or, not there, set up into its entry, all those
+ * together in lanes. The batch ends before a run whose entry it already
+ * holds for another triangle, so every entry it sets up serves its runs
+ * until they are resolved. *next becomes the first run it does not serve.
+ * Returns 0, or the id of the run it stops before that is no triangle of
+ * the mesh (or one whose vertices it lacks). */
+static uint32_t set_up_batch(const resolve_job *job, const row_runs *r, int *next, triangle_cache *cache)
+{
+    const sr_mesh *mesh = job->mesh;
+    uint32_t corners[TRIANGLE_BATCH][3], n = 0, stranger = 0;
+    resolved_triangle *to[TRIANGLE_BATCH];
+    uint64_t batch = ++cache->batch;
+    int i = *next;
+    for (; i < r->count && n < TRIANGLE_BATCH; i++) {
+        uint32_t id = r->id[i];
+        if (id == 0)
+            continue;
+        resolved_triangle *t = &cache->entry[(id - 1) % TRIANGLE_CACHE];
+        if (id <= job->slots && t->slot == id - 1) { /* set up before: the batch holds it from here */
+            t->claim = batch;
+            continue;
+        }
+        const uint32_t *idx = r->corners[i];
+        if (id > job->slots || idx[0] >= mesh->vertex_count || idx[1] >= mesh->vertex_count ||
+            idx[2] >= mesh->vertex_count) {
+            stranger = id;
+            break;
+        }
+        if (t->claim == batch) /* held for another triangle */
+            break;
+        t->slot = id - 1;
+        t->claim = batch;
+        memcpy(corners[n], idx, sizeof corners[n]);
+        to[n++] = t;
+    }
+    *next = i;
+    if (n == 0)
+        return stranger;
+    (job->avx2 ? sr_pinhole_triangles_avx2 : sr_pinhole_triangles_sse2)(
+        &job->frame, (const float(*)[3])mesh->positions, (const uint32_t(*)[3])corners, to, n);
+    for (uint32_t k = 0; k < n; k++)
+        finish_triangle(job, to[k]->slot, corners[k], to[k]);
+    return stranger;
+}
+
+/* Row y's runs of triangles, a batch at a time. Returns 0, or the id of
+ * the run it stops at that is no triangle of the mesh. */
+static uint32_t resolve_triangle_runs(const resolve_job *job, int y, const row_runs *r, double *z,
+                                      triangle_cache *cache)
+{
+    size_t row = (size_t)y * (size_t)job->fb->width;
+    for (int i = 0; i < r->count;) {
+        int first = i;
+        uint32_t stranger = set_up_batch(job, r, &i, cache);
+        for (int k = first; k < i; k++) {
+            uint32_t id = r->id[k];
+            int x = r->start[k], end = r->start[k + 1];
+            if (id == 0)
+                resolve_empty(job->out, row + (size_t)x, end - x);
+            else
+                resolve_run(job, &cache->entry[(id - 1) % TRIANGLE_CACHE], y, x, end - x, z + x);
+        }
+        if (stranger)
+            return stranger;
+    }
+    return 0;
+}
+
+/* Row y's runs of points or lines, pixel by pixel. Returns 0, or the id
+ * of the run it stops at that is no primitive of the mesh. */
+static uint32_t resolve_sparse_runs(const resolve_job *job, int y, const row_runs *r)
+{
+    size_t row = (size_t)y * (size_t)job->fb->width;
+    for (int i = 0; i < r->count; i++) {
+        uint32_t id = r->id[i];
+        int x = r->start[i], end = r->start[i + 1];
+        if (id == 0) {
+            resolve_empty(job->out, row + (size_t)x, end - x);
+            continue;
+        }
+        if (id > job->slots)
+            return id;
+        for (int k = x; k < end; k++)
+            if (!resolve_sparse_pixel(job, id, row + (size_t)k, job->ray_x[k], job->ray_y[y]))
+                return id;
+    }
+    return 0;
+}
+
+/* Rows y0 … y1 − 1: a run sets its triangle up once (or finds it in the
+ * thread's cache) and each output is a loop of its own over the run.
+ * Returns 0, or an id that is no primitive of the mesh (or one whose
+ * vertices it lacks): the ids plane is not a draw of it, and the thread
+ * stops there. */
+static uint32_t resolve_rows(const resolve_job *job, int y0, int y1, resolve_scratch *s, triangle_cache *cache)
 {
     const sr_pinhole_outputs *out = job->out;
     int width = job->fb->width;
@@ -562,29 +642,10 @@ static uint32_t resolve_rows(const resolve_job *job, int y0, int y1, resolve_scr
         if (out->face_ids) /* the id + 1 each pixel shows, 0 where nothing: the plane itself */
             write_face_ids(job, ids, &out->face_ids[(size_t)y * (size_t)width]);
         const row_runs *r = &s->runs[y % 3];
-        for (int i = 0; i < r->count; i++) {
-            uint32_t id = r->id[i];
-            int x = r->start[i], end = r->start[i + 1];
-            size_t at = (size_t)y * (size_t)width + (size_t)x;
-            if (id == 0) {
-                resolve_empty(out, at, end - x);
-                continue;
-            }
-            if (!sr_assemble_triangles(job->mesh)) {
-                if (id > job->slots)
-                    return id;
-                for (int k = x; k < end; k++)
-                    if (!resolve_sparse_pixel(job, id, at + (size_t)(k - x), job->ray_x[k], job->ray_y[y]))
-                        return id;
-                continue;
-            }
-            resolved_triangle *t = &cache[(id - 1) % TRIANGLE_CACHE];
-            if (t->slot != id - 1 && (id > job->slots || !resolve_triangle(job, id - 1, t))) {
-                t->slot = UINT32_MAX;
-                return id;
-            }
-            resolve_run(job, t, y, x, end - x, s->z + x);
-        }
+        uint32_t stranger = sr_assemble_triangles(job->mesh) ? resolve_triangle_runs(job, y, r, s->z, cache)
+                                                               : resolve_sparse_runs(job, y, r);
+        if (stranger)
+            return stranger;
     }
     return 0;
 }
@@ -605,16 +666,16 @@ static void *resolve_thread_run(void *arg)
     resolve_thread *th = arg;
     resolve_job *job = th->job;
     int height = job->fb->height;
-    resolved_triangle cache[TRIANGLE_CACHE];
+    triangle_cache cache = { .batch = 0 };
     for (int i = 0; i < TRIANGLE_CACHE; i++)
-        cache[i].slot = UINT32_MAX;
+        cache.entry[i].slot = UINT32_MAX;
     for (;;) {
         int64_t chunk = atomic_fetch_add_explicit(&job->next_chunk, 1, memory_order_relaxed),
                 first = chunk * job->chunk_rows;
         if (first >= height)
             return NULL;
         int y0 = (int)first, y1 = height - y0 > job->chunk_rows ? y0 + job->chunk_rows : height;
-        th->stranger = resolve_rows(job, y0, y1, &th->scratch, cache);
+        th->stranger = resolve_rows(job, y0, y1, &th->scratch, &cache);
         if (th->stranger) {
             th->stranger_chunk = y0;
             return NULL;
@@ -645,11 +706,12 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
     size_t width = (size_t)ids->width;
     /* Per thread: a row of z, and three rows of runs; each thread's on
      * cache lines of its own. */
-    size_t per_thread = (width * sizeof(double) + 3 * ((width + 1) * sizeof(int) + width * sizeof(uint32_t)) + 63) /
-                        64 * 64;
+    size_t run_bytes = (width + 1) * sizeof(int) + width * (sizeof(uint32_t) + 3 * sizeof(uint32_t));
+    size_t per_thread = (width * sizeof(double) + 3 * run_bytes + 63) / 64 * 64;
     resolve_job job = { cam, mesh, ids, ids->ids ? ids->ids : ids->color,
                         sparse ? sr_assemble_point_line_slots(mesh) : sr_assemble_slots(mesh), out,
-                        camera_frame_of(cam, mesh), z_window_of(cam), malloc(width * sizeof *job.ray_x),
+                        camera_frame_of(cam, mesh), sr_raster_simd_resolve(SR_SIMD_AUTO) >= SR_SIMD_AVX2,
+                        z_window_of(cam), malloc(width * sizeof *job.ray_x),
                         malloc((size_t)ids->height * sizeof *job.ray_y),
                         (int)(((int64_t)ids->height + chunks - 1) / chunks), 0 };
     char *scratch = aligned_alloc(64, (size_t)threads * per_thread);
@@ -672,7 +734,8 @@ bool sr_pinhole_resolve(const sr_pinhole *cam, const sr_mesh *mesh, const sr_fra
         for (int k = 0; k < 3; k++) {
             s->runs[k].start = (int *)mine;
             s->runs[k].id = (uint32_t *)(mine + (width + 1) * sizeof(int));
-            mine += (width + 1) * sizeof(int) + width * sizeof(uint32_t);
+            s->runs[k].corners = (uint32_t(*)[3])(mine + (width + 1) * sizeof(int) + width * sizeof(uint32_t));
+            mine += run_bytes;
         }
         thread[t].job = &job;
         thread[t].stranger = 0;
