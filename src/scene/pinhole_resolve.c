@@ -361,37 +361,39 @@ static void find_runs(const uint32_t *ids, int width, row_runs *r)
     r->count = n;
 }
 
-/* Prefetches what the triangles of a row's runs need: their indices
- * (stage 0) or, those fetched a row before, their vertices (stage 1),
- * noting each triangle's corners (row_runs.corners). On
+/* Readies the triangles of a row's runs: prefetches their indices (stage
+ * 0) or, those fetched a row before, notes each triangle's corners
+ * (row_runs.corners, which the set-up reads) and prefetches its vertices
+ * (stage 1). On
  * a dense mesh nearly every pixel shows a triangle of its own, far from
  * its neighbours' in the mesh's arrays, and each set-up would wait on
  * memory twice (its indices, then its vertices and normals), one triangle
  * after the other; resolve_rows fetches the indices two rows ahead and
  * the vertices one row ahead, so a row's loads are under way at once. */
-static void prefetch_runs(const resolve_job *job, row_runs *r, int stage)
+static void ready_runs(const resolve_job *job, row_runs *r, int stage)
 {
-    const sr_mesh *mesh = job->mesh;
-    bool file_faces = job->out->face_ids && job->out->file_faces && mesh->file_faces;
+    const sr_mesh mesh = *job->mesh; /* a copy: the stores of corners could alias its members */
+    bool file_faces = job->out->face_ids && job->out->file_faces && mesh.file_faces;
     bool vertex_normals = job->out->normals && job->out->interpolated_normals;
-    if (!sr_assemble_triangles(mesh)) /* points and lines: their slots are not triples */
+    uint32_t slots = job->slots;
+    if (!sr_assemble_triangles(&mesh)) /* points and lines: their slots are not triples */
         return;
     for (int i = 0; i < r->count; i++) {
         uint32_t id = r->id[i];
-        if (id == 0 || id > job->slots)
+        if (id == 0 || id > slots)
             continue;
         if (stage == 0) {
-            __builtin_prefetch(sr_assemble_slot_indices(mesh, id - 1));
+            __builtin_prefetch(sr_assemble_slot_indices(&mesh, id - 1));
             if (file_faces)
-                __builtin_prefetch(&mesh->file_faces[id - 1]);
+                __builtin_prefetch(&mesh.file_faces[id - 1]);
             continue;
         }
         uint32_t *idx = r->corners[i];
-        sr_assemble_triangle(mesh, id - 1, idx); /* drawn, so not degenerate */
+        sr_assemble_triangle(&mesh, id - 1, idx); /* drawn, so not degenerate */
         for (int k = 0; k < 3; k++) {
-            __builtin_prefetch(mesh->positions[idx[k]]);
+            __builtin_prefetch(mesh.positions[idx[k]]);
             if (vertex_normals)
-                __builtin_prefetch(mesh->normals[idx[k]]);
+                __builtin_prefetch(mesh.normals[idx[k]]);
         }
     }
 }
@@ -401,7 +403,7 @@ static void start_row(const resolve_job *job, resolve_scratch *s, int y)
 {
     row_runs *r = &s->runs[y % 3];
     find_runs(job->ids + (size_t)y * (size_t)job->fb->width, job->fb->width, r);
-    prefetch_runs(job, r, 0);
+    ready_runs(job, r, 0);
 }
 
 /* A point or a line seen at a pixel: the primitive's point nearest the
@@ -632,12 +634,12 @@ static uint32_t resolve_rows(const resolve_job *job, int y0, int y1, resolve_scr
     for (int y = y0; y < y0 + 2 && y < y1; y++)
         start_row(job, s, y);
     if (y0 < y1)
-        prefetch_runs(job, &s->runs[y0 % 3], 1);
+        ready_runs(job, &s->runs[y0 % 3], 1);
     for (int y = y0; y < y1; y++) {
         if (y + 2 < y1)
             start_row(job, s, y + 2);
         if (y + 1 < y1)
-            prefetch_runs(job, &s->runs[(y + 1) % 3], 1);
+            ready_runs(job, &s->runs[(y + 1) % 3], 1);
         const uint32_t *ids = job->ids + (size_t)y * (size_t)width;
         if (out->face_ids) /* the id + 1 each pixel shows, 0 where nothing: the plane itself */
             write_face_ids(job, ids, &out->face_ids[(size_t)y * (size_t)width]);

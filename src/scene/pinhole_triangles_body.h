@@ -81,12 +81,12 @@ void PINHOLE_TRIANGLES(const camera_frame *f, const float (*positions)[3], const
         transpose(squared, offset, squared, offset, row[3]);
 #pragma GCC unroll 4
         for (int j = 0; j < 4; j++) {
-            double *at = to[lane[j]]->v0;
+            char *at = (char *)to[lane[j]] + offsetof(resolved_triangle, v0);
             two_doubles last = __builtin_shufflevector(row[3][j], row[3][j], 0, 1);
             memcpy(at, &row[0][j], sizeof row[0][j]);
-            memcpy(at + 4, &row[1][j], sizeof row[1][j]);
-            memcpy(at + 8, &row[2][j], sizeof row[2][j]);
-            memcpy(at + 12, &last, sizeof last);
+            memcpy(at + 4 * sizeof(double), &row[1][j], sizeof row[1][j]);
+            memcpy(at + 8 * sizeof(double), &row[2][j], sizeof row[2][j]);
+            memcpy(at + 12 * sizeof(double), &last, sizeof last);
         }
     }
 }
