@@ -1,7 +1,7 @@
 /* View depth, range, ids and normals of points and lines seen by a pinhole
  * camera: a point's pixels carry its vertex, a line's pixels the segment's
  * point nearest their ray, held to oracles written independently of
- * src/scene/pinhole_resolve.c (in long double, in the camera frame: a point's own
+ * src/scene/pinhole_sparse.c (in long double, in the camera frame: a point's own
  * coordinates, and a golden-section search along the segment for its
  * point nearest the ray). */
 #include <criterion/criterion.h>
@@ -152,10 +152,11 @@ static real distance_to_ray(const real a[3], const real u[3], real t, const real
 
 /* The camera z of the point nearest the ray through pixel (x, y) of the
  * segment's part between the clip planes (a_f's end in front of the near
- * one): a golden-section search for t in that part (the distance is
- * convex in t), to far below a float step. From a_f's end, so a far end
- * 1e30 away costs the point no digits. */
-static real nearest_z(const sr_pinhole *cam, const float a_f[3], const float b_f[3], int x, int y)
+ * one), and where it lies from a_f's end to b_f's (*t, unless NULL): a
+ * golden-section search for t in that part (the distance is convex in
+ * t), to far below a float step. From a_f's end, so a far end 1e30 away
+ * costs the point no digits. */
+static real nearest_z(const sr_pinhole *cam, const float a_f[3], const float b_f[3], int x, int y, real *t_out)
 {
     real a[3], u[3], d[3] = { (x - cam->cx) / cam->fx, (y - cam->cy) / cam->fy, 1.0L };
     for (int k = 0; k < 3; k++) {
@@ -176,6 +177,8 @@ static real nearest_z(const sr_pinhole *cam, const float a_f[3], const float b_f
             lo = m1;
     }
     real t = (lo + hi) / 2.0L;
+    if (t_out)
+        *t_out = t;
     return a[2] + t * u[2];
 }
 
@@ -188,7 +191,7 @@ Test(pinhole_sparse, a_line_shows_its_point_nearest_each_pixels_ray)
     sr_mesh mesh;
     one_segment(&mesh, SR_LINE_LIST);
     sr_pinhole cam = camera(45.0, 52.0, 33.5, 20.25);
-    int checked = 0;
+    int checked = 0, far_half = 0;
     for (int trial = 0; trial < 60; trial++) {
         for (int e = 0; e < 2; e++) {
             float z = (float)rng_uniform(&rng, 0.3, 30.0);
@@ -208,7 +211,7 @@ Test(pinhole_sparse, a_line_shows_its_point_nearest_each_pixels_ray)
                 if (r.face_ids[at] == 0)
                     continue;
                 cr_assert_eq(r.face_ids[at], 1u);
-                real want = nearest_z(&cam, mesh.positions[0], mesh.positions[1], x, y);
+                real t, want = nearest_z(&cam, mesh.positions[0], mesh.positions[1], x, y, &t);
                 cr_assert(fabsl(r.depth[at] - want) <= 1e-6L * want, "trial %d, (%d, %d): depth %.9g, want %.9Lg",
                           trial, x, y, r.depth[at], want);
                 cr_assert(r.depth[at] >= zmin && r.depth[at] <= zmax, "trial %d: depth %.9g outside the ends' %g..%g",
@@ -216,11 +219,19 @@ Test(pinhole_sparse, a_line_shows_its_point_nearest_each_pixels_ray)
                 cr_assert(r.range[at] >= r.depth[at], "trial %d: range %.9g below depth", trial, r.range[at]);
                 real n = normal_length(&r, at);
                 cr_assert(fabsl(n - 1.0L) < 1e-6L, "trial %d: normal of length %.9Lg", trial, n);
+                /* The ends' normals (0, 0, 1) and (0, 1, 0) weighed by where
+                 * the point lies, found from either end: (0, t, 1 − t). */
+                const float *got = &r.normals[3 * at];
+                real sum = fabsl((real)got[1]) + fabsl((real)got[2]);
+                cr_assert(got[0] == 0.0f && fabsl(got[1] / sum - t) < 1e-5L && fabsl(got[2] / sum - (1.0L - t)) < 1e-5L,
+                          "trial %d, (%d, %d): normal (%g, %g, %g) at t %.9Lg", trial, x, y, got[0], got[1], got[2], t);
+                far_half += t > 0.5L;
                 checked++;
             }
         sr_framebuffer_destroy(&r.fb);
     }
     cr_assert(checked > 500, "only %d line pixels checked", checked);
+    cr_assert(far_half > 100, "only %d pixels' points in the far half, found from the far end", far_half);
     sr_mesh_free(&mesh);
 }
 
@@ -248,7 +259,7 @@ Test(pinhole_sparse, a_line_nearly_along_a_ray_keeps_its_depth)
                 if (!r.face_ids[at])
                     continue;
                 drawn++;
-                real want = nearest_z(&cam, mesh.positions[0], mesh.positions[1], x, y);
+                real want = nearest_z(&cam, mesh.positions[0], mesh.positions[1], x, y, NULL);
                 cr_assert(fabsl(r.depth[at] - want) <= 1e-6L * want, "order %d, (%d, %d): depth %.9g, want %.9Lg",
                           order, x, y, r.depth[at], want);
             }
@@ -294,7 +305,7 @@ Test(pinhole_sparse, a_line_through_the_near_plane_shows_the_part_drawn)
                 if (r.face_ids[at] == 0)
                     continue;
                 drawn++;
-                real want = nearest_z(&cam, a, b, x, y);
+                real want = nearest_z(&cam, a, b, x, y, NULL);
                 cr_assert(fabsl(r.depth[at] - want) <= 1e-6L * want, "trial %d, (%d, %d): depth %.9g, want %.9Lg",
                           trial, x, y, r.depth[at], want);
                 cr_assert(r.depth[at] >= (float)cam.near * (1.0f - 1e-6f) && r.depth[at] <= z,

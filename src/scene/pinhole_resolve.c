@@ -12,6 +12,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "pinhole_sparse.h"
 #include "pinhole_triangles.h"
 #include "pipeline/02_assemble.h"
 #include "pipeline/08_raster/simd_select.h"
@@ -114,10 +115,10 @@ static uint32_t part_of(const sr_mesh *mesh, uint32_t slot)
     return mesh->part_count ? lo + 1 : 1;
 }
 
-/* What the outputs ask of triangle `slot`, whose corners are the mesh
+/* What the outputs ask of triangle t->slot, whose corners are the mesh
  * vertices idx and whose geometry t holds (pinhole_triangles.h): its
  * front normal, vertex normals and part. */
-static void finish_triangle(const resolve_job *job, uint32_t slot, const uint32_t idx[3], resolved_triangle *t)
+static void finish_triangle(const resolve_job *job, const uint32_t idx[3], resolved_triangle *t)
 {
     const sr_mesh *mesh = job->mesh;
     const sr_pinhole_outputs *out = job->out;
@@ -133,7 +134,7 @@ static void finish_triangle(const resolve_job *job, uint32_t slot, const uint32_
         double file[3] = { n[0], n[1], mesh->z_negated ? -(double)n[2] : n[2] };
         rotate(job->cam, file, t->vertex_normals[c]);
     }
-    t->part = out->part_ids && mesh->parts ? part_of(mesh, slot) : 1;
+    t->part = out->part_ids && mesh->parts ? part_of(mesh, t->slot) : 1;
 }
 
 /* The view z of the ray through a pixel centre, ((x − cx)/fx, (y − cy)/fy, 1),
@@ -406,101 +407,14 @@ static void start_row(const resolve_job *job, resolve_scratch *s, int y)
     ready_runs(job, r, 0);
 }
 
-/* A point or a line seen at a pixel: the primitive's point nearest the
- * pixel's ray, in the camera frame, and where it lies between the line's
- * ends (t, 0 for a point). A point is its vertex. For a line see
- * nearest_from. */
-typedef struct sparse_point {
-    double p[3], t;
-    uint32_t idx[2];
-} sparse_point;
-
-/* The part of a segment from `base` towards `other`, base + r·(other −
- * base) for r in [*lo, *hi] ⊆ [0, 1], whose view z lies between the clip
- * planes: the part a draw shows. The whole segment if no part does (an
- * id that is no draw of it). */
-static void visible_part(const sr_pinhole *cam, double base_z, double other_z, double *lo, double *hi)
-{
-    const double plane[2] = { cam->near, cam->far }, side[2] = { 1.0, -1.0 }; /* in front of near, behind far */
-    double dz = other_z - base_z, from = 0.0, to = 1.0;
-    for (int k = 0; k < 2; k++) {
-        double base_in = side[k] * (base_z - plane[k]), other_in = side[k] * (other_z - plane[k]);
-        if (base_in < 0.0 && other_in >= 0.0)
-            from = fmax(from, (plane[k] - base_z) / dz);
-        else if (base_in >= 0.0 && other_in < 0.0)
-            to = fmin(to, (plane[k] - base_z) / dz);
-        else if (base_in < 0.0)
-            from = 2.0; /* wholly outside */
-    }
-    *lo = from <= to ? from : 0.0;
-    *hi = from <= to ? to : 1.0;
-}
-
-/* The point of the visible part of segment base → other nearest the ray
- * along d = (ray_x, ray_y, 1), as r from base: |(A + r·u) × d| / |d|, u =
- * other − A, is least at r = −(A × d)·(u × d) / |u × d|², clamped. Cross
- * products, so a segment nearly along the ray loses no digits to
- * cancellation; one exactly along it shows its nearer end. */
-static double nearest_from(const sr_pinhole *cam, const double base[3], const double other[3], const double d[3],
-                           double p[3])
-{
-    double u[3], a_d[3], u_d[3], lo, hi;
-    for (int k = 0; k < 3; k++)
-        u[k] = other[k] - base[k];
-    sr_dvec3_cross(base, d, a_d);
-    sr_dvec3_cross(u, d, u_d);
-    double along = sr_dvec3_dot(u_d, u_d);
-    double r = along > 0.0 ? -sr_dvec3_dot(a_d, u_d) / along : (other[2] < base[2] ? 1.0 : 0.0);
-    visible_part(cam, base[2], other[2], &lo, &hi);
-    r = r > lo ? (r < hi ? r : hi) : lo; /* NaN (an overflow) takes the visible part's first point */
-    for (int k = 0; k < 3; k++)
-        p[k] = base[k] + r * u[k];
-    return r;
-}
-
-static bool sparse_point_at(const resolve_job *job, uint32_t slot, double ray_x, double ray_y, sparse_point *sp)
-{
-    const sr_mesh *mesh = job->mesh;
-    if (mesh->topology == SR_POINT_LIST) {
-        sp->idx[0] = sp->idx[1] = mesh->indices[slot];
-        if (sp->idx[0] >= mesh->vertex_count)
-            return false;
-        to_camera(&job->frame, mesh->positions[sp->idx[0]], sp->p);
-        sp->t = 0.0;
-        return true;
-    }
-    double a[3], b[3], from_b[3];
-    sr_assemble_line(mesh, slot, sp->idx); /* drawn, so not degenerate */
-    if (sp->idx[0] >= mesh->vertex_count || sp->idx[1] >= mesh->vertex_count)
-        return false;
-    to_camera(&job->frame, mesh->positions[sp->idx[0]], a);
-    to_camera(&job->frame, mesh->positions[sp->idx[1]], b);
-    /* From the nearer end: b − a rounds away the digits of the smaller end
-     * when the other lies far off (behind the camera, say, outside the part
-     * drawn), and from the far end they would be lost again in a + r·u. A
-     * point in a's half is found well from a; past it, from b too, and the
-     * nearer end's taken. */
-    const double d[3] = { ray_x, ray_y, 1.0 };
-    double r_a = nearest_from(job->cam, a, b, d, sp->p);
-    sp->t = r_a;
-    if (r_a > 0.5) {
-        double r_b = nearest_from(job->cam, b, a, d, from_b);
-        if (r_b < r_a) {
-            memcpy(sp->p, from_b, sizeof from_b);
-            sp->t = 1.0 - r_b;
-        }
-    }
-    return true;
-}
-
 /* Pixel `at` showing point or line slot id − 1: each output from the
  * primitive's point nearest its ray. Per pixel: a point cloud's pixels
  * rarely share a primitive with their neighbours for long. */
 static bool resolve_sparse_pixel(const resolve_job *job, uint32_t id, size_t at, double ray_x, double ray_y)
 {
     const sr_pinhole_outputs *out = job->out;
-    sparse_point sp;
-    if (!sparse_point_at(job, id - 1, ray_x, ray_y, &sp))
+    sr_seen_point sp;
+    if (!sr_pinhole_seen_point(job->cam, &job->frame, job->mesh, id - 1, ray_x, ray_y, &sp))
         return false;
     if (out->depth)
         out->depth[at] = (float)sp.p[2];
@@ -551,7 +465,7 @@ static uint32_t set_up_batch(const resolve_job *job, const row_runs *r, int *nex
         if (id == 0)
             continue;
         resolved_triangle *t = &cache->entry[(id - 1) % TRIANGLE_CACHE];
-        if (id <= job->slots && t->slot == id - 1) { /* set up before: the batch holds it from here */
+        if (t->slot == id - 1) { /* set up before (so a triangle of the mesh's): the batch holds it from here */
             t->claim = batch;
             continue;
         }
@@ -574,7 +488,7 @@ static uint32_t set_up_batch(const resolve_job *job, const row_runs *r, int *nex
     (job->avx2 ? sr_pinhole_triangles_avx2 : sr_pinhole_triangles_sse2)(
         &job->frame, (const float(*)[3])mesh->positions, (const uint32_t(*)[3])corners, to, n);
     for (uint32_t k = 0; k < n; k++)
-        finish_triangle(job, to[k]->slot, corners[k], to[k]);
+        finish_triangle(job, corners[k], to[k]);
     return stranger;
 }
 
