@@ -362,9 +362,12 @@ static sr_draw_path path_of(const sr_draw_state *st, sr_draw_path planned)
 }
 
 /* Triangles the sub-pixel lanes' estimate looks at: evenly spaced slots,
- * a few microseconds of a draw the lanes would matter to. */
+ * a few microseconds. From SUBPIXEL_SAMPLED_MIN_SLOTS slots on that is
+ * little beside the draw where its triangles are large and the estimate
+ * wasted, and far less than it saves where they are sub-pixel: the
+ * one-by-one path sets every triangle up, the lanes drop most unset. */
 #define SUBPIXEL_SAMPLES 256
-#define SUBPIXEL_SAMPLED_MIN_SLOTS 65536
+#define SUBPIXEL_SAMPLED_MIN_SLOTS 4096
 
 /* Whether most of the sampled triangles in front of the eye have less than
  * a pixel's area on screen: most then cover no pixel centre. Areas in
