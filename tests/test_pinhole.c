@@ -5,6 +5,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "softrast_private.h"
 #include "test_rng.h"
@@ -149,6 +150,38 @@ static sr_pinhole camera_of(double fx, double fy, double cx, double cy, const do
 }
 
 TestSuite(pinhole);
+
+/* Fitted clip planes come from the bounds a mesh keeps when it has them
+ * (so a view need not walk the vertices), else from its positions: a
+ * triangle 10 in front of the camera, kept bounds reaching from 2 to 40
+ * in front, and the same planes to the bit once the bounds are its own. */
+Test(pinhole, fitted_planes_take_the_bounds_the_mesh_keeps)
+{
+    const double c2w[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } };
+    sr_mesh mesh = { 0 };
+    sr_error err = { "" };
+    cr_assert(sr_mesh_alloc(&mesh, 3, 3, false, false, false, &err), "%s", err.message);
+    const float corners[3][3] = { { -1, -1, 10 }, { 1, -1, 10 }, { 0, 1, 10 } };
+    for (int k = 0; k < 3; k++) {
+        memcpy(mesh.positions[k], corners[k], sizeof corners[k]);
+        mesh.indices[k] = (uint32_t)k;
+    }
+    sr_pinhole walked = camera_of(100, 100, 32, 32, c2w);
+    sr_pinhole_fit_clip(&walked, &mesh);
+    cr_assert(walked.near > 2.0 && walked.far < 40.0, "from the positions: near %g, far %g", walked.near, walked.far);
+    mesh.bounded = true;
+    glm_vec3_copy((vec3){ -1, -1, 2 }, mesh.bounds_lo);
+    glm_vec3_copy((vec3){ 1, 1, 40 }, mesh.bounds_hi);
+    sr_pinhole kept = camera_of(100, 100, 32, 32, c2w);
+    sr_pinhole_fit_clip(&kept, &mesh);
+    cr_assert(kept.near <= 2.0 && kept.far >= 40.0, "from the kept bounds: near %g, far %g", kept.near, kept.far);
+    sr_mesh_update_bounds(&mesh);
+    sr_pinhole own = camera_of(100, 100, 32, 32, c2w);
+    sr_pinhole_fit_clip(&own, &mesh);
+    cr_assert(own.near == walked.near && own.far == walked.far, "kept %g .. %g, walked %g .. %g", own.near, own.far,
+              walked.near, walked.far);
+    sr_mesh_free(&mesh);
+}
 
 /* A point X that the pinhole formula puts exactly at pixel centre (u, v)
  * lies inside a small triangle whose corners project 1/64 to 0.6 px around

@@ -93,7 +93,17 @@ void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh)
     vec3 lo, hi;
     double nearest = INFINITY, farthest = 0.0;
     camera_frame frame = camera_frame_of(cam, mesh);
-    if (sr_mesh_bounds(mesh, lo, hi))
+    /* The bounds the mesh keeps, which the draw trusts too: a vision user
+     * fits every view of one mesh, which then need not walk its vertices
+     * each time. */
+    bool bounded = mesh->bounded;
+    if (bounded) {
+        glm_vec3_copy((float *)mesh->bounds_lo, lo);
+        glm_vec3_copy((float *)mesh->bounds_hi, hi);
+    } else {
+        bounded = sr_mesh_bounds(mesh, lo, hi);
+    }
+    if (bounded)
         for (int k = 0; k < 8; k++) {
             float corner[3] = { (k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2] };
             double c[3];
