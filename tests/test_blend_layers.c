@@ -3,6 +3,7 @@
  * and writing no depth; `render --blend` and `--depth-write` draw the whole
  * mesh in one draw instead. Exact pixels on a small scene of squares. */
 #include <criterion/criterion.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "gltf_square.h"
@@ -187,6 +188,12 @@ Test(blend_layers, clearcoat_blends_its_coating_and_writes_no_depth_for_it)
     cr_assert_gt(coating, 100u, "the coating's stripes: %zu pixels", coating);
 }
 
+/* One frame: a pinhole at z = 10 looking down −z (glTF's frame; cx, cy
+ * from the top-left pixel's corner). */
+static const char POSES[] = "{\"fl_x\": 100, \"fl_y\": 100, \"cx\": 20, \"cy\": 20, \"w\": 40, \"h\": 40, "
+                            "\"frames\": [{\"transform_matrix\": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 10], "
+                            "[0, 0, 0, 1]]}]}";
+
 /* A camera dataset draws the BLEND parts as `render` does: frame 0 of a
  * --poses dataset, a pinhole at z = 10 looking down −z (glTF's frame;
  * cx, cy from the top-left pixel's corner), is the single image of the
@@ -196,9 +203,6 @@ Test(blend_layers, clearcoat_blends_its_coating_and_writes_no_depth_for_it)
  * too: they write no depth and no ids, in id shading as well. */
 Test(blend_layers, a_datasets_frame_is_renders_image_blended)
 {
-    static const char POSES[] = "{\"fl_x\": 100, \"fl_y\": 100, \"cx\": 20, \"cy\": 20, \"w\": 40, \"h\": 40, "
-                                "\"frames\": [{\"transform_matrix\": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 10], "
-                                "[0, 0, 0, 1]]}]}";
     static const char LOOK[] = "--shade texture --color-space raw --quiet";
     write_text(temp_dir, "squares.gltf", SQUARES_GLTF);
     write_text(temp_dir, "poses.json", POSES);
@@ -235,6 +239,40 @@ Test(blend_layers, a_datasets_frame_is_renders_image_blended)
     read_depth("ds/d/frame_00000.pfm", depth, SIDE, SIDE);
     for (int i = 0; i < SIDE * SIDE; i++)
         cr_assert_float_eq(depth[i], 10.0f, 1e-5f, "pixel %d: depth %g, not the opaque square's", i, depth[i]);
+}
+
+/* Without --out no colour is written, so the measured outputs come from a
+ * draw shaded in ids, which leaves the BLEND squares out (they would only
+ * tint the colour): the same view depth and part ids as with --out, in a
+ * single image and a dataset's frame, and --stats counts the opaque
+ * square's two triangles where the draw with the colour counts six. */
+Test(blend_layers, without_a_colour_output_the_draw_is_in_ids)
+{
+    static const char VIEW[] = "--size 40x40 --intrinsics 100,100,19.5,19.5 "
+                               "--pose-w2c 1,0,0,0,0,-1,0,0,0,0,-1,10,0,0,0,1 --shade texture --stats";
+    write_text(temp_dir, "squares.gltf", SQUARES_GLTF);
+    write_text(temp_dir, "poses.json", POSES);
+    const char *d = temp_dir;
+    char args[2400];
+    const unsigned long long triangles[2] = { 2, 6 }; /* without the colour, with it */
+    for (int colour = 1; colour >= 0; colour--) {
+        snprintf(args, sizeof args,
+                 "render '%s/squares.gltf' %s %s%s%s --view-depth '%s/d%d.pfm' --part-ids '%s/p%d.png'", d, VIEW,
+                 colour ? "--out '" : "", colour ? d : "", colour ? "/c.png'" : "", d, colour, d, colour);
+        run_result r = run_softrast(temp_dir, args);
+        cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+        const char *at = strstr(r.out, "\"triangles\": ");
+        cr_assert_not_null(at, "%s", r.out);
+        cr_assert_eq(strtoull(at + strlen("\"triangles\": "), NULL, 10), triangles[colour], "%s: %s", args, r.out);
+    }
+    snprintf(args, sizeof args, "render '%s/squares.gltf' --poses '%s/poses.json' --out-dir '%s/ds' --quiet "
+                                "--view-depth d.pfm --part-ids p.png", d, d, d);
+    run_result r = run_softrast(temp_dir, args);
+    cr_assert_eq(r.status, 0, "softrast %s: %s", args, r.err);
+    char cmd[1600];
+    snprintf(cmd, sizeof cmd, "cd '%s' && cmp d1.pfm d0.pfm && cmp p1.png p0.png && cmp d1.pfm ds/d/frame_00000.pfm && "
+                              "cmp p1.png ds/p/frame_00000.png", temp_dir);
+    cr_assert_eq(system(cmd), 0, "the outputs without the colour differ from those with it");
 }
 
 /* The library's entry on a mesh of its own: a BLEND square of alpha 0.5

@@ -108,7 +108,7 @@ static bool render_frame(const sr_dataset_job *d, const sr_pinhole_setup *p, con
     if (!sr_transforms_camera(t, i, &cam, size, err) || !sr_pinhole_setup_clip(s, &scene->mesh, &cam, err) ||
         !sr_scene_desc(s, scene, &desc, &study, err))
         return false;
-    sr_pinhole_setup_desc(s, &cam, scene, &desc);
+    sr_pinhole_setup_desc(s, &cam, scene, d->color_name != NULL, &desc);
     desc.clear = true;
     char rel[PATH_MAX], path[PATH_MAX];
     if (!sr_draw_layered(&scene->fb, &desc, NULL, err) ||

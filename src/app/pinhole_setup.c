@@ -245,11 +245,14 @@ static bool write_resolved(const sr_pinhole_setup *p, const sr_pinhole *cam, con
     return ok;
 }
 
-void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, sr_draw_desc *desc)
+void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, bool color_written,
+                           sr_draw_desc *desc)
 {
     sr_pinhole_matrices(cam, &scene->mesh, &scene->fb, desc);
     if (!s->cull_set)
         desc->cull = SR_CULL_NONE;
+    if (!color_written)
+        desc->shade = SR_SHADE_ID;
 }
 
 bool sr_pinhole_setup_ids(const sr_pinhole_setup *p, sr_scene *scene, sr_error *err)

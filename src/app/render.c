@@ -281,7 +281,9 @@ static bool use_pinhole(render_job *job, sr_scene *scene, sr_pinhole *cam, sr_dr
     if (!sr_pinhole_setup_camera(&job->pinhole, &job->scene, &scene->mesh, cam, err) ||
         !sr_pinhole_setup_ids(&job->pinhole, scene, err))
         return false;
-    sr_pinhole_setup_desc(&job->scene, cam, scene, desc);
+    /* Points and lines keep their shading: only triangles are held to the
+     * same depth and ids in every mode. */
+    sr_pinhole_setup_desc(&job->scene, cam, scene, job->out_path || job->points || job->lines, desc);
     return true;
 }
 
