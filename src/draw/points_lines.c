@@ -5,13 +5,14 @@
  * thread t takes the t-th run of slots and bins its fragments by band of
  * rows, then each band is stored by one thread from the bins in slot order
  * (raster_lines.h): the same pixels on every thread count. A run of points
- * whose vertices are consecutive is transformed and classified in blocks,
- * four at a time (sr_vertex_run_inside), and a point of size 1 takes its
- * pixel without the square's set-up (sr_raster_point_pixel): the same
- * arithmetic, one loop instead of many. docs/performance.md, "Points and
- * lines". */
+ * whose vertices are consecutive is transformed, classified and mapped in
+ * blocks, in lanes (sr_vertex_run_inside, 06_viewport.h's blocks), and a
+ * point of size 1 takes its pixel without the square's set-up
+ * (sr_raster_point_pixel): the same arithmetic, one loop instead of many.
+ * docs/performance.md, "Points and lines". */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "draw_state.h"
 #include "core/error.h"
@@ -77,25 +78,31 @@ static bool outcodes_keep(sr_stats *stats, unsigned any, unsigned all)
     return true;
 }
 
+/* The raster of a point mapped to p, shading with its vertex's own
+ * varyings v (raster_lines.h), counted drawn. */
+static void raster_point(point_line_draw *d, uint32_t k, const sr_screen_vertex *p, const sr_vertex_out *v)
+{
+    sr_stats *stats = &d->work->stats;
+    stats->drawn++;
+    const float *var = v->v + SR_VARYINGS_AT;
+    float size = d->st->desc->point_size > 0.0f ? d->st->desc->point_size : 1.0f;
+    stats->fragments += size == 1.0f ? sr_raster_point_pixel(&d->target, p, var, k)
+                                     : sr_raster_point(&d->target, p, var, size, k);
+}
+
 /* Stage 6 and the raster of a point with clip position clip_d in double
  * under viewport vp: its snapped position and depth, and no varyings over
- * w, since a point shades with its vertex's own (raster_lines.h); so it is
- * dropped as not finite only for a w whose 1/w is not. */
+ * w, since a point shades with its vertex's own; so it is dropped as not
+ * finite only for a w whose 1/w is not. */
 static void map_and_raster_point(point_line_draw *d, uint32_t k, const sr_vertex_out *v, const double clip_d[4],
                                  const sr_viewport *vp)
 {
-    const sr_draw_state *st = d->st;
-    sr_stats *stats = &d->work->stats;
     sr_screen_vertex p;
     if (!sr_viewport_map_d(v, clip_d, 0, vp, &p)) {
-        count_nonfinite(stats);
+        count_nonfinite(&d->work->stats);
         return;
     }
-    stats->drawn++;
-    const float *var = v->v + SR_VARYINGS_AT;
-    float size = st->desc->point_size > 0.0f ? st->desc->point_size : 1.0f;
-    stats->fragments += size == 1.0f ? sr_raster_point_pixel(&d->target, &p, var, k)
-                                     : sr_raster_point(&d->target, &p, var, size, k);
+    raster_point(d, k, &p, v);
 }
 
 /* A point is kept or dropped by its position: outside the near or far
@@ -146,16 +153,41 @@ static bool consecutive(const uint32_t *indices, uint32_t k, uint32_t n)
     return true;
 }
 
-/* Points [first, end): a block of consecutive vertices transformed and
- * classified at once; a point inside every plane whose block has finite
- * varyings goes straight to stage 6, as draw_point would take it; any
- * other point, and every point of another block, through draw_point. */
+/* Stage 6 for the block's vertices i .. i + n − 1 (v) inside every plane
+ * (mapped[j] 0), as map_and_raster_point maps them, in lanes
+ * (06_viewport.h): the float half, which makes mapped[j] SR_OUT_NONFINITE
+ * where it refuses one, then the double half of the others, into
+ * screen[j]. */
+static void map_block(const sr_draw_state *st, uint32_t i, uint32_t n, const sr_vertex_out *v,
+                      unsigned char *mapped, sr_screen_vertex *screen)
+{
+    bool avx2 = st->shade.simd >= SR_SIMD_AVX2;
+    sr_viewport_map_float_block(v, n, 0, &st->vp, avx2, mapped, screen, sizeof *screen, NULL);
+    uint32_t index[POINT_BLOCK], m = 0;
+    for (uint32_t j = 0; j < n; j++)
+        if (mapped[j] == 0)
+            index[m++] = j;
+    /* The double half reads mesh vertex index[j] and writes screen vertex
+     * index[j]: the block's vertices counted from 0, as its screen ones. */
+    sr_mesh block = *st->desc->mesh;
+    if (block.positions)
+        block.positions += i;
+    if (block.clip_positions)
+        block.clip_positions += i;
+    sr_viewport_map_double_block(&block, st->xf, index, m, &st->vp, avx2, screen, sizeof *screen);
+}
+
+/* Points [first, end): a block of consecutive vertices transformed,
+ * classified and, those inside every plane, mapped at once, then each of
+ * those rastered as draw_point would; any other point, and every point of
+ * another block, through draw_point. */
 static void draw_points(point_line_draw *d, uint32_t first, uint32_t end)
 {
     const sr_draw_state *st = d->st;
     const sr_mesh *mesh = st->desc->mesh;
     _Alignas(16) sr_vertex_out v[POINT_BLOCK];
-    unsigned char codes[POINT_BLOCK];
+    sr_screen_vertex screen[POINT_BLOCK];
+    unsigned char codes[POINT_BLOCK], mapped[POINT_BLOCK];
     for (uint32_t k = first; k < end; k += POINT_BLOCK) {
         uint32_t n = end - k < POINT_BLOCK ? end - k : POINT_BLOCK, i = mesh->indices[k];
         if (!consecutive(mesh->indices, k, n) ||
@@ -166,15 +198,18 @@ static void draw_points(point_line_draw *d, uint32_t first, uint32_t end)
         }
         sr_vertex_run_inside(mesh, st->xf, &st->shade.layout, &st->vp.depth, st->shade.simd >= SR_SIMD_AVX2, i,
                              n, v, codes);
+        memcpy(mapped, codes, n);
+        map_block(st, i, n, v, mapped, screen);
         for (uint32_t j = 0; j < n; j++) {
             if (codes[j]) {
                 draw_point(d, k + j);
                 continue;
             }
             d->work->stats.points++;
-            double clip_d[4];
-            sr_vertex_mesh_clip_d(mesh, i + j, st->xf, clip_d);
-            map_and_raster_point(d, k + j, &v[j], clip_d, &st->vp);
+            if (mapped[j])
+                count_nonfinite(&d->work->stats);
+            else
+                raster_point(d, k + j, &screen[j], &v[j]);
         }
     }
 }
