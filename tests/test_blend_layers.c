@@ -241,15 +241,15 @@ Test(blend_layers, a_datasets_frame_is_renders_image_blended)
         cr_assert_float_eq(depth[i], 10.0f, 1e-5f, "pixel %d: depth %g, not the opaque square's", i, depth[i]);
 }
 
-/* Without --out no colour is written, so the measured outputs come from a
- * draw shaded in ids, which leaves the BLEND squares out (they would only
+/* Without --out (and --shade) no colour is written, so the measured outputs
+ * come from a draw shaded in ids, which leaves the BLEND squares out (they would only
  * tint the colour): the same view depth and part ids as with --out, in a
  * single image and a dataset's frame, and --stats counts the opaque
  * square's two triangles where the draw with the colour counts six. */
 Test(blend_layers, without_a_colour_output_the_draw_is_in_ids)
 {
     static const char VIEW[] = "--size 40x40 --intrinsics 100,100,19.5,19.5 "
-                               "--pose-w2c 1,0,0,0,0,-1,0,0,0,0,-1,10,0,0,0,1 --shade texture --stats";
+                               "--pose-w2c 1,0,0,0,0,-1,0,0,0,0,-1,10,0,0,0,1 --stats";
     write_text(temp_dir, "squares.gltf", SQUARES_GLTF);
     write_text(temp_dir, "poses.json", POSES);
     const char *d = temp_dir;

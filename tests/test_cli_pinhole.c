@@ -179,6 +179,35 @@ Test(cli_pinhole, ids_and_normals_read_back_beside_view_depth)
     assert_one_error("render %s/tri.obj --face-ids %s/f.npy", "needs a camera pose");
 }
 
+/* Without a colour output and without --shade the draw is in ids, so what
+ * is measured depends on the geometry alone: a triangle whose colours
+ * (3e38) overflow once divided by w (at depth 0.5) is measured in front of
+ * one behind it, where a lambert draw, which reads the colours, drops it
+ * as not finite; --shade lambert and --out keep that draw. */
+Test(cli_pinhole, without_a_colour_output_the_geometry_alone_is_measured)
+{
+    write_text(temp_dir, "nf.obj",
+               "v -0.2 -0.2 0.5 3e38 0 0\nv 0.2 -0.2 0.5 3e38 0 0\nv 0 0.2 0.5 3e38 0 0\n"
+               "v -0.2 -0.2 1 0.5 0.5 0.5\nv 0.2 -0.2 1 0.5 0.5 0.5\nv 0 0.2 1 0.5 0.5 0.5\nf 1 2 3\nf 4 5 6\n");
+    static const struct {
+        const char *options;
+        uint32_t centre;
+    } runs[] = { { "", 1 }, { "--shade lambert", 2 }, { "--out '%s/c.png'", 2 } };
+    for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
+        char options[600], args[1400], path[512];
+        snprintf(options, sizeof options, runs[k].options, temp_dir);
+        snprintf(args, sizeof args,
+                 "render %s/nf.obj --size %dx%d --intrinsics 40,40,19.5,14.5 --pose-w2c " IDENTITY
+                 " %s --face-ids %s/f.npy --quiet",
+                 temp_dir, W, H, options, temp_dir);
+        run_result r = run_softrast(temp_dir, args);
+        cr_assert_eq(r.status, 0, "%s: %s", args, r.err);
+        static uint32_t faces[W * H];
+        read_npy_of(temp_path(path, sizeof path, "f.npy"), "<u4", 1, faces);
+        cr_assert_eq(faces[15 * W + 20], runs[k].centre, "%s: the centre shows face %u", args, faces[15 * W + 20]);
+    }
+}
+
 /* An EXR's float channels, interleaved (one: "Y"; three: "R", "G", "B"),
  * through OpenEXRCore's reader. */
 static void read_exr(const char *path, int channels, float *out)

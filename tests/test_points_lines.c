@@ -680,6 +680,53 @@ Test(points, one_pixel_points_in_blocks_match_the_point_by_point_loop_on_every_t
     sr_mesh_free(&twin);
 }
 
+/* A cloud given in clip space, in blocks (consecutive vertices), against
+ * its twin whose point k is vertex 2k, drawn point by point: the blocks
+ * map their own clip positions, the same bits. */
+Test(points, a_clip_space_cloud_in_blocks_matches_the_point_by_point_loop)
+{
+    enum { N = 300, SIDE = 64 };
+    sr_mesh cloud = { .vertex_count = N, .index_count = N, .topology = SR_POINT_LIST },
+            twin = { .vertex_count = 2 * N, .index_count = N, .topology = SR_POINT_LIST };
+    cloud.clip_positions = calloc(N, sizeof(vec4));
+    twin.clip_positions = calloc(2 * N, sizeof(vec4));
+    cloud.indices = calloc(N, sizeof(uint32_t));
+    twin.indices = calloc(N, sizeof(uint32_t));
+    cr_assert(cloud.clip_positions && twin.clip_positions && cloud.indices && twin.indices);
+    test_rng r = { 5 };
+    for (uint32_t i = 0; i < N; i++) {
+        /* NDC inside the view, times a w of its own: the divisions matter */
+        float w = (float)rng_uniform(&r, 0.5, 2.0);
+        vec4 c = { (float)rng_uniform(&r, -0.9, 0.9) * w, (float)rng_uniform(&r, -0.9, 0.9) * w,
+                   (float)rng_uniform(&r, 0.05, 0.95) * w, w };
+        glm_vec4_copy(c, cloud.clip_positions[i]);
+        glm_vec4_copy(c, twin.clip_positions[2 * i]);
+        glm_vec4_copy(c, twin.clip_positions[2 * i + 1]);
+        cloud.indices[i] = i;
+        twin.indices[i] = 2 * i;
+    }
+    sr_framebuffer want, got;
+    scene_fb_make(&want, SIDE, SIDE);
+    scene_fb_make(&got, SIDE, SIDE);
+    sr_draw_desc desc = { .mesh = &twin, .shade = SR_SHADE_ID };
+    sr_stats s1, s2;
+    sr_framebuffer_clear(&want, 0);
+    scene_draw_on_loop(&want, &desc, SR_SIMD_AUTO, 1, SR_PATH_DIRECT, &s1);
+    cr_assert_gt(s1.fragments, 100);
+    desc.mesh = &cloud;
+    sr_framebuffer_clear(&got, 0);
+    scene_draw_on_loop(&got, &desc, SR_SIMD_AUTO, 1, SR_PATH_DIRECT, &s2);
+    cr_assert(memcmp(want.color, got.color, sizeof(uint32_t) * SIDE * SIDE) == 0 &&
+                  memcmp(want.depth, got.depth, sizeof(float) * SIDE * SIDE) == 0 && memcmp(&s1, &s2, sizeof s1) == 0,
+              "the blocks differ from the point-by-point loop");
+    sr_framebuffer_destroy(&want);
+    sr_framebuffer_destroy(&got);
+    free(cloud.clip_positions);
+    free(twin.clip_positions);
+    free(cloud.indices);
+    free(twin.indices);
+}
+
 Test(lines, a_line_over_its_triangle_needs_the_depth_bias_and_a_hidden_one_stays_hidden)
 {
     sr_framebuffer fb, alone;

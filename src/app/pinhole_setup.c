@@ -245,13 +245,13 @@ static bool write_resolved(const sr_pinhole_setup *p, const sr_pinhole *cam, con
     return ok;
 }
 
-void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, bool color_written,
+void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, bool color_used,
                            sr_draw_desc *desc)
 {
     sr_pinhole_matrices(cam, &scene->mesh, &scene->fb, desc);
     if (!s->cull_set)
         desc->cull = SR_CULL_NONE;
-    if (!color_written)
+    if (!color_used && !s->shade_set)
         desc->shade = SR_SHADE_ID;
 }
 

@@ -67,11 +67,12 @@ bool sr_pinhole_setup_wants_depth(const sr_pinhole_setup *p);
 /* desc (sr_scene_desc's) for cam at the framebuffer's size: its matrices,
  * the framebuffer reversed z as they are, and culling off unless --cull
  * asked for it (a ray caster sees both faces, and scans are not always
- * wound one way). Unless the colour image is written (color_written),
- * shaded in ids: depth and the ids plane, all the measured outputs read,
- * are the same in every shading, and ids are the cheapest (as Python's
- * render without a colour output). */
-void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, bool color_written,
+ * wound one way). When the draw's colour is not used (color_used: the
+ * image is written, or points or lines are drawn) and no --shade was
+ * asked, shaded in ids, the cheapest mode, as Python's render without a
+ * colour output is: the measured outputs then depend on the geometry
+ * alone, not on attributes a shading would read (docs/cli.md). */
+void sr_pinhole_setup_desc(const sr_scene_setup *s, const sr_pinhole *cam, sr_scene *scene, bool color_used,
                            sr_draw_desc *desc);
 
 /* Gives the scene's framebuffer an ids plane where outputs are asked for:

@@ -281,8 +281,7 @@ static bool use_pinhole(render_job *job, sr_scene *scene, sr_pinhole *cam, sr_dr
     if (!sr_pinhole_setup_camera(&job->pinhole, &job->scene, &scene->mesh, cam, err) ||
         !sr_pinhole_setup_ids(&job->pinhole, scene, err))
         return false;
-    /* Points and lines keep their shading: only triangles are held to the
-     * same depth and ids in every mode. */
+    /* Points and lines keep their shading: their draw has no lanes that ids would speed up. */
     sr_pinhole_setup_desc(&job->scene, cam, scene, job->out_path || job->points || job->lines, desc);
     return true;
 }

@@ -474,8 +474,6 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     vertex_phase ph = { .st = st };
     make_transform(st, &ph.xf);
     st->xf = &ph.xf;
-    st->subpixel_lanes = subpixel_lanes(st, &ph.xf);
-    st->slot_lanes = slot_lanes(st);
     const sr_mesh *mesh = st->desc->mesh;
     if (!sr_assemble_triangles(mesh)) {
         bool drawn = sr_draw_points_lines(st, err);
@@ -492,6 +490,8 @@ static bool draw_with(sr_draw_state *st, sr_stats *stats, sr_error *err)
     bool draws = box != SR_BOX_OUTSIDE && st->vertex_count > 0;
     if (!draws && !sr_assemble_indices_valid(mesh)) /* else the vertex phase checks them */
         return index_error(st, err);
+    st->subpixel_lanes = draws && subpixel_lanes(st, &ph.xf); /* no estimate for a mesh out of view */
+    st->slot_lanes = slot_lanes(st);
     if (!worth_threads(st))
         st->threads = 1;
     sr_draw_path planned = planned_path(st);

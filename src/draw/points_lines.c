@@ -141,7 +141,8 @@ static void draw_point(point_line_draw *d, uint32_t k)
     map_and_raster_point(d, k, &v, clip_d, &vp);
 }
 
-/* Points per block of the fast path: its vertices and outcodes on the stack. */
+/* Points per block of the fast path: its vertices, outcodes and screen
+ * vertices on the stack. */
 #define POINT_BLOCK 64
 
 /* Whether slots [k, k + n) index consecutive vertices. */
