@@ -195,8 +195,8 @@ static bool set_attributes(sr_py_mesh *self, PyObject *const given[5], npy_intp 
 static int mesh_init(sr_py_mesh *self, PyObject *args, PyObject *kwargs)
 {
     static char *names[] = { "positions", "faces", "normals", "colors", "uvs", "part_ids", "texture", NULL };
-    PyObject *positions_obj, *faces_obj, *given[5] = { Py_None, Py_None, Py_None, Py_None, Py_None };
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|OO$OOO:Mesh", names, &positions_obj, &faces_obj, &given[0],
+    PyObject *positions_obj, *faces_obj = Py_None, *given[5] = { Py_None, Py_None, Py_None, Py_None, Py_None };
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|OOO$OOO:Mesh", names, &positions_obj, &faces_obj, &given[0],
                                      &given[1], &given[2], &given[3], &given[4]))
         return -1;
     if (self->renders) {
@@ -205,15 +205,20 @@ static int mesh_init(sr_py_mesh *self, PyObject *args, PyObject *kwargs)
     }
     mesh_clear(self);
     PyArrayObject *positions = sr_py_array(positions_obj, "positions", NPY_FLOAT64, 2, (npy_intp[]){ -1, 3 }, "(N, 3)");
-    PyArrayObject *faces = positions ? sr_py_array(faces_obj, "faces", NPY_INT64, 2, (npy_intp[]){ -1, 3 }, "(M, 3)")
-                                     : NULL;
+    /* no faces: a point cloud, rendered with points=True */
+    npy_intp none[2] = { 0, 3 };
+    PyObject *no_faces = faces_obj == Py_None ? PyArray_ZEROS(2, none, NPY_INT64, 0) : NULL;
+    PyArrayObject *faces = positions && (no_faces || faces_obj != Py_None)
+                               ? sr_py_array(no_faces ? no_faces : faces_obj, "faces", NPY_INT64, 2,
+                                             (npy_intp[]){ -1, 3 }, "(M, 3)")
+                               : NULL;
+    Py_XDECREF(no_faces);
     int status = -1;
     if (!faces)
         goto done;
     npy_intp vertices = PyArray_DIM(positions, 0), triangles = PyArray_DIM(faces, 0);
-    if (vertices == 0 || triangles == 0) {
-        PyErr_Format(PyExc_ValueError, "an empty mesh (%zd vertices, %zd faces): nothing to render", vertices,
-                     triangles);
+    if (vertices == 0) {
+        PyErr_Format(PyExc_ValueError, "an empty mesh (0 vertices, %zd faces): nothing to render", triangles);
         goto done;
     }
     if ((uint64_t)vertices > UINT32_MAX || (uint64_t)triangles > UINT32_MAX / 3) {
@@ -294,8 +299,8 @@ static PyObject *mesh_load(PyObject *cls, PyObject *args)
         sr_py_raise(PyExc_OSError, &err);
     else if (!textures || missing.out_of_memory)
         PyErr_NoMemory();
-    else if (sr_mesh_triangle_slots(&self->mesh) == 0 || !self->mesh.positions)
-        PyErr_Format(PyExc_ValueError, "%s: no faces: an empty mesh, nothing to render", PyBytes_AS_STRING(path));
+    else if (self->mesh.vertex_count == 0 || !self->mesh.positions)
+        PyErr_Format(PyExc_ValueError, "%s: no vertices: an empty mesh, nothing to render", PyBytes_AS_STRING(path));
     /* as the command line: a model shared without its textures still draws */
     for (uint32_t i = 0; !PyErr_Occurred() && i < missing.count; i++)
         PyErr_WarnFormat(PyExc_UserWarning, 1, "%s; its materials are drawn untextured, in their base colour",
@@ -484,8 +489,8 @@ static PyGetSetDef mesh_getset[] = {
 PyTypeObject sr_py_mesh_type = {
     PyVarObject_HEAD_INIT(NULL, 0)
     .tp_name = "softrast.Mesh",
-    .tp_doc = "Mesh(positions, faces, normals=None, colors=None, *, uvs=None, part_ids=None, texture=None):\n"
-              "a triangle mesh, copied.\n\n"
+    .tp_doc = "Mesh(positions, faces=None, normals=None, colors=None, *, uvs=None, part_ids=None, texture=None):\n"
+              "a triangle mesh, or without faces a point cloud (render it with points=True), copied.\n\n"
               "positions (N, 3) float32/float64 in the frame of the poses; faces (M, 3) int32/int64 vertex\n"
               "indices, face id k + 1 in the outputs; the geometric normal is e1 x e2 of the given order\n"
               "(e1 = p1 - p0, e2 = p2 - p0). Optional: normals (N, 3); colors (N, 3) 0..1 (or uint8);\n"

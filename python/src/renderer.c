@@ -44,6 +44,9 @@ typedef struct job {
     bool interpolated;
     float invalid;
     sr_shade shade; /* the colour output's */
+    bool shade_given;
+    bool points;      /* the mesh's vertices drawn as squares point_size pixels wide */
+    float point_size;
     sr_color_space color_space;
     vec3 light;     /* toward the light in softrast's world; zero: SR_DEFAULT_LIGHT */
 } job;
@@ -217,6 +220,7 @@ static bool parse_vector(PyObject *obj, const char *name, double out[3])
 static bool parse_shading(PyObject *shade, PyObject *color_space, PyObject *light, job *j)
 {
     int k = shade ? name_index(shade, SHADE_NAMES, SR_SHADE_COUNT) : SR_SHADE_LAMBERT;
+    j->shade_given = shade != NULL;
     if (k < 0) {
         PyErr_Format(PyExc_ValueError, "shade: %R is not one of " SHADE_LIST, shade);
         return false;
@@ -454,7 +458,8 @@ static bool draw_view(sr_py_renderer *self, const sr_mesh *mesh, const sr_textur
     sr_pinhole_fit_clip(cam, mesh);
     sr_draw_desc desc = { .mesh = mesh, .shade = draw_shade(j), .cull = SR_CULL_NONE, .threads = self->threads,
                           .workspace = self->workspace, .clear = true, .color_space = j->color_space,
-                          .texture = j->wanted[OUT_COLOR] && texture->texels ? texture : NULL };
+                          .texture = j->wanted[OUT_COLOR] && texture->texels ? texture : NULL,
+                          .point_size = j->points ? j->point_size : 0.0f };
     glm_vec3_copy((float *)j->light, desc.light_dir);
     sr_pinhole_matrices(cam, mesh, &self->fb, &desc);
     return sr_draw_layered(&self->fb, &desc, stats, err);
@@ -488,14 +493,15 @@ static bool render_one(sr_py_renderer *self, const sr_py_mesh *pm, const sr_mesh
         return false;
     if (color)
         write_color(self, j->shade, color);
-    if (out->part_ids && pm->part_map)
+    if (out->part_ids && pm->part_map && !j->points) /* a point has no face, so no part of the caller's */
         map_parts(out->part_ids, (size_t)self->fb.width * (size_t)self->fb.height, pm->part_map);
     return true;
 }
 
 static PyObject *stats_dict(const sr_stats *s)
 {
-    return Py_BuildValue("{sKsKsKsKsKsKsK}", "triangles", (unsigned long long)s->triangles, "rejected",
+    return Py_BuildValue("{sKsKsKsKsKsKsKsK}", "triangles", (unsigned long long)s->triangles, "points",
+                         (unsigned long long)s->points, "rejected",
                          (unsigned long long)s->rejected, "nonfinite", (unsigned long long)s->nonfinite, "clipped",
                          (unsigned long long)s->clipped, "culled", (unsigned long long)s->culled, "drawn",
                          (unsigned long long)s->drawn, "fragments", (unsigned long long)s->fragments);
@@ -551,12 +557,18 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
                                npy_intp frames, bool many)
 {
     sr_error err = { "" };
-    if (sr_mesh_triangle_slots(&mesh->mesh) == 0 || !mesh->mesh.positions) {
+    if (mesh->mesh.vertex_count == 0 || !mesh->mesh.positions) {
         PyErr_SetString(PyExc_ValueError, "the mesh is empty (Mesh.__init__ was not called)");
         return NULL;
     }
+    if (!j->points && sr_mesh_triangle_slots(&mesh->mesh) == 0) {
+        PyErr_SetString(PyExc_ValueError, "the mesh has no faces (a point cloud): render it with points=True");
+        return NULL;
+    }
     bool lit = draw_shade(j) == SR_SHADE_LAMBERT || draw_shade(j) == SR_SHADE_NORMAL;
-    if (((j->wanted[OUT_NORMALS] && j->interpolated) || lit) && !mesh->mesh.normals &&
+    /* a point's normal is its vertex's, as the command line's --points makes them */
+    bool vertex_normals = j->wanted[OUT_NORMALS] && (j->interpolated || j->points);
+    if ((vertex_normals || lit) && !mesh->mesh.normals &&
         !sr_mesh_compute_normals(&mesh->mesh, &err)) /* with the GIL held: no render reads it now */
         return sr_py_raise(PyExc_ValueError, &err);
     if (!linear_colours(mesh, j))
@@ -575,12 +587,27 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
         int type = k == OUT_COLOR ? NPY_UINT8 : k == OUT_FACE_IDS || k == OUT_PART_IDS ? NPY_UINT32 : NPY_FLOAT32;
         ok = (arrays[k] = (PyArrayObject *)PyArray_SimpleNew(nd, many ? dims : dims + 1, type)) != NULL;
     }
+    /* The points: every vertex once, in order, as the command line's --points borrows the mesh's arrays. */
+    uint32_t *point_indices = ok && j->points ? PyMem_Malloc((size_t)mesh->mesh.vertex_count * sizeof(uint32_t)) : NULL;
+    if (ok && j->points && !point_indices) {
+        PyErr_NoMemory();
+        ok = false;
+    }
+    for (uint32_t i = 0; point_indices && i < mesh->mesh.vertex_count; i++)
+        point_indices[i] = i;
     ok = ok && claim(self);
     if (ok) {
         mesh->renders++;
         sr_mesh m = mesh->mesh; /* a copy: Mesh's normals may be filled in meanwhile */
         if (mesh->linear_colors && j->color_space == SR_COLOR_SRGB)
             m.colors = mesh->linear_colors;
+        if (point_indices) {
+            m.topology = SR_POINT_LIST;
+            m.index_count = m.vertex_count;
+            m.indices = point_indices;
+            m.parts = NULL;
+            m.part_count = 0;
+        }
         for (npy_intp i = 0; ok && i < frames; i++) {
             sr_pinhole cam = j->cam;
             memcpy(cam.w2c, poses[i], sizeof cam.w2c);
@@ -623,12 +650,13 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
     for (int k = 0; k < OUT_COUNT; k++)
         Py_XDECREF(arrays[k]);
     PyMem_Free(stats);
+    PyMem_Free(point_indices);
     return result;
 }
 
 /* The keywords render and render_many share: the intrinsics, and after the poses the rest. */
 #define CAMERA_KEYWORDS "K", "fx", "fy", "cx", "cy", "fov"
-#define OUTPUT_KEYWORDS "near", "far", "outputs", "normals", "invalid", "shade", "light", "color_space"
+#define OUTPUT_KEYWORDS "near", "far", "outputs", "normals", "invalid", "shade", "light", "color_space", "points", "point_size"
 
 static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwargs, bool many)
 {
@@ -641,26 +669,33 @@ static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwa
     PyObject *w2c = Py_None, *c2w = Py_None, *eye = Py_None, *target = Py_None, *up = Py_None;
     PyObject *outputs = NULL, *normals = NULL, *shade = NULL, *light = Py_None, *color_space = NULL;
     double near = 0.0, far = 0.0;
-    float invalid = 0.0f;
-    int parsed = many ? PyArg_ParseTupleAndKeywords(args, kwargs, "O!|O$OOOOOOOOOOddOOfOOO:render_many", stacked,
+    float invalid = 0.0f, point_size = 1.0f;
+    int points = 0;
+    int parsed = many ? PyArg_ParseTupleAndKeywords(args, kwargs, "O!|O$OOOOOOOOOOddOOfOOOpf:render_many", stacked,
                                                     &sr_py_mesh_type, &mesh, &w2c, &K, &numbers[0], &numbers[1],
                                                     &numbers[2], &numbers[3], &fov, &c2w, &eye, &target, &up, &near,
                                                     &far, &outputs, &normals, &invalid, &shade, &light,
-                                                    &color_space)
-                      : PyArg_ParseTupleAndKeywords(args, kwargs, "O!|$OOOOOOOOOOOddOOfOOO:render", single,
+                                                    &color_space, &points, &point_size)
+                      : PyArg_ParseTupleAndKeywords(args, kwargs, "O!|$OOOOOOOOOOOddOOfOOOpf:render", single,
                                                     &sr_py_mesh_type, &mesh, &K, &numbers[0], &numbers[1],
                                                     &numbers[2], &numbers[3], &fov, &w2c, &c2w, &eye, &target, &up,
                                                     &near, &far, &outputs, &normals, &invalid, &shade, &light,
-                                                    &color_space);
+                                                    &color_space, &points, &point_size);
     if (!parsed)
         return NULL;
+    if (!(point_size >= 1.0f && point_size <= SR_MAX_POINT_SIZE)) {
+        char text[32];
+        snprintf(text, sizeof text, "%.9g", (double)point_size);
+        PyErr_Format(PyExc_ValueError, "point_size: %s is not within 1 .. %d pixels", text, (int)SR_MAX_POINT_SIZE);
+        return NULL;
+    }
     bool look_at = eye != Py_None || target != Py_None || up != Py_None;
     if (look_at && (w2c != Py_None || c2w != Py_None)) {
         PyErr_SetString(PyExc_ValueError, "a pose and the look-at camera (eye, target, up) both place the camera: "
                                           "give one");
         return NULL;
     }
-    job j = { .cam = { .near = near, .far = far }, .invalid = invalid };
+    job j = { .cam = { .near = near, .far = far }, .invalid = invalid, .points = points, .point_size = point_size };
     PyObject *depth_only = outputs ? NULL : PyUnicode_FromString("depth");
     PyObject *geometric = normals ? NULL : PyUnicode_FromString("geometric");
     bool ok = (outputs || depth_only) && (normals || geometric) &&
@@ -668,6 +703,8 @@ static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwa
               parse_shading(shade, color_space, light, &j) && parse_intrinsics(self, K, numbers, fov, look_at, &j.cam);
     Py_XDECREF(depth_only);
     Py_XDECREF(geometric);
+    if (ok && j.points && !j.shade_given && mesh->mesh.colors)
+        j.shade = SR_SHADE_COLOR; /* a point cloud's own colours, as the command line's --points */
     PyObject *looking = ok && look_at ? look_at_poses(eye, target, up, many) : NULL;
     npy_intp frames = 0;
     double(*poses)[4][4] = ok && (looking || !look_at) ? parse_poses(looking ? looking : w2c, c2w, many, &j.cam,
@@ -719,10 +756,12 @@ static PyMethodDef renderer_methods[] = {
     { "render", (PyCFunction)(void (*)(void))renderer_render, METH_VARARGS | METH_KEYWORDS,
       "render(mesh, *, K=None, fx=None, fy=None, cx=None, cy=None, fov=None, pose=None, pose_c2w=None,\n"
       "       eye=None, target=None, up=None, near=0, far=0, outputs=('depth',), normals='geometric',\n"
-      "       invalid=0.0, shade='lambert', light=None, color_space='srgb') -> dict\n\n"
+      "       invalid=0.0, shade='lambert', light=None, color_space='srgb', points=False, point_size=1) -> dict\n\n"
       "One pinhole view of mesh (OpenCV's convention; pose world-to-camera, identity if not given, or\n"
       "the look-at camera eye, target, up). Returns new arrays for the outputs asked for among 'color',\n"
-      "'depth', 'range', 'face_ids', 'part_ids', 'normals', and 'stats' (the draw's counts)." },
+      "'depth', 'range', 'face_ids', 'part_ids', 'normals', and 'stats' (the draw's counts). points=True\n"
+      "draws the mesh's vertices (a point cloud's) as squares point_size pixels wide, face_ids then\n"
+      "vertex index + 1; shade defaults to 'color' for a mesh with colours." },
     { "render_many", (PyCFunction)(void (*)(void))renderer_render_many, METH_VARARGS | METH_KEYWORDS,
       "render_many(mesh, poses, *, K=None, ..., poses_c2w=None, eye=None, target=None, up=None, ...) -> dict\n\n"
       "render() for each of N poses (N, 4, 4), or of N look-at cameras (eye, target, up each (N, 3),\n"

@@ -1,0 +1,112 @@
+"""Point clouds: a Mesh without faces, rendered with points=True as the
+command line's --points draws it (every output bit for bit), each point at
+its pixel and its depth, and the refusals."""
+import numpy as np
+import pytest
+
+import softrast
+from scenes import look_pose
+
+W, H = 64, 48
+K = (50.0, 50.0, 31.5, 23.5)
+ALL = ("depth", "range", "face_ids", "part_ids", "normals")
+EYE = (0.3, 0.2, -3.0)
+
+
+def write_ply(path, positions, colours):
+    header = ("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
+              "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n" % len(positions))
+    rows = "".join("%r %r %r %d %d %d\n" % (*map(float, p), *map(int, c)) for p, c in zip(positions, colours))
+    path.write_text(header + rows)
+
+
+def cloud():
+    """2000 points round the origin, some outside the view, a few at the
+    eye and behind it (dropped by the near plane), with colours."""
+    rng = np.random.default_rng(3)
+    positions = rng.uniform(-1.5, 1.5, (2000, 3)).astype(np.float32)
+    positions[:5] = np.float32(EYE) + rng.uniform(-0.01, 0.01, (5, 3)).astype(np.float32)
+    positions[5:10] = np.float32(EYE) + np.float32([0, 0, -1]) + rng.uniform(-1, 1, (5, 3)).astype(np.float32)
+    return positions, rng.integers(0, 256, (2000, 3)).astype(np.uint8)
+
+
+@pytest.mark.parametrize("threads, size", [(1, 1), (2, 1), (2, 3)])
+def test_a_cloud_renders_as_the_command_lines_points(cli, png, tmp_path, threads, size):
+    positions, colours = cloud()
+    write_ply(tmp_path / "cloud.ply", positions, colours)
+    pose = look_pose(EYE, (0, 0, 0))
+    cli("render", tmp_path / "cloud.ply", "--points", "--point-size", size, "--size", f"{W}x{H}",
+        "--intrinsics", ",".join(map(repr, K)), "--pose-w2c", ",".join(repr(float(v)) for v in pose.ravel()),
+        "--threads", threads, "--out", tmp_path / "c.png", "--view-depth", tmp_path / "d.npy",
+        "--range", tmp_path / "r.npy", "--face-ids", tmp_path / "f.npy", "--part-ids", tmp_path / "p.npy",
+        "--normals", tmp_path / "n.npy", "--quiet")
+    r = softrast.Renderer(W, H, threads=threads)
+    for mesh in (softrast.Mesh.load(tmp_path / "cloud.ply"), softrast.Mesh(positions, colors=colours)):
+        out = r.render(mesh, fx=K[0], fy=K[1], cx=K[2], cy=K[3], pose=pose, outputs=("color",) + ALL,
+                       points=True, point_size=size)
+        for name, file in [("depth", "d"), ("range", "r"), ("face_ids", "f"), ("part_ids", "p"), ("normals", "n")]:
+            want = np.load(tmp_path / f"{file}.npy")
+            assert want.dtype == out[name].dtype and want.shape == out[name].shape, name
+            assert np.array_equal(want.view(np.uint32), out[name].view(np.uint32)), name
+        assert np.array_equal(png.read_rgb_png(tmp_path / "c.png"), out["color"])
+        assert (out["face_ids"] > 0).sum() > 500
+        assert out["stats"]["points"] == 2000 and out["stats"]["rejected"] >= 5
+
+
+def test_a_point_on_a_pixels_ray_is_drawn_there_at_its_depth():
+    # The camera at the origin looking along +z: point i on the ray through
+    # pixel centre (u, v) at depth z shows there, its face id i + 1.
+    rng = np.random.default_rng(11)
+    pixels = [(int(rng.integers(0, W)), int(rng.integers(0, H))) for _ in range(40)]
+    pixels = list(dict.fromkeys(pixels))
+    depths = np.float32(2.0) ** rng.integers(-3, 6, len(pixels))
+    positions = [((u - K[2]) / K[0] * z, (v - K[3]) / K[1] * z, z) for (u, v), z in zip(pixels, depths)]
+    mesh = softrast.Mesh(np.array(positions))
+    out = softrast.Renderer(W, H, threads=1).render(mesh, fx=K[0], fy=K[1], cx=K[2], cy=K[3], points=True,
+                                                    near=0.01, far=100, outputs=("depth", "face_ids"))
+    for i, ((u, v), z) in enumerate(zip(pixels, depths)):
+        assert out["face_ids"][v, u] == i + 1, (u, v)
+        assert out["depth"][v, u] == z, (u, v, out["depth"][v, u], z)
+    assert (out["face_ids"] > 0).sum() == len(pixels)
+
+
+def test_a_point_of_size_3_covers_its_pixel_and_the_eight_round_it():
+    # on the ray through pixel centre (32, 24): x = (32 - cx) / fx * z
+    mesh = softrast.Mesh(np.array([[0.02, 0.02, 2.0]]))
+    out = softrast.Renderer(W, H, threads=1).render(mesh, fx=K[0], fy=K[1], cx=K[2], cy=K[3], points=True,
+                                                    point_size=3, outputs=("face_ids",))
+    ys, xs = np.nonzero(out["face_ids"])
+    assert sorted(set(xs)) == [31, 32, 33] and sorted(set(ys)) == [23, 24, 25] and len(xs) == 9
+
+
+def test_render_many_stacks_the_clouds_views():
+    positions, colours = cloud()
+    mesh = softrast.Mesh(positions, colors=colours)
+    poses = np.stack([look_pose(EYE, (0, 0, 0)), look_pose((2.5, -1.0, -1.5), (0.2, 0, 0))])
+    r = softrast.Renderer(W, H, threads=2)
+    many = r.render_many(mesh, poses, fx=K[0], outputs=("color", "depth", "face_ids"), points=True, point_size=2)
+    for i, pose in enumerate(poses):
+        one = r.render(mesh, fx=K[0], pose=pose, outputs=("color", "depth", "face_ids"), points=True, point_size=2)
+        for name in ("color", "depth", "face_ids"):
+            assert np.array_equal(many[name][i], one[name]), (i, name)
+        assert many["stats"][i] == one["stats"]
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(), "no faces .* points=True"),
+    (dict(points=True, point_size=0.5), "point_size: 0.5 is not within 1 .. 256"),
+    (dict(points=True, point_size=float("nan")), "point_size: nan"),
+    (dict(points=True, point_size=257), "point_size: 257"),
+])
+def test_bad_point_renders_are_refused(kw, message):
+    mesh = softrast.Mesh(np.array([[0.0, 0.0, 2.0]]))
+    with pytest.raises(ValueError, match=message):
+        softrast.Renderer(W, H, threads=1).render(mesh, fx=K[0], **kw)
+
+
+def test_a_file_of_points_alone_loads_as_a_cloud(tmp_path):
+    positions, colours = cloud()
+    write_ply(tmp_path / "cloud.ply", positions, colours)
+    mesh = softrast.Mesh.load(tmp_path / "cloud.ply")
+    assert mesh.faces.shape == (0, 3) and len(mesh.positions) == 2000
+    assert "0 triangles" in repr(mesh)
