@@ -1,6 +1,10 @@
 """Point clouds: a Mesh without faces, rendered with points=True as the
 command line's --points draws it (every output bit for bit), each point at
 its pixel and its depth, and the refusals."""
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -110,3 +114,14 @@ def test_a_file_of_points_alone_loads_as_a_cloud(tmp_path):
     mesh = softrast.Mesh.load(tmp_path / "cloud.ply")
     assert mesh.faces.shape == (0, 3) and len(mesh.positions) == 2000
     assert "0 triangles" in repr(mesh)
+
+
+def test_the_points_picture_script_draws_the_knot_cloud(png, root, tmp_path):
+    out = tmp_path / "points.png"
+    subprocess.run([sys.executable, os.path.join(root, "python", "examples", "points_picture.py"), str(out)],
+                   check=True, capture_output=True)
+    image = png.read_rgb_png(out)
+    assert image.shape == (360, 1280, 3)
+    colour, depth = image[:, :640], image[:, 640:]
+    assert np.array_equal(colour.any(2), depth.any(2))  # each drawn pixel has its depth, and only those
+    assert 30000 < colour.any(2).sum() < 100000
