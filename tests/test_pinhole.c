@@ -152,9 +152,10 @@ static sr_pinhole camera_of(double fx, double fy, double cx, double cy, const do
 TestSuite(pinhole);
 
 /* Fitted clip planes come from the bounds a mesh keeps when it has them
- * (so a view need not walk the vertices), else from its positions: a
- * triangle 10 in front of the camera, kept bounds reaching from 2 to 40
- * in front, and the same planes to the bit once the bounds are its own. */
+ * (so a view need not walk the vertices), else from its finite positions:
+ * a triangle 10 in front of the camera, kept bounds reaching from 2 to 40
+ * in front, the same planes to the bit once the bounds are its own, and
+ * again with a fourth vertex at NaN (which keeps the mesh unbounded). */
 Test(pinhole, fitted_planes_take_the_bounds_the_mesh_keeps)
 {
     const double c2w[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } };
@@ -180,6 +181,18 @@ Test(pinhole, fitted_planes_take_the_bounds_the_mesh_keeps)
     sr_pinhole_fit_clip(&own, &mesh);
     cr_assert(own.near == walked.near && own.far == walked.far, "kept %g .. %g, walked %g .. %g", own.near, own.far,
               walked.near, walked.far);
+    sr_mesh with_nan = { 0 };
+    cr_assert(sr_mesh_alloc(&with_nan, 4, 3, false, false, false, &err), "%s", err.message);
+    memcpy(with_nan.positions, mesh.positions, 3 * sizeof(vec3));
+    memcpy(with_nan.indices, mesh.indices, 3 * sizeof(uint32_t));
+    glm_vec3_fill(with_nan.positions[3], NAN);
+    sr_mesh_update_bounds(&with_nan);
+    cr_assert_not(with_nan.bounded);
+    sr_pinhole nan_fit = camera_of(100, 100, 32, 32, c2w);
+    sr_pinhole_fit_clip(&nan_fit, &with_nan);
+    cr_assert(nan_fit.near == walked.near && nan_fit.far == walked.far, "with a NaN vertex %g .. %g", nan_fit.near,
+              nan_fit.far);
+    sr_mesh_free(&with_nan);
     sr_mesh_free(&mesh);
 }
 

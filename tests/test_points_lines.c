@@ -727,6 +727,60 @@ Test(points, a_clip_space_cloud_in_blocks_matches_the_point_by_point_loop)
     free(twin.indices);
 }
 
+/* 200 points 256 pixels wide over a 512 x 512 frame make 13M fragments,
+ * more than a draw on several threads bins (16 bytes each): it draws them
+ * on one thread instead, storing each as it comes, so no input makes the
+ * bins take gigabytes; the picture and the counts are the one thread's. */
+Test(points, points_too_large_to_bin_are_drawn_on_one_thread)
+{
+    enum { N = 200, SIDE = 512 };
+    sr_mesh pts = { .vertex_count = N, .index_count = N, .topology = SR_POINT_LIST };
+    pts.clip_positions = calloc(N, sizeof(vec4));
+    pts.indices = calloc(N, sizeof(uint32_t));
+    cr_assert(pts.clip_positions && pts.indices);
+    test_rng r = { 17 };
+    for (uint32_t i = 0; i < N; i++) {
+        glm_vec4_copy((vec4){ (float)rng_uniform(&r, -0.5, 0.5), (float)rng_uniform(&r, -0.5, 0.5),
+                              (float)rng_uniform(&r, 0.05, 0.95), 1.0f },
+                      pts.clip_positions[i]);
+        pts.indices[i] = i;
+    }
+    sr_framebuffer one, two;
+    scene_fb_make(&one, SIDE, SIDE);
+    scene_fb_make(&two, SIDE, SIDE);
+    sr_draw_desc desc = { .mesh = &pts, .shade = SR_SHADE_ID, .point_size = 256.0f };
+    sr_stats s1, s2;
+    sr_framebuffer_clear(&one, 0);
+    scene_draw_on_loop(&one, &desc, SR_SIMD_AUTO, 1, SR_PATH_DIRECT, &s1);
+    cr_assert_gt(s1.fragments, (uint64_t)SIDE * SIDE / 2, "%llu fragments passed", (unsigned long long)s1.fragments);
+    sr_draw_times times = { 0 };
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    sr_draw_desc many = desc;
+    many.study = &(sr_draw_study){ .times = &times };
+    many.threads = 2;
+    many.workspace = ws;
+    sr_error err = { "" };
+    s2 = (sr_stats){ 0 };
+    sr_framebuffer_clear(&two, 0);
+    cr_assert(sr_draw(&two, &many, &s2, &err), "%s", err.message);
+    cr_assert_eq(times.path, SR_PATH_DIRECT, "the bins took %d", (int)times.path);
+    cr_assert(memcmp(one.color, two.color, sizeof(uint32_t) * SIDE * SIDE) == 0 &&
+                  memcmp(one.depth, two.depth, sizeof(float) * SIDE * SIDE) == 0 && memcmp(&s1, &s2, sizeof s1) == 0,
+              "two threads differ from one");
+    /* a draw that fits the bins on the same workspace still takes them */
+    desc.point_size = 1.0f;
+    many.point_size = 1.0f;
+    times = (sr_draw_times){ 0 };
+    cr_assert(sr_draw(&two, &many, &s2, &err), "%s", err.message);
+    cr_assert_eq(times.path, SR_PATH_ROWS);
+    sr_workspace_destroy(ws);
+    sr_framebuffer_destroy(&one);
+    sr_framebuffer_destroy(&two);
+    free(pts.clip_positions);
+    free(pts.indices);
+}
+
 Test(lines, a_line_over_its_triangle_needs_the_depth_bias_and_a_hidden_one_stays_hidden)
 {
     sr_framebuffer fb, alone;

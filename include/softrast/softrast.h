@@ -513,8 +513,8 @@ SR_API bool sr_pinhole_check(const sr_pinhole *cam, sr_error *err);
 SR_API bool sr_pinhole_pose_from_c2w(const double c2w[4][4], double w2c[4][4], sr_error *err);
 
 /* Sets near and far where they are 0: the mesh's bounds (those it keeps
- * when `bounded`, else its positions') seen from the camera, with room on
- * both sides; near stays above 1e-6 of far. */
+ * when `bounded`, else its finite positions') seen from the camera, with
+ * room on both sides; near stays above 1e-6 of far. */
 SR_API void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh);
 
 /* The draw's view_d and projection for cam at fb's size (near and far

@@ -23,6 +23,8 @@ static void mesh_clear(sr_py_mesh *self)
     self->part_map = NULL;
     free(self->linear_colors);
     self->linear_colors = NULL;
+    free(self->point_indices);
+    self->point_indices = NULL;
 }
 
 static void mesh_dealloc(sr_py_mesh *self)
@@ -300,7 +302,9 @@ static PyObject *mesh_load(PyObject *cls, PyObject *args)
     else if (!textures || missing.out_of_memory)
         PyErr_NoMemory();
     else if (self->mesh.vertex_count == 0 || !self->mesh.positions)
-        PyErr_Format(PyExc_ValueError, "%s: no vertices: an empty mesh, nothing to render", PyBytes_AS_STRING(path));
+        PyErr_Format(PyExc_ValueError,
+                     "%s: an empty mesh, nothing to render (an OBJ keeps only the vertices its faces use)",
+                     PyBytes_AS_STRING(path));
     /* as the command line: a model shared without its textures still draws */
     for (uint32_t i = 0; !PyErr_Occurred() && i < missing.count; i++)
         PyErr_WarnFormat(PyExc_UserWarning, 1, "%s; its materials are drawn untextured, in their base colour",

@@ -552,6 +552,22 @@ static bool linear_colours(sr_py_mesh *mesh, const job *j)
     return true;
 }
 
+/* With points, the mesh's point indices, made once with the GIL held (no
+ * render reads them now). */
+static bool point_indices(sr_py_mesh *mesh, const job *j)
+{
+    if (!j->points || mesh->point_indices)
+        return true;
+    mesh->point_indices = malloc((size_t)mesh->mesh.vertex_count * sizeof *mesh->point_indices);
+    if (!mesh->point_indices) {
+        PyErr_NoMemory();
+        return false;
+    }
+    for (uint32_t i = 0; i < mesh->mesh.vertex_count; i++)
+        mesh->point_indices[i] = i;
+    return true;
+}
+
 /* The outputs of `frames` poses as a dict of new arrays (stacked when many). */
 static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job *j, double (*poses)[4][4],
                                npy_intp frames, bool many)
@@ -568,11 +584,20 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
     bool lit = draw_shade(j) == SR_SHADE_LAMBERT || draw_shade(j) == SR_SHADE_NORMAL;
     /* a point's normal is its vertex's, as the command line's --points makes them */
     bool vertex_normals = j->wanted[OUT_NORMALS] && (j->interpolated || j->points);
-    if ((vertex_normals || lit) && !mesh->mesh.normals &&
-        !sr_mesh_compute_normals(&mesh->mesh, &err)) /* with the GIL held: no render reads it now */
+    bool make_normals = (vertex_normals || lit) && !mesh->mesh.normals;
+    bool cloud = sr_mesh_triangle_slots(&mesh->mesh) == 0;
+    /* with the GIL held: no render reads them now */
+    if (make_normals && !cloud && !sr_mesh_compute_normals(&mesh->mesh, &err))
         return sr_py_raise(PyExc_ValueError, &err);
-    if (!linear_colours(mesh, j))
+    /* A cloud without normals has no faces to make them from: 0, as the
+     * command line's, for this call only, so mesh.normals stays None. */
+    vec3 *no_normals = NULL;
+    if (make_normals && cloud && !(no_normals = PyMem_Calloc(mesh->mesh.vertex_count, sizeof(vec3))))
+        return PyErr_NoMemory();
+    if (!linear_colours(mesh, j) || !point_indices(mesh, j)) {
+        PyMem_Free(no_normals);
         return NULL;
+    }
     npy_intp width = self->fb.width, height = self->fb.height, pixels = width * height;
     PyArrayObject *arrays[OUT_COUNT] = { 0 };
     sr_stats *stats = PyMem_Calloc(frames ? (size_t)frames : 1, sizeof *stats);
@@ -587,24 +612,18 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
         int type = k == OUT_COLOR ? NPY_UINT8 : k == OUT_FACE_IDS || k == OUT_PART_IDS ? NPY_UINT32 : NPY_FLOAT32;
         ok = (arrays[k] = (PyArrayObject *)PyArray_SimpleNew(nd, many ? dims : dims + 1, type)) != NULL;
     }
-    /* The points: every vertex once, in order, as the command line's --points borrows the mesh's arrays. */
-    uint32_t *point_indices = ok && j->points ? PyMem_Malloc((size_t)mesh->mesh.vertex_count * sizeof(uint32_t)) : NULL;
-    if (ok && j->points && !point_indices) {
-        PyErr_NoMemory();
-        ok = false;
-    }
-    for (uint32_t i = 0; point_indices && i < mesh->mesh.vertex_count; i++)
-        point_indices[i] = i;
     ok = ok && claim(self);
     if (ok) {
         mesh->renders++;
         sr_mesh m = mesh->mesh; /* a copy: Mesh's normals may be filled in meanwhile */
         if (mesh->linear_colors && j->color_space == SR_COLOR_SRGB)
             m.colors = mesh->linear_colors;
-        if (point_indices) {
+        if (no_normals)
+            m.normals = no_normals;
+        if (j->points) { /* the mesh's arrays under the point topology, as the command line's --points borrows them */
             m.topology = SR_POINT_LIST;
             m.index_count = m.vertex_count;
-            m.indices = point_indices;
+            m.indices = mesh->point_indices;
             m.parts = NULL;
             m.part_count = 0;
         }
@@ -650,13 +669,14 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
     for (int k = 0; k < OUT_COUNT; k++)
         Py_XDECREF(arrays[k]);
     PyMem_Free(stats);
-    PyMem_Free(point_indices);
+    PyMem_Free(no_normals);
     return result;
 }
 
 /* The keywords render and render_many share: the intrinsics, and after the poses the rest. */
 #define CAMERA_KEYWORDS "K", "fx", "fy", "cx", "cy", "fov"
-#define OUTPUT_KEYWORDS "near", "far", "outputs", "normals", "invalid", "shade", "light", "color_space", "points", "point_size"
+#define OUTPUT_KEYWORDS \
+    "near", "far", "outputs", "normals", "invalid", "shade", "light", "color_space", "points", "point_size"
 
 static PyObject *render_call(sr_py_renderer *self, PyObject *args, PyObject *kwargs, bool many)
 {

@@ -34,6 +34,9 @@ typedef struct sr_py_mesh {
      * light, which the draw takes. */
     bool display_colours;
     vec3 *linear_colors;
+    /* Made at the first render with points=True: 0 .. N − 1, each vertex a
+     * point in order (the command line's --points). */
+    uint32_t *point_indices;
     int renders; /* renders using it with the GIL released: __init__ waits for none */
 } sr_py_mesh;
 

@@ -57,6 +57,65 @@ def test_a_cloud_renders_as_the_command_lines_points(cli, png, tmp_path, threads
         assert out["stats"]["points"] == 2000 and out["stats"]["rejected"] >= 5
 
 
+def cli_points(cli, path, pose, tmp_path, *extra):
+    """The command line's --points files of path, read back."""
+    cli("render", path, "--points", "--size", f"{W}x{H}", "--intrinsics", ",".join(map(repr, K)),
+        "--pose-w2c", ",".join(repr(float(v)) for v in pose.ravel()), "--out", tmp_path / "c.png",
+        "--view-depth", tmp_path / "d.npy", "--range", tmp_path / "r.npy", "--face-ids", tmp_path / "f.npy",
+        "--part-ids", tmp_path / "p.npy", "--normals", tmp_path / "n.npy", "--quiet", *extra)
+    return {name: np.load(tmp_path / f"{file}.npy")
+            for name, file in [("depth", "d"), ("range", "r"), ("face_ids", "f"), ("part_ids", "p"), ("normals", "n")]}
+
+
+def assert_same(want, out, png, tmp_path):
+    for name in ALL:
+        assert want[name].dtype == out[name].dtype and np.array_equal(want[name].view(np.uint32),
+                                                                      out[name].view(np.uint32)), name
+    assert np.array_equal(png.read_rgb_png(tmp_path / "c.png"), out["color"])
+
+
+@pytest.mark.parametrize("shade", ["lambert", "depth", "color"])
+def test_a_clouds_asked_shading_and_its_missing_normals_are_the_command_lines(cli, png, tmp_path, shade):
+    # an asked shade is kept (no colours' default), and a cloud without
+    # normals gives normals of 0 whatever the shading
+    positions, colours = cloud()
+    write_ply(tmp_path / "cloud.ply", positions, colours)
+    pose = look_pose(EYE, (0, 0, 0))
+    want = cli_points(cli, tmp_path / "cloud.ply", pose, tmp_path, "--shade", shade)
+    mesh = softrast.Mesh(positions, colors=colours)
+    out = softrast.Renderer(W, H, threads=1).render(mesh, fx=K[0], fy=K[1], cx=K[2], cy=K[3], pose=pose,
+                                                    outputs=("color",) + ALL, points=True, shade=shade)
+    assert_same(want, out, png, tmp_path)
+    assert not out["normals"].any() and mesh.normals is None
+    if shade != "color":
+        assert not np.array_equal(out["color"], colour_shaded(mesh, pose))
+
+
+def colour_shaded(mesh, pose):
+    return softrast.Renderer(W, H, threads=1).render(mesh, fx=K[0], fy=K[1], cx=K[2], cy=K[3], pose=pose,
+                                                     outputs=("color",), points=True, shade="color")["color"]
+
+
+def test_a_meshs_vertices_as_points_are_the_command_lines_parts_and_all(cli, png, root, tmp_path):
+    # the room: faces, normals and 34 parts; a point has no face, so its part is 1
+    path = os.path.join(root, "assets", "room.obj")
+    pose = look_pose((-4.8, 2.0, -8.4), (0.0, 1.0, 0.0))
+    want = cli_points(cli, path, pose, tmp_path)
+    out = softrast.Renderer(W, H, threads=2).render(softrast.Mesh.load(path), fx=K[0], fy=K[1], cx=K[2], cy=K[3],
+                                                    pose=pose, outputs=("color",) + ALL, points=True)
+    assert_same(want, out, png, tmp_path)
+    drawn = out["face_ids"] > 0
+    assert drawn.sum() > 300 and np.all(out["part_ids"][drawn] == 1)
+
+
+def test_a_meshs_given_part_ids_are_not_a_points(tmp_path):
+    positions = np.array([[-1, -1, 4], [1, -1, 4], [0, 1, 4], [0, 0, 5]], float)
+    mesh = softrast.Mesh(positions, [[0, 1, 2], [0, 1, 3]], part_ids=[7, 9])
+    out = softrast.Renderer(W, H, threads=1).render(mesh, fx=K[0], points=True, outputs=("part_ids", "face_ids"))
+    drawn = out["face_ids"] > 0
+    assert drawn.sum() == 4 and np.all(out["part_ids"][drawn] == 1)
+
+
 def test_a_point_on_a_pixels_ray_is_drawn_there_at_its_depth():
     # The camera at the origin looking along +z: point i on the ray through
     # pixel centre (u, v) at depth z shows there, its face id i + 1.
@@ -125,3 +184,13 @@ def test_the_points_picture_script_draws_the_knot_cloud(png, root, tmp_path):
     colour, depth = image[:, :640], image[:, 640:]
     assert np.array_equal(colour.any(2), depth.any(2))  # each drawn pixel has its depth, and only those
     assert 30000 < colour.any(2).sum() < 100000
+
+
+def test_a_cloud_with_points_at_nan_draws_the_rest():
+    # a depth sensor's organised cloud marks a pixel without a return NaN:
+    # the clip planes are fitted to the finite points, the NaN ones dropped
+    rng = np.random.default_rng(0)
+    positions = np.c_[rng.uniform(-1, 1, (1000, 2)), rng.uniform(2, 5, 1000)]
+    positions[::10] = np.nan
+    s = softrast.Renderer(W, H, threads=1).render(softrast.Mesh(positions), fx=K[0], points=True)["stats"]
+    assert s["points"] == 1000 and s["nonfinite"] == 100 and s["drawn"] == 900

@@ -328,8 +328,9 @@ static bool render(void *j, sr_scene *scene, sr_error *err)
         sr_scene_frame_camera(&job->scene, scene);
     sr_mesh primitives = { 0 };
     sr_hidden_lines lines = { 0 };
-    /* A point's normal is its vertex's: made before the points borrow them. */
-    bool point_normals = job->points && job->pinhole.paths[SR_MEASURED_NORMALS] && scene->mesh.index_count;
+    /* A point's normal is its vertex's: made before the points borrow them
+     * (0 for a cloud without, which has no faces to make them from). */
+    bool point_normals = job->points && job->pinhole.paths[SR_MEASURED_NORMALS];
     if (!sr_scene_desc(&job->scene, scene, &desc, &study, err) || (pinhole && !use_pinhole(job, scene, &cam, &desc, err)) ||
         (point_normals && !sr_mesh_compute_normals(&scene->mesh, err)) ||
         !primitives_desc(job, scene, &primitives, &desc, &lines, err))

@@ -91,6 +91,7 @@ typedef struct sr_thread_work {
     sr_array *fragment_bins; /* sr_fragment, one per band of rows: a point or line draw's on several threads */
     size_t fragment_bin_count;
     bool out_of_memory;
+    bool bins_over_budget; /* a point or line draw's fragments passed its share of the bins' budget (points_lines.c) */
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
     uint32_t band_triangles[SR_ROW_BANDS]; /* of the slots it gave a verdict, kept ones inside every plane per first band (row_bands.c) */

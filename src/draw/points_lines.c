@@ -189,7 +189,7 @@ static void draw_points(point_line_draw *d, uint32_t first, uint32_t end)
     _Alignas(16) sr_vertex_out v[POINT_BLOCK];
     sr_screen_vertex screen[POINT_BLOCK];
     unsigned char codes[POINT_BLOCK], mapped[POINT_BLOCK];
-    for (uint32_t k = first; k < end; k += POINT_BLOCK) {
+    for (uint32_t k = first; k < end && !d->target.over_budget; k += POINT_BLOCK) {
         uint32_t n = end - k < POINT_BLOCK ? end - k : POINT_BLOCK, i = mesh->indices[k];
         if (!consecutive(mesh->indices, k, n) ||
             !sr_vertex_block_finite(mesh, st->xf, &st->shade.layout, i, n)) {
@@ -270,6 +270,12 @@ static void draw_line(point_line_draw *d, uint32_t k)
     stats->fragments += sr_raster_line(&d->target, &a, &b, width, k);
 }
 
+/* The fragments a point or line draw on several threads may bin, all its
+ * threads together (16 bytes each): a draw of more (large points, long
+ * wide lines) is drawn on one thread instead, which stores each fragment
+ * as it comes, so no input makes the bins take gigabytes. */
+#define FRAGMENT_BIN_BUDGET ((size_t)1 << 23)
+
 /* The draw's two phases on st->threads threads. */
 typedef struct point_line_phases {
     sr_draw_state *st;
@@ -285,16 +291,19 @@ static void slots_phase(void *ctx, int t)
     sr_draw_state *st = ph->st;
     sr_thread_work *work = &st->ws->threads[t];
     point_line_draw d = { .st = st, .work = work, .target = ph->target };
-    if (st->threads > 1)
+    if (st->threads > 1) {
         d.target.bins = work->fragment_bins;
+        d.target.bin_budget = FRAGMENT_BIN_BUDGET / (size_t)st->threads;
+    }
     uint32_t first = (uint32_t)((uint64_t)ph->slots * (uint64_t)t / (uint64_t)st->threads);
     uint32_t end = (uint32_t)((uint64_t)ph->slots * (uint64_t)(t + 1) / (uint64_t)st->threads);
     if (st->desc->mesh->topology == SR_POINT_LIST)
         draw_points(&d, first, end);
     else
-        for (uint32_t k = first; k < end; k++)
+        for (uint32_t k = first; k < end && !d.target.over_budget; k++)
             draw_line(&d, k);
     work->out_of_memory = d.target.out_of_memory;
+    work->bins_over_budget = d.target.over_budget;
 }
 
 /* The bands thread t takes, each cleared if the draw clears, then given
@@ -364,9 +373,22 @@ bool sr_draw_points_lines(sr_draw_state *st, sr_error *err)
         sr_parallel_run(&st->ws->pool, st->threads, slots_phase, &ph, times ? &times->primitives : NULL);
     if (!binned)
         return true;
-    for (int t = 0; t < st->threads; t++)
+    bool over_budget = false;
+    for (int t = 0; t < st->threads; t++) {
         if (st->ws->threads[t].out_of_memory)
             return sr_error_set(err, "out of memory for the row bands of a point or line draw");
+        over_budget = over_budget || st->ws->threads[t].bins_over_budget;
+    }
+    if (over_budget) { /* nothing is written yet: the same draw on one thread, its counts alone */
+        for (int t = 0; t < st->threads; t++) {
+            sr_thread_work *w = &st->ws->threads[t];
+            w->stats = (sr_stats){ 0 };
+            w->cuts = (sr_clip_counts){ { 0 } };
+            w->simd_draws = 0;
+        }
+        st->threads = 1;
+        return sr_draw_points_lines(st, err);
+    }
     sr_chunks_init(&ph.bands, (uint32_t)bands, 1);
     sr_parallel_run(&st->ws->pool, st->threads, bands_phase, &ph, times ? &times->raster : NULL);
     return true;
