@@ -149,8 +149,10 @@ static void check_mesh(const sr_mesh *m, bool has_usemtl)
 {
     CHECK(m->topology == SR_TRIANGLE_LIST, "topology %d", m->topology);
     CHECK(m->index_count % 3 == 0, "%u indices", m->index_count);
-    CHECK((m->vertex_count == 0) == (m->index_count == 0), "%u vertices, %u indices", m->vertex_count,
-          m->index_count);
+    CHECK(m->index_count == 0 || m->vertex_count > 0, "%u vertices, %u indices", m->vertex_count, m->index_count);
+    /* a file without faces is a point cloud: its vertices, and no attribute only a face corner names */
+    CHECK(m->index_count > 0 || (!m->normals && !m->uvs), "a cloud of %u vertices with normals or uvs",
+          m->vertex_count);
     CHECK((m->positions != NULL) == (m->vertex_count > 0), "positions %p for %u vertices", (void *)m->positions,
           m->vertex_count);
     CHECK(m->index_count == 0 || m->indices != NULL, "no index array for %u indices", m->index_count);
@@ -162,7 +164,7 @@ static void check_mesh(const sr_mesh *m, bool has_usemtl)
         used[m->indices[i]] = true;
     }
     for (uint32_t v = 0; v < m->vertex_count; v++) {
-        CHECK(used[v], "vertex %u is not used by any face (vertices are face corners)", v);
+        CHECK(used[v] || m->index_count == 0, "vertex %u is not used by any face (vertices are face corners)", v);
         CHECK(finite_n(m->positions[v], 3), "position %u (%a, %a, %a)", v, m->positions[v][0], m->positions[v][1],
               m->positions[v][2]);
         CHECK(!m->normals || finite_n(m->normals[v], 3), "normal %u not finite", v);

@@ -421,10 +421,24 @@ Test(obj, missing_uv_or_normal_of_a_corner_is_zero)
     sr_mesh_free(&m);
 }
 
-Test(obj, file_without_faces_is_an_empty_mesh)
+/* A file of vertices alone is a point cloud (as scanners and CloudCompare
+ * write one): every vertex in file order, z negated, with its colour (one
+ * without a colour white, as among faces), and no triangles; a normal,
+ * which only a face corner names, is not one of a vertex. */
+Test(obj, file_without_faces_is_a_point_cloud)
 {
-    sr_mesh m = load_ok("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
-    assert_zeroed(&m);
+    sr_mesh m = load_ok("v 0 0 1 1 0 0\nv 1 0 2\nv 0 1 3 0 0 1\nvn 0 0 1\nl 1 2\n");
+    cr_assert_eq(m.vertex_count, 3);
+    cr_assert_eq(m.index_count, 0);
+    cr_assert_null(m.normals);
+    assert_vec3(m.positions[0], 0, 0, -1);
+    assert_vec3(m.positions[1], 1, 0, -2);
+    assert_vec3(m.positions[2], 0, 1, -3);
+    cr_assert_not_null(m.colors);
+    assert_vec3(m.colors[0], 1, 0, 0);
+    assert_vec3(m.colors[1], 1, 1, 1);
+    assert_vec3(m.colors[2], 0, 0, 1);
+    cr_assert(m.bounded);
     sr_mesh_free(&m);
 }
 

@@ -302,8 +302,7 @@ static PyObject *mesh_load(PyObject *cls, PyObject *args)
     else if (!textures || missing.out_of_memory)
         PyErr_NoMemory();
     else if (self->mesh.vertex_count == 0 || !self->mesh.positions)
-        PyErr_Format(PyExc_ValueError,
-                     "%s: an empty mesh, nothing to render (an OBJ keeps only the vertices its faces use)",
+        PyErr_Format(PyExc_ValueError, "%s: an empty mesh (no vertices), nothing to render",
                      PyBytes_AS_STRING(path));
     /* as the command line: a model shared without its textures still draws */
     for (uint32_t i = 0; !PyErr_Occurred() && i < missing.count; i++)

@@ -168,11 +168,19 @@ def test_bad_point_renders_are_refused(kw, message):
 
 
 def test_a_file_of_points_alone_loads_as_a_cloud(tmp_path):
+    # a PLY and an OBJ of the same vertices alone (the OBJ without colours)
     positions, colours = cloud()
     write_ply(tmp_path / "cloud.ply", positions, colours)
-    mesh = softrast.Mesh.load(tmp_path / "cloud.ply")
-    assert mesh.faces.shape == (0, 3) and len(mesh.positions) == 2000
-    assert "0 triangles" in repr(mesh)
+    (tmp_path / "cloud.obj").write_text("".join("v %r %r %r\n" % tuple(map(float, p)) for p in positions))
+    pose = look_pose(EYE, (0, 0, 0))
+    views = []
+    for name in ("cloud.ply", "cloud.obj"):
+        mesh = softrast.Mesh.load(tmp_path / name)
+        assert mesh.faces.shape == (0, 3) and len(mesh.positions) == 2000 and "0 triangles" in repr(mesh)
+        views.append(softrast.Renderer(W, H, threads=1).render(mesh, fx=K[0], pose=pose, points=True,
+                                                               outputs=("depth", "face_ids")))
+    assert np.array_equal(views[0]["depth"], views[1]["depth"])
+    assert np.array_equal(views[0]["face_ids"], views[1]["face_ids"]) and (views[0]["face_ids"] > 0).sum() > 500
 
 
 def test_the_points_picture_script_draws_the_knot_cloud(png, root, tmp_path):

@@ -9,6 +9,8 @@
  * (c0, ck+1, ck). Positions are read in double; a mesh far from the world
  * origin (mesh.h: SR_MESH_RECENTRE_RATIO) is stored relative to the centre
  * of its bounds, computed in double, with the centre as the mesh's origin.
+ * A file without faces is a point cloud (as scanners and CloudCompare
+ * write one): every vertex is kept, in file order, with its colour.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -576,6 +578,19 @@ static bool build_parts(obj_reader *o, sr_mesh *mesh)
     return true;
 }
 
+/* A file without faces: every vertex a mesh vertex of its own, in file
+ * order, as the faces would have named them. */
+static bool corners_of_cloud(obj_reader *o)
+{
+    size_t count = o->positions.count;
+    corner *c = count ? sr_array_grow(&o->corners, count, sizeof *c) : NULL;
+    if (count && !c)
+        return sr_error_set(o->err, "%s: out of memory", o->in.path);
+    for (size_t i = 0; i < count; i++)
+        c[i] = (corner){ (uint32_t)i, NONE, NONE };
+    return true;
+}
+
 static bool build_mesh(obj_reader *o, sr_mesh *mesh)
 {
     uint32_t count = (uint32_t)o->corners.count;
@@ -623,7 +638,7 @@ bool sr_obj_load_report(sr_mesh *mesh, const char *path, sr_load_report *report,
         sr_report_obj_format(report);
     if (!sr_line_reader_open(&o.in, path))
         return sr_error_set(err, "%s: cannot open: %s", path, o.in.why);
-    bool ok = read_statements(&o) && build_mesh(&o, mesh);
+    bool ok = read_statements(&o) && (o.faces > 0 || corners_of_cloud(&o)) && build_mesh(&o, mesh);
     obj_reader_free(&o);
     if (ok) {
         sr_mesh_update_bounds(mesh);
