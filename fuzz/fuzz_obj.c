@@ -111,6 +111,29 @@ static const uint8_t *find_bytes(const uint8_t *hay, size_t n, const char *needl
     return NULL;
 }
 
+/* Whether some line's first token is `f` (tokens end at a blank or a '#',
+ * as the loader's do; the first line may open with a UTF-8 BOM): the file
+ * has a face statement. */
+static bool has_face_statement(const uint8_t *data, size_t size)
+{
+    size_t i = size >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+    bool line_start = true;
+    for (; i < size; i++) {
+        uint8_t c = data[i];
+        if (c == '\n' || c == '\r') {
+            line_start = true;
+            continue;
+        }
+        if (line_start && (c == ' ' || c == '\t' || c == '\v' || c == '\f'))
+            continue;
+        if (line_start && c == 'f' &&
+            (i + 1 == size || strchr(" \t\v\f\r\n#", data[i + 1]) != NULL || data[i + 1] == '\0'))
+            return true;
+        line_start = false;
+    }
+    return false;
+}
+
 /* True if some line mentions mtllib and a '/' (any such line, to stay on the
  * safe side of how the loader tokenizes). */
 static bool names_outside_path(const uint8_t *data, size_t size)
@@ -145,13 +168,16 @@ static bool finite_n(const float *v, int n)
     return true;
 }
 
-static void check_mesh(const sr_mesh *m, bool has_usemtl)
+static void check_mesh(const sr_mesh *m, bool has_usemtl, bool has_faces)
 {
     CHECK(m->topology == SR_TRIANGLE_LIST, "topology %d", m->topology);
     CHECK(m->index_count % 3 == 0, "%u indices", m->index_count);
     CHECK(m->index_count == 0 || m->vertex_count > 0, "%u vertices, %u indices", m->vertex_count, m->index_count);
-    /* a file without faces is a point cloud: its vertices, and no attribute only a face corner names */
+    /* a file without faces is a point cloud: its vertices, and no attribute only a face corner names;
+       a file with faces that loads has triangles */
     CHECK(m->index_count > 0 || (!m->normals && !m->uvs), "a cloud of %u vertices with normals or uvs",
+          m->vertex_count);
+    CHECK(m->index_count > 0 || m->vertex_count == 0 || !has_faces, "faces loaded as a cloud of %u vertices",
           m->vertex_count);
     CHECK((m->positions != NULL) == (m->vertex_count > 0), "positions %p for %u vertices", (void *)m->positions,
           m->vertex_count);
@@ -255,6 +281,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     bool has_mtllib = find_bytes(data, obj_size, "mtllib") != NULL;
     bool has_usemtl = find_bytes(data, obj_size, "usemtl") != NULL;
+    bool has_faces = has_face_statement(data, obj_size);
 
     /* Whatever the mesh held before, a failed load leaves it zeroed and a
      * load never frees it (obj.h): garbage that is not heap memory would
@@ -263,7 +290,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     sr_mesh mesh = { .vertex_count = 7, .positions = not_heap, .index_count = 3, .topology = SR_TRIANGLE_STRIP };
     sr_error err = { .message = "" };
     if (sr_obj_load(&mesh, obj_path, &err)) {
-        check_mesh(&mesh, has_usemtl);
+        check_mesh(&mesh, has_usemtl, has_faces);
         check_materials(&mesh);
         check_drawable(&mesh);
         sr_error ignored;

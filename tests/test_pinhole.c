@@ -155,7 +155,8 @@ TestSuite(pinhole);
  * (so a view need not walk the vertices), else from its finite positions:
  * a triangle 10 in front of the camera, kept bounds reaching from 2 to 40
  * in front, the same planes to the bit once the bounds are its own, and
- * again with a fourth vertex at NaN (which keeps the mesh unbounded). */
+ * again with a fourth vertex at NaN or at inf (which keeps the mesh
+ * unbounded). */
 Test(pinhole, fitted_planes_take_the_bounds_the_mesh_keeps)
 {
     const double c2w[4][4] = { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 }, { 0, 0, 0, 1 } };
@@ -181,19 +182,46 @@ Test(pinhole, fitted_planes_take_the_bounds_the_mesh_keeps)
     sr_pinhole_fit_clip(&own, &mesh);
     cr_assert(own.near == walked.near && own.far == walked.far, "kept %g .. %g, walked %g .. %g", own.near, own.far,
               walked.near, walked.far);
-    sr_mesh with_nan = { 0 };
-    cr_assert(sr_mesh_alloc(&with_nan, 4, 3, false, false, false, &err), "%s", err.message);
-    memcpy(with_nan.positions, mesh.positions, 3 * sizeof(vec3));
-    memcpy(with_nan.indices, mesh.indices, 3 * sizeof(uint32_t));
-    glm_vec3_fill(with_nan.positions[3], NAN);
-    sr_mesh_update_bounds(&with_nan);
-    cr_assert_not(with_nan.bounded);
-    sr_pinhole nan_fit = camera_of(100, 100, 32, 32, c2w);
-    sr_pinhole_fit_clip(&nan_fit, &with_nan);
-    cr_assert(nan_fit.near == walked.near && nan_fit.far == walked.far, "with a NaN vertex %g .. %g", nan_fit.near,
-              nan_fit.far);
-    sr_mesh_free(&with_nan);
+    const float bad[2] = { NAN, INFINITY };
+    for (int b = 0; b < 2; b++) {
+        sr_mesh with_bad = { 0 };
+        cr_assert(sr_mesh_alloc(&with_bad, 4, 3, false, false, false, &err), "%s", err.message);
+        memcpy(with_bad.positions, mesh.positions, 3 * sizeof(vec3));
+        memcpy(with_bad.indices, mesh.indices, 3 * sizeof(uint32_t));
+        glm_vec3_copy((vec3){ 0.0f, bad[b], 1.0f }, with_bad.positions[3]);
+        sr_mesh_update_bounds(&with_bad);
+        cr_assert_not(with_bad.bounded);
+        sr_pinhole bad_fit = camera_of(100, 100, 32, 32, c2w);
+        sr_pinhole_fit_clip(&bad_fit, &with_bad);
+        cr_assert(bad_fit.near == walked.near && bad_fit.far == walked.far, "with a vertex at %g: %g .. %g",
+                  (double)bad[b], bad_fit.near, bad_fit.far);
+        sr_mesh_free(&with_bad);
+    }
     sr_mesh_free(&mesh);
+}
+
+/* Smooth normals are scaled by the mesh's finite extent before their cross
+ * products: a triangle 1e-25 across gets its unit normal, and keeps it
+ * beside a vertex at NaN that no face uses (which left the scale at 1,
+ * where the products underflow to 0). */
+Test(pinhole, a_vertex_at_nan_leaves_the_others_normals)
+{
+    for (int with_nan = 0; with_nan < 2; with_nan++) {
+        sr_mesh mesh = { 0 };
+        sr_error err = { "" };
+        cr_assert(sr_mesh_alloc(&mesh, 4, 3, false, false, false, &err), "%s", err.message);
+        const float corners[3][3] = { { 0, 0, 0 }, { 1e-25f, 0, 0 }, { 0, 1e-25f, 0 } };
+        for (int k = 0; k < 3; k++) {
+            memcpy(mesh.positions[k], corners[k], sizeof corners[k]);
+            mesh.indices[k] = (uint32_t)k;
+        }
+        glm_vec3_fill(mesh.positions[3], with_nan ? NAN : 0.0f);
+        cr_assert(sr_mesh_compute_normals(&mesh, &err), "%s", err.message);
+        cr_assert_float_eq(fabsf(mesh.normals[0][2]), 1.0f, 1e-6f, "%s: normal (%g, %g, %g)",
+                           with_nan ? "with a NaN vertex" : "alone", mesh.normals[0][0], mesh.normals[0][1],
+                           mesh.normals[0][2]);
+        sr_mesh_free(&mesh);
+    }
 }
 
 /* A point X that the pinhole formula puts exactly at pixel centre (u, v)

@@ -781,6 +781,63 @@ Test(points, points_too_large_to_bin_are_drawn_on_one_thread)
     free(pts.indices);
 }
 
+/* 1500 lines 12 pixels wide across a 512 x 512 frame, many through the
+ * near plane and past the sides (so cut, and counted by precision), bin
+ * more fragments than a draw on several threads may: it is made on one
+ * thread instead, the same picture and counts as one thread's, cleared or
+ * drawn over; and a draw that fits the bins next, on the same workspace,
+ * is still binned and still the one thread's. */
+Test(lines, lines_too_many_to_bin_are_drawn_on_one_thread)
+{
+    enum { N = 1500, SIDE = 512 };
+    sr_mesh lines = { .vertex_count = 2 * N, .index_count = 2 * N, .topology = SR_LINE_LIST };
+    lines.clip_positions = calloc(2 * N, sizeof(vec4));
+    lines.indices = calloc(2 * N, sizeof(uint32_t));
+    cr_assert(lines.clip_positions && lines.indices);
+    test_rng r = { 23 };
+    for (uint32_t i = 0; i < 2 * N; i++) {
+        glm_vec4_copy((vec4){ (float)rng_uniform(&r, -1.6, 1.6), (float)rng_uniform(&r, -1.6, 1.6),
+                              (float)rng_uniform(&r, -0.3, 0.9), 1.0f },
+                      lines.clip_positions[i]);
+        lines.indices[i] = i;
+    }
+    sr_framebuffer one, many;
+    scene_fb_make(&one, SIDE, SIDE);
+    scene_fb_make(&many, SIDE, SIDE);
+    sr_workspace *ws = sr_workspace_create();
+    cr_assert_not_null(ws);
+    const struct {
+        float width;
+        bool clear;
+        sr_draw_path path;
+    } draws[] = { { 32.0f, true, SR_PATH_DIRECT }, { 32.0f, false, SR_PATH_DIRECT }, { 1.0f, true, SR_PATH_ROWS } };
+    for (size_t d = 0; d < sizeof draws / sizeof *draws; d++) {
+        sr_draw_desc desc = { .mesh = &lines, .shade = SR_SHADE_ID, .line_width = draws[d].width,
+                              .clear = draws[d].clear };
+        sr_framebuffer_clear(&one, 0x123456);
+        sr_framebuffer_clear(&many, 0x123456);
+        sr_stats s1, s2 = { 0 };
+        scene_draw_on_loop(&one, &desc, SR_SIMD_AUTO, 1, SR_PATH_DIRECT, &s1);
+        cr_assert_gt(s1.cuts_float + s1.cuts_double + s1.cuts_exact, 100u, "draw %zu: few cuts", d);
+        sr_draw_times times = { 0 };
+        desc.study = &(sr_draw_study){ .times = &times };
+        desc.threads = 2;
+        desc.workspace = ws;
+        sr_error err = { "" };
+        cr_assert(sr_draw(&many, &desc, &s2, &err), "%s", err.message);
+        cr_assert_eq(times.path, draws[d].path, "draw %zu took path %d", d, (int)times.path);
+        cr_assert(memcmp(one.color, many.color, sizeof(uint32_t) * SIDE * SIDE) == 0 &&
+                      memcmp(one.depth, many.depth, sizeof(float) * SIDE * SIDE) == 0 &&
+                      memcmp(&s1, &s2, sizeof s1) == 0,
+                  "draw %zu: two threads differ from one", d);
+    }
+    sr_workspace_destroy(ws);
+    sr_framebuffer_destroy(&one);
+    sr_framebuffer_destroy(&many);
+    free(lines.clip_positions);
+    free(lines.indices);
+}
+
 Test(lines, a_line_over_its_triangle_needs_the_depth_bias_and_a_hidden_one_stays_hidden)
 {
     sr_framebuffer fb, alone;

@@ -273,7 +273,9 @@ static void draw_line(point_line_draw *d, uint32_t k)
 /* The fragments a point or line draw on several threads may bin, all its
  * threads together (16 bytes each): a draw of more (large points, long
  * wide lines) is drawn on one thread instead, which stores each fragment
- * as it comes, so no input makes the bins take gigabytes. */
+ * as it comes; and a thread whose bins keep room for more than its share
+ * gives it back before the next draw. So no input, and no run of draws on
+ * one workspace, makes the bins take gigabytes. */
 #define FRAGMENT_BIN_BUDGET ((size_t)1 << 23)
 
 /* The draw's two phases on st->threads threads. */
@@ -330,11 +332,24 @@ static void bands_phase(void *ctx, int t)
     st->ws->threads[t].stats.fragments += passed;
 }
 
-/* Each thread's bins, one per band, emptied. */
+/* Thread w's bins freed. */
+static void bins_free(sr_thread_work *w)
+{
+    for (size_t b = 0; b < w->fragment_bin_count; b++)
+        sr_array_free(&w->fragment_bins[b]);
+}
+
+/* Each thread's bins, one per band, emptied; those of a thread that keep
+ * room for more than its share of FRAGMENT_BIN_BUDGET freed. */
 static bool bins_ready(sr_draw_state *st, int bands)
 {
     for (int t = 0; t < st->threads; t++) {
         sr_thread_work *w = &st->ws->threads[t];
+        size_t room = 0;
+        for (size_t b = 0; b < w->fragment_bin_count; b++)
+            room += w->fragment_bins[b].capacity;
+        if (room > FRAGMENT_BIN_BUDGET / (size_t)st->threads)
+            bins_free(w);
         if (w->fragment_bin_count < (size_t)bands) {
             sr_array *grown = realloc(w->fragment_bins, (size_t)bands * sizeof *grown);
             if (!grown)
@@ -356,6 +371,11 @@ bool sr_draw_points_lines(sr_draw_state *st, sr_error *err)
     if (!sr_assemble_indices_valid(mesh))
         return sr_error_set(err, "mesh has an index past its %u vertices", st->vertex_count);
     int bands = sr_band_count(st->fb->height);
+    /* points whose squares could hold more fragments than the bins do go to one thread at once */
+    float size = st->desc->point_size > 0.0f ? ceilf(st->desc->point_size) : 1.0f;
+    if (mesh->topology == SR_POINT_LIST &&
+        (double)sr_assemble_point_line_slots(mesh) * size * size > (double)FRAGMENT_BIN_BUDGET)
+        st->threads = 1;
     if (st->threads > 1 && !bins_ready(st, bands))
         return sr_error_set(err, "out of memory for the row bands of a point or line draw");
     bool binned = st->threads > 1;
@@ -373,18 +393,15 @@ bool sr_draw_points_lines(sr_draw_state *st, sr_error *err)
         sr_parallel_run(&st->ws->pool, st->threads, slots_phase, &ph, times ? &times->primitives : NULL);
     if (!binned)
         return true;
-    bool over_budget = false;
-    for (int t = 0; t < st->threads; t++) {
-        if (st->ws->threads[t].out_of_memory)
-            return sr_error_set(err, "out of memory for the row bands of a point or line draw");
-        over_budget = over_budget || st->ws->threads[t].bins_over_budget;
-    }
-    if (over_budget) { /* nothing is written yet: the same draw on one thread, its counts alone */
+    bool one_thread = false;
+    for (int t = 0; t < st->threads; t++)
+        one_thread = one_thread || st->ws->threads[t].out_of_memory || st->ws->threads[t].bins_over_budget;
+    if (one_thread) { /* nothing is written yet: the same draw on one thread, which needs no bins */
         for (int t = 0; t < st->threads; t++) {
             sr_thread_work *w = &st->ws->threads[t];
             w->stats = (sr_stats){ 0 };
             w->cuts = (sr_clip_counts){ { 0 } };
-            w->simd_draws = 0;
+            bins_free(w);
         }
         st->threads = 1;
         return sr_draw_points_lines(st, err);

@@ -1,6 +1,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "mesh_bounds.h"
 #include "pipeline/02_assemble.h"
 #include "softrast/softrast.h"
 #include "core/error.h"
@@ -50,20 +51,37 @@ void sr_mesh_free(sr_mesh *mesh)
     *mesh = (sr_mesh){ 0 };
 }
 
-bool sr_mesh_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi)
+/* The bounds of the positions, a non-finite one skipped (skip) or ending
+ * the walk with false; false too when none is finite. */
+static bool bounds_of(const sr_mesh *mesh, vec3 lo, vec3 hi, bool skip)
 {
-    if (mesh->vertex_count == 0 || !mesh->positions)
-        return false;
-    glm_vec3_copy(mesh->positions[0], lo);
-    glm_vec3_copy(mesh->positions[0], hi);
-    for (uint32_t i = 0; i < mesh->vertex_count; i++) {
+    bool any = false;
+    for (uint32_t i = 0; mesh->positions && i < mesh->vertex_count; i++) {
         const float *p = mesh->positions[i];
-        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
-            return false;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
+            if (!skip)
+                return false;
+            continue;
+        }
+        if (!any) {
+            glm_vec3_copy((float *)p, lo);
+            glm_vec3_copy((float *)p, hi);
+            any = true;
+        }
         glm_vec3_minv(lo, (float *)p, lo);
         glm_vec3_maxv(hi, (float *)p, hi);
     }
-    return true;
+    return any;
+}
+
+bool sr_mesh_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi)
+{
+    return bounds_of(mesh, lo, hi, false);
+}
+
+bool sr_mesh_finite_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi)
+{
+    return bounds_of(mesh, lo, hi, true);
 }
 
 uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh)
@@ -77,7 +95,7 @@ uint32_t sr_mesh_triangle_slots(const sr_mesh *mesh)
 static float normal_scale(const sr_mesh *mesh)
 {
     vec3 lo, hi;
-    if (!sr_mesh_bounds(mesh, lo, hi))
+    if (!sr_mesh_finite_bounds(mesh, lo, hi)) /* a vertex at NaN leaves the others their scale */
         return 1.0f;
     float largest = 0.0f;
     for (int k = 0; k < 3; k++)

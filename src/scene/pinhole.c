@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "mesh_bounds.h"
 #include "pinhole_frame.h"
 #include "softrast/softrast.h"
 #include "core/error.h"
@@ -86,27 +87,6 @@ bool sr_pinhole_pose_from_c2w(const double c2w[4][4], double w2c[4][4], sr_error
     return true;
 }
 
-/* The bounds of the mesh's finite positions: a vertex at NaN or inf is
- * dropped by the draw (with its primitives, counted), so it must not leave
- * the rest unfitted. False when none is finite. */
-static bool finite_bounds(const sr_mesh *mesh, vec3 lo, vec3 hi)
-{
-    bool any = false;
-    for (uint32_t i = 0; mesh->positions && i < mesh->vertex_count; i++) {
-        const float *p = mesh->positions[i];
-        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
-            continue;
-        if (!any) {
-            glm_vec3_copy((float *)p, lo);
-            glm_vec3_copy((float *)p, hi);
-            any = true;
-        }
-        glm_vec3_minv(lo, (float *)p, lo);
-        glm_vec3_maxv(hi, (float *)p, hi);
-    }
-    return any;
-}
-
 void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh)
 {
     if (cam->near != 0.0 || cam->far != 0.0)
@@ -123,7 +103,7 @@ void sr_pinhole_fit_clip(sr_pinhole *cam, const sr_mesh *mesh)
         glm_vec3_copy((float *)mesh->bounds_lo, lo);
         glm_vec3_copy((float *)mesh->bounds_hi, hi);
     } else {
-        bounded = finite_bounds(mesh, lo, hi);
+        bounded = sr_mesh_finite_bounds(mesh, lo, hi);
     }
     if (bounded)
         for (int k = 0; k < 8; k++) {
