@@ -173,10 +173,9 @@ static void check_mesh(const sr_mesh *m, bool has_usemtl, bool has_faces)
     CHECK(m->topology == SR_TRIANGLE_LIST, "topology %d", m->topology);
     CHECK(m->index_count % 3 == 0, "%u indices", m->index_count);
     CHECK(m->index_count == 0 || m->vertex_count > 0, "%u vertices, %u indices", m->vertex_count, m->index_count);
-    /* a file without faces is a point cloud: its vertices, and no attribute only a face corner names;
-       a file with faces that loads has triangles */
-    CHECK(m->index_count > 0 || (!m->normals && !m->uvs), "a cloud of %u vertices with normals or uvs",
-          m->vertex_count);
+    /* a file without faces is a point cloud: its vertices, no uvs (only a face corner names one), normals
+       only paired one to a vertex; a file with faces that loads has triangles */
+    CHECK(m->index_count > 0 || !m->uvs, "a cloud of %u vertices with uvs", m->vertex_count);
     CHECK(m->index_count > 0 || m->vertex_count == 0 || !has_faces, "faces loaded as a cloud of %u vertices",
           m->vertex_count);
     CHECK((m->positions != NULL) == (m->vertex_count > 0), "positions %p for %u vertices", (void *)m->positions,

@@ -423,10 +423,17 @@ Test(obj, missing_uv_or_normal_of_a_corner_is_zero)
 
 /* A file of vertices alone is a point cloud (as scanners and CloudCompare
  * write one): every vertex in file order, z negated, with its colour (one
- * without a colour white, as among faces), and no triangles; a normal,
- * which only a face corner names, is not one of a vertex. */
+ * without a colour white, as among faces), and no triangles; a normal is
+ * a vertex's only when there is one a vertex (then in the same order, z
+ * negated), as no face corner pairs them. */
 Test(obj, file_without_faces_is_a_point_cloud)
 {
+    sr_mesh paired = load_ok("v 0 0 1\nvn 0 0 1\nv 1 0 2\nvn 0 1 0\n");
+    cr_assert_eq(paired.vertex_count, 2);
+    cr_assert_not_null(paired.normals);
+    assert_vec3(paired.normals[0], 0, 0, -1);
+    assert_vec3(paired.normals[1], 0, 1, 0);
+    sr_mesh_free(&paired);
     sr_mesh m = load_ok("v 0 0 1 1 0 0\nv 1 0 2\nv 0 1 3 0 0 1\nvn 0 0 1\nl 1 2\n");
     cr_assert_eq(m.vertex_count, 3);
     cr_assert_eq(m.index_count, 0);

@@ -83,11 +83,11 @@ SR_API bool sr_mesh_load(sr_mesh *mesh, sr_texture *texture, const char *path, s
  * The mesh: a TriangleList in which each distinct v/vt/vn combination used by
  * a face becomes one vertex, numbered in order of first use. A file without
  * faces is a point cloud: every `v` a vertex, in file order, with its colour,
- * no indices and no normals (a vn belongs to a face corner); draw it as
- * points (SR_POINT_LIST over its vertices), and in a shading that reads
- * normals only once they are made (sr_mesh_compute_normals gives a cloud
- * 0). normals / uvs exist iff
- * some face corner gives vn / vt; corners without one get (0,0,0) / (0,0).
+ * no indices, and normals only when it has one `vn` a `v` (vn i is v i's);
+ * draw it as points (SR_POINT_LIST over its vertices), and in a shading
+ * that reads normals only once it has them (sr_mesh_compute_normals gives
+ * a cloud without 0). Otherwise normals / uvs exist iff some face corner
+ * gives vn / vt; corners without one get (0,0,0) / (0,0).
  * colors exist iff some `v` has r g b; the other vertices are white.
  * texture_path is the first `map_Kd` of a material that a face is drawn
  * with, resolved against the .mtl's folder (the .mtl against the OBJ's),

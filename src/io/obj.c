@@ -10,7 +10,8 @@
  * origin (mesh.h: SR_MESH_RECENTRE_RATIO) is stored relative to the centre
  * of its bounds, computed in double, with the centre as the mesh's origin.
  * A file without faces is a point cloud (as scanners and CloudCompare
- * write one): every vertex is kept, in file order, with its colour.
+ * write one): every vertex is kept, in file order, with its colour, and
+ * with the normal of the same number when the file has one `vn` a `v`.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -579,15 +580,19 @@ static bool build_parts(obj_reader *o, sr_mesh *mesh)
 }
 
 /* A file without faces: every vertex a mesh vertex of its own, in file
- * order, as the faces would have named them. */
+ * order, as the faces would have named them; vn i its normal when there
+ * are as many as vertices (a cloud's exporter writes them in pairs, and
+ * no face corner is there to pair them). */
 static bool corners_of_cloud(obj_reader *o)
 {
     size_t count = o->positions.count;
     corner *c = count ? sr_array_grow(&o->corners, count, sizeof *c) : NULL;
     if (count && !c)
         return sr_error_set(o->err, "%s: out of memory", o->in.path);
+    bool normals = o->normals.count == count;
     for (size_t i = 0; i < count; i++)
-        c[i] = (corner){ (uint32_t)i, NONE, NONE };
+        c[i] = (corner){ (uint32_t)i, NONE, normals ? (uint32_t)i : NONE };
+    o->any_normal = normals && count > 0;
     return true;
 }
 
