@@ -14,6 +14,7 @@
 #include "pipeline/04_clip/clip_corner.h"
 #include "pipeline/04_clip/clip_segment.h"
 #include "pipeline/06_viewport.h"
+#include "draw/draw_state.h"
 #include "scene_helpers.h"
 
 #define W 24
@@ -727,13 +728,26 @@ Test(points, a_clip_space_cloud_in_blocks_matches_the_point_by_point_loop)
     free(twin.indices);
 }
 
-/* 200 points 256 pixels wide over a 512 x 512 frame make 13M fragments,
- * more than a draw on several threads bins (16 bytes each): it draws them
- * on one thread instead, storing each as it comes, so no input makes the
- * bins take gigabytes; the picture and the counts are the one thread's. */
-Test(points, points_too_large_to_bin_are_drawn_on_one_thread)
+/* The room a workspace's bins keep, in fragments, over its first
+ * `threads` threads. */
+static size_t bins_room(sr_workspace *ws, int threads)
 {
-    enum { N = 200, SIDE = 512 };
+    size_t room = 0;
+    for (int t = 0; t < threads; t++)
+        for (size_t b = 0; b < ws->threads[t].fragment_bin_count; b++)
+            room += ws->threads[t].fragment_bins[b].capacity;
+    return room;
+}
+
+/* 400 points 256 pixels wide over a 512 x 512 frame make 26M fragments,
+ * more than a draw on several threads bins at once (16 bytes each): it
+ * bins and stores them in rounds of slots, so the bins never hold room
+ * for much more than the budget, and the picture and the counts are the
+ * one thread's; a draw that fits in one round next, on the same
+ * workspace, too. */
+Test(points, points_too_large_to_bin_at_once_are_binned_in_rounds)
+{
+    enum { N = 400, SIDE = 512 };
     sr_mesh pts = { .vertex_count = N, .index_count = N, .topology = SR_POINT_LIST };
     pts.clip_positions = calloc(N, sizeof(vec4));
     pts.indices = calloc(N, sizeof(uint32_t));
@@ -764,7 +778,9 @@ Test(points, points_too_large_to_bin_are_drawn_on_one_thread)
     s2 = (sr_stats){ 0 };
     sr_framebuffer_clear(&two, 0);
     cr_assert(sr_draw(&two, &many, &s2, &err), "%s", err.message);
-    cr_assert_eq(times.path, SR_PATH_DIRECT, "the bins took %d", (int)times.path);
+    cr_assert_eq(times.path, SR_PATH_ROWS, "the draw took path %d", (int)times.path);
+    cr_assert_leq(bins_room(ws, 2), 2 * SR_FRAGMENT_BIN_BUDGET + 2 * SR_ROW_BANDS * 64, "the bins keep room for %zu",
+                  bins_room(ws, 2));
     cr_assert(memcmp(one.color, two.color, sizeof(uint32_t) * SIDE * SIDE) == 0 &&
                   memcmp(one.depth, two.depth, sizeof(float) * SIDE * SIDE) == 0 && memcmp(&s1, &s2, sizeof s1) == 0,
               "two threads differ from one");
@@ -809,8 +825,7 @@ Test(lines, lines_too_many_to_bin_are_drawn_on_one_thread)
     const struct {
         float width;
         bool clear;
-        sr_draw_path path;
-    } draws[] = { { 32.0f, true, SR_PATH_DIRECT }, { 32.0f, false, SR_PATH_DIRECT }, { 1.0f, true, SR_PATH_ROWS } };
+    } draws[] = { { 32.0f, true }, { 32.0f, false }, { 1.0f, true } };
     for (size_t d = 0; d < sizeof draws / sizeof *draws; d++) {
         sr_draw_desc desc = { .mesh = &lines, .shade = SR_SHADE_ID, .line_width = draws[d].width,
                               .clear = draws[d].clear };
@@ -825,7 +840,7 @@ Test(lines, lines_too_many_to_bin_are_drawn_on_one_thread)
         desc.workspace = ws;
         sr_error err = { "" };
         cr_assert(sr_draw(&many, &desc, &s2, &err), "%s", err.message);
-        cr_assert_eq(times.path, draws[d].path, "draw %zu took path %d", d, (int)times.path);
+        cr_assert_eq(times.path, SR_PATH_ROWS, "draw %zu took path %d", d, (int)times.path);
         cr_assert(memcmp(one.color, many.color, sizeof(uint32_t) * SIDE * SIDE) == 0 &&
                       memcmp(one.depth, many.depth, sizeof(float) * SIDE * SIDE) == 0 &&
                       memcmp(&s1, &s2, sizeof s1) == 0,

@@ -38,6 +38,15 @@ static inline int sr_band_count(int height)
     int rows = sr_band_rows(height);
     return (height + rows - 1) / rows;
 }
+/* The fragments a point or line draw on several threads bins at most
+ * before it stores them, all its threads together (16 bytes each;
+ * points_lines.c): the slots go in rounds that cannot bin more (rounds in
+ * slot order keep each band's fragments in it), and a thread whose bins
+ * keep room for more than its share frees them before the next draw. So
+ * no input, and no run of draws on one workspace, makes the bins take
+ * gigabytes. */
+#define SR_FRAGMENT_BIN_BUDGET ((size_t)1 << 23)
+
 /* Snapped coordinates stay below 2^SR_FIXED_POINT_BITS so the 64-bit edge
  * functions cannot overflow whatever the precision asked for. */
 #define SR_FIXED_POINT_BITS 30
@@ -91,7 +100,6 @@ typedef struct sr_thread_work {
     sr_array *fragment_bins; /* sr_fragment, one per band of rows: a point or line draw's on several threads */
     size_t fragment_bin_count;
     bool out_of_memory;
-    bool bins_over_budget; /* a point or line draw's fragments passed its share of the bins' budget (points_lines.c) */
     bool index_past_end; /* in the thread's share of the indices */
     unsigned outcodes_and; /* of the thread's vertices: a plane all are outside of */
     uint32_t band_triangles[SR_ROW_BANDS]; /* of the slots it gave a verdict, kept ones inside every plane per first band (row_bands.c) */

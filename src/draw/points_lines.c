@@ -189,7 +189,7 @@ static void draw_points(point_line_draw *d, uint32_t first, uint32_t end)
     _Alignas(16) sr_vertex_out v[POINT_BLOCK];
     sr_screen_vertex screen[POINT_BLOCK];
     unsigned char codes[POINT_BLOCK], mapped[POINT_BLOCK];
-    for (uint32_t k = first; k < end && !d->target.over_budget; k += POINT_BLOCK) {
+    for (uint32_t k = first; k < end; k += POINT_BLOCK) {
         uint32_t n = end - k < POINT_BLOCK ? end - k : POINT_BLOCK, i = mesh->indices[k];
         if (!consecutive(mesh->indices, k, n) ||
             !sr_vertex_block_finite(mesh, st->xf, &st->shade.layout, i, n)) {
@@ -270,46 +270,37 @@ static void draw_line(point_line_draw *d, uint32_t k)
     stats->fragments += sr_raster_line(&d->target, &a, &b, width, k);
 }
 
-/* The fragments a point or line draw on several threads may bin, all its
- * threads together (16 bytes each): a draw of more (large points, long
- * wide lines) is drawn on one thread instead, which stores each fragment
- * as it comes; and a thread whose bins keep room for more than its share
- * gives it back before the next draw. So no input, and no run of draws on
- * one workspace, makes the bins take gigabytes. */
-#define FRAGMENT_BIN_BUDGET ((size_t)1 << 23)
-
-/* The draw's two phases on st->threads threads. */
+/* The draw's two phases on st->threads threads, for slots [first, end). */
 typedef struct point_line_phases {
     sr_draw_state *st;
     sr_point_line_target target; /* bins NULL: each thread sets its own */
-    uint32_t slots;
+    uint32_t first, end;
+    bool clear; /* the bands phase clears its rows: the first round's */
     sr_chunks bands;
 } point_line_phases;
 
-/* Thread t's run of slots, its fragments stored or binned. */
+/* Thread t's run of the slots, its fragments stored or binned. */
 static void slots_phase(void *ctx, int t)
 {
     point_line_phases *ph = ctx;
     sr_draw_state *st = ph->st;
     sr_thread_work *work = &st->ws->threads[t];
     point_line_draw d = { .st = st, .work = work, .target = ph->target };
-    if (st->threads > 1) {
+    if (st->threads > 1)
         d.target.bins = work->fragment_bins;
-        d.target.bin_budget = FRAGMENT_BIN_BUDGET / (size_t)st->threads;
-    }
-    uint32_t first = (uint32_t)((uint64_t)ph->slots * (uint64_t)t / (uint64_t)st->threads);
-    uint32_t end = (uint32_t)((uint64_t)ph->slots * (uint64_t)(t + 1) / (uint64_t)st->threads);
+    uint64_t slots = ph->end - ph->first;
+    uint32_t first = ph->first + (uint32_t)(slots * (uint64_t)t / (uint64_t)st->threads);
+    uint32_t end = ph->first + (uint32_t)(slots * (uint64_t)(t + 1) / (uint64_t)st->threads);
     if (st->desc->mesh->topology == SR_POINT_LIST)
         draw_points(&d, first, end);
     else
-        for (uint32_t k = first; k < end && !d.target.over_budget; k++)
+        for (uint32_t k = first; k < end; k++)
             draw_line(&d, k);
     work->out_of_memory = d.target.out_of_memory;
-    work->bins_over_budget = d.target.over_budget;
 }
 
-/* The bands thread t takes, each cleared if the draw clears, then given
- * every thread's bin of it in slot order. */
+/* The bands thread t takes, each cleared in the first round if the draw
+ * clears, then given every thread's bin of it in slot order. */
 static void bands_phase(void *ctx, int t)
 {
     point_line_phases *ph = ctx;
@@ -319,7 +310,7 @@ static void bands_phase(void *ctx, int t)
     uint32_t first, end;
     while (sr_chunks_take(&ph->bands, &first, &end))
         for (uint32_t b = first; b < end; b++) {
-            if (st->desc->clear) {
+            if (ph->clear) {
                 int y1 = (int)(b + 1) * rows;
                 sr_framebuffer_clear_rows(st->fb, (int)b * rows, y1 < st->fb->height ? y1 : st->fb->height,
                                           st->desc->clear_color);
@@ -340,7 +331,7 @@ static void bins_free(sr_thread_work *w)
 }
 
 /* Each thread's bins, one per band, emptied; those of a thread that keep
- * room for more than its share of FRAGMENT_BIN_BUDGET freed. */
+ * room for more than its share of SR_FRAGMENT_BIN_BUDGET freed. */
 static bool bins_ready(sr_draw_state *st, int bands)
 {
     for (int t = 0; t < st->threads; t++) {
@@ -348,7 +339,7 @@ static bool bins_ready(sr_draw_state *st, int bands)
         size_t room = 0;
         for (size_t b = 0; b < w->fragment_bin_count; b++)
             room += w->fragment_bins[b].capacity;
-        if (room > FRAGMENT_BIN_BUDGET / (size_t)st->threads)
+        if (room > SR_FRAGMENT_BIN_BUDGET / (size_t)st->threads)
             bins_free(w);
         if (w->fragment_bin_count < (size_t)bands) {
             sr_array *grown = realloc(w->fragment_bins, (size_t)bands * sizeof *grown);
@@ -365,48 +356,58 @@ static bool bins_ready(sr_draw_state *st, int bands)
     return true;
 }
 
+/* The most fragments one slot can make: a point's square, a line's width
+ * along the longer side of the framebuffer, the raster cutting both to it. */
+static uint64_t slot_fragments(const sr_draw_state *st)
+{
+    const sr_draw_desc *d = st->desc;
+    if (d->mesh->topology == SR_POINT_LIST) {
+        uint64_t side = d->point_size > 0.0f ? (uint64_t)ceilf(d->point_size) : 1;
+        return side * side;
+    }
+    uint64_t width = d->line_width > 0.0f ? (uint64_t)lrintf(d->line_width) : 1;
+    return width * (uint64_t)(st->fb->width + st->fb->height + 2);
+}
+
 bool sr_draw_points_lines(sr_draw_state *st, sr_error *err)
 {
     const sr_mesh *mesh = st->desc->mesh;
     if (!sr_assemble_indices_valid(mesh))
         return sr_error_set(err, "mesh has an index past its %u vertices", st->vertex_count);
-    int bands = sr_band_count(st->fb->height);
-    /* points whose squares could hold more fragments than the bins do go to one thread at once */
-    float size = st->desc->point_size > 0.0f ? ceilf(st->desc->point_size) : 1.0f;
-    if (mesh->topology == SR_POINT_LIST &&
-        (double)sr_assemble_point_line_slots(mesh) * size * size > (double)FRAGMENT_BIN_BUDGET)
-        st->threads = 1;
-    if (st->threads > 1 && !bins_ready(st, bands))
-        return sr_error_set(err, "out of memory for the row bands of a point or line draw");
+    uint32_t slots = sr_assemble_point_line_slots(mesh);
     bool binned = st->threads > 1;
     sr_draw_times *times = st->study.times;
     if (times)
         times->path = binned ? SR_PATH_ROWS : SR_PATH_DIRECT;
-    if (st->desc->clear && !binned)
-        sr_framebuffer_clear(st->fb, st->desc->clear_color);
-    point_line_phases ph = { .st = st, .slots = sr_assemble_point_line_slots(mesh),
+    point_line_phases ph = { .st = st, .end = slots,
                              .target = { .fb = st->fb, .mode = st->mode, .shade = &st->shade,
                                          .subpixel_bits = st->vp.subpixel_bits, .depth_bias = st->desc->depth_bias,
                                          .filter = st->line_filter,
                                          .band_rows = sr_band_rows(st->fb->height) } };
-    if (st->vertex_count > 0 || binned)
-        sr_parallel_run(&st->ws->pool, st->threads, slots_phase, &ph, times ? &times->primitives : NULL);
-    if (!binned)
+    if (!binned) {
+        if (st->desc->clear)
+            sr_framebuffer_clear(st->fb, st->desc->clear_color);
+        if (st->vertex_count > 0)
+            sr_parallel_run(&st->ws->pool, 1, slots_phase, &ph, times ? &times->primitives : NULL);
         return true;
-    bool one_thread = false;
-    for (int t = 0; t < st->threads; t++)
-        one_thread = one_thread || st->ws->threads[t].out_of_memory || st->ws->threads[t].bins_over_budget;
-    if (one_thread) { /* nothing is written yet: the same draw on one thread, which needs no bins */
-        for (int t = 0; t < st->threads; t++) {
-            sr_thread_work *w = &st->ws->threads[t];
-            w->stats = (sr_stats){ 0 };
-            w->cuts = (sr_clip_counts){ { 0 } };
-            bins_free(w);
-        }
-        st->threads = 1;
-        return sr_draw_points_lines(st, err);
     }
-    sr_chunks_init(&ph.bands, (uint32_t)bands, 1);
-    sr_parallel_run(&st->ws->pool, st->threads, bands_phase, &ph, times ? &times->raster : NULL);
+    int bands = sr_band_count(st->fb->height);
+    uint64_t per_slot = slot_fragments(st), round = SR_FRAGMENT_BIN_BUDGET / per_slot;
+    if (round == 0)
+        round = 1;
+    /* every round, even of no slots, so a draw that clears clears */
+    for (uint64_t first = 0; first == 0 || first < slots; first += round) {
+        if (!bins_ready(st, bands))
+            return sr_error_set(err, "out of memory for the row bands of a point or line draw");
+        ph.first = (uint32_t)first;
+        ph.end = (uint32_t)(slots - first > round ? first + round : slots);
+        ph.clear = first == 0 && st->desc->clear;
+        sr_parallel_run(&st->ws->pool, st->threads, slots_phase, &ph, times ? &times->primitives : NULL);
+        for (int t = 0; t < st->threads; t++)
+            if (st->ws->threads[t].out_of_memory)
+                return sr_error_set(err, "out of memory for the row bands of a point or line draw");
+        sr_chunks_init(&ph.bands, (uint32_t)bands, 1);
+        sr_parallel_run(&st->ws->pool, st->threads, bands_phase, &ph, times ? &times->raster : NULL);
+    }
     return true;
 }

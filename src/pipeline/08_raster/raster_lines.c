@@ -42,11 +42,6 @@ static inline uint64_t put(sr_point_line_target *t, int y, const sr_fragment *f)
 {
     if (!t->bins)
         return store(t, f);
-    if (t->binned == t->bin_budget) {
-        t->over_budget = true;
-        return 0;
-    }
-    t->binned++;
     sr_fragment *slot = sr_array_push(&t->bins[y / t->band_rows], sizeof *slot);
     if (slot)
         *slot = *f;

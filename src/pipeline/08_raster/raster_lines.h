@@ -68,9 +68,6 @@ typedef struct sr_point_line_target {
     const sr_line_filter *filter; /* NULL: none */
     sr_array *bins;   /* NULL: store each fragment at once; else one sr_fragment array per band of rows */
     int band_rows;    /* with bins: the rows of a band */
-    size_t bin_budget; /* with bins: the fragments it may bin in all; past them over_budget, and none is */
-    size_t binned;
-    bool over_budget;
     bool out_of_memory; /* a bin could not grow: fragments were lost */
 } sr_point_line_target;
 
