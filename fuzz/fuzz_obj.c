@@ -127,7 +127,7 @@ static bool has_face_statement(const uint8_t *data, size_t size)
         if (line_start && (c == ' ' || c == '\t' || c == '\v' || c == '\f'))
             continue;
         if (line_start && c == 'f' &&
-            (i + 1 == size || strchr(" \t\v\f\r\n#", data[i + 1]) != NULL || data[i + 1] == '\0'))
+            (i + 1 == size || strchr(" \t\v\f\r\n#", data[i + 1]) != NULL)) /* strchr finds '\0' too */
             return true;
         line_start = false;
     }

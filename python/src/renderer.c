@@ -577,7 +577,8 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
         PyErr_SetString(PyExc_ValueError, "the mesh is empty (Mesh.__init__ was not called)");
         return NULL;
     }
-    if (!j->points && sr_mesh_triangle_slots(&mesh->mesh) == 0) {
+    bool cloud = sr_mesh_triangle_slots(&mesh->mesh) == 0;
+    if (!j->points && cloud) {
         PyErr_SetString(PyExc_ValueError, "the mesh has no faces (a point cloud): render it with points=True");
         return NULL;
     }
@@ -585,7 +586,6 @@ static PyObject *render_frames(sr_py_renderer *self, sr_py_mesh *mesh, const job
     /* a point's normal is its vertex's, as the command line's --points makes them */
     bool vertex_normals = j->wanted[OUT_NORMALS] && (j->interpolated || j->points);
     bool make_normals = (vertex_normals || lit) && !mesh->mesh.normals;
-    bool cloud = sr_mesh_triangle_slots(&mesh->mesh) == 0;
     /* with the GIL held: no render reads them now */
     if (make_normals && !cloud && !sr_mesh_compute_normals(&mesh->mesh, &err))
         return sr_py_raise(PyExc_ValueError, &err);
